@@ -1,0 +1,32 @@
+"""Python client of the ``contact`` 2D frictionless contact solve service.
+
+    >>> from contact_client import solve, scenes
+    >>> reply = solve(scenes.hertz_cylinder(), connect="tcp/127.0.0.1:7447")
+    >>> reply["resultant"]["fy"]
+"""
+
+from .client import (
+    DEFAULT_CONNECT,
+    Client,
+    ContactError,
+    TransportError,
+    health,
+    make_config,
+    schema,
+    solve,
+)
+from . import scenes
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "DEFAULT_CONNECT",
+    "Client",
+    "ContactError",
+    "TransportError",
+    "health",
+    "make_config",
+    "schema",
+    "scenes",
+    "solve",
+]

@@ -1,0 +1,239 @@
+"""Calls to the ``contact`` service over zenoh.
+
+The service declares three queryables:
+
+``contact/solve``
+    payload: a solve request (JSON, UTF-8). An ``ok`` reply carries the solve
+    reply JSON; an ``err`` reply carries ``{"version", "code", "message", "path"}``
+    where ``path`` is a JSON pointer into the request.
+``contact/health``
+    ``ok`` reply: ``{"version", "uptime_s", "solves_served", "queue_depth", "in_flight", ...}``.
+``contact/schema``
+    ``ok`` reply: ``{"request": ..., "reply": ..., "error": ...}`` (JSON Schemas).
+
+Two failure kinds are kept apart:
+
+* :class:`ContactError`: the service understood the query and answered with a
+  structured error (bad request, no support, busy, ...). Retrying the same
+  request gives the same answer, except for ``busy`` and ``timeout``.
+* :class:`TransportError`: no usable answer came back: no session could be
+  opened, nothing answered before the timeout, or the answer was not the
+  service's JSON (zenoh reports its own query timeout as an error reply whose
+  payload is the text ``Timeout``).
+
+The zenoh configuration is always client mode with one explicit endpoint and
+multicast scouting off, so nothing leaves the given address.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any, Union
+
+import zenoh
+
+__all__ = [
+    "DEFAULT_CONNECT",
+    "KEY_SOLVE",
+    "KEY_HEALTH",
+    "KEY_SCHEMA",
+    "Client",
+    "ContactError",
+    "TransportError",
+    "make_config",
+    "solve",
+    "health",
+    "schema",
+]
+
+DEFAULT_CONNECT = "tcp/127.0.0.1:7447"
+KEY_SOLVE = "contact/solve"
+KEY_HEALTH = "contact/health"
+KEY_SCHEMA = "contact/schema"
+
+#: Timeout of the small queries (health, schema), seconds.
+SMALL_QUERY_TIMEOUT = 10.0
+
+Request = Union[dict, str, bytes, bytearray]
+
+
+class ContactError(Exception):
+    """A structured error reply of the service.
+
+    Attributes: ``code`` (e.g. ``"invalid_material"``), ``message``, ``path``
+    (JSON pointer into the request, ``""`` for the whole request), ``version``
+    and ``reply`` (the whole decoded error JSON).
+    """
+
+    def __init__(self, code: str, message: str, path: str = "", *, version: str | None = None,
+                 reply: dict | None = None):
+        super().__init__(f"{code} at {path!r}: {message}" if path else f"{code}: {message}")
+        self.code = code
+        self.message = message
+        self.path = path
+        self.version = version
+        self.reply = reply if reply is not None else {
+            "version": version, "code": code, "message": message, "path": path}
+
+
+class TransportError(Exception):
+    """No structured answer: session failure, zenoh timeout, no reply, or a payload that is not the service's JSON."""
+
+
+def make_config(connect: str = DEFAULT_CONNECT) -> zenoh.Config:
+    """Client-mode zenoh config with a single connect endpoint and multicast scouting off."""
+    if not isinstance(connect, str) or "/" not in connect:
+        raise ValueError(f"connect must be a zenoh endpoint like 'tcp/127.0.0.1:7447', got {connect!r}")
+    conf = zenoh.Config()
+    conf.insert_json5("mode", '"client"')
+    conf.insert_json5("connect/endpoints", json.dumps([connect]))
+    conf.insert_json5("scouting/multicast/enabled", "false")
+    return conf
+
+
+def encode_request(request: Request) -> bytes:
+    """The payload bytes of a request.
+
+    A dict is serialised as strict JSON (NaN and infinities are refused here:
+    strict JSON cannot carry them). A ``str`` or ``bytes`` is sent verbatim and
+    not parsed locally, so the service alone judges it.
+    """
+    if isinstance(request, dict):
+        try:
+            return json.dumps(request, allow_nan=False, separators=(",", ":")).encode("utf-8")
+        except ValueError as e:
+            raise ValueError(f"request is not representable as strict JSON: {e}") from e
+    if isinstance(request, str):
+        return request.encode("utf-8")
+    if isinstance(request, (bytes, bytearray)):
+        return bytes(request)
+    raise TypeError(f"request must be a dict, a JSON string or bytes, not {type(request).__name__}")
+
+
+def _payload_text(zbytes: zenoh.ZBytes) -> str:
+    raw = zbytes.to_bytes()
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError:
+        return raw.decode("utf-8", errors="replace")
+
+
+def _structured_error(obj: Any) -> bool:
+    return (isinstance(obj, dict) and isinstance(obj.get("code"), str)
+            and isinstance(obj.get("message"), str))
+
+
+def _query(session: zenoh.Session, key: str, payload: bytes | None, timeout: float) -> dict:
+    """One query; the first reply decoded, or an exception."""
+    try:
+        if payload is None:
+            replies = session.get(key, timeout=timeout)
+        else:
+            replies = session.get(key, payload=payload, timeout=timeout)
+        first = None
+        for reply in replies:  # ends when the query is finalised (all replies or timeout)
+            if first is None:
+                first = reply
+    except zenoh.ZError as e:
+        raise TransportError(f"query on {key!r} failed: {e}") from e
+    if first is None:
+        raise TransportError(f"no reply on {key!r} within {timeout} s (is the service running?)")
+
+    ok = first.ok
+    if ok is not None:
+        text = _payload_text(ok.payload)
+        try:
+            value = json.loads(text)
+        except json.JSONDecodeError as e:
+            raise TransportError(f"reply on {key!r} is not JSON: {text[:200]!r}") from e
+        if not isinstance(value, dict):
+            raise TransportError(f"reply on {key!r} is not a JSON object: {text[:200]!r}")
+        return value
+
+    err = first.err
+    text = _payload_text(err.payload) if err is not None else ""
+    try:
+        value = json.loads(text)
+    except json.JSONDecodeError:
+        value = None
+    if _structured_error(value):
+        raise ContactError(value["code"], value["message"], value.get("path", ""),
+                           version=value.get("version"), reply=value)
+    # e.g. zenoh's own query timeout, whose payload is the text "Timeout".
+    raise TransportError(f"error reply on {key!r} that is not a service error: {text[:200]!r}")
+
+
+def _open(connect: str) -> zenoh.Session:
+    try:
+        return zenoh.open(make_config(connect))
+    except zenoh.ZError as e:
+        raise TransportError(f"cannot open a zenoh session to {connect}: {e}") from e
+
+
+class Client:
+    """One zenoh session for many calls::
+
+        with Client("tcp/127.0.0.1:7447") as c:
+            print(c.health()["solves_served"])
+            reply = c.solve(request)
+    """
+
+    def __init__(self, connect: str = DEFAULT_CONNECT, timeout: float = 60.0):
+        self.connect = connect
+        self.timeout = float(timeout)
+        self._session: zenoh.Session | None = _open(connect)
+
+    @property
+    def session(self) -> zenoh.Session:
+        if self._session is None:
+            raise TransportError("client is closed")
+        return self._session
+
+    def solve(self, request: Request, timeout: float | None = None) -> dict:
+        """Solve one request; returns the reply dict.
+
+        Raises :class:`ContactError` for a structured error reply and
+        :class:`TransportError` when no structured answer arrives.
+        """
+        payload = encode_request(request)
+        return _query(self.session, KEY_SOLVE, payload, self.timeout if timeout is None else float(timeout))
+
+    def health(self, timeout: float = SMALL_QUERY_TIMEOUT) -> dict:
+        """The service's health record (version, uptime_s, solves_served, queue_depth, in_flight, ...)."""
+        return _query(self.session, KEY_HEALTH, None, float(timeout))
+
+    def schema(self, timeout: float = SMALL_QUERY_TIMEOUT) -> dict:
+        """The JSON Schemas the service speaks: ``{"request", "reply", "error"}``."""
+        return _query(self.session, KEY_SCHEMA, None, float(timeout))
+
+    def close(self) -> None:
+        if self._session is not None:
+            session, self._session = self._session, None
+            try:
+                session.close()
+            except zenoh.ZError:
+                pass
+
+    def __enter__(self) -> "Client":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+def solve(request: Request, connect: str = DEFAULT_CONNECT, timeout: float = 60.0) -> dict:
+    """Solve one request on a session opened for this call. See :meth:`Client.solve`."""
+    with Client(connect, timeout) as c:
+        return c.solve(request)
+
+
+def health(connect: str = DEFAULT_CONNECT, timeout: float = SMALL_QUERY_TIMEOUT) -> dict:
+    """Query ``contact/health`` on a session opened for this call."""
+    with Client(connect) as c:
+        return c.health(timeout)
+
+
+def schema(connect: str = DEFAULT_CONNECT, timeout: float = SMALL_QUERY_TIMEOUT) -> dict:
+    """Query ``contact/schema`` on a session opened for this call."""
+    with Client(connect) as c:
+        return c.schema(timeout)

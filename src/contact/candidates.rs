@@ -1,0 +1,125 @@
+//! Node-to-rigid-obstacle candidates: one row per boundary node of each contact pair,
+//!
+//! ```text
+//! n_i · u_i ≤ s_i − n_i · ū_i     (ū: prescribed part of the displacement)
+//! ```
+//!
+//! on the free DOFs. Candidates whose gap cannot close (no intersection, or a
+//! gap beyond `prune_gap_ratio` of the body size) are dropped and counted.
+
+use super::gap::gap_along_normal;
+use crate::fem::assembly::{DofMap, FIXED};
+use crate::mesh::{boundary::boundary_nodes, Mesh2d};
+use crate::scene::Scene;
+
+#[derive(Debug, Clone)]
+pub struct Candidate {
+    pub pair: usize,
+    pub body: usize,
+    pub node: usize,
+    pub x: [f64; 2],
+    pub normal: [f64; 2],
+    /// Tributary length ∫ N_i ds.
+    pub weight: f64,
+    /// Free DOFs and their coefficients in the row.
+    pub row: Vec<(usize, f64)>,
+    /// Right-hand side of the row (gap less the prescribed motion).
+    pub g: f64,
+}
+
+#[derive(Debug, Clone, Default)]
+pub struct ConstraintSet {
+    pub candidates: Vec<Candidate>,
+    /// Pruned candidates per pair.
+    pub pruned: Vec<usize>,
+}
+
+impl ConstraintSet {
+    pub fn len(&self) -> usize {
+        self.candidates.len()
+    }
+    pub fn is_empty(&self) -> bool {
+        self.candidates.is_empty()
+    }
+    /// Distinct free DOFs touched by any row, in first-use order.
+    pub fn dofs(&self) -> Vec<usize> {
+        let mut seen = std::collections::HashSet::new();
+        let mut out = Vec::new();
+        for c in &self.candidates {
+            for &(d, _) in &c.row {
+                if seen.insert(d) {
+                    out.push(d);
+                }
+            }
+        }
+        out
+    }
+    /// B x for x on the free DOFs.
+    pub fn apply(&self, x: &[f64]) -> Vec<f64> {
+        self.candidates
+            .iter()
+            .map(|c| c.row.iter().map(|&(d, v)| v * x[d]).sum())
+            .collect()
+    }
+    /// Accumulates Bᵀ λ into y.
+    pub fn apply_transpose_into(&self, lambda: &[f64], y: &mut [f64]) {
+        for (c, &l) in self.candidates.iter().zip(lambda) {
+            for &(d, v) in &c.row {
+                y[d] += v * l;
+            }
+        }
+    }
+    pub fn g(&self) -> Vec<f64> {
+        self.candidates.iter().map(|c| c.g).collect()
+    }
+}
+
+pub fn build(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> ConstraintSet {
+    let mut set = ConstraintSet::default();
+    let limit = scene.settings.prune_gap_ratio; // body size is 1 after scaling
+    for (p, pair) in scene.pairs.iter().enumerate() {
+        let mesh = &meshes[pair.body];
+        let shape = &scene.obstacles[pair.obstacle].shape;
+        let mut pruned = 0;
+        let edges = &mesh.edge_sets[&pair.edges];
+        for bn in boundary_nodes(mesh, edges) {
+            let x = mesh.nodes[bn.node];
+            let Some(s) = gap_along_normal(shape, x, bn.normal) else {
+                pruned += 1;
+                continue;
+            };
+            if s > limit {
+                pruned += 1;
+                continue;
+            }
+            let mut row = Vec::with_capacity(2);
+            let mut g = s;
+            for c in 0..2 {
+                let d = dofs.dof(pair.body, bn.node, c);
+                let coef = bn.normal[c];
+                if dofs.free[d] == FIXED {
+                    g -= coef * dofs.prescribed[d];
+                } else if coef != 0.0 {
+                    row.push((dofs.free[d], coef));
+                }
+            }
+            if row.is_empty() {
+                // Fully prescribed node: nothing to solve for.
+                pruned += 1;
+                continue;
+            }
+            set.candidates.push(Candidate {
+                pair: p,
+                body: pair.body,
+                node: bn.node,
+                x,
+                normal: bn.normal,
+                weight: bn.weight,
+                row,
+                g,
+            });
+        }
+        set.pruned.push(pruned);
+    }
+    set
+}

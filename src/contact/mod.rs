@@ -1,0 +1,6 @@
+//! Contact constraints: candidate rows B u ≤ g on the free DOFs.
+
+pub mod candidates;
+pub mod gap;
+
+pub use candidates::{build, Candidate, ConstraintSet};

@@ -1,0 +1,50 @@
+//! Errors of the core library. Every input error carries the JSON pointer of
+//! the offending request field.
+
+/// What kind of input was rejected.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InvalidKind {
+    Request,
+    Version,
+    Material,
+    Mesh,
+    Geometry,
+    NoSupport,
+    NoContactCandidates,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum CoreError {
+    /// The payload is not JSON at all.
+    #[error("malformed JSON: {message}")]
+    Malformed { message: String },
+    /// Input that was read but is not acceptable.
+    #[error("{reason} (at {path})")]
+    Invalid {
+        kind: InvalidKind,
+        path: String,
+        reason: String,
+    },
+    /// Over a size limit.
+    #[error("{reason} (at {path})")]
+    TooLarge { path: String, reason: String },
+    #[error(transparent)]
+    Linalg(#[from] crate::linalg::LinalgError),
+}
+
+impl CoreError {
+    pub fn invalid(kind: InvalidKind, path: impl Into<String>, reason: impl Into<String>) -> Self {
+        CoreError::Invalid {
+            kind,
+            path: path.into(),
+            reason: reason.into(),
+        }
+    }
+
+    pub fn path(&self) -> &str {
+        match self {
+            CoreError::Invalid { path, .. } | CoreError::TooLarge { path, .. } => path,
+            _ => "",
+        }
+    }
+}

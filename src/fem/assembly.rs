@@ -1,0 +1,231 @@
+//! Global assembly: per-body stiffness and loads, Dirichlet elimination.
+//!
+//! Global DOF 2·(node + node_offset[body]) + c. Prescribed DOFs are eliminated:
+//! K_ff u_f = f_f − K_fd u_d. Only the lower triangle of K_ff is stored.
+
+use faer::sparse::{SparseColMat, Triplet};
+
+use super::element;
+use super::material::d_matrix;
+use crate::error::{CoreError, InvalidKind};
+use crate::mesh::{boundary::edge_normal, Mesh2d};
+use crate::scene::{Scene, Traction};
+
+pub const FIXED: usize = usize::MAX;
+
+/// Numbering of degrees of freedom over all bodies.
+#[derive(Debug, Clone)]
+pub struct DofMap {
+    /// First global node index of each body.
+    pub node_offset: Vec<usize>,
+    /// Free index of each global DOF, or FIXED.
+    pub free: Vec<usize>,
+    /// Prescribed value of each global DOF (0 where free).
+    pub prescribed: Vec<f64>,
+    pub n_free: usize,
+}
+
+impl DofMap {
+    pub fn dof(&self, body: usize, node: usize, c: usize) -> usize {
+        2 * (self.node_offset[body] + node) + c
+    }
+}
+
+pub struct Assembled {
+    pub dofs: DofMap,
+    /// Lower triangle of K_ff.
+    pub k: SparseColMat<usize, f64>,
+    /// f_f − K_fd u_d.
+    pub f: Vec<f64>,
+}
+
+/// Builds the DOF map from the supports, rejecting supports that leave a rigid motion free.
+pub fn dof_map(scene: &Scene, meshes: &[Mesh2d]) -> Result<DofMap, CoreError> {
+    let mut node_offset = Vec::with_capacity(meshes.len());
+    let mut total = 0;
+    for m in meshes {
+        node_offset.push(total);
+        total += m.nodes.len();
+    }
+    let mut fixed = vec![false; 2 * total];
+    let mut prescribed = vec![0.0; 2 * total];
+    for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
+        let mut rows: Vec<[f64; 3]> = Vec::new();
+        let c0 = centroid(mesh);
+        for (k, s) in body.supports.iter().enumerate() {
+            for node in mesh.edge_set_nodes(&s.edges) {
+                for (c, v) in [(0, s.ux), (1, s.uy)] {
+                    if let Some(v) = v {
+                        let d = 2 * (node_offset[b] + node) + c;
+                        if fixed[d] && prescribed[d] != v {
+                            return Err(CoreError::invalid(
+                                InvalidKind::Request,
+                                format!("{}/supports/{k}", body.path),
+                                format!(
+                                    "conflicting prescribed displacements at node {node} (component {})",
+                                    ["x", "y"][c]
+                                ),
+                            ));
+                        }
+                        fixed[d] = true;
+                        prescribed[d] = v;
+                        let p = mesh.nodes[node];
+                        let (x, y) = (p[0] - c0[0], p[1] - c0[1]);
+                        rows.push(if c == 0 { [1.0, 0.0, -y] } else { [0.0, 1.0, x] });
+                    }
+                }
+            }
+        }
+        check_rigid_modes(&rows, &format!("{}/supports", body.path), &body.name)?;
+    }
+    let mut free = vec![FIXED; 2 * total];
+    let mut n_free = 0;
+    for d in 0..2 * total {
+        if !fixed[d] {
+            free[d] = n_free;
+            n_free += 1;
+        }
+    }
+    Ok(DofMap {
+        node_offset,
+        free,
+        prescribed,
+        n_free,
+    })
+}
+
+fn centroid(m: &Mesh2d) -> [f64; 2] {
+    let n = m.nodes.len() as f64;
+    let s = m.nodes.iter().fold([0.0, 0.0], |a, p| [a[0] + p[0], a[1] + p[1]]);
+    [s[0] / n, s[1] / n]
+}
+
+/// The constrained DOFs must rule out the three rigid motions: the Gram matrix
+/// of the rigid modes restricted to them must be nonsingular.
+fn check_rigid_modes(rows: &[[f64; 3]], path: &str, name: &str) -> Result<(), CoreError> {
+    let mut g = [[0.0; 3]; 3];
+    for r in rows {
+        for i in 0..3 {
+            for j in 0..3 {
+                g[i][j] += r[i] * r[j];
+            }
+        }
+    }
+    let free_mode = if g[0][0] == 0.0 {
+        Some("translation in x")
+    } else if g[1][1] == 0.0 {
+        Some("translation in y")
+    } else {
+        // Cholesky-style pivots of the 3×3 Gram matrix, relative to its scale.
+        let scale = g[0][0] + g[1][1] + g[2][2];
+        let d1 = g[0][0];
+        let g11 = g[1][1] - g[0][1] * g[0][1] / d1;
+        let g12 = g[1][2] - g[0][1] * g[0][2] / d1;
+        let g22 = g[2][2] - g[0][2] * g[0][2] / d1;
+        let d3 = g22 - g12 * g12 / g11;
+        (d3 <= 1e-12 * scale).then_some("rotation")
+    };
+    match free_mode {
+        Some(mode) => Err(CoreError::invalid(
+            InvalidKind::NoSupport,
+            path,
+            format!("the supports of body '{name}' leave a rigid {mode} free; this solver needs every body held against rigid motion by its supports"),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// Assembles K_ff and the right-hand side of all bodies.
+pub fn assemble(scene: &Scene, meshes: &[Mesh2d], dofs: DofMap) -> Result<Assembled, CoreError> {
+    let n = dofs.n_free;
+    let mut f = vec![0.0; n];
+    let est: usize = meshes
+        .iter()
+        .map(|m| {
+            m.n_elems() * {
+                let k = 2 * m.order.nodes_per_element();
+                k * (k + 1) / 2
+            }
+        })
+        .sum();
+    let mut trips: Vec<Triplet<usize, usize, f64>> = Vec::with_capacity(est);
+    let mut ke = [0.0; 144];
+    let mut fe = [0.0; 12];
+    for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
+        let d = d_matrix(body.youngs_modulus, body.poisson_ratio, scene.analysis);
+        let k = mesh.order.nodes_per_element();
+        let nd = 2 * k;
+        let mut x = [[0.0; 2]; 6];
+        let mut gd = [0usize; 12];
+        let has_bf = body.body_force != [0.0, 0.0];
+        for e in 0..mesh.n_elems() {
+            let conn = mesh.elem(e);
+            for (i, &node) in conn.iter().enumerate() {
+                x[i] = mesh.nodes[node];
+                gd[2 * i] = dofs.dof(b, node, 0);
+                gd[2 * i + 1] = dofs.dof(b, node, 1);
+            }
+            element::stiffness(mesh.order, &x[..k], &d, &mut ke);
+            if has_bf {
+                element::body_load(mesh.order, &x[..k], body.body_force, &mut fe);
+            }
+            for a in 0..nd {
+                let fa = dofs.free[gd[a]];
+                if fa == FIXED {
+                    continue;
+                }
+                if has_bf {
+                    f[fa] += fe[a];
+                }
+                for c in 0..nd {
+                    let fc = dofs.free[gd[c]];
+                    let v = ke[a * nd + c];
+                    if fc == FIXED {
+                        f[fa] -= v * dofs.prescribed[gd[c]];
+                    } else if fc <= fa {
+                        trips.push(Triplet::new(fa, fc, v));
+                    }
+                }
+            }
+        }
+        for t in &body.tractions {
+            let (edges, vector, pressure) = match t {
+                Traction::Vector { edges, t } => (edges, Some(*t), 0.0),
+                Traction::Pressure { edges, p } => (edges, None, *p),
+            };
+            for edge in mesh.edge_sets.get(edges).map(|v| v.as_slice()).unwrap_or(&[]) {
+                let nodes: Vec<usize> = edge.nodes().collect();
+                let (normal, _) = edge_normal(mesh, edge);
+                for g in &element::GAUSS3 {
+                    let (nn, dn) = element::edge_shape(nodes.len(), g[0]);
+                    let (mut tx, mut ty) = (0.0, 0.0);
+                    for (i, &node) in nodes.iter().enumerate() {
+                        tx += dn[i] * mesh.nodes[node][0];
+                        ty += dn[i] * mesh.nodes[node][1];
+                    }
+                    let jac = (tx * tx + ty * ty).sqrt();
+                    // Pressure acts against the local outward normal (−t⊥ of the tangent).
+                    let tr = vector.unwrap_or_else(|| {
+                        let (nx, ny) = if jac > 0.0 {
+                            (ty / jac, -tx / jac)
+                        } else {
+                            (normal[0], normal[1])
+                        };
+                        [-pressure * nx, -pressure * ny]
+                    });
+                    for (i, &node) in nodes.iter().enumerate() {
+                        for (c, tc) in tr.iter().enumerate() {
+                            let fd = dofs.free[dofs.dof(b, node, c)];
+                            if fd != FIXED {
+                                f[fd] += g[1] * jac * nn[i] * tc;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let k = SparseColMat::try_new_from_triplets(n, n, &trips)
+        .map_err(|e| crate::linalg::LinalgError::Faer(format!("{e:?}")))?;
+    Ok(Assembled { dofs, k, f })
+}

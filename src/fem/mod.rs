@@ -1,0 +1,7 @@
+//! Finite elements of 2D linear elasticity: materials, element kernels, assembly.
+
+pub mod assembly;
+pub mod element;
+pub mod material;
+
+pub use assembly::{assemble, Assembled, DofMap};

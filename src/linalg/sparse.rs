@@ -1,0 +1,29 @@
+//! Sparse helpers on matrices stored by their lower triangle.
+
+use faer::sparse::SparseColMat;
+
+/// y = A x for symmetric A given by its lower triangle (diagonal included once).
+pub fn sym_lower_matvec(a: &SparseColMat<usize, f64>, x: &[f64]) -> Vec<f64> {
+    let n = a.nrows();
+    let mut y = vec![0.0; n];
+    let sym = a.symbolic();
+    let vals = a.val();
+    let col_ptr = sym.col_ptr();
+    let row_idx = sym.row_idx();
+    for j in 0..n {
+        let xj = x[j];
+        let mut acc = 0.0;
+        for k in col_ptr[j]..col_ptr[j + 1] {
+            let i = row_idx[k];
+            let v = vals[k];
+            if i == j {
+                acc += v * xj;
+            } else {
+                y[i] += v * xj;
+                acc += v * x[i];
+            }
+        }
+        y[j] += acc;
+    }
+    y
+}

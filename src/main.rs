@@ -1,0 +1,165 @@
+//! `contact`: the command-line shell over the library.
+//!
+//! - `contact solve FILE|-`: one request, no zenoh; prints the reply JSON (or the
+//!   error JSON and exits 1) exactly as the service would answer.
+//! - `contact serve`: the zenoh service.
+//! - `contact schema`: writes the JSON Schemas into proto/.
+
+use std::io::{Read, Write};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::{Parser, Subcommand, ValueEnum};
+
+use contact::scene::Limits;
+use contact::service::ServiceConfig;
+
+#[derive(Parser)]
+#[command(name = "contact", version, about = "Frictionless 2D elastic contact solver")]
+struct Cli {
+    #[command(subcommand)]
+    cmd: Cmd,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum LogFormat {
+    Text,
+    Json,
+}
+
+#[derive(Subcommand)]
+enum Cmd {
+    /// Solve one request (FILE, or - for stdin) and print the reply JSON.
+    Solve {
+        file: String,
+        /// Indent the JSON output.
+        #[arg(long)]
+        pretty: bool,
+    },
+    /// Run the zenoh solve service.
+    Serve {
+        /// zenoh JSON5 configuration file (replaces the loopback defaults).
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Listen endpoint(s), e.g. tcp/127.0.0.1:7447 (repeatable).
+        #[arg(long)]
+        listen: Vec<String>,
+        /// Connect endpoint(s), e.g. a zenohd router (repeatable).
+        #[arg(long)]
+        connect: Vec<String>,
+        /// Solver threads (default: number of cores).
+        #[arg(long)]
+        workers: Option<usize>,
+        /// Requests that may wait for a worker before `busy` is answered.
+        #[arg(long, default_value_t = 16)]
+        queue_limit: usize,
+        /// Largest accepted number of degrees of freedom.
+        #[arg(long)]
+        max_dofs: Option<usize>,
+        #[arg(long, value_enum, default_value_t = LogFormat::Text)]
+        log_format: LogFormat,
+    },
+    /// Write the JSON Schemas of the protocol.
+    Schema {
+        /// Output directory.
+        #[arg(long, default_value = "proto")]
+        out: PathBuf,
+    },
+}
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn run() -> anyhow::Result<ExitCode> {
+    let cli = Cli::parse();
+    match cli.cmd {
+        Cmd::Solve { file, pretty } => {
+            let bytes = if file == "-" {
+                let mut b = Vec::new();
+                std::io::stdin().read_to_end(&mut b)?;
+                b
+            } else {
+                std::fs::read(&file).with_context(|| format!("reading {file}"))?
+            };
+            let out = |v: &dyn erased::Ser| if pretty { v.pretty() } else { v.compact() };
+            let (text, code) = match contact::solve_bytes(&bytes, &Limits::default()) {
+                Ok(reply) => (out(&reply), ExitCode::SUCCESS),
+                Err(err) => (out(&err), ExitCode::from(1)),
+            };
+            // A closed pipe (e.g. `| head`) is the reader's choice, not an error of ours.
+            let _ = writeln!(std::io::stdout().lock(), "{text}");
+            Ok(code)
+        }
+        Cmd::Serve {
+            config,
+            listen,
+            connect,
+            workers,
+            queue_limit,
+            max_dofs,
+            log_format,
+        } => {
+            init_logging(log_format);
+            let mut cfg = ServiceConfig {
+                config_file: config,
+                listen: (!listen.is_empty()).then_some(listen),
+                connect,
+                queue_limit,
+                ..Default::default()
+            };
+            if let Some(w) = workers {
+                cfg.workers = w.max(1);
+            }
+            if let Some(m) = max_dofs {
+                cfg.limits.max_dofs = m;
+            }
+            let rt = tokio::runtime::Builder::new_multi_thread().enable_all().build()?;
+            rt.block_on(contact::service::run(cfg))?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Cmd::Schema { out } => {
+            std::fs::create_dir_all(&out)?;
+            for (name, text) in contact::proto::schema::schemas() {
+                let path = out.join(name);
+                std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))?;
+                println!("wrote {}", path.display());
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+    }
+}
+
+fn init_logging(format: LogFormat) {
+    let filter = tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| "info,zenoh=warn".into());
+    let builder = tracing_subscriber::fmt()
+        .with_env_filter(filter)
+        .with_writer(std::io::stderr);
+    match format {
+        LogFormat::Text => builder.init(),
+        LogFormat::Json => builder.json().init(),
+    }
+}
+
+/// JSON rendering of the two reply types without duplicating the match arms.
+mod erased {
+    pub trait Ser {
+        fn pretty(&self) -> String;
+        fn compact(&self) -> String;
+    }
+    impl<T: serde::Serialize> Ser for T {
+        fn pretty(&self) -> String {
+            serde_json::to_string_pretty(self).unwrap_or_default()
+        }
+        fn compact(&self) -> String {
+            serde_json::to_string(self).unwrap_or_default()
+        }
+    }
+}

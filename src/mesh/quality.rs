@@ -1,0 +1,146 @@
+//! Checks and assembly of user-given (inline) meshes: index ranges, element
+//! orientation and shape, edge sets that are real boundary edges.
+
+use std::collections::{BTreeMap, HashMap};
+
+use super::{signed_area, Edge, Mesh2d, Order};
+use crate::error::{CoreError, InvalidKind};
+
+/// Smallest admissible ratio of an element's area to its longest edge squared
+/// (≈ 1.7e-6 corresponds to a minimum angle of about 2e-4 degrees): below it the
+/// element stiffness loses all accuracy.
+const MIN_SHAPE_RATIO: f64 = 1e-8;
+
+/// Builds a mesh from inline data; `path` is the JSON pointer of the inline mesh.
+pub fn try_inline(
+    nodes: &[[f64; 2]],
+    elements: &[Vec<usize>],
+    edge_sets: &BTreeMap<String, Vec<[usize; 2]>>,
+    path: &str,
+) -> Result<Mesh2d, CoreError> {
+    let bad = |p: String, r: String| CoreError::invalid(InvalidKind::Mesh, p, r);
+    if nodes.len() < 3 {
+        return Err(bad(format!("{path}/nodes"), "a mesh needs at least 3 nodes".into()));
+    }
+    if elements.is_empty() {
+        return Err(bad(
+            format!("{path}/elements"),
+            "a mesh needs at least one element".into(),
+        ));
+    }
+    let npe = elements[0].len();
+    let order = match npe {
+        3 => Order::T3,
+        6 => Order::T6,
+        k => {
+            return Err(bad(
+                format!("{path}/elements/0"),
+                format!("element has {k} nodes; expected 3 (T3) or 6 (T6)"),
+            ))
+        }
+    };
+    let mut elems = Vec::with_capacity(elements.len() * npe);
+    for (e, el) in elements.iter().enumerate() {
+        let ep = format!("{path}/elements/{e}");
+        if el.len() != npe {
+            return Err(bad(
+                ep,
+                format!(
+                    "element has {} nodes but element 0 has {npe}; mixed orders are not supported",
+                    el.len()
+                ),
+            ));
+        }
+        for (k, &n) in el.iter().enumerate() {
+            if n >= nodes.len() {
+                return Err(bad(
+                    format!("{ep}/{k}"),
+                    format!("node index {n} out of range (mesh has {} nodes)", nodes.len()),
+                ));
+            }
+        }
+        let mut sorted = el.clone();
+        sorted.sort_unstable();
+        if sorted.windows(2).any(|w| w[0] == w[1]) {
+            return Err(bad(ep, "element repeats a node".into()));
+        }
+        let (p, q, r) = (nodes[el[0]], nodes[el[1]], nodes[el[2]]);
+        let area = signed_area(p, q, r);
+        let longest = [(p, q), (q, r), (r, p)]
+            .iter()
+            .map(|(a, b)| (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2))
+            .fold(0.0, f64::max);
+        if area.abs() <= MIN_SHAPE_RATIO * longest {
+            return Err(bad(
+                ep,
+                format!("degenerate element (area {area:.3e} against longest edge² {longest:.3e})"),
+            ));
+        }
+        if area < 0.0 {
+            return Err(bad(
+                ep,
+                "inverted element: corners are clockwise (negative area); list them counter-clockwise".into(),
+            ));
+        }
+        if order == Order::T6 {
+            // Midside nodes must keep the isoparametric map invertible; we require
+            // them within a quarter of the edge length of the midpoint, the usual
+            // sufficient condition for a positive Jacobian.
+            for (k, (i, j)) in [(0, 1), (1, 2), (2, 0)].into_iter().enumerate() {
+                let (a, b, m) = (nodes[el[i]], nodes[el[j]], nodes[el[3 + k]]);
+                let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+                let off = ((m[0] - mid[0]).powi(2) + (m[1] - mid[1]).powi(2)).sqrt();
+                let len = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
+                if off > 0.25 * len {
+                    return Err(bad(format!("{ep}/{}", 3 + k), format!("midside node is {off:.3e} from the edge midpoint (edge length {len:.3e}); the element map would fold")));
+                }
+            }
+        }
+        elems.extend_from_slice(el);
+    }
+    // Edge (oriented as in its element, with its midside node) by corner pair; count uses.
+    let mut owner: HashMap<(usize, usize), Edge> = HashMap::new();
+    let mut uses: HashMap<(usize, usize), usize> = HashMap::new();
+    for el in elements {
+        for (k, (i, j)) in [(0, 1), (1, 2), (2, 0)].into_iter().enumerate() {
+            let (a, b) = (el[i], el[j]);
+            let key = (a.min(b), a.max(b));
+            *uses.entry(key).or_insert(0) += 1;
+            let mid = (order == Order::T6).then(|| el[3 + k]);
+            owner.insert(key, Edge { a, b, mid });
+        }
+    }
+    let mut sets = BTreeMap::new();
+    for (name, edges) in edge_sets {
+        let sp = format!("{path}/edge_sets/{name}");
+        if edges.is_empty() {
+            return Err(bad(sp, "edge set is empty".into()));
+        }
+        let mut out = Vec::with_capacity(edges.len());
+        for (k, &[a, b]) in edges.iter().enumerate() {
+            let key = (a.min(b), a.max(b));
+            match (owner.get(&key), uses.get(&key)) {
+                (Some(&edge), Some(1)) => out.push(edge),
+                (Some(_), _) => {
+                    return Err(bad(
+                        format!("{sp}/{k}"),
+                        format!("edge [{a}, {b}] is interior (shared by two elements), not on the boundary"),
+                    ))
+                }
+                (None, _) => {
+                    return Err(bad(
+                        format!("{sp}/{k}"),
+                        format!("edge [{a}, {b}] is not an edge of any element"),
+                    ))
+                }
+            }
+        }
+        sets.insert(name.clone(), out);
+    }
+    Ok(Mesh2d {
+        order,
+        nodes: nodes.to_vec(),
+        elems,
+        edge_sets: sets,
+    })
+}

@@ -1,0 +1,194 @@
+//! The one place that knows the order of the stages:
+//! request → scene → meshes → assembly → constraints → method → certificate → reply.
+
+use std::time::Instant;
+
+use crate::contact;
+use crate::error::{CoreError, InvalidKind};
+use crate::fem::{self, element, material::d_matrix};
+use crate::mesh::{generate, Mesh2d};
+use crate::methods::{self, Problem};
+use crate::proto::{self, BodyOutput, ErrorReply, ProblemSize, SolveReply, SolveStatus, Timings};
+use crate::scene::{parse::parse_request, Limits, MeshSource, Scene};
+use crate::solution::{certificate::certify, post};
+
+/// Bytes in, reply or structured error out: what the service and the CLI call.
+pub fn solve_bytes(bytes: &[u8], limits: &Limits) -> Result<SolveReply, ErrorReply> {
+    let run = || -> Result<SolveReply, CoreError> {
+        let req = parse_request(bytes)?;
+        let scene = Scene::try_new(&req, limits)?;
+        solve(&scene, limits)
+    };
+    run().map_err(|e| ErrorReply::from(&e))
+}
+
+pub fn build_meshes(scene: &Scene) -> Vec<Mesh2d> {
+    scene
+        .bodies
+        .iter()
+        .map(|b| match &b.mesh {
+            MeshSource::Rectangle {
+                corner,
+                width,
+                height,
+                size,
+                grading,
+                order,
+            } => generate::rectangle(*corner, *width, *height, *size, *grading, *order),
+            MeshSource::HalfDisk {
+                center,
+                radius,
+                down,
+                size,
+                grading,
+                order,
+            } => generate::half_disk(*center, *radius, *down, *size, *grading, *order),
+            MeshSource::Inline(m) => m.clone(),
+        })
+        .collect()
+}
+
+pub fn solve(scene: &Scene, limits: &Limits) -> Result<SolveReply, CoreError> {
+    let t_start = Instant::now();
+    let mut timings = Timings::default();
+
+    let t = Instant::now();
+    let meshes = build_meshes(scene);
+    timings.mesh = t.elapsed().as_secs_f64();
+    let n_dofs: usize = meshes.iter().map(|m| 2 * m.nodes.len()).sum();
+    if n_dofs > limits.max_dofs {
+        return Err(CoreError::TooLarge {
+            path: "/bodies".into(),
+            reason: format!(
+                "{n_dofs} degrees of freedom; this service accepts at most {}",
+                limits.max_dofs
+            ),
+        });
+    }
+
+    let t = Instant::now();
+    let dofs = fem::assembly::dof_map(scene, &meshes)?;
+    let cons = contact::build(scene, &meshes, &dofs);
+    for (p, pair) in scene.pairs.iter().enumerate() {
+        if !cons.candidates.iter().any(|c| c.pair == p) {
+            return Err(CoreError::invalid(
+                InvalidKind::NoContactCandidates,
+                format!("{}/edges", pair.path),
+                format!(
+                    "no node of edge set '{}' can reach obstacle '{}' along its outward normal ({} pruned: the ray misses the obstacle or the gap exceeds prune_gap_ratio × body size)",
+                    pair.edges, scene.obstacles[pair.obstacle].name, cons.pruned[p]
+                ),
+            ));
+        }
+    }
+    if cons.len() > limits.max_candidates {
+        return Err(CoreError::TooLarge {
+            path: "/contacts".into(),
+            reason: format!(
+                "{} contact candidates; this service accepts at most {}",
+                cons.len(),
+                limits.max_candidates
+            ),
+        });
+    }
+    let asm = fem::assemble(scene, &meshes, dofs)?;
+    timings.assembly = t.elapsed().as_secs_f64();
+
+    let problem = Problem {
+        k: &asm.k,
+        f: &asm.f,
+        cons: &cons,
+        settings: &scene.settings,
+    };
+    let sol = methods::solve(&problem, scene.method)?;
+    timings.factorization = sol.t_factorization;
+    timings.condensation = sol.t_condensation;
+    timings.contact_solve = sol.t_contact;
+
+    let t = Instant::now();
+    let (certificate, gaps) = certify(&asm.k, &asm.f, &cons, &sol.u, &sol.lambda);
+    let (pairs, resultant, n_active) = post::pairs(scene, &cons, &sol.lambda, &gaps);
+    let status = if !certificate.is_finite() {
+        SolveStatus::NumericalError
+    } else if !sol.converged {
+        SolveStatus::MaxIterations
+    } else if certificate.worst() > scene.settings.tolerance {
+        SolveStatus::NumericalError
+    } else {
+        SolveStatus::Solved
+    };
+    let bodies = body_outputs(scene, &meshes, &asm.dofs, &sol.u);
+    timings.post = t.elapsed().as_secs_f64();
+    timings.total = t_start.elapsed().as_secs_f64();
+
+    Ok(SolveReply {
+        version: proto::PROTOCOL_VERSION.to_string(),
+        client_id: scene.client_id.clone(),
+        status,
+        method: sol.method.to_string(),
+        iterations: sol.iterations,
+        pairs,
+        resultant,
+        certificate,
+        size: ProblemSize {
+            dofs: asm.dofs.n_free,
+            candidates: cons.len(),
+            active: n_active,
+        },
+        timings,
+        bodies,
+    })
+}
+
+/// Optional per-body fields, only when the request lists them.
+fn body_outputs(scene: &Scene, meshes: &[Mesh2d], dofs: &fem::DofMap, u: &[f64]) -> Option<Vec<BodyOutput>> {
+    let o = scene.outputs;
+    if !(o.displacement || o.mesh || o.stress) {
+        return None;
+    }
+    let sc = scene.scales;
+    let value = |d: usize| match dofs.free[d] {
+        fem::assembly::FIXED => dofs.prescribed[d],
+        k => u[k],
+    };
+    Some(
+        scene
+            .bodies
+            .iter()
+            .zip(meshes)
+            .enumerate()
+            .map(|(b, (body, mesh))| {
+                let disp = |node: usize| [value(dofs.dof(b, node, 0)), value(dofs.dof(b, node, 1))];
+                BodyOutput {
+                    name: body.name.clone(),
+                    nodes: o
+                        .mesh
+                        .then(|| mesh.nodes.iter().map(|p| [sc.length(p[0]), sc.length(p[1])]).collect()),
+                    elements: o
+                        .mesh
+                        .then(|| (0..mesh.n_elems()).map(|e| mesh.elem(e).to_vec()).collect()),
+                    displacement: o.displacement.then(|| {
+                        (0..mesh.nodes.len())
+                            .map(|n| {
+                                let d = disp(n);
+                                [sc.length(d[0]), sc.length(d[1])]
+                            })
+                            .collect()
+                    }),
+                    stress: o.stress.then(|| {
+                        let dm = d_matrix(body.youngs_modulus, body.poisson_ratio, scene.analysis);
+                        (0..mesh.n_elems())
+                            .map(|e| {
+                                let conn = mesh.elem(e);
+                                let x: Vec<[f64; 2]> = conn.iter().map(|&n| mesh.nodes[n]).collect();
+                                let ue: Vec<f64> = conn.iter().flat_map(|&n| disp(n)).collect();
+                                let s = element::centroid_stress(mesh.order, &x, &dm, &ue);
+                                [sc.stress(s[0]), sc.stress(s[1]), sc.stress(s[2])]
+                            })
+                            .collect()
+                    }),
+                }
+            })
+            .collect(),
+    )
+}

@@ -1,0 +1,83 @@
+//! Structured error replies: `{code, message, path}` where `path` is a JSON
+//! pointer into the request.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Machine-readable error class.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum ErrorCode {
+    /// The payload is not JSON (or not UTF-8).
+    MalformedJson,
+    /// JSON that does not fit the schema: unknown field, missing field, wrong type.
+    InvalidRequest,
+    /// `version` is not one this service speaks.
+    UnsupportedVersion,
+    /// E ≤ 0, ν outside (−1, 0.5), non-finite values.
+    InvalidMaterial,
+    /// Inverted, degenerate or badly indexed elements; bad mesh parameters.
+    InvalidMesh,
+    /// Obstacle or contact geometry that makes no sense.
+    InvalidGeometry,
+    /// A body whose supports leave a rigid motion free.
+    NoSupport,
+    /// A contact pair with no candidate that can close.
+    NoContactCandidates,
+    /// The problem exceeds a size limit of the service.
+    TooLarge,
+    /// The linear algebra failed (e.g. the stiffness is not positive definite).
+    LinearAlgebra,
+    /// The service queue is full; retry later.
+    Busy,
+    /// The solve exceeded its time limit.
+    Timeout,
+    /// A bug: the solve panicked. The service goes on.
+    InternalError,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ErrorReply {
+    pub version: String,
+    pub code: ErrorCode,
+    pub message: String,
+    /// JSON pointer into the request ("" for the whole request).
+    pub path: String,
+}
+
+impl ErrorReply {
+    pub fn new(code: ErrorCode, message: impl Into<String>, path: impl Into<String>) -> Self {
+        Self {
+            version: super::PROTOCOL_VERSION.to_string(),
+            code,
+            message: message.into(),
+            path: path.into(),
+        }
+    }
+}
+
+impl From<&crate::error::CoreError> for ErrorReply {
+    fn from(e: &crate::error::CoreError) -> Self {
+        use crate::error::{CoreError, InvalidKind};
+        let code = match e {
+            CoreError::Malformed { .. } => ErrorCode::MalformedJson,
+            CoreError::Invalid { kind, .. } => match kind {
+                InvalidKind::Request => ErrorCode::InvalidRequest,
+                InvalidKind::Version => ErrorCode::UnsupportedVersion,
+                InvalidKind::Material => ErrorCode::InvalidMaterial,
+                InvalidKind::Mesh => ErrorCode::InvalidMesh,
+                InvalidKind::Geometry => ErrorCode::InvalidGeometry,
+                InvalidKind::NoSupport => ErrorCode::NoSupport,
+                InvalidKind::NoContactCandidates => ErrorCode::NoContactCandidates,
+            },
+            CoreError::TooLarge { .. } => ErrorCode::TooLarge,
+            CoreError::Linalg(_) => ErrorCode::LinearAlgebra,
+        };
+        let message = match e {
+            CoreError::Invalid { reason, .. } | CoreError::TooLarge { reason, .. } => reason.clone(),
+            other => other.to_string(),
+        };
+        ErrorReply::new(code, message, e.path())
+    }
+}

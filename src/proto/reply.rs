@@ -1,0 +1,144 @@
+//! The solve reply. Lengths, forces and pressures are in the request's units.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// The answer to a solve request that could be attempted.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SolveReply {
+    pub version: String,
+    /// Echo of the request's `client_id`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub client_id: Option<String>,
+    /// "solved" when the certificate meets the tolerance; otherwise why not.
+    pub status: SolveStatus,
+    /// The method that ran (after `auto` made its choice).
+    pub method: String,
+    /// Iterations of the contact solver.
+    pub iterations: usize,
+    /// One entry per contact pair, in request order.
+    pub pairs: Vec<PairResult>,
+    /// Total contact force and moment about the origin acting on the bodies.
+    pub resultant: Resultant,
+    /// KKT residuals of the discrete solution, relative and dimensionless.
+    pub certificate: Certificate,
+    /// Problem sizes.
+    pub size: ProblemSize,
+    /// Wall-clock seconds per stage.
+    pub timings: Timings,
+    /// Per body, when `outputs` asks for it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bodies: Option<Vec<BodyOutput>>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum SolveStatus {
+    /// Converged; the certificate is within the tolerance.
+    Solved,
+    /// Stopped at the iteration cap; the certificate tells how far off it is.
+    MaxIterations,
+    /// The linear algebra lost accuracy (see certificate); do not trust the numbers.
+    NumericalError,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PairResult {
+    pub body: String,
+    pub obstacle: String,
+    /// Intervals [x_start, x_end] along x1 where the body touches, from the
+    /// first to the last node of each run of consecutive active candidates.
+    pub zones: Vec<[f64; 2]>,
+    /// Every contact candidate of the pair, ordered along the boundary.
+    pub points: Vec<ContactPoint>,
+    /// Contact force and moment about the origin on the body from this pair.
+    pub resultant: Resultant,
+    /// Largest penetration (−gap) over the candidates, ≥ 0.
+    pub max_penetration: f64,
+    /// Candidates dropped because their initial gap cannot close.
+    pub pruned: usize,
+}
+
+/// A contact candidate node.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ContactPoint {
+    /// Undeformed position.
+    pub x: f64,
+    pub y: f64,
+    /// Gap after deformation, along the body's outward normal (≥ 0; 0 in contact).
+    pub gap: f64,
+    /// Contact pressure, positive in compression (= −r_n) [force/length²].
+    pub pressure: f64,
+    /// Nodal contact force (per unit thickness) = pressure × tributary length.
+    pub force: f64,
+    /// Node index in the body's mesh.
+    pub node: usize,
+    /// Outward unit normal of the body at the node.
+    pub normal: [f64; 2],
+}
+
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Resultant {
+    pub fx: f64,
+    pub fy: f64,
+    /// Moment about the origin (counter-clockwise positive).
+    pub m: f64,
+}
+
+/// Relative KKT residuals (dimensionless, each ≥ 0).
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Certificate {
+    /// Largest penetration relative to the displacement scale.
+    pub primal: f64,
+    /// Largest tensile (negative) contact force relative to the largest force.
+    pub dual: f64,
+    /// Largest |force × gap| relative to (largest force × displacement scale).
+    pub complementarity: f64,
+    /// ‖K u − f + Bᵀλ‖∞ on the free DOFs relative to the largest nodal force.
+    pub equilibrium: f64,
+}
+
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ProblemSize {
+    /// Free degrees of freedom of all bodies.
+    pub dofs: usize,
+    /// Contact candidates after pruning.
+    pub candidates: usize,
+    /// Candidates in contact.
+    pub active: usize,
+}
+
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Timings {
+    pub mesh: f64,
+    pub assembly: f64,
+    pub factorization: f64,
+    /// Condensation onto the contact candidates.
+    pub condensation: f64,
+    pub contact_solve: f64,
+    pub post: f64,
+    pub total: f64,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BodyOutput {
+    pub name: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nodes: Option<Vec<[f64; 2]>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub elements: Option<Vec<Vec<usize>>>,
+    /// Nodal displacement [ux, uy].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub displacement: Option<Vec<[f64; 2]>>,
+    /// Element-centroid stress [σxx, σyy, σxy].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stress: Option<Vec<[f64; 3]>>,
+}

@@ -1,0 +1,298 @@
+//! The solve request. Units are the caller's, but must be consistent
+//! (e.g. mm, N, MPa); forces are per unit thickness.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// A contact problem: bodies, rigid obstacles, contact pairs, method and outputs.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SolveRequest {
+    /// Protocol version; must be "1".
+    pub version: String,
+    /// Free text describing the physical setup (echoed nowhere, for humans).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    /// Optional caller id, returned unchanged in the reply for correlation.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub client_id: Option<String>,
+    /// Plane strain (default) or plane stress.
+    #[serde(default)]
+    pub analysis: Analysis,
+    /// Elastic bodies (at least one).
+    pub bodies: Vec<BodySpec>,
+    /// Rigid obstacles the bodies may touch.
+    #[serde(default)]
+    pub obstacles: Vec<ObstacleSpec>,
+    /// Contact pairs: which boundary edges of which body may touch which obstacle.
+    pub contacts: Vec<ContactSpec>,
+    /// Constraint treatment.
+    #[serde(default)]
+    pub method: MethodName,
+    /// Numerical settings; every field has a documented default.
+    #[serde(default)]
+    pub settings: SolverSettings,
+    /// Optional fields of the reply, computed only when listed.
+    #[serde(default)]
+    pub outputs: Vec<OutputKind>,
+}
+
+/// 2D kinematic assumption.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Analysis {
+    #[default]
+    PlaneStrain,
+    PlaneStress,
+}
+
+/// One elastic body.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    /// Name used in replies; defaults to "body<i>".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    pub material: MaterialSpec,
+    pub mesh: MeshSpec,
+    /// Displacement constraints on named edge sets (fixed supports, rollers, prescribed motion).
+    #[serde(default)]
+    pub supports: Vec<SupportSpec>,
+    /// Surface loads on named edge sets.
+    #[serde(default)]
+    pub tractions: Vec<TractionSpec>,
+    /// Body force per unit volume [force/length³], e.g. weight density.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub body_force: Option<[f64; 2]>,
+}
+
+/// Isotropic linear elastic material.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// Young's modulus E > 0 [force/length²].
+    pub youngs_modulus: f64,
+    /// Poisson's ratio, -1 < ν < 0.5.
+    pub poisson_ratio: f64,
+}
+
+/// Triangle order for generated meshes.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum ElementKind {
+    /// Linear 3-node triangle.
+    #[default]
+    T3,
+    /// Quadratic 6-node triangle (corners, then midsides of edges 01, 12, 20).
+    T6,
+}
+
+/// A body's mesh: generated from a few parameters, or given inline.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum MeshSpec {
+    /// Rectangle [x0, x0+width] × [y0, y0+height]; edge sets "bottom", "right", "top", "left".
+    Rectangle(RectangleSpec),
+    /// Half-disk; edge sets "flat" (the diameter) and "arc".
+    HalfDisk(HalfDiskSpec),
+    /// Explicit nodes, triangles and named edge sets.
+    Inline(InlineMeshSpec),
+}
+
+/// Local refinement toward a focus point: element size `h_min` within `extent`
+/// of the focus, then growing geometrically by `ratio` per element up to the
+/// mesh's `size`.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GradingSpec {
+    /// Point where the mesh is finest (for a half-disk: ignored, the apex of the arc is used).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub focus: Option<[f64; 2]>,
+    /// Element size at the focus [length].
+    pub h_min: f64,
+    /// Growth factor of neighbouring element sizes, 1 ≤ ratio ≤ 2.
+    #[serde(default = "default_ratio")]
+    pub ratio: f64,
+    /// Half-width of the zone around the focus meshed uniformly at `h_min`
+    /// (make it cover the expected contact zone) [length].
+    #[serde(default)]
+    pub extent: f64,
+}
+
+fn default_ratio() -> f64 {
+    1.1
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RectangleSpec {
+    /// Lower-left corner [x0, y0].
+    pub corner: [f64; 2],
+    pub width: f64,
+    pub height: f64,
+    /// Element size away from the focus (uniform mesh without grading) [length].
+    pub size: f64,
+    #[serde(default)]
+    pub element: ElementKind,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grading: Option<GradingSpec>,
+}
+
+/// Which way the arc of a half-disk bulges.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Facing {
+    /// Arc below the flat face (a roller resting on something below).
+    #[default]
+    Down,
+    /// Arc above the flat face.
+    Up,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct HalfDiskSpec {
+    /// Centre of the full disk (midpoint of the flat face).
+    pub center: [f64; 2],
+    pub radius: f64,
+    #[serde(default)]
+    pub facing: Facing,
+    /// Element size away from the apex [length].
+    pub size: f64,
+    #[serde(default)]
+    pub element: ElementKind,
+    /// Refinement toward the apex of the arc.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grading: Option<GradingSpec>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct InlineMeshSpec {
+    /// Node coordinates [[x, y], ...].
+    pub nodes: Vec<[f64; 2]>,
+    /// Triangles as 0-based node indices, counter-clockwise: 3 per T3, 6 per T6
+    /// (corners, then midsides of edges 01, 12, 20). All elements of one order.
+    pub elements: Vec<Vec<usize>>,
+    /// Named boundary edge sets: each edge as its two corner node indices.
+    pub edge_sets: std::collections::BTreeMap<String, Vec<[usize; 2]>>,
+}
+
+/// Prescribed displacement components on an edge set. A component set to 0 is a
+/// support (both: fixed; one: roller); a nonzero value prescribes motion.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SupportSpec {
+    /// Name of the edge set.
+    pub edges: String,
+    /// Prescribed x displacement [length]; absent = free.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ux: Option<f64>,
+    /// Prescribed y displacement [length]; absent = free.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uy: Option<f64>,
+}
+
+/// A surface load on an edge set: a traction vector, or a normal pressure, not both.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TractionSpec {
+    pub edges: String,
+    /// Traction vector [tx, ty] [force/length²].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub traction: Option<[f64; 2]>,
+    /// Normal pressure, positive pushing into the body [force/length²].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pressure: Option<f64>,
+}
+
+/// A rigid obstacle.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ObstacleSpec {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    pub shape: ObstacleShape,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum ObstacleShape {
+    /// Straight boundary through `point`; the rigid half-plane lies on the side
+    /// opposite to `normal` (the normal points out of the obstacle, toward the body).
+    Line { point: [f64; 2], normal: [f64; 2] },
+    /// Rigid disk; bodies stay outside it.
+    Circle { center: [f64; 2], radius: f64 },
+    /// Polyline surface; the rigid material lies to the right of the direction
+    /// of travel (a floor is given left to right). Extends no further than its ends.
+    Polyline { points: Vec<[f64; 2]> },
+}
+
+/// A contact pair: an edge set of a body against an obstacle.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// Body index (0-based) or name.
+    pub body: BodyRef,
+    /// Name of the body's edge set whose nodes are contact candidates.
+    pub edges: String,
+    /// Obstacle index (0-based) or name.
+    pub obstacle: BodyRef,
+}
+
+/// Reference to a body or obstacle by index or by name.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum BodyRef {
+    Index(usize),
+    Name(String),
+}
+
+/// Constraint treatment.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum MethodName {
+    /// Fastest exact method for the scene (currently the condensed active set).
+    #[default]
+    Auto,
+    /// Primal-dual active set (semismooth Newton) on the condensed contact problem,
+    /// with a monotone active-set fallback if it cycles.
+    ActiveSet,
+    /// Interior point (Clarabel) on the condensed contact problem.
+    InteriorPoint,
+}
+
+/// Numerical settings. All tolerances are relative and dimensionless.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct SolverSettings {
+    /// Convergence tolerance on the relative KKT residuals.
+    pub tolerance: f64,
+    /// Iteration cap of the contact iteration.
+    pub max_iterations: usize,
+    /// Candidates whose initial gap exceeds this multiple of the body size are
+    /// dropped before the solve (they cannot close under small strain).
+    pub prune_gap_ratio: f64,
+}
+
+impl Default for SolverSettings {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-8,
+            max_iterations: 200,
+            prune_gap_ratio: 0.5,
+        }
+    }
+}
+
+/// Optional reply content.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum OutputKind {
+    /// Nodal displacement of every body.
+    Displacement,
+    /// Node coordinates and element connectivity of every body.
+    Mesh,
+    /// Element stresses (σxx, σyy, σxy) at element centroids.
+    Stress,
+}

@@ -1,0 +1,519 @@
+//! Request → Scene: every check of the request lives here, each failure with
+//! the JSON pointer of the offending field.
+
+use std::collections::BTreeSet;
+
+use super::*;
+use crate::error::{CoreError, InvalidKind};
+use crate::mesh::{
+    generate::{graded_count, Grading},
+    quality,
+};
+use crate::proto::{self, BodyRef, ElementKind, MeshSpec, ObstacleShape, OutputKind, SolveRequest};
+
+/// Size limits of a deployment (the CLI and the service set them).
+#[derive(Debug, Clone, Copy)]
+pub struct Limits {
+    /// Largest number of degrees of freedom (2 per node, before supports).
+    pub max_dofs: usize,
+    /// Largest number of contact candidates over all pairs.
+    pub max_candidates: usize,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Self {
+            max_dofs: 2_500_000,
+            max_candidates: 20_000,
+        }
+    }
+}
+
+fn invalid(kind: InvalidKind, path: impl Into<String>, reason: impl Into<String>) -> CoreError {
+    CoreError::invalid(kind, path, reason)
+}
+
+fn finite(v: f64, path: &str, kind: InvalidKind) -> Result<f64, CoreError> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(invalid(kind, path, format!("value {v} is not a finite number")))
+    }
+}
+
+fn positive(v: f64, path: &str, kind: InvalidKind, what: &str) -> Result<f64, CoreError> {
+    finite(v, path, kind)?;
+    if v > 0.0 {
+        Ok(v)
+    } else {
+        Err(invalid(kind, path, format!("{what} must be positive, got {v}")))
+    }
+}
+
+fn order(e: ElementKind) -> Order {
+    match e {
+        ElementKind::T3 => Order::T3,
+        ElementKind::T6 => Order::T6,
+    }
+}
+
+/// Nominal extent and node-count estimate of a body's mesh, before generation.
+fn mesh_extent_and_nodes(m: &MeshSpec) -> (f64, f64) {
+    let factor = |e: ElementKind| if e == ElementKind::T6 { 4.0 } else { 1.0 };
+    match m {
+        MeshSpec::Rectangle(r) => {
+            let g = grading(r.grading.as_ref(), r.size, 1.0);
+            let nx = graded_count(r.width, g, r.size) * 2.0;
+            let ny = graded_count(r.height, g, r.size) * 2.0;
+            (r.width.max(r.height), nx * ny * factor(r.element))
+        }
+        MeshSpec::HalfDisk(d) => {
+            let g = grading(d.grading.as_ref(), d.size, 1.0);
+            let nt = graded_count(std::f64::consts::PI * d.radius, g, d.size) * 2.0;
+            let nr = graded_count(d.radius, g, d.size);
+            (2.0 * d.radius, nt * nr * factor(d.element))
+        }
+        MeshSpec::Inline(m) => {
+            let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+            for p in &m.nodes {
+                for k in 0..2 {
+                    lo[k] = lo[k].min(p[k]);
+                    hi[k] = hi[k].max(p[k]);
+                }
+            }
+            ((hi[0] - lo[0]).max(hi[1] - lo[1]), m.nodes.len() as f64)
+        }
+    }
+}
+
+/// Grading in units divided by `scale`; no grading is uniform at `size`.
+fn grading(g: Option<&proto::GradingSpec>, size: f64, scale: f64) -> Grading {
+    match g {
+        Some(g) => Grading {
+            h_min: g.h_min / scale,
+            ratio: g.ratio,
+            extent: g.extent / scale,
+        },
+        None => Grading {
+            h_min: size / scale,
+            ratio: 1.0,
+            extent: 0.0,
+        },
+    }
+}
+
+fn edge_names(m: &MeshSpec) -> BTreeSet<String> {
+    let names: &[&str] = match m {
+        MeshSpec::Rectangle(_) => &["bottom", "right", "top", "left"],
+        MeshSpec::HalfDisk(_) => &["flat", "arc"],
+        MeshSpec::Inline(i) => return i.edge_sets.keys().cloned().collect(),
+    };
+    names.iter().map(|s| s.to_string()).collect()
+}
+
+fn resolve(r: &BodyRef, names: &[String], path: &str, what: &str) -> Result<usize, CoreError> {
+    match r {
+        BodyRef::Index(i) if *i < names.len() => Ok(*i),
+        BodyRef::Index(i) => Err(invalid(
+            InvalidKind::Request,
+            path,
+            format!("{what} index {i} out of range ({} given)", names.len()),
+        )),
+        BodyRef::Name(n) => names
+            .iter()
+            .position(|x| x == n)
+            .ok_or_else(|| invalid(InvalidKind::Request, path, format!("no {what} named '{n}'"))),
+    }
+}
+
+impl Scene {
+    pub fn try_new(req: &SolveRequest, limits: &Limits) -> Result<Scene, CoreError> {
+        use InvalidKind as K;
+        if req.version != proto::PROTOCOL_VERSION {
+            return Err(invalid(
+                K::Version,
+                "/version",
+                format!(
+                    "version '{}' is not supported; this service speaks '{}'",
+                    req.version,
+                    proto::PROTOCOL_VERSION
+                ),
+            ));
+        }
+        if req.bodies.is_empty() {
+            return Err(invalid(K::Request, "/bodies", "at least one body is required"));
+        }
+        // First pass: raw numbers, to choose the scales.
+        let mut length: f64 = 0.0;
+        let mut modulus: f64 = 0.0;
+        let mut nodes_estimate = 0.0;
+        for (i, b) in req.bodies.iter().enumerate() {
+            let p = format!("/bodies/{i}/material");
+            let e = positive(
+                b.material.youngs_modulus,
+                &format!("{p}/youngs_modulus"),
+                K::Material,
+                "Young's modulus",
+            )?;
+            let nu = finite(b.material.poisson_ratio, &format!("{p}/poisson_ratio"), K::Material)?;
+            if !(nu > -1.0 && nu < 0.5) {
+                return Err(invalid(
+                    K::Material,
+                    format!("{p}/poisson_ratio"),
+                    format!("Poisson's ratio must satisfy -1 < nu < 0.5, got {nu}"),
+                ));
+            }
+            modulus = modulus.max(e);
+            self::check_mesh_spec(&b.mesh, &format!("/bodies/{i}/mesh"))?;
+            let (ext, n) = mesh_extent_and_nodes(&b.mesh);
+            length = length.max(ext);
+            nodes_estimate += n;
+        }
+        if !(length > 0.0 && length.is_finite()) {
+            return Err(invalid(K::Mesh, "/bodies", "bodies have no extent"));
+        }
+        if 2.0 * nodes_estimate > limits.max_dofs as f64 {
+            return Err(CoreError::TooLarge {
+                path: "/bodies".into(),
+                reason: format!(
+                    "about {:.0} degrees of freedom requested; this service accepts at most {}",
+                    2.0 * nodes_estimate,
+                    limits.max_dofs
+                ),
+            });
+        }
+        let scales = Scales { length, modulus };
+        let l = |x: f64| x / length;
+        let lp = |p: [f64; 2]| [p[0] / length, p[1] / length];
+
+        let mut names = Vec::new();
+        let mut bodies = Vec::new();
+        for (i, b) in req.bodies.iter().enumerate() {
+            let bp = format!("/bodies/{i}");
+            let name = b.name.clone().unwrap_or_else(|| format!("body{i}"));
+            if names.contains(&name) {
+                return Err(invalid(
+                    K::Request,
+                    format!("{bp}/name"),
+                    format!("duplicate body name '{name}'"),
+                ));
+            }
+            names.push(name.clone());
+            let mesh = match &b.mesh {
+                MeshSpec::Rectangle(r) => MeshSource::Rectangle {
+                    corner: lp(r.corner),
+                    width: l(r.width),
+                    height: l(r.height),
+                    size: l(r.size),
+                    grading: r.grading.as_ref().map(|g| {
+                        (
+                            lp(g.focus.unwrap_or([r.corner[0] + 0.5 * r.width, r.corner[1] + r.height])),
+                            grading(Some(g), r.size, length),
+                        )
+                    }),
+                    order: order(r.element),
+                },
+                MeshSpec::HalfDisk(d) => MeshSource::HalfDisk {
+                    center: lp(d.center),
+                    radius: l(d.radius),
+                    down: d.facing == proto::Facing::Down,
+                    size: l(d.size),
+                    grading: d.grading.as_ref().map(|g| grading(Some(g), d.size, length)),
+                    order: order(d.element),
+                },
+                MeshSpec::Inline(m) => {
+                    let scaled: Vec<[f64; 2]> = m.nodes.iter().map(|&p| lp(p)).collect();
+                    MeshSource::Inline(quality::try_inline(
+                        &scaled,
+                        &m.elements,
+                        &m.edge_sets,
+                        &format!("{bp}/mesh/inline"),
+                    )?)
+                }
+            };
+            let edges = edge_names(&b.mesh);
+            let need_edges = |name: &str, path: String| -> Result<(), CoreError> {
+                if edges.contains(name) {
+                    Ok(())
+                } else {
+                    Err(invalid(
+                        K::Request,
+                        path,
+                        format!(
+                            "no edge set named '{name}' on this body (it has: {})",
+                            edges.iter().cloned().collect::<Vec<_>>().join(", ")
+                        ),
+                    ))
+                }
+            };
+            let mut supports = Vec::new();
+            for (k, s) in b.supports.iter().enumerate() {
+                let sp = format!("{bp}/supports/{k}");
+                need_edges(&s.edges, format!("{sp}/edges"))?;
+                if s.ux.is_none() && s.uy.is_none() {
+                    return Err(invalid(K::Request, sp, "a support must prescribe ux, uy or both"));
+                }
+                if let Some(v) = s.ux {
+                    finite(v, &format!("{sp}/ux"), K::Request)?;
+                }
+                if let Some(v) = s.uy {
+                    finite(v, &format!("{sp}/uy"), K::Request)?;
+                }
+                supports.push(Support {
+                    edges: s.edges.clone(),
+                    ux: s.ux.map(l),
+                    uy: s.uy.map(l),
+                });
+            }
+            if supports.is_empty() {
+                return Err(invalid(K::NoSupport, format!("{bp}/supports"), format!("body '{name}' has no support; it would be held only by contact, which this solver does not handle yet (a body must be fixed against rigid motion)")));
+            }
+            let mut tractions = Vec::new();
+            for (k, t) in b.tractions.iter().enumerate() {
+                let tp = format!("{bp}/tractions/{k}");
+                need_edges(&t.edges, format!("{tp}/edges"))?;
+                match (t.traction, t.pressure) {
+                    (Some(v), None) => {
+                        finite(v[0], &format!("{tp}/traction/0"), K::Request)?;
+                        finite(v[1], &format!("{tp}/traction/1"), K::Request)?;
+                        tractions.push(Traction::Vector {
+                            edges: t.edges.clone(),
+                            t: [v[0] / modulus, v[1] / modulus],
+                        });
+                    }
+                    (None, Some(p)) => {
+                        finite(p, &format!("{tp}/pressure"), K::Request)?;
+                        tractions.push(Traction::Pressure {
+                            edges: t.edges.clone(),
+                            p: p / modulus,
+                        });
+                    }
+                    _ => return Err(invalid(K::Request, tp, "give exactly one of 'traction' and 'pressure'")),
+                }
+            }
+            let bf = b.body_force.unwrap_or([0.0, 0.0]);
+            finite(bf[0], &format!("{bp}/body_force/0"), K::Request)?;
+            finite(bf[1], &format!("{bp}/body_force/1"), K::Request)?;
+            bodies.push(Body {
+                name,
+                youngs_modulus: b.material.youngs_modulus / modulus,
+                poisson_ratio: b.material.poisson_ratio,
+                mesh,
+                supports,
+                tractions,
+                body_force: [bf[0] * length / modulus, bf[1] * length / modulus],
+                path: bp,
+            });
+        }
+
+        let mut obstacle_names = Vec::new();
+        let mut obstacles = Vec::new();
+        for (i, o) in req.obstacles.iter().enumerate() {
+            let op = format!("/obstacles/{i}/shape");
+            let name = o.name.clone().unwrap_or_else(|| format!("obstacle{i}"));
+            if obstacle_names.contains(&name) {
+                return Err(invalid(
+                    K::Request,
+                    format!("/obstacles/{i}/name"),
+                    format!("duplicate obstacle name '{name}'"),
+                ));
+            }
+            obstacle_names.push(name.clone());
+            let shape = match &o.shape {
+                ObstacleShape::Line { point, normal } => {
+                    for (k, v) in point.iter().chain(normal).enumerate() {
+                        finite(
+                            *v,
+                            &format!("{op}/line/{}/{}", if k < 2 { "point" } else { "normal" }, k % 2),
+                            K::Geometry,
+                        )?;
+                    }
+                    let nn = (normal[0] * normal[0] + normal[1] * normal[1]).sqrt();
+                    if nn == 0.0 {
+                        return Err(invalid(
+                            K::Geometry,
+                            format!("{op}/line/normal"),
+                            "normal must be a nonzero vector",
+                        ));
+                    }
+                    Shape::Line {
+                        point: lp(*point),
+                        normal: [normal[0] / nn, normal[1] / nn],
+                    }
+                }
+                ObstacleShape::Circle { center, radius } => {
+                    finite(center[0], &format!("{op}/circle/center/0"), K::Geometry)?;
+                    finite(center[1], &format!("{op}/circle/center/1"), K::Geometry)?;
+                    positive(*radius, &format!("{op}/circle/radius"), K::Geometry, "radius")?;
+                    Shape::Circle {
+                        center: lp(*center),
+                        radius: l(*radius),
+                    }
+                }
+                ObstacleShape::Polyline { points } => {
+                    if points.len() < 2 {
+                        return Err(invalid(
+                            K::Geometry,
+                            format!("{op}/polyline/points"),
+                            "a polyline needs at least 2 points",
+                        ));
+                    }
+                    for (k, p) in points.iter().enumerate() {
+                        finite(p[0], &format!("{op}/polyline/points/{k}/0"), K::Geometry)?;
+                        finite(p[1], &format!("{op}/polyline/points/{k}/1"), K::Geometry)?;
+                        if k > 0 && points[k - 1] == *p {
+                            return Err(invalid(
+                                K::Geometry,
+                                format!("{op}/polyline/points/{k}"),
+                                "zero-length polyline segment",
+                            ));
+                        }
+                    }
+                    Shape::Polyline {
+                        points: points.iter().map(|&p| lp(p)).collect(),
+                    }
+                }
+            };
+            obstacles.push(Obstacle { name, shape });
+        }
+
+        if req.contacts.is_empty() {
+            return Err(invalid(
+                K::NoContactCandidates,
+                "/contacts",
+                "at least one contact pair is required",
+            ));
+        }
+        let mut pairs = Vec::new();
+        for (k, c) in req.contacts.iter().enumerate() {
+            let cp = format!("/contacts/{k}");
+            let body = resolve(&c.body, &names, &format!("{cp}/body"), "body")?;
+            let obstacle = resolve(&c.obstacle, &obstacle_names, &format!("{cp}/obstacle"), "obstacle")?;
+            if !edge_names(&req.bodies[body].mesh).contains(&c.edges) {
+                return Err(invalid(
+                    K::Request,
+                    format!("{cp}/edges"),
+                    format!("body '{}' has no edge set named '{}'", names[body], c.edges),
+                ));
+            }
+            pairs.push(Pair {
+                body,
+                edges: c.edges.clone(),
+                obstacle,
+                path: cp,
+            });
+        }
+
+        let s = &req.settings;
+        let tol = positive(s.tolerance, "/settings/tolerance", K::Request, "tolerance")?;
+        if tol >= 1e-2 {
+            return Err(invalid(
+                K::Request,
+                "/settings/tolerance",
+                "tolerance must be below 1e-2",
+            ));
+        }
+        if s.max_iterations == 0 || s.max_iterations > 100_000 {
+            return Err(invalid(
+                K::Request,
+                "/settings/max_iterations",
+                "max_iterations must be between 1 and 100000",
+            ));
+        }
+        positive(
+            s.prune_gap_ratio,
+            "/settings/prune_gap_ratio",
+            K::Request,
+            "prune_gap_ratio",
+        )?;
+
+        Ok(Scene {
+            analysis: req.analysis,
+            scales,
+            bodies,
+            obstacles,
+            pairs,
+            method: req.method,
+            settings: s.clone(),
+            outputs: Outputs {
+                displacement: req.outputs.contains(&OutputKind::Displacement),
+                mesh: req.outputs.contains(&OutputKind::Mesh),
+                stress: req.outputs.contains(&OutputKind::Stress),
+            },
+            client_id: req.client_id.clone(),
+        })
+    }
+}
+
+fn check_grading(g: &proto::GradingSpec, size: f64, path: &str) -> Result<(), CoreError> {
+    use InvalidKind as K;
+    positive(g.h_min, &format!("{path}/h_min"), K::Mesh, "h_min")?;
+    if g.h_min > size {
+        return Err(invalid(
+            K::Mesh,
+            format!("{path}/h_min"),
+            format!("h_min ({}) exceeds the element size ({size})", g.h_min),
+        ));
+    }
+    finite(g.ratio, &format!("{path}/ratio"), K::Mesh)?;
+    if !(g.ratio >= 1.0 && g.ratio <= 2.0) {
+        return Err(invalid(
+            K::Mesh,
+            format!("{path}/ratio"),
+            format!("ratio must be in [1, 2], got {}", g.ratio),
+        ));
+    }
+    if !(g.extent.is_finite() && g.extent >= 0.0) {
+        return Err(invalid(
+            K::Mesh,
+            format!("{path}/extent"),
+            format!("extent must be a finite non-negative length, got {}", g.extent),
+        ));
+    }
+    if let Some(f) = g.focus {
+        finite(f[0], &format!("{path}/focus/0"), K::Mesh)?;
+        finite(f[1], &format!("{path}/focus/1"), K::Mesh)?;
+    }
+    Ok(())
+}
+
+fn check_mesh_spec(m: &MeshSpec, path: &str) -> Result<(), CoreError> {
+    use InvalidKind as K;
+    match m {
+        MeshSpec::Rectangle(r) => {
+            let p = format!("{path}/rectangle");
+            finite(r.corner[0], &format!("{p}/corner/0"), K::Mesh)?;
+            finite(r.corner[1], &format!("{p}/corner/1"), K::Mesh)?;
+            positive(r.width, &format!("{p}/width"), K::Mesh, "width")?;
+            positive(r.height, &format!("{p}/height"), K::Mesh, "height")?;
+            positive(r.size, &format!("{p}/size"), K::Mesh, "size")?;
+            if let Some(g) = &r.grading {
+                check_grading(g, r.size, &format!("{p}/grading"))?;
+            }
+        }
+        MeshSpec::HalfDisk(d) => {
+            let p = format!("{path}/half_disk");
+            finite(d.center[0], &format!("{p}/center/0"), K::Mesh)?;
+            finite(d.center[1], &format!("{p}/center/1"), K::Mesh)?;
+            positive(d.radius, &format!("{p}/radius"), K::Mesh, "radius")?;
+            positive(d.size, &format!("{p}/size"), K::Mesh, "size")?;
+            if d.size > d.radius {
+                return Err(invalid(K::Mesh, format!("{p}/size"), "size must not exceed the radius"));
+            }
+            if let Some(g) = &d.grading {
+                check_grading(g, d.size, &format!("{p}/grading"))?;
+            }
+        }
+        MeshSpec::Inline(m) => {
+            let p = format!("{path}/inline");
+            for (k, n) in m.nodes.iter().enumerate() {
+                finite(n[0], &format!("{p}/nodes/{k}/0"), K::Mesh)?;
+                finite(n[1], &format!("{p}/nodes/{k}/1"), K::Mesh)?;
+            }
+            if m.nodes.is_empty() {
+                return Err(invalid(K::Mesh, format!("{p}/nodes"), "no nodes"));
+            }
+        }
+    }
+    Ok(())
+}

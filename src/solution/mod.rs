@@ -1,0 +1,4 @@
+//! Solution → reply: certificate, contact zones, pressures, resultants.
+
+pub mod certificate;
+pub mod post;

@@ -1,0 +1,76 @@
+//! Shared helpers of the integration tests.
+#![allow(dead_code)]
+
+use contact::proto::{ErrorReply, SolveReply};
+use contact::scene::Limits;
+use serde_json::Value;
+
+pub fn example(name: &str) -> Value {
+    let path = format!("{}/proto/examples/{name}", env!("CARGO_MANIFEST_DIR"));
+    serde_json::from_str(&std::fs::read_to_string(&path).expect("example exists")).expect("example is JSON")
+}
+
+pub fn solve(req: &Value) -> Result<SolveReply, ErrorReply> {
+    contact::solve_bytes(serde_json::to_string(req).unwrap().as_bytes(), &Limits::default())
+}
+
+pub fn solved(req: &Value) -> SolveReply {
+    match solve(req) {
+        Ok(r) => {
+            assert_eq!(
+                r.status,
+                contact::proto::SolveStatus::Solved,
+                "certificate {:?}",
+                r.certificate
+            );
+            r
+        }
+        Err(e) => panic!("solve failed: {e:?}"),
+    }
+}
+
+/// Hertz line contact, one elastic body against a rigid one, plane strain:
+/// (a, p0) for load P per unit thickness.
+pub fn hertz(p: f64, r: f64, e: f64, nu: f64) -> (f64, f64) {
+    let es = e / (1.0 - nu * nu);
+    let a = (4.0 * p * r / (std::f64::consts::PI * es)).sqrt();
+    (a, 2.0 * p / (std::f64::consts::PI * a))
+}
+
+pub fn peak_pressure(r: &SolveReply) -> f64 {
+    r.pairs[0].points.iter().map(|p| p.pressure).fold(0.0, f64::max)
+}
+
+pub fn half_width(r: &SolveReply) -> f64 {
+    assert_eq!(
+        r.pairs[0].zones.len(),
+        1,
+        "one contact zone expected: {:?}",
+        r.pairs[0].zones
+    );
+    let z = r.pairs[0].zones[0];
+    0.5 * (z[1] - z[0])
+}
+
+/// Every truth of §6 that holds for any frictionless solution: complementarity
+/// and sign conditions to the certificate's tolerance.
+pub fn assert_kkt(r: &SolveReply, tol: f64) {
+    let c = r.certificate;
+    for (name, v) in [
+        ("primal", c.primal),
+        ("dual", c.dual),
+        ("complementarity", c.complementarity),
+        ("equilibrium", c.equilibrium),
+    ] {
+        assert!(v <= tol, "{name} residual {v:e} > {tol:e}");
+    }
+    let pmax = peak_pressure(r);
+    for pair in &r.pairs {
+        for p in &pair.points {
+            assert!(p.pressure >= -tol * pmax, "tensile pressure {p:?}");
+            if p.pressure > tol * pmax {
+                assert!(p.gap.abs() <= 1e-9 * (1.0 + p.x.abs()), "pressure on an open gap {p:?}");
+            }
+        }
+    }
+}

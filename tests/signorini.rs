@@ -1,0 +1,179 @@
+//! Signorini scenes against closed forms (../shared/VERIFICATION.md §1, §6).
+
+mod common;
+use common::*;
+use serde_json::json;
+
+/// Hertz, rigid cylinder R = 8 into an elastic block (T3 and T6). The zone ends
+/// sit on nodes, so the half-width is quantised by the contact-zone element
+/// size h = 0.01 (≈ 1.5 % of a ≈ 0.69); the 2 % tolerance covers that plus the
+/// block's finite size (≈ a/H = 3 %, entering quadratically).
+#[test]
+fn hertz_rigid_cylinder_on_block_t3_t6() {
+    for name in ["signorini_hertz_cylinder.json", "signorini_hertz_cylinder_t6.json"] {
+        let r = solved(&example(name));
+        let p = -r.resultant.fy;
+        assert!(p > 0.0);
+        let (a, p0) = hertz(p, 8.0, 200.0, 0.3);
+        let (a_fe, p0_fe) = (half_width(&r), peak_pressure(&r));
+        assert!((a_fe / a - 1.0).abs() < 0.02, "{name}: a {a_fe} vs Hertz {a}");
+        assert!((p0_fe / p0 - 1.0).abs() < 0.02, "{name}: p0 {p0_fe} vs Hertz {p0}");
+        assert_kkt(&r, 1e-8);
+        // Mirror symmetry of the scene: no net tangential force, no moment.
+        assert!(r.resultant.fx.abs() < 1e-9 * p, "fx {}", r.resultant.fx);
+        assert!(r.resultant.m.abs() < 1e-9 * p * a, "m {}", r.resultant.m);
+        // Equilibrium of the nodal forces with the resultant.
+        let sum: f64 = r.pairs[0].points.iter().map(|q| q.force * -q.normal[1]).sum();
+        assert!((sum - r.resultant.fy).abs() < 1e-12 * p);
+    }
+}
+
+/// Elastic roller (half-disk) pressed onto a rigid floor: Hertz with the same E*.
+#[test]
+fn hertz_roller_on_rigid_floor() {
+    let r = solved(&example("signorini_roller_on_flat.json"));
+    let p = r.resultant.fy;
+    let (a, p0) = hertz(p, 8.0, 200.0, 0.3);
+    assert!((half_width(&r) / a - 1.0).abs() < 0.02);
+    assert!((peak_pressure(&r) / p0 - 1.0).abs() < 0.02);
+    assert_kkt(&r, 1e-8);
+    assert!(r.resultant.fx.abs() < 1e-9 * p);
+}
+
+/// The exact methods solve the same discrete problem: pressures agree to 1e-8 of the peak.
+#[test]
+fn exact_methods_agree() {
+    for name in [
+        "signorini_hertz_cylinder.json",
+        "signorini_inline_block_on_vee.json",
+        "signorini_roller_on_flat.json",
+    ] {
+        let mut req = example(name);
+        req["method"] = json!("active_set");
+        let a = solved(&req);
+        req["method"] = json!("interior_point");
+        let b = solved(&req);
+        let peak = peak_pressure(&a);
+        for (pa, pb) in a.pairs[0].points.iter().zip(&b.pairs[0].points) {
+            assert!(
+                (pa.pressure - pb.pressure).abs() <= 1e-8 * peak,
+                "{name}: {} vs {}",
+                pa.pressure,
+                pb.pressure
+            );
+        }
+    }
+}
+
+/// A block squeezed onto a flat rigid floor by a prescribed top displacement,
+/// free to expand sideways: uniaxial stress, so the contact pressure is
+/// exactly E/(1−ν²)·δ/H (plane strain), which linear and quadratic elements
+/// represent exactly (to round-off) on any mesh.
+#[test]
+fn uniform_compression_is_exact() {
+    for element in ["t3", "t6"] {
+        let (e, nu, h, d) = (1000.0, 0.3, 2.0, 1e-3);
+        let req = json!({
+            "version": "1",
+            "bodies": [{
+                "material": {"youngs_modulus": e, "poisson_ratio": nu},
+                "mesh": {"rectangle": {"corner": [0.0, 0.0], "width": 3.0, "height": h, "size": 0.37, "element": element}},
+                "supports": [{"edges": "top", "uy": -d}, {"edges": "left", "ux": 0.0}]
+            }],
+            "obstacles": [{"shape": {"line": {"point": [0.0, 0.0], "normal": [0.0, 1.0]}}}],
+            "contacts": [{"body": 0, "edges": "bottom", "obstacle": 0}]
+        });
+        let r = solved(&req);
+        let expect = e / (1.0 - nu * nu) * d / h;
+        for p in &r.pairs[0].points {
+            assert!(
+                (p.pressure / expect - 1.0).abs() < 1e-10,
+                "{element}: {} vs {expect}",
+                p.pressure
+            );
+        }
+        assert!((r.resultant.fy / (expect * 3.0) - 1.0).abs() < 1e-10);
+        assert_eq!(r.pairs[0].zones, vec![[0.0, 3.0]]);
+    }
+}
+
+/// With s ≡ 0 the admissible set is a cone: scaling every load by λ scales the
+/// solution by λ (§6), including the partial contact zone.
+#[test]
+fn proportional_loading_scales_exactly() {
+    let scene = |k: f64| {
+        json!({
+            "version": "1",
+            "bodies": [{
+                "material": {"youngs_modulus": 50.0, "poisson_ratio": 0.2},
+                "mesh": {"rectangle": {"corner": [-1.0, 0.0], "width": 2.0, "height": 1.0, "size": 0.1}},
+                "supports": [{"edges": "top", "ux": 0.0, "uy": 0.0}],
+                "tractions": [{"edges": "right", "traction": [0.0, 2.0 * k]}],
+                "body_force": [0.0, -k]
+            }],
+            "obstacles": [{"shape": {"line": {"point": [0.0, 0.0], "normal": [0.0, 1.0]}}}],
+            "contacts": [{"body": 0, "edges": "bottom", "obstacle": 0}]
+        })
+    };
+    let base = solved(&scene(1.0));
+    let zones = &base.pairs[0].zones;
+    assert!(
+        !zones.is_empty() && zones[0][1] < 1.0,
+        "partial contact expected: {zones:?}"
+    );
+    let peak = peak_pressure(&base);
+    for k in [0.1, 3.0, 1e4] {
+        let r = solved(&scene(k));
+        assert_eq!(&r.pairs[0].zones, zones, "zones change with λ = {k}");
+        for (a, b) in base.pairs[0].points.iter().zip(&r.pairs[0].points) {
+            assert!((b.pressure - k * a.pressure).abs() <= 1e-9 * k * peak);
+            assert!((b.gap - k * a.gap).abs() <= 1e-9 * k * (1e-6 + a.gap.abs()));
+        }
+    }
+}
+
+/// Changing units (mm and MPa → m and Pa) transforms the answer accordingly (§6 invariance).
+#[test]
+fn unit_change_transforms_the_answer() {
+    let mm = example("signorini_roller_on_flat.json");
+    let a = solved(&mm);
+    let mut si = mm.clone();
+    let s = 1e-3; // mm → m
+    let body = &mut si["bodies"][0];
+    body["material"]["youngs_modulus"] = json!(200.0 * 1e6); // MPa → Pa
+    let hd = &mut body["mesh"]["half_disk"];
+    hd["center"] = json!([0.0, 8.0 * s]);
+    hd["radius"] = json!(8.0 * s);
+    hd["size"] = json!(hd["size"].as_f64().unwrap() * s);
+    hd["grading"]["h_min"] = json!(hd["grading"]["h_min"].as_f64().unwrap() * s);
+    hd["grading"]["extent"] = json!(hd["grading"]["extent"].as_f64().unwrap() * s);
+    body["supports"][0]["uy"] = json!(-0.05 * s);
+    let b = solved(&si);
+    // Force per thickness: N/mm → N/m is ×1e3 with E in Pa and lengths in m (MPa·mm = 1e3 Pa·m).
+    assert!((b.resultant.fy / (a.resultant.fy * 1e3) - 1.0).abs() < 1e-10);
+    for (p, q) in a.pairs[0].points.iter().zip(&b.pairs[0].points) {
+        assert!((q.pressure - p.pressure * 1e6).abs() <= 1e-10 * 1e6 * peak_pressure(&a));
+        assert!((q.x - p.x * s).abs() <= 1e-12);
+    }
+}
+
+/// Optional outputs appear only on request and are consistent with the supports.
+#[test]
+fn outputs_on_request_only() {
+    let req = example("signorini_inline_block_on_vee.json");
+    let r = solved(&req);
+    let bodies = r.bodies.expect("outputs requested");
+    let b = &bodies[0];
+    let disp = b.displacement.as_ref().unwrap();
+    let nodes = b.nodes.as_ref().unwrap();
+    assert_eq!(disp.len(), nodes.len());
+    assert_eq!(b.stress.as_ref().unwrap().len(), b.elements.as_ref().unwrap().len());
+    for (x, u) in nodes.iter().zip(disp) {
+        if (x[1] - 1.0).abs() < 1e-12 {
+            assert_eq!(*u, [0.0, -0.01], "top nodes follow their prescribed motion");
+        }
+    }
+    let mut plain = example("signorini_hertz_cylinder.json");
+    plain["outputs"] = json!([]);
+    assert!(solved(&plain).bodies.is_none());
+}
