@@ -17,6 +17,7 @@
 //! zenoh service (`service`) and the CLI (`main.rs`). Everything but `service`
 //! is free of I/O.
 
+pub mod bench;
 pub mod contact;
 pub mod error;
 pub mod fem;

@@ -60,6 +60,15 @@ enum Cmd {
         #[arg(long, value_enum, default_value_t = LogFormat::Text)]
         log_format: LogFormat,
     },
+    /// Time-against-error benchmark (Hertz, T3/T6, every method): table on stdout, CSV file.
+    Bench {
+        /// Meshes up to ~100k DOF only (for CI).
+        #[arg(long)]
+        quick: bool,
+        /// CSV output path.
+        #[arg(long, default_value = "bench_out/bench.csv")]
+        csv: PathBuf,
+    },
     /// Write the JSON Schemas of the protocol.
     Schema {
         /// Output directory.
@@ -123,6 +132,22 @@ fn run() -> anyhow::Result<ExitCode> {
             }
             let rt = tokio::runtime::Builder::new_multi_thread().enable_all().build()?;
             rt.block_on(contact::service::run(cfg))?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Cmd::Bench { quick, csv } => {
+            println!("{}", contact::bench::Row::table_header());
+            let rows = contact::bench::run(quick, |r| println!("{}", r.table_line()));
+            if let Some(dir) = csv.parent() {
+                std::fs::create_dir_all(dir)?;
+            }
+            let mut text = String::from(contact::bench::Row::HEADER);
+            text.push('\n');
+            for r in &rows {
+                text.push_str(&r.csv());
+                text.push('\n');
+            }
+            std::fs::write(&csv, text).with_context(|| format!("writing {}", csv.display()))?;
+            println!("wrote {}", csv.display());
             Ok(ExitCode::SUCCESS)
         }
         Cmd::Schema { out } => {
