@@ -78,14 +78,29 @@ impl Row {
 
     pub fn table_header() -> String {
         format!(
-            "{:<7} {:>7} {:>8} {:>5} {:<15} {:>4} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>9} {:>9} {:>9} {:>8}",
-            "element", "h_min", "dofs", "cand", "method", "it", "assembly", "factor", "contact", "total", "floor", "ratio", "err_a", "err_p0", "err_L2", "cert"
+            "{:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>9} {:>9} {:>9} {:>8}",
+            "element",
+            "h_min",
+            "dofs",
+            "cand",
+            "method",
+            "it",
+            "assembly",
+            "factor",
+            "contact",
+            "total",
+            "floor",
+            "ratio",
+            "err_a",
+            "err_p0",
+            "err_L2",
+            "cert"
         )
     }
 
     pub fn table_line(&self) -> String {
         format!(
-            "{:<7} {:>7} {:>8} {:>5} {:<15} {:>4} {:>8.3} {:>8.3} {:>8.4} {:>8.3} {:>8.3} {:>6.2} {:>+9.2e} {:>+9.2e} {:>9.2e} {:>8.1e}",
+            "{:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8.3} {:>8.3} {:>8.4} {:>8.3} {:>8.3} {:>6.2} {:>+9.2e} {:>+9.2e} {:>9.2e} {:>8.1e}",
             self.element,
             self.h_min,
             self.dofs,
@@ -136,7 +151,11 @@ pub fn hertz_errors(r: &SolveReply, radius: f64, e_star: f64) -> (f64, f64, f64)
     let p_fe = pair.points.iter().map(|q| q.pressure).fold(0.0, f64::max);
     let (mut num, mut den) = (0.0, 0.0);
     for q in &pair.points {
-        let exact = if q.x.abs() < a { p0 * (1.0 - (q.x / a).powi(2)).sqrt() } else { 0.0 };
+        let exact = if q.x.abs() < a {
+            p0 * (1.0 - (q.x / a).powi(2)).sqrt()
+        } else {
+            0.0
+        };
         // Weight by the tributary length (force / pressure) to integrate along the line.
         let w = if q.pressure > 0.0 { q.force / q.pressure } else { 0.0 };
         let w = if w > 0.0 { w } else { 1.0 };
@@ -146,11 +165,21 @@ pub fn hertz_errors(r: &SolveReply, radius: f64, e_star: f64) -> (f64, f64, f64)
     (a_fe / a - 1.0, p_fe / p0 - 1.0, (num / den).sqrt())
 }
 
-/// Floor: faer's own symbolic + numeric Cholesky and one solve of K_ff.
+/// Floor: faer's own symbolic + numeric Cholesky and one solve of K_ff, the
+/// better of faer's sequential and default (parallel) settings.
 fn floor_time(scene: &Scene) -> f64 {
     let meshes = crate::pipeline::build_meshes(scene);
     let dofs = crate::fem::assembly::dof_map(scene, &meshes).expect("benchmark scene is valid");
     let asm = crate::fem::assemble(scene, &meshes, dofs).expect("benchmark scene assembles");
+    let default = faer::get_global_parallelism();
+    let par = floor_once(&asm);
+    faer::set_global_parallelism(faer::Par::Seq);
+    let seq = floor_once(&asm);
+    faer::set_global_parallelism(default);
+    par.min(seq)
+}
+
+fn floor_once(asm: &crate::fem::Assembled) -> f64 {
     let t = Instant::now();
     let sym = SymbolicLlt::try_new(asm.k.symbolic(), Side::Lower).expect("symbolic");
     let llt = Llt::try_new_with_symbolic(sym, asm.k.as_ref(), Side::Lower).expect("numeric");
@@ -162,7 +191,11 @@ fn floor_time(scene: &Scene) -> f64 {
 
 /// Runs the benchmark; `quick` keeps to meshes below ~100k DOF.
 pub fn run(quick: bool, mut progress: impl FnMut(&Row)) -> Vec<Row> {
-    let sizes: &[f64] = if quick { &[0.04, 0.02, 0.01] } else { &[0.04, 0.02, 0.01, 0.005, 0.0025] };
+    let sizes: &[f64] = if quick {
+        &[0.04, 0.02, 0.01]
+    } else {
+        &[0.04, 0.02, 0.01, 0.005, 0.0025]
+    };
     let e_star = 200.0 / (1.0 - 0.09);
     let mut rows = Vec::new();
     let limits = Limits::default();
@@ -173,9 +206,20 @@ pub fn run(quick: bool, mut progress: impl FnMut(&Row)) -> Vec<Row> {
             let req0 = hertz_request(h_el, element, "auto");
             let scene0 = Scene::try_new(&serde_json::from_value(req0).unwrap(), &limits).unwrap();
             let t_floor = floor_time(&scene0);
-            for method in [MethodName::ActiveSet, MethodName::InteriorPoint] {
+            let runs: [(MethodName, Option<f64>); 6] = [
+                (MethodName::ActiveSet, None),
+                (MethodName::InteriorPoint, None),
+                (MethodName::AugmentedLagrangian, Some(1e-4)),
+                (MethodName::Penalty, Some(1e-4)),
+                (MethodName::Penalty, Some(1e-6)),
+                (MethodName::Penalty, Some(1e-8)),
+            ];
+            for (method, zeta) in runs {
                 let name = serde_json::to_value(method).unwrap().as_str().unwrap().to_string();
-                let req = hertz_request(h_el, element, &name);
+                let mut req = hertz_request(h_el, element, &name);
+                if let Some(z) = zeta {
+                    req["settings"] = json!({ "penalty": z });
+                }
                 let bytes = serde_json::to_vec(&req).unwrap();
                 let r = match crate::solve_bytes(&bytes, &limits) {
                     Ok(r) => r,
@@ -188,7 +232,10 @@ pub fn run(quick: bool, mut progress: impl FnMut(&Row)) -> Vec<Row> {
                     h_min: h_el,
                     dofs: r.size.dofs,
                     candidates: r.size.candidates,
-                    method: r.method.clone(),
+                    method: match zeta {
+                        Some(z) => format!("{}(ζ={z:.0e})", r.method),
+                        None => r.method.clone(),
+                    },
                     iterations: r.iterations,
                     t_mesh: r.timings.mesh,
                     t_assembly: r.timings.assembly,

@@ -6,11 +6,16 @@ use std::time::Instant;
 
 use faer::Mat;
 
-use super::{LcpSolver, Problem, Solution};
+use super::{LcpResult, Problem, Solution};
 use crate::error::CoreError;
 use crate::linalg::{dense, Cholesky};
 
-pub fn solve_condensed(p: &Problem, name: &'static str, lcp: LcpSolver) -> Result<Solution, CoreError> {
+pub fn solve_condensed(
+    p: &Problem,
+    name: &'static str,
+    exact: bool,
+    lcp: &dyn Fn(&Mat<f64>, &[f64]) -> LcpResult,
+) -> Result<Solution, CoreError> {
     let t0 = Instant::now();
     let cdofs = p.cons.dofs();
     let chol = Cholesky::try_new(p.k, &cdofs)?;
@@ -35,7 +40,7 @@ pub fn solve_condensed(p: &Problem, name: &'static str, lcp: LcpSolver) -> Resul
     let t_condensation = t1.elapsed().as_secs_f64();
 
     let t2 = Instant::now();
-    let res = lcp(&w, &q, p.settings);
+    let res = lcp(&w, &q);
     let t_contact = t2.elapsed().as_secs_f64();
 
     // u = K⁻¹ (f − Bᵀ λ)
@@ -49,6 +54,7 @@ pub fn solve_condensed(p: &Problem, name: &'static str, lcp: LcpSolver) -> Resul
         iterations: res.iterations,
         converged: res.converged,
         method: name,
+        exact,
         t_factorization,
         t_condensation,
         t_contact,

@@ -16,6 +16,7 @@
 pub mod active_set;
 pub mod condensed;
 pub mod interior_point;
+pub mod penalty;
 
 use crate::contact::ConstraintSet;
 use crate::error::CoreError;
@@ -28,6 +29,8 @@ pub struct Problem<'a> {
     pub f: &'a [f64],
     pub cons: &'a ConstraintSet,
     pub settings: &'a SolverSettings,
+    /// Nondimensional penalty compliance ζ.
+    pub zeta: f64,
 }
 
 /// Result of the LCP stage.
@@ -44,20 +47,29 @@ pub struct Solution {
     pub converged: bool,
     /// Name of the method that ran.
     pub method: &'static str,
+    /// Whether the method solves the exact contact conditions (penalty does not:
+    /// its penetration and complementarity gap are inherent, not a failure).
+    pub exact: bool,
     pub t_factorization: f64,
     pub t_condensation: f64,
     pub t_contact: f64,
 }
 
-/// A solver of the condensed LCP (W, q).
-pub type LcpSolver = fn(&faer::Mat<f64>, &[f64], &SolverSettings) -> LcpResult;
-
 /// Runs the requested method (`auto` → condensed active set, the fastest exact
-/// method measured so far).
+/// method measured so far; see `contact bench`).
 pub fn solve(problem: &Problem, method: MethodName) -> Result<Solution, CoreError> {
-    let (name, lcp): (&'static str, LcpSolver) = match method {
-        MethodName::Auto | MethodName::ActiveSet => ("active_set", active_set::solve_lcp),
-        MethodName::InteriorPoint => ("interior_point", interior_point::solve_lcp),
+    let weights: Vec<f64> = problem.cons.candidates.iter().map(|c| c.weight).collect();
+    let d = penalty::springs(&weights, problem.zeta);
+    let run = |name: &'static str, exact: bool, lcp: &dyn Fn(&faer::Mat<f64>, &[f64]) -> LcpResult| {
+        condensed::solve_condensed(problem, name, exact, lcp)
     };
-    condensed::solve_condensed(problem, name, lcp)
+    let s = problem.settings;
+    match method {
+        MethodName::Auto | MethodName::ActiveSet => run("active_set", true, &|w, q| active_set::solve_lcp(w, q, s)),
+        MethodName::InteriorPoint => run("interior_point", true, &|w, q| interior_point::solve_lcp(w, q, s)),
+        MethodName::Penalty => run("penalty", false, &|w, q| penalty::solve_penalty(w, q, &d, s)),
+        MethodName::AugmentedLagrangian => run("augmented_lagrangian", true, &|w, q| {
+            penalty::solve_augmented_lagrangian(w, q, &d, s)
+        }),
+    }
 }

@@ -260,6 +260,11 @@ pub enum MethodName {
     ActiveSet,
     /// Interior point (Clarabel) on the condensed contact problem.
     InteriorPoint,
+    /// Exterior penalty: pressure = penetration / ζ (`settings.penalty`); not exact,
+    /// the reply's max_penetration and certificate show by how much.
+    Penalty,
+    /// Augmented Lagrangian (Uzawa) on the penalty: exact for any fixed ζ.
+    AugmentedLagrangian,
 }
 
 /// Numerical settings. All tolerances are relative and dimensionless.
@@ -273,6 +278,11 @@ pub struct SolverSettings {
     /// Candidates whose initial gap exceeds this multiple of the body size are
     /// dropped before the solve (they cannot close under small strain).
     pub prune_gap_ratio: f64,
+    /// Penalty parameter ζ of `penalty` and `augmented_lagrangian`: the
+    /// compliance of the contact springs [length / pressure]. Default: 1e-6 of
+    /// the natural compliance L/E (largest body size over largest modulus).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub penalty: Option<f64>,
 }
 
 impl Default for SolverSettings {
@@ -281,6 +291,7 @@ impl Default for SolverSettings {
             tolerance: 1e-8,
             max_iterations: 200,
             prune_gap_ratio: 0.5,
+            penalty: None,
         }
     }
 }
