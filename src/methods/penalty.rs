@@ -17,6 +17,7 @@ use faer::Mat;
 
 use super::LcpResult;
 use crate::linalg::dense::{matvec, solve_principal};
+
 use crate::proto::SolverSettings;
 
 /// Newton solve of λ = max(0, μ − D(Wλ + q)); returns (λ, iterations, converged).
@@ -78,12 +79,12 @@ pub fn solve_augmented_lagrangian(w: &Mat<f64>, q: &[f64], d: &[f64], s: &Solver
                 converged: false,
             };
         }
-        // Stop when the remaining penetration is within the tolerance of the gap scale.
-        let gap: Vec<f64> = matvec(w, &lambda).iter().zip(q).map(|(a, b)| a + b).collect();
-        let gscale = q.iter().fold(0.0f64, |a, v| a.max(v.abs())).max(f64::MIN_POSITIVE);
-        let pen = gap.iter().fold(0.0f64, |a, g| a.max(-g));
+        // Stop when the multiplier update (= D × remaining penetration) is within
+        // the tolerance of the largest contact force: the pressures have settled.
+        let change = lambda.iter().zip(&mu).fold(0.0f64, |a, (l, m)| a.max((l - m).abs()));
+        let scale = lambda.iter().fold(0.0f64, |a, l| a.max(l.abs()));
         mu = lambda;
-        if pen <= 1e-2 * s.tolerance * gscale {
+        if change <= 1e-2 * s.tolerance * scale {
             return LcpResult {
                 lambda: mu,
                 iterations: total,
