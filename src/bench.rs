@@ -156,11 +156,9 @@ pub fn hertz_errors(r: &SolveReply, radius: f64, e_star: f64) -> (f64, f64, f64)
         } else {
             0.0
         };
-        // Weight by the tributary length (force / pressure) to integrate along the line.
-        let w = if q.pressure > 0.0 { q.force / q.pressure } else { 0.0 };
-        let w = if w > 0.0 { w } else { 1.0 };
-        num += w * (q.pressure - exact).powi(2);
-        den += w * exact * exact;
+        // Tributary lengths integrate along the contact line.
+        num += q.weight * (q.pressure - exact).powi(2);
+        den += q.weight * exact * exact;
     }
     (a_fe / a - 1.0, p_fe / p0 - 1.0, (num / den).sqrt())
 }

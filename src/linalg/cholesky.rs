@@ -9,8 +9,8 @@
 //! ```
 //!
 //! so the condensed contact operator costs one sparse factorization plus dense
-//! work of size |c|, instead of |c| sparse solves. The other DOFs keep a
-//! fill-reducing (AMD) order of their own block.
+//! work of size |c|, instead of |c| sparse solves. The other DOFs keep their
+//! place in a fill-reducing (AMD) order of the whole matrix.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
@@ -20,7 +20,7 @@ use faer::sparse::linalg::cholesky::{
     SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::linalg::{amd, SupernodalThreshold};
-use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use faer::sparse::SparseColMat;
 use faer::{Conj, Mat, MatMut, Par, Side};
 
 #[derive(Debug, thiserror::Error)]
@@ -135,52 +135,30 @@ impl Cholesky {
     }
 }
 
-/// Fill-reducing order of the DOFs not in `last` (AMD on their own block), then `last`.
+/// AMD order of the whole matrix with the `last` DOFs moved to the end (in the
+/// given order). Measured on the 612k-DOF Hertz mesh with 1514 trailing DOFs:
+/// nnz(L) 81 M against 97 M for AMD on the remaining block alone (74.5 M with no
+/// trailing block at all).
 fn ordering(a: &SparseColMat<usize, f64>, last: &[usize]) -> Result<(Vec<usize>, Vec<usize>), LinalgError> {
     let n = a.nrows();
     let mut is_last = vec![false; n];
     for &d in last {
         is_last[d] = true;
     }
-    let mut interior = Vec::with_capacity(n - last.len());
-    let mut local = vec![usize::MAX; n];
-    for d in 0..n {
-        if !is_last[d] {
-            local[d] = interior.len();
-            interior.push(d);
-        }
-    }
-    let ni = interior.len();
-    // Pattern of K_ii (lower triangle, as stored), for AMD.
     let sym = a.symbolic();
-    let mut col_ptr = Vec::with_capacity(ni + 1);
-    let mut row_idx = Vec::new();
-    col_ptr.push(0);
-    for &d in &interior {
-        for &r in sym.row_idx_of_col_raw(d) {
-            if !is_last[r] {
-                row_idx.push(local[r]);
-            }
-        }
-        col_ptr.push(row_idx.len());
-    }
-    let mut perm_i = vec![0usize; ni];
-    let mut perm_inv_i = vec![0usize; ni];
-    if ni > 0 {
-        let pat = SymbolicSparseColMat::new_checked(ni, ni, col_ptr, None, row_idx);
-        let nnz = pat.compute_nnz();
-        let req = amd::order_maybe_unsorted_scratch::<usize>(ni, nnz);
-        let mut mem = MemBuffer::try_new(req).map_err(|_| LinalgError::Faer("out of memory".into()))?;
-        amd::order_maybe_unsorted(
-            &mut perm_i,
-            &mut perm_inv_i,
-            pat.as_ref(),
-            amd::Control::default(),
-            MemStack::new(&mut mem),
-        )
-        .map_err(|e| LinalgError::Faer(format!("{e:?}")))?;
-    }
-    let mut fwd: Vec<usize> = perm_i.iter().map(|&k| interior[k]).collect();
+    let nnz = sym.compute_nnz();
+    let req = amd::order_maybe_unsorted_scratch::<usize>(n, nnz);
+    let mut mem = MemBuffer::try_new(req).map_err(|_| LinalgError::Faer("out of memory".into()))?;
+    let (mut perm, mut perm_inv) = (vec![0usize; n], vec![0usize; n]);
+    amd::order_maybe_unsorted(
+        &mut perm,
+        &mut perm_inv,
+        sym,
+        amd::Control::default(),
+        MemStack::new(&mut mem),
+    )
+    .map_err(|e| LinalgError::Faer(format!("{e:?}")))?;
+    let mut fwd: Vec<usize> = perm.into_iter().filter(|&d| !is_last[d]).collect();
     fwd.extend_from_slice(last);
     let mut inv = vec![0usize; n];
     for (new, &old) in fwd.iter().enumerate() {

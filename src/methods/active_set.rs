@@ -17,6 +17,12 @@ use crate::linalg::dense::{matvec, solve_principal};
 use crate::proto::SolverSettings;
 
 pub fn solve_lcp(w: &Mat<f64>, q: &[f64], s: &SolverSettings) -> LcpResult {
+    // Start from the candidates that penetrate without contact forces.
+    solve_lcp_from(w, q, s, q.iter().map(|&qi| qi < 0.0).collect())
+}
+
+/// PDAS from a given initial active set (warm start).
+pub fn solve_lcp_from(w: &Mat<f64>, q: &[f64], s: &SolverSettings, mut active: Vec<bool>) -> LcpResult {
     let m = q.len();
     if m == 0 {
         return LcpResult {
@@ -27,7 +33,6 @@ pub fn solve_lcp(w: &Mat<f64>, q: &[f64], s: &SolverSettings) -> LcpResult {
     }
     let diag_mean = (0..m).map(|i| w[(i, i)]).sum::<f64>() / m as f64;
     let c = 1.0 / diag_mean;
-    let mut active: Vec<bool> = q.iter().map(|&qi| qi < 0.0).collect();
     let mut lambda = vec![0.0; m];
     let pdas_cap = (s.max_iterations / 2).max(1);
     let mut seen: Vec<Vec<bool>> = Vec::new();

@@ -12,7 +12,7 @@
 //! usual for IPMs (crossover / polishing), the converged iterate's active set
 //! A = {i : λ_i W_ii > w_i} is then solved exactly, W_AA λ_A = −q_A; the polished
 //! point is kept only if it satisfies the KKT conditions (λ_A ≥ 0, w ≥ 0 off A),
-//! otherwise the raw IPM answer is returned and the certificate tells its accuracy.
+//! otherwise the active-set iteration finishes from that set (a crossover).
 
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus};
@@ -88,6 +88,12 @@ pub fn solve_lcp(w: &Mat<f64>, q: &[f64], s: &SolverSettings) -> LcpResult {
                 converged,
             };
         }
+        // The estimate missed a borderline candidate: let the active-set
+        // iteration finish from the IPM's active set (it needs a step or two).
+        let start: Vec<bool> = active_estimate(w, q, &lambda);
+        let mut r = super::active_set::solve_lcp_from(w, q, s, start);
+        r.iterations += iterations;
+        return r;
     }
     LcpResult {
         lambda,
@@ -96,11 +102,17 @@ pub fn solve_lcp(w: &Mat<f64>, q: &[f64], s: &SolverSettings) -> LcpResult {
     }
 }
 
+/// Candidates whose force outweighs their gap (in the units of W's diagonal).
+fn active_estimate(w: &Mat<f64>, q: &[f64], lambda: &[f64]) -> Vec<bool> {
+    let gap: Vec<f64> = matvec(w, lambda).iter().zip(q).map(|(a, b)| a + b).collect();
+    (0..q.len()).map(|i| lambda[i] * w[(i, i)] > gap[i]).collect()
+}
+
 /// Exact solve on the IPM's active set; None unless the result is KKT-feasible.
 fn polish(w: &Mat<f64>, q: &[f64], lambda: &[f64]) -> Option<Vec<f64>> {
     let m = q.len();
-    let gap: Vec<f64> = matvec(w, lambda).iter().zip(q).map(|(a, b)| a + b).collect();
-    let idx: Vec<usize> = (0..m).filter(|&i| lambda[i] * w[(i, i)] > gap[i]).collect();
+    let est = active_estimate(w, q, lambda);
+    let idx: Vec<usize> = (0..m).filter(|&i| est[i]).collect();
     let rhs: Vec<f64> = idx.iter().map(|&i| -q[i]).collect();
     let la = solve_principal(w, &idx, &rhs)?;
     let mut out = vec![0.0; m];

@@ -74,6 +74,8 @@ pub struct ContactPoint {
     pub pressure: f64,
     /// Nodal contact force (per unit thickness) = pressure × tributary length.
     pub force: f64,
+    /// Tributary length ∫ N_i ds of the node on the contact edges.
+    pub weight: f64,
     /// Node index in the body's mesh.
     pub node: usize,
     /// Outward unit normal of the body at the node.

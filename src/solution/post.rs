@@ -52,6 +52,7 @@ pub fn pairs(scene: &Scene, cons: &ConstraintSet, lambda: &[f64], gaps: &[f64]) 
                 gap: sc.length(gaps[i]),
                 pressure: sc.stress(l / c.weight),
                 force: sc.force(l),
+                weight: sc.length(c.weight),
                 node: c.node,
                 normal: c.normal,
             });
