@@ -169,19 +169,20 @@ fn floor_time(scene: &Scene) -> f64 {
     let meshes = crate::pipeline::build_meshes(scene);
     let dofs = crate::fem::assembly::dof_map(scene, &meshes).expect("benchmark scene is valid");
     let asm = crate::fem::assemble(scene, &meshes, dofs).expect("benchmark scene assembles");
+    let k = &asm.stiffness.k;
     let default = faer::get_global_parallelism();
-    let par = floor_once(&asm);
+    let par = floor_once(k, &asm.f);
     faer::set_global_parallelism(faer::Par::Seq);
-    let seq = floor_once(&asm);
+    let seq = floor_once(k, &asm.f);
     faer::set_global_parallelism(default);
     par.min(seq)
 }
 
-fn floor_once(asm: &crate::fem::Assembled) -> f64 {
+fn floor_once(k: &faer::sparse::SparseColMat<usize, f64>, f: &[f64]) -> f64 {
     let t = Instant::now();
-    let sym = SymbolicLlt::try_new(asm.k.symbolic(), Side::Lower).expect("symbolic");
-    let llt = Llt::try_new_with_symbolic(sym, asm.k.as_ref(), Side::Lower).expect("numeric");
-    let b = faer::Col::<f64>::from_fn(asm.f.len(), |i| asm.f[i]);
+    let sym = SymbolicLlt::try_new(k.symbolic(), Side::Lower).expect("symbolic");
+    let llt = Llt::try_new_with_symbolic(sym, k.as_ref(), Side::Lower).expect("numeric");
+    let b = faer::Col::<f64>::from_fn(f.len(), |i| f[i]);
     let x = faer::linalg::solvers::Solve::solve(&llt, &b);
     std::hint::black_box(x);
     t.elapsed().as_secs_f64()

@@ -18,6 +18,7 @@
 //! is free of I/O.
 
 pub mod bench;
+pub mod cache;
 pub mod contact;
 pub mod error;
 pub mod fem;
@@ -31,5 +32,5 @@ pub mod service;
 pub mod solution;
 
 pub use error::CoreError;
-pub use pipeline::{solve, solve_bytes};
+pub use pipeline::{solve, solve_bytes, solve_bytes_cached};
 pub use scene::{Limits, Scene};

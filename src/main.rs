@@ -57,6 +57,9 @@ enum Cmd {
         /// Largest accepted number of degrees of freedom.
         #[arg(long)]
         max_dofs: Option<usize>,
+        /// Memory for cached factorizations in MiB (0 disables the cache).
+        #[arg(long, default_value_t = 2048)]
+        cache_mb: usize,
         #[arg(long, value_enum, default_value_t = LogFormat::Text)]
         log_format: LogFormat,
     },
@@ -114,6 +117,7 @@ fn run() -> anyhow::Result<ExitCode> {
             workers,
             queue_limit,
             max_dofs,
+            cache_mb,
             log_format,
         } => {
             init_logging(log_format);
@@ -122,6 +126,7 @@ fn run() -> anyhow::Result<ExitCode> {
                 listen: (!listen.is_empty()).then_some(listen),
                 connect,
                 queue_limit,
+                cache_bytes: cache_mb << 20,
                 ..Default::default()
             };
             if let Some(w) = workers {

@@ -3,21 +3,33 @@
 
 use std::time::Instant;
 
+use std::sync::Arc;
+
+use crate::cache::{self, OperatorCache};
 use crate::contact;
 use crate::error::{CoreError, InvalidKind};
 use crate::fem::{self, element, material::d_matrix};
 use crate::mesh::{generate, Mesh2d};
 use crate::methods::{self, Problem};
-use crate::proto::{self, BodyOutput, ErrorReply, ProblemSize, SolveReply, SolveStatus, Timings};
+use crate::proto::{self, BodyOutput, CacheState, ErrorReply, ProblemSize, SolveReply, SolveStatus, Timings};
 use crate::scene::{parse::parse_request, Limits, MeshSource, Scene};
 use crate::solution::{certificate::certify, post};
 
 /// Bytes in, reply or structured error out: what the service and the CLI call.
 pub fn solve_bytes(bytes: &[u8], limits: &Limits) -> Result<SolveReply, ErrorReply> {
+    solve_bytes_cached(bytes, limits, None)
+}
+
+/// As `solve_bytes`, reusing prepared operators from `cache` when given.
+pub fn solve_bytes_cached(
+    bytes: &[u8],
+    limits: &Limits,
+    cache: Option<&OperatorCache>,
+) -> Result<SolveReply, ErrorReply> {
     let run = || -> Result<SolveReply, CoreError> {
         let req = parse_request(bytes)?;
         let scene = Scene::try_new(&req, limits)?;
-        solve(&scene, limits)
+        solve(&scene, limits, cache)
     };
     run().map_err(|e| ErrorReply::from(&e))
 }
@@ -48,7 +60,7 @@ pub fn build_meshes(scene: &Scene) -> Vec<Mesh2d> {
         .collect()
 }
 
-pub fn solve(scene: &Scene, limits: &Limits) -> Result<SolveReply, CoreError> {
+pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<SolveReply, CoreError> {
     let t_start = Instant::now();
     let mut timings = Timings::default();
 
@@ -91,12 +103,36 @@ pub fn solve(scene: &Scene, limits: &Limits) -> Result<SolveReply, CoreError> {
             ),
         });
     }
-    let asm = fem::assemble(scene, &meshes, dofs)?;
+    let key = cache::key(scene, &meshes, &dofs, &cons);
     timings.assembly = t.elapsed().as_secs_f64();
+    let (op, cache_state) = match cache.and_then(|c| c.get(key)) {
+        Some(op) => (op, CacheState::Hit),
+        None => {
+            let stiffness = Arc::new(fem::assembly::assemble_stiffness(scene, &meshes, &dofs)?);
+            timings.assembly = t.elapsed().as_secs_f64();
+            let op = Arc::new(methods::condensed::prepare(stiffness, &cons)?);
+            timings.factorization = op.t_factorization;
+            timings.condensation = op.t_condensation;
+            if let Some(c) = cache {
+                c.insert(key, op.clone());
+            }
+            (
+                op,
+                if cache.is_some() {
+                    CacheState::Miss
+                } else {
+                    CacheState::Off
+                },
+            )
+        }
+    };
+    let t = Instant::now();
+    let f = fem::assembly::assemble_loads(scene, &meshes, &dofs, &op.stiffness);
+    timings.assembly += t.elapsed().as_secs_f64();
 
     let problem = Problem {
-        k: &asm.k,
-        f: &asm.f,
+        op: &op,
+        f: &f,
         cons: &cons,
         settings: &scene.settings,
         zeta: scene
@@ -106,12 +142,10 @@ pub fn solve(scene: &Scene, limits: &Limits) -> Result<SolveReply, CoreError> {
             .unwrap_or(1e-6),
     };
     let sol = methods::solve(&problem, scene.method)?;
-    timings.factorization = sol.t_factorization;
-    timings.condensation = sol.t_condensation;
     timings.contact_solve = sol.t_contact;
 
     let t = Instant::now();
-    let (certificate, gaps) = certify(&asm.k, &asm.f, &cons, &sol.u, &sol.lambda);
+    let (certificate, gaps) = certify(&op.stiffness.k, &f, &cons, &sol.u, &sol.lambda);
     let (pairs, resultant, n_active) = post::pairs(scene, &cons, &sol.lambda, &gaps);
     let status = if !certificate.is_finite() {
         SolveStatus::NumericalError
@@ -126,7 +160,7 @@ pub fn solve(scene: &Scene, limits: &Limits) -> Result<SolveReply, CoreError> {
     } else {
         SolveStatus::Solved
     };
-    let bodies = body_outputs(scene, &meshes, &asm.dofs, &sol.u);
+    let bodies = body_outputs(scene, &meshes, &dofs, &sol.u);
     timings.post = t.elapsed().as_secs_f64();
     timings.total = t_start.elapsed().as_secs_f64();
 
@@ -140,11 +174,12 @@ pub fn solve(scene: &Scene, limits: &Limits) -> Result<SolveReply, CoreError> {
         resultant,
         certificate,
         size: ProblemSize {
-            dofs: asm.dofs.n_free,
+            dofs: dofs.n_free,
             candidates: cons.len(),
             active: n_active,
         },
         timings,
+        cache: cache_state,
         bodies,
     })
 }

@@ -31,10 +31,18 @@ impl DofMap {
     }
 }
 
+/// The load-independent part: K_ff (lower triangle) and the coupling K_fd of
+/// free rows to prescribed DOFs, so that a new set of prescribed values costs a
+/// sparse product, not a reassembly.
+pub struct Stiffness {
+    pub k: SparseColMat<usize, f64>,
+    /// (free row, global prescribed DOF, value) of K_fd.
+    pub k_fd: Vec<(usize, usize, f64)>,
+}
+
 pub struct Assembled {
     pub dofs: DofMap,
-    /// Lower triangle of K_ff.
-    pub k: SparseColMat<usize, f64>,
+    pub stiffness: std::sync::Arc<Stiffness>,
     /// f_f − K_fd u_d.
     pub f: Vec<f64>,
 }
@@ -135,29 +143,25 @@ fn check_rigid_modes(rows: &[[f64; 3]], path: &str, name: &str) -> Result<(), Co
     }
 }
 
-/// Assembles K_ff and the right-hand side of all bodies.
-pub fn assemble(scene: &Scene, meshes: &[Mesh2d], dofs: DofMap) -> Result<Assembled, CoreError> {
+/// Assembles K_ff and K_fd of all bodies.
+pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Result<Stiffness, CoreError> {
     let n = dofs.n_free;
-    let mut f = vec![0.0; n];
     let est: usize = meshes
         .iter()
         .map(|m| {
-            m.n_elems() * {
-                let k = 2 * m.order.nodes_per_element();
-                k * (k + 1) / 2
-            }
+            let k = 2 * m.order.nodes_per_element();
+            m.n_elems() * k * (k + 1) / 2
         })
         .sum();
     let mut trips: Vec<Triplet<usize, usize, f64>> = Vec::with_capacity(est);
+    let mut k_fd = Vec::new();
     let mut ke = [0.0; 144];
-    let mut fe = [0.0; 12];
     for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
         let d = d_matrix(body.youngs_modulus, body.poisson_ratio, scene.analysis);
         let k = mesh.order.nodes_per_element();
         let nd = 2 * k;
         let mut x = [[0.0; 2]; 6];
         let mut gd = [0usize; 12];
-        let has_bf = body.body_force != [0.0, 0.0];
         for e in 0..mesh.n_elems() {
             let conn = mesh.elem(e);
             for (i, &node) in conn.iter().enumerate() {
@@ -166,24 +170,54 @@ pub fn assemble(scene: &Scene, meshes: &[Mesh2d], dofs: DofMap) -> Result<Assemb
                 gd[2 * i + 1] = dofs.dof(b, node, 1);
             }
             element::stiffness(mesh.order, &x[..k], &d, &mut ke);
-            if has_bf {
-                element::body_load(mesh.order, &x[..k], body.body_force, &mut fe);
-            }
             for a in 0..nd {
                 let fa = dofs.free[gd[a]];
                 if fa == FIXED {
                     continue;
                 }
-                if has_bf {
-                    f[fa] += fe[a];
-                }
                 for c in 0..nd {
                     let fc = dofs.free[gd[c]];
                     let v = ke[a * nd + c];
                     if fc == FIXED {
-                        f[fa] -= v * dofs.prescribed[gd[c]];
+                        if v != 0.0 {
+                            k_fd.push((fa, gd[c], v));
+                        }
                     } else if fc <= fa {
                         trips.push(Triplet::new(fa, fc, v));
+                    }
+                }
+            }
+        }
+    }
+    let k = SparseColMat::try_new_from_triplets(n, n, &trips)
+        .map_err(|e| crate::linalg::LinalgError::Faer(format!("{e:?}")))?;
+    Ok(Stiffness { k, k_fd })
+}
+
+/// Right-hand side f_f − K_fd u_d from tractions, pressures, body forces and
+/// prescribed displacements.
+pub fn assemble_loads(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap, stiffness: &Stiffness) -> Vec<f64> {
+    let mut f = vec![0.0; dofs.n_free];
+    for &(row, d, v) in &stiffness.k_fd {
+        f[row] -= v * dofs.prescribed[d];
+    }
+    let mut fe = [0.0; 12];
+    for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
+        let k = mesh.order.nodes_per_element();
+        if body.body_force != [0.0, 0.0] {
+            let mut x = [[0.0; 2]; 6];
+            for e in 0..mesh.n_elems() {
+                let conn = mesh.elem(e);
+                for (i, &node) in conn.iter().enumerate() {
+                    x[i] = mesh.nodes[node];
+                }
+                element::body_load(mesh.order, &x[..k], body.body_force, &mut fe);
+                for (i, &node) in conn.iter().enumerate() {
+                    for c in 0..2 {
+                        let fd = dofs.free[dofs.dof(b, node, c)];
+                        if fd != FIXED {
+                            f[fd] += fe[2 * i + c];
+                        }
                     }
                 }
             }
@@ -225,7 +259,16 @@ pub fn assemble(scene: &Scene, meshes: &[Mesh2d], dofs: DofMap) -> Result<Assemb
             }
         }
     }
-    let k = SparseColMat::try_new_from_triplets(n, n, &trips)
-        .map_err(|e| crate::linalg::LinalgError::Faer(format!("{e:?}")))?;
-    Ok(Assembled { dofs, k, f })
+    f
+}
+
+/// Stiffness and loads together (no cache).
+pub fn assemble(scene: &Scene, meshes: &[Mesh2d], dofs: DofMap) -> Result<Assembled, CoreError> {
+    let stiffness = assemble_stiffness(scene, meshes, &dofs)?;
+    let f = assemble_loads(scene, meshes, &dofs, &stiffness);
+    Ok(Assembled {
+        dofs,
+        stiffness: std::sync::Arc::new(stiffness),
+        f,
+    })
 }

@@ -21,11 +21,10 @@ pub mod penalty;
 use crate::contact::ConstraintSet;
 use crate::error::CoreError;
 use crate::proto::{MethodName, SolverSettings};
-use faer::sparse::SparseColMat;
 
 pub struct Problem<'a> {
-    /// Lower triangle of K on the free DOFs.
-    pub k: &'a SparseColMat<usize, f64>,
+    /// K (factored, with the condensed operator W), possibly from the cache.
+    pub op: &'a crate::cache::Prepared,
     pub f: &'a [f64],
     pub cons: &'a ConstraintSet,
     pub settings: &'a SolverSettings,
@@ -50,8 +49,7 @@ pub struct Solution {
     /// Whether the method solves the exact contact conditions (penalty does not:
     /// its penetration and complementarity gap are inherent, not a failure).
     pub exact: bool,
-    pub t_factorization: f64,
-    pub t_condensation: f64,
+    /// LCP and the two solves.
     pub t_contact: f64,
 }
 

@@ -27,9 +27,22 @@ pub struct SolveReply {
     pub size: ProblemSize,
     /// Wall-clock seconds per stage.
     pub timings: Timings,
+    /// Whether the factorization and condensed operator came from the service's cache.
+    pub cache: CacheState,
     /// Per body, when `outputs` asks for it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub bodies: Option<Vec<BodyOutput>>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum CacheState {
+    /// Reused: assembly of K, factorization and condensation were skipped.
+    Hit,
+    /// Computed and stored for later requests on the same mesh, material, supports and candidates.
+    Miss,
+    /// No cache (the CLI).
+    Off,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]

@@ -19,6 +19,8 @@ pub struct ServiceConfig {
     pub queue_limit: usize,
     pub max_request_bytes: usize,
     pub limits: Limits,
+    /// Memory bound of the factorization cache (0 disables it).
+    pub cache_bytes: usize,
 }
 
 pub const DEFAULT_LISTEN: &str = "tcp/127.0.0.1:7447";
@@ -33,6 +35,7 @@ impl Default for ServiceConfig {
             queue_limit: 16,
             max_request_bytes: 64 << 20,
             limits: Limits::default(),
+            cache_bytes: 2 << 30,
         }
     }
 }

@@ -19,6 +19,7 @@ pub struct State {
     pub panics: AtomicU64,
     pub next_id: AtomicU64,
     pub workers: tokio::sync::Semaphore,
+    pub cache: crate::cache::OperatorCache,
 }
 
 #[derive(Serialize)]
@@ -37,11 +38,15 @@ pub struct Health {
     pub max_request_bytes: usize,
     pub max_dofs: usize,
     pub max_candidates: usize,
+    pub cache_entries: usize,
+    pub cache_bytes: usize,
+    pub cache_limit_bytes: usize,
 }
 
 impl State {
     pub fn new(cfg: ServiceConfig) -> Self {
         let workers = tokio::sync::Semaphore::new(cfg.workers.max(1));
+        let cache = crate::cache::OperatorCache::new(cfg.cache_bytes);
         Self {
             cfg,
             started: Instant::now(),
@@ -53,6 +58,7 @@ impl State {
             panics: AtomicU64::new(0),
             next_id: AtomicU64::new(1),
             workers,
+            cache,
         }
     }
 
@@ -74,6 +80,9 @@ impl State {
             max_request_bytes: self.cfg.max_request_bytes,
             max_dofs: self.cfg.limits.max_dofs,
             max_candidates: self.cfg.limits.max_candidates,
+            cache_entries: self.cache.len(),
+            cache_bytes: self.cache.bytes(),
+            cache_limit_bytes: self.cfg.cache_bytes,
         }
     }
 }

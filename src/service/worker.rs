@@ -2,7 +2,8 @@
 //!
 //! A request is admitted when fewer than `workers + queue_limit` are pending,
 //! otherwise answered `busy` at once. Admitted requests wait for a worker
-//! permit, run `pipeline::solve_bytes` on a blocking thread under
+//! permit, run `pipeline::solve_bytes_cached` (with the shared operator
+//! cache) on a blocking thread under
 //! `catch_unwind` (a panic becomes `internal_error`; the process goes on), and
 //! reply on `contact/solve`.
 
@@ -47,8 +48,12 @@ pub fn dispatch(query: Query, state: Arc<State>) {
             let _permit = state.workers.acquire().await.expect("semaphore never closed");
             state.in_flight.fetch_add(1, Ordering::SeqCst);
             let limits = state.cfg.limits;
+            let st = state.clone();
             let joined = tokio::task::spawn_blocking(move || {
-                std::panic::catch_unwind(AssertUnwindSafe(|| crate::pipeline::solve_bytes(&payload, &limits)))
+                std::panic::catch_unwind(AssertUnwindSafe(|| {
+                    let cache = (st.cfg.cache_bytes > 0).then_some(&st.cache);
+                    crate::pipeline::solve_bytes_cached(&payload, &limits, cache)
+                }))
             })
             .await;
             state.in_flight.fetch_sub(1, Ordering::SeqCst);

@@ -52,7 +52,7 @@ def _leaf_scales(obj, out: dict, key: str = "") -> dict:
     return out
 
 
-def diff_replies(a, b, rel: float = 1e-12, skip: tuple[str, ...] = ("timings",)) -> list[str]:
+def diff_replies(a, b, rel: float = 1e-12, skip: tuple[str, ...] = ("timings", "cache")) -> list[str]:
     """Differences between two replies, ignoring the top-level keys in ``skip``.
 
     Strings, integers and structure must be identical. Floats must agree to

@@ -1,0 +1,70 @@
+//! The operator cache: a repeated scene reuses the factorization and gives the
+//! identical answer; a change of loads or prescribed motion reuses it too (and
+//! the answer follows the physics); a change of material does not reuse it.
+
+mod common;
+use common::*;
+use contact::cache::OperatorCache;
+use contact::proto::CacheState;
+use serde_json::json;
+
+fn solve_with(cache: &OperatorCache, req: &serde_json::Value) -> contact::proto::SolveReply {
+    let bytes = serde_json::to_vec(req).unwrap();
+    contact::solve_bytes_cached(&bytes, &Default::default(), Some(cache)).unwrap()
+}
+
+#[test]
+fn repeated_and_reloaded_scenes_hit_the_cache() {
+    let cache = OperatorCache::new(1 << 30);
+    let req = example("signorini_roller_on_flat.json");
+    let first = solve_with(&cache, &req);
+    assert_eq!(first.cache, CacheState::Miss);
+    let again = solve_with(&cache, &req);
+    assert_eq!(again.cache, CacheState::Hit);
+    assert_eq!(again.timings.factorization, 0.0);
+    for (a, b) in first.pairs[0].points.iter().zip(&again.pairs[0].points) {
+        assert_eq!(
+            a.pressure, b.pressure,
+            "a cached operator must give the very same answer"
+        );
+    }
+    // Deeper indentation: same K, same candidates, new prescribed values → hit,
+    // and the uncached solve agrees to round-off.
+    let mut deeper = req.clone();
+    deeper["bodies"][0]["supports"][0]["uy"] = json!(-0.08);
+    let cached = solve_with(&cache, &deeper);
+    assert_eq!(cached.cache, CacheState::Hit);
+    let fresh = solved(&deeper);
+    assert_eq!(fresh.cache, CacheState::Off);
+    let peak = peak_pressure(&fresh);
+    for (a, b) in cached.pairs[0].points.iter().zip(&fresh.pairs[0].points) {
+        assert!((a.pressure - b.pressure).abs() <= 1e-10 * peak);
+    }
+    assert!(
+        cached.resultant.fy > first.resultant.fy,
+        "a deeper push carries more load"
+    );
+    // The core works in units of the largest modulus, so halving E is the same
+    // nondimensional operator: a hit, with every pressure exactly halved.
+    let mut softer = req.clone();
+    softer["bodies"][0]["material"]["youngs_modulus"] = json!(100.0);
+    let soft = solve_with(&cache, &softer);
+    assert_eq!(soft.cache, CacheState::Hit);
+    for (a, b) in first.pairs[0].points.iter().zip(&soft.pairs[0].points) {
+        assert!((0.5 * a.pressure - b.pressure).abs() <= 1e-12 * peak);
+    }
+    // Another Poisson ratio is another operator.
+    let mut other = req.clone();
+    other["bodies"][0]["material"]["poisson_ratio"] = json!(0.25);
+    assert_eq!(solve_with(&cache, &other).cache, CacheState::Miss);
+    assert_eq!(cache.len(), 2);
+}
+
+#[test]
+fn cache_respects_its_memory_bound() {
+    let cache = OperatorCache::new(1); // nothing fits
+    let req = example("signorini_inline_block_on_vee.json");
+    assert_eq!(solve_with(&cache, &req).cache, CacheState::Miss);
+    assert_eq!(solve_with(&cache, &req).cache, CacheState::Miss);
+    assert!(cache.is_empty());
+}
