@@ -175,6 +175,9 @@ fn floor_time(scene: &Scene) -> f64 {
     faer::set_global_parallelism(faer::Par::Seq);
     let seq = floor_once(k, &asm.f);
     faer::set_global_parallelism(default);
+    if std::env::var_os("CONTACT_BENCH_VERBOSE").is_some() {
+        eprintln!("floor: default parallelism {par:.3} s, sequential {seq:.3} s");
+    }
     par.min(seq)
 }
 

@@ -140,13 +140,18 @@ pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
             .penalty
             .map(|z| z * scene.scales.modulus / scene.scales.length)
             .unwrap_or(1e-6),
+        barrier: scene
+            .settings
+            .barrier
+            .map(|z| z / (scene.scales.modulus * scene.scales.length))
+            .unwrap_or(1e-8),
     };
     let sol = methods::solve(&problem, scene.method)?;
     timings.contact_solve = sol.t_contact;
 
     let t = Instant::now();
     let (certificate, gaps) = certify(&op.stiffness.k, &f, &cons, &sol.u, &sol.lambda);
-    let (pairs, resultant, n_active) = post::pairs(scene, &cons, &sol.lambda, &gaps);
+    let (pairs, resultant, n_active) = post::pairs(scene, &cons, &sol.lambda, &sol.in_contact, &gaps);
     let status = if !certificate.is_finite() {
         SolveStatus::NumericalError
     } else if !sol.converged {

@@ -228,3 +228,36 @@ fn penalty_converges_linearly_and_augmented_lagrangian_is_exact() {
         assert!((a.pressure - b.pressure).abs() <= 1e-6 * peak);
     }
 }
+
+/// Log barrier: every candidate keeps a positive gap (the answer never
+/// penetrates), the pressure is ζ/gap everywhere, and the error against the
+/// exact solution falls with ζ (measured ×100 per ×100 in ζ).
+#[test]
+fn barrier_never_penetrates_and_converges_with_zeta() {
+    let mut req = example("signorini_hertz_cylinder.json");
+    req["method"] = json!("active_set");
+    let exact = solved(&req);
+    let peak = peak_pressure(&exact);
+    let mut last = f64::INFINITY;
+    for zeta in [1e-4, 1e-6, 1e-8] {
+        req["method"] = json!("barrier");
+        req["settings"] = json!({ "barrier": zeta });
+        let r = solve(&req).unwrap();
+        assert_eq!(r.status, contact::proto::SolveStatus::Solved, "ζ = {zeta}");
+        assert_eq!(r.pairs[0].max_penetration, 0.0);
+        for p in &r.pairs[0].points {
+            assert!(p.gap > 0.0);
+            assert!((p.pressure * p.gap / zeta - 1.0).abs() < 1e-5, "pressure is ζ/gap");
+        }
+        let err = r.pairs[0]
+            .points
+            .iter()
+            .zip(&exact.pairs[0].points)
+            .map(|(a, b)| (a.pressure - b.pressure).abs())
+            .fold(0.0, f64::max);
+        assert!(err < 0.05 * last, "error {err} did not fall with ζ (previous {last})");
+        assert_eq!(r.pairs[0].zones, exact.pairs[0].zones);
+        last = err;
+    }
+    assert!(last < 1e-3 * peak);
+}

@@ -55,6 +55,10 @@ pub fn solve_condensed(
     let bu0 = p.cons.apply(&u0);
     let q: Vec<f64> = p.cons.candidates.iter().zip(&bu0).map(|(c, b)| c.g - b).collect();
     let res = lcp(&op.w, &q);
+    let wl = dense::matvec(&op.w, &res.lambda);
+    let in_contact = (0..q.len())
+        .map(|i| res.lambda[i] > 0.0 && res.lambda[i] * op.w[(i, i)] > wl[i] + q[i])
+        .collect();
     let mut rhs = p.f.to_vec();
     let neg: Vec<f64> = res.lambda.iter().map(|l| -l).collect();
     p.cons.apply_transpose_into(&neg, &mut rhs);
@@ -62,6 +66,7 @@ pub fn solve_condensed(
     Ok(Solution {
         u,
         lambda: res.lambda,
+        in_contact,
         iterations: res.iterations,
         converged: res.converged,
         method: name,

@@ -14,6 +14,7 @@
 //! i.e. the LCP  λ ≥ 0,  w = Wλ + q ≥ 0,  λᵀw = 0  (w is the gap after deformation).
 
 pub mod active_set;
+pub mod barrier;
 pub mod condensed;
 pub mod interior_point;
 pub mod penalty;
@@ -30,6 +31,8 @@ pub struct Problem<'a> {
     pub settings: &'a SolverSettings,
     /// Nondimensional penalty compliance ζ.
     pub zeta: f64,
+    /// Nondimensional barrier parameter.
+    pub barrier: f64,
 }
 
 /// Result of the LCP stage.
@@ -42,6 +45,10 @@ pub struct LcpResult {
 pub struct Solution {
     pub u: Vec<f64>,
     pub lambda: Vec<f64>,
+    /// Candidates in contact: λ_i > 0 and λ_i W_ii > gap_i (the force's own
+    /// displacement exceeds what is left of the gap). For exact methods this is
+    /// λ_i > 0; for the penalty, penetration; for the barrier, gap_i² < ζ w_i W_ii.
+    pub in_contact: Vec<bool>,
     pub iterations: usize,
     pub converged: bool,
     /// Name of the method that ran.
@@ -66,6 +73,9 @@ pub fn solve(problem: &Problem, method: MethodName) -> Result<Solution, CoreErro
         MethodName::Auto | MethodName::ActiveSet => run("active_set", true, &|w, q| active_set::solve_lcp(w, q, s)),
         MethodName::InteriorPoint => run("interior_point", true, &|w, q| interior_point::solve_lcp(w, q, s)),
         MethodName::Penalty => run("penalty", false, &|w, q| penalty::solve_penalty(w, q, &d, s)),
+        MethodName::Barrier => run("barrier", false, &|w, q| {
+            barrier::solve_barrier(w, q, &weights, problem.barrier, s)
+        }),
         MethodName::AugmentedLagrangian => run("augmented_lagrangian", true, &|w, q| {
             penalty::solve_augmented_lagrangian(w, q, &d, s)
         }),

@@ -265,6 +265,10 @@ pub enum MethodName {
     Penalty,
     /// Augmented Lagrangian (Uzawa) on the penalty: exact for any fixed ζ.
     AugmentedLagrangian,
+    /// Interior penalty (log barrier): pressure = ζ / gap (`settings.barrier`),
+    /// driven down to ζ by continuation from a strictly feasible start; never
+    /// penetrates, not exact (open candidates carry ζ/gap).
+    Barrier,
 }
 
 /// Numerical settings. All tolerances are relative and dimensionless.
@@ -283,6 +287,10 @@ pub struct SolverSettings {
     /// the natural compliance L/E (largest body size over largest modulus).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub penalty: Option<f64>,
+    /// Barrier parameter ζ of `barrier` [pressure × length]: the pressure at a
+    /// candidate is ζ / gap. Default: 1e-8 of E·L (largest modulus × body size).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub barrier: Option<f64>,
 }
 
 impl Default for SolverSettings {
@@ -292,6 +300,7 @@ impl Default for SolverSettings {
             max_iterations: 200,
             prune_gap_ratio: 0.5,
             penalty: None,
+            barrier: None,
         }
     }
 }

@@ -1,18 +1,22 @@
 //! Contact zones, pressures and resultants in the caller's units.
 //!
 //! Pressure at a candidate p_i = λ_i / w_i (w_i its tributary length), positive
-//! in compression. A candidate is in contact when λ_i exceeds `tolerance` times
-//! the largest λ; zones are the x1-extents of runs of consecutive contact
-//! candidates ordered by x1.
+//! in compression. Which candidates are in contact is the method's verdict
+//! (`methods::Solution::in_contact`); zones are the x1-extents of runs of
+//! consecutive contact candidates ordered by x1.
 
 use crate::contact::ConstraintSet;
 use crate::proto::{ContactPoint, PairResult, Resultant};
 use crate::scene::Scene;
 
-pub fn pairs(scene: &Scene, cons: &ConstraintSet, lambda: &[f64], gaps: &[f64]) -> (Vec<PairResult>, Resultant, usize) {
+pub fn pairs(
+    scene: &Scene,
+    cons: &ConstraintSet,
+    lambda: &[f64],
+    in_contact: &[bool],
+    gaps: &[f64],
+) -> (Vec<PairResult>, Resultant, usize) {
     let sc = scene.scales;
-    let lmax = lambda.iter().fold(0.0f64, |a, l| a.max(*l));
-    let threshold = scene.settings.tolerance * lmax;
     let mut total = Resultant::default();
     let mut n_active = 0;
     let mut out = Vec::with_capacity(scene.pairs.len());
@@ -37,7 +41,7 @@ pub fn pairs(scene: &Scene, cons: &ConstraintSet, lambda: &[f64], gaps: &[f64]) 
             res.m += c.x[0] * fy - c.x[1] * fx;
             max_pen = max_pen.max(-gaps[i]);
             let x = sc.length(c.x[0]);
-            if l > threshold && l > 0.0 {
+            if in_contact[i] {
                 n_active += 1;
                 open = Some(match open {
                     Some(z) => [z[0], x],
