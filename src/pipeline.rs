@@ -11,7 +11,7 @@ use crate::error::{CoreError, InvalidKind};
 use crate::fem::{self, element, material::d_matrix};
 use crate::mesh::{generate, Mesh2d};
 use crate::methods::{self, Problem};
-use crate::proto::{self, BodyOutput, CacheState, ErrorReply, ProblemSize, SolveReply, SolveStatus, Timings};
+use crate::proto::{self, BodyOutput, CacheState, ErrorReply, LoadStep, ProblemSize, SolveReply, SolveStatus, Timings};
 use crate::scene::{parse::parse_request, Limits, MeshSource, Scene};
 use crate::solution::{certificate::certify, post};
 
@@ -60,7 +60,48 @@ pub fn build_meshes(scene: &Scene) -> Vec<Mesh2d> {
         .collect()
 }
 
+/// Solves the scene, once per load factor (one factorization serves them all).
 pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<SolveReply, CoreError> {
+    if scene.load_factors.is_empty() {
+        return solve_one(scene, limits, cache);
+    }
+    // Later factors find the operator the first one prepared.
+    let local = OperatorCache::new(usize::MAX);
+    let cache = cache.or(Some(&local));
+    let mut steps = Vec::with_capacity(scene.load_factors.len());
+    let mut replies: Vec<SolveReply> = Vec::with_capacity(scene.load_factors.len());
+    for &k in &scene.load_factors {
+        let r = solve_one(&scene.scaled(k), limits, cache)?;
+        steps.push(LoadStep {
+            factor: k,
+            status: r.status,
+            iterations: r.iterations,
+            pairs: r.pairs.clone(),
+            resultant: r.resultant,
+            certificate: r.certificate,
+        });
+        replies.push(r);
+    }
+    let first_cache = replies[0].cache;
+    let mut t = Timings::default();
+    for r in &replies {
+        let s = r.timings;
+        t.mesh += s.mesh;
+        t.assembly += s.assembly;
+        t.factorization += s.factorization;
+        t.condensation += s.condensation;
+        t.contact_solve += s.contact_solve;
+        t.post += s.post;
+        t.total += s.total;
+    }
+    let mut last = replies.pop().expect("at least one factor");
+    last.timings = t;
+    last.cache = if local.is_empty() { first_cache } else { CacheState::Off };
+    last.steps = Some(steps);
+    Ok(last)
+}
+
+fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<SolveReply, CoreError> {
     let t_start = Instant::now();
     let mut timings = Timings::default();
 
@@ -185,6 +226,7 @@ pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
         },
         timings,
         cache: cache_state,
+        steps: None,
         bodies,
     })
 }

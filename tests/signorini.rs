@@ -99,22 +99,24 @@ fn uniform_compression_is_exact() {
 
 /// With s ≡ 0 the admissible set is a cone: scaling every load by λ scales the
 /// solution by λ (§6), including the partial contact zone.
+fn proportional_scene(k: f64) -> serde_json::Value {
+    json!({
+        "version": "1",
+        "bodies": [{
+            "material": {"youngs_modulus": 50.0, "poisson_ratio": 0.2},
+            "mesh": {"rectangle": {"corner": [-1.0, 0.0], "width": 2.0, "height": 1.0, "size": 0.1}},
+            "supports": [{"edges": "top", "ux": 0.0, "uy": 0.0}],
+            "tractions": [{"edges": "right", "traction": [0.0, 2.0 * k]}],
+            "body_force": [0.0, -k]
+        }],
+        "obstacles": [{"shape": {"line": {"point": [0.0, 0.0], "normal": [0.0, 1.0]}}}],
+        "contacts": [{"body": 0, "edges": "bottom", "obstacle": 0}]
+    })
+}
+
 #[test]
 fn proportional_loading_scales_exactly() {
-    let scene = |k: f64| {
-        json!({
-            "version": "1",
-            "bodies": [{
-                "material": {"youngs_modulus": 50.0, "poisson_ratio": 0.2},
-                "mesh": {"rectangle": {"corner": [-1.0, 0.0], "width": 2.0, "height": 1.0, "size": 0.1}},
-                "supports": [{"edges": "top", "ux": 0.0, "uy": 0.0}],
-                "tractions": [{"edges": "right", "traction": [0.0, 2.0 * k]}],
-                "body_force": [0.0, -k]
-            }],
-            "obstacles": [{"shape": {"line": {"point": [0.0, 0.0], "normal": [0.0, 1.0]}}}],
-            "contacts": [{"body": 0, "edges": "bottom", "obstacle": 0}]
-        })
-    };
+    let scene = proportional_scene;
     let base = solved(&scene(1.0));
     let zones = &base.pairs[0].zones;
     assert!(
@@ -130,6 +132,29 @@ fn proportional_loading_scales_exactly() {
             assert!((b.gap - k * a.gap).abs() <= 1e-9 * k * (1e-6 + a.gap.abs()));
         }
     }
+}
+
+/// The same truth through `load_factors`: one request, one factorization, one
+/// answer per factor, each exactly the base answer times the factor.
+#[test]
+fn load_factors_share_one_factorization_and_scale_exactly() {
+    let mut req = proportional_scene(1.0);
+    req["load_factors"] = json!([1.0, 0.1, 3.0, 1e4]);
+    let r = solved(&req);
+    let steps = r.steps.expect("steps requested");
+    assert_eq!(steps.len(), 4);
+    let base = &steps[0];
+    let peak = base.pairs[0].points.iter().map(|p| p.pressure).fold(0.0, f64::max);
+    for st in &steps {
+        assert_eq!(st.status, contact::proto::SolveStatus::Solved);
+        assert_eq!(st.pairs[0].zones, base.pairs[0].zones);
+        for (a, b) in base.pairs[0].points.iter().zip(&st.pairs[0].points) {
+            assert!((b.pressure - st.factor * a.pressure).abs() <= 1e-9 * st.factor * peak);
+        }
+        assert!((st.resultant.fy - st.factor * base.resultant.fy).abs() <= 1e-9 * st.factor * base.resultant.fy.abs());
+    }
+    // The top level is the last factor.
+    assert_eq!(r.resultant.fy, steps[3].resultant.fy);
 }
 
 /// Changing units (mm and MPa → m and Pa) transforms the answer accordingly (§6 invariance).

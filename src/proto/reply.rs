@@ -29,9 +29,25 @@ pub struct SolveReply {
     pub timings: Timings,
     /// Whether the factorization and condensed operator came from the service's cache.
     pub cache: CacheState,
+    /// One entry per load factor when the request lists `load_factors`; the
+    /// top-level fields then describe the last factor.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steps: Option<Vec<LoadStep>>,
     /// Per body, when `outputs` asks for it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub bodies: Option<Vec<BodyOutput>>,
+}
+
+/// The answer at one load factor.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LoadStep {
+    pub factor: f64,
+    pub status: SolveStatus,
+    pub iterations: usize,
+    pub pairs: Vec<PairResult>,
+    pub resultant: Resultant,
+    pub certificate: Certificate,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]

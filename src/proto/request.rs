@@ -35,6 +35,11 @@ pub struct SolveRequest {
     /// Optional fields of the reply, computed only when listed.
     #[serde(default)]
     pub outputs: Vec<OutputKind>,
+    /// Solve once per factor, with every load and prescribed displacement
+    /// multiplied by it (gaps unchanged), from one factorization. The reply's
+    /// `steps` holds each answer.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub load_factors: Vec<f64>,
 }
 
 /// 2D kinematic assumption.

@@ -26,6 +26,30 @@ pub struct Scene {
     pub settings: SolverSettings,
     pub outputs: Outputs,
     pub client_id: Option<String>,
+    /// Load multipliers to solve for (empty: the loads as given).
+    pub load_factors: Vec<f64>,
+}
+
+impl Scene {
+    /// The same scene with every load and prescribed displacement times `k`.
+    pub fn scaled(&self, k: f64) -> Scene {
+        let mut s = self.clone();
+        s.load_factors.clear();
+        for b in &mut s.bodies {
+            b.body_force = [k * b.body_force[0], k * b.body_force[1]];
+            for sup in &mut b.supports {
+                sup.ux = sup.ux.map(|v| k * v);
+                sup.uy = sup.uy.map(|v| k * v);
+            }
+            for t in &mut b.tractions {
+                match t {
+                    Traction::Vector { t, .. } => *t = [k * t[0], k * t[1]],
+                    Traction::Pressure { p, .. } => *p *= k,
+                }
+            }
+        }
+        s
+    }
 }
 
 #[derive(Debug, Clone, Copy, Default)]

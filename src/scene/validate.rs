@@ -441,6 +441,7 @@ impl Scene {
                 stress: req.outputs.contains(&OutputKind::Stress),
             },
             client_id: req.client_id.clone(),
+            load_factors: req.load_factors.clone(),
         })
     }
 }
