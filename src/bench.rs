@@ -10,7 +10,7 @@ use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use faer::Side;
 use serde_json::json;
 
-use crate::proto::{MethodName, SolveReply};
+use crate::proto::{Formulation, MethodName, SolveReply};
 use crate::scene::{Limits, Scene};
 
 #[derive(Debug, Clone)]
@@ -165,7 +165,7 @@ pub fn hertz_errors(r: &SolveReply, radius: f64, e_star: f64) -> (f64, f64, f64)
 
 /// Floor: faer's own symbolic + numeric Cholesky and one solve of K_ff, the
 /// better of faer's sequential and default (parallel) settings.
-fn floor_time(scene: &Scene) -> f64 {
+fn floor_time(scene: &Scene) -> (f64, usize) {
     let meshes = crate::pipeline::build_meshes(scene);
     let dofs = crate::fem::assembly::dof_map(scene, &meshes).expect("benchmark scene is valid");
     let asm = crate::fem::assemble(scene, &meshes, dofs).expect("benchmark scene assembles");
@@ -175,10 +175,7 @@ fn floor_time(scene: &Scene) -> f64 {
     faer::set_global_parallelism(faer::Par::Seq);
     let seq = floor_once(k, &asm.f);
     faer::set_global_parallelism(default);
-    if std::env::var_os("CONTACT_BENCH_VERBOSE").is_some() {
-        eprintln!("floor: default parallelism {par:.3} s, sequential {seq:.3} s");
-    }
-    par.min(seq)
+    (par.min(seq), k.nrows())
 }
 
 fn floor_once(k: &faer::sparse::SparseColMat<usize, f64>, f: &[f64]) -> f64 {
@@ -193,10 +190,11 @@ fn floor_once(k: &faer::sparse::SparseColMat<usize, f64>, f: &[f64]) -> f64 {
 
 /// Runs the benchmark; `quick` keeps to meshes below ~100k DOF.
 pub fn run(quick: bool, mut progress: impl FnMut(&Row)) -> Vec<Row> {
+    // Node spacing at the contact (T6 elements are twice as long): ~3k to ~1M DOF.
     let sizes: &[f64] = if quick {
-        &[0.04, 0.02, 0.01]
+        &[0.16, 0.04]
     } else {
-        &[0.04, 0.02, 0.01, 0.005, 0.0025]
+        &[0.16, 0.04, 0.01, 0.0025, 0.0017]
     };
     let e_star = 200.0 / (1.0 - 0.09);
     let mut rows = Vec::new();
@@ -207,21 +205,35 @@ pub fn run(quick: bool, mut progress: impl FnMut(&Row)) -> Vec<Row> {
             let h_el = if element == "t6" { 2.0 * h } else { h };
             let req0 = hertz_request(h_el, element, "auto");
             let scene0 = Scene::try_new(&serde_json::from_value(req0).unwrap(), &limits).unwrap();
-            let t_floor = floor_time(&scene0);
-            let runs: [(MethodName, Option<f64>); 6] = [
-                (MethodName::ActiveSet, None),
-                (MethodName::InteriorPoint, None),
-                (MethodName::AugmentedLagrangian, Some(1e-4)),
-                (MethodName::Penalty, Some(1e-4)),
-                (MethodName::Penalty, Some(1e-6)),
-                (MethodName::Penalty, Some(1e-8)),
+            let (t_floor, n_free) = floor_time(&scene0);
+            // (method, formulation, ζ); the full-system variants refactor per
+            // iteration, so they run only where that takes seconds, not minutes.
+            let mut runs: Vec<(MethodName, Formulation, Option<f64>)> = vec![
+                (MethodName::ActiveSet, Formulation::Condensed, None),
+                (MethodName::InteriorPoint, Formulation::Condensed, None),
+                (MethodName::AugmentedLagrangian, Formulation::Condensed, Some(1e-5)),
+                (MethodName::Penalty, Formulation::Condensed, Some(1e-4)),
+                (MethodName::Penalty, Formulation::Condensed, Some(1e-6)),
+                (MethodName::Penalty, Formulation::Condensed, Some(1e-8)),
+                (MethodName::Barrier, Formulation::Condensed, Some(1e-4)),
+                (MethodName::Barrier, Formulation::Condensed, Some(1e-6)),
             ];
-            for (method, zeta) in runs {
+            if n_free < 200_000 {
+                runs.push((MethodName::ActiveSet, Formulation::Full, None));
+            }
+            if n_free < 40_000 {
+                runs.push((MethodName::InteriorPoint, Formulation::Full, None));
+            }
+            for (method, formulation, zeta) in runs {
                 let name = serde_json::to_value(method).unwrap().as_str().unwrap().to_string();
                 let mut req = hertz_request(h_el, element, &name);
-                if let Some(z) = zeta {
-                    req["settings"] = json!({ "penalty": z });
+                let mut settings = json!({ "formulation": formulation });
+                match (method, zeta) {
+                    (MethodName::Barrier, Some(z)) => settings["barrier"] = json!(z),
+                    (_, Some(z)) => settings["penalty"] = json!(z),
+                    _ => {}
                 }
+                req["settings"] = settings;
                 let bytes = serde_json::to_vec(&req).unwrap();
                 let r = match crate::solve_bytes(&bytes, &limits) {
                     Ok(r) => r,

@@ -11,7 +11,10 @@ use crate::error::{CoreError, InvalidKind};
 use crate::fem::{self, element, material::d_matrix};
 use crate::mesh::{generate, Mesh2d};
 use crate::methods::{self, Problem};
-use crate::proto::{self, BodyOutput, CacheState, ErrorReply, LoadStep, ProblemSize, SolveReply, SolveStatus, Timings};
+use crate::proto::{
+    self, BodyOutput, CacheState, ErrorReply, Formulation, LoadStep, MethodName, ProblemSize, SolveReply, SolveStatus,
+    Timings,
+};
 use crate::scene::{parse::parse_request, Limits, MeshSource, Scene};
 use crate::solution::{certificate::certify, post};
 
@@ -144,6 +147,9 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
             ),
         });
     }
+    if scene.settings.formulation == Formulation::Full {
+        return solve_full(scene, &meshes, dofs, cons, timings, t, t_start);
+    }
     let key = cache::key(scene, &meshes, &dofs, &cons);
     timings.assembly = t.elapsed().as_secs_f64();
     let (op, cache_state) = match cache.and_then(|c| c.get(key)) {
@@ -189,10 +195,77 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
     };
     let sol = methods::solve(&problem, scene.method)?;
     timings.contact_solve = sol.t_contact;
+    let stage = Stage {
+        meshes: &meshes,
+        dofs: &dofs,
+        cons: &cons,
+        k: &op.stiffness.k,
+        f: &f,
+    };
+    Ok(finish(scene, &stage, sol, timings, t_start, cache_state))
+}
 
+/// What post-processing needs of the solve.
+struct Stage<'a> {
+    meshes: &'a [Mesh2d],
+    dofs: &'a fem::DofMap,
+    cons: &'a contact::ConstraintSet,
+    k: &'a faer::sparse::SparseColMat<usize, f64>,
+    f: &'a [f64],
+}
+
+/// Full-system exact methods: no condensation, no cache (they are the comparison).
+fn solve_full(
+    scene: &Scene,
+    meshes: &[Mesh2d],
+    dofs: fem::DofMap,
+    cons: contact::ConstraintSet,
+    mut timings: Timings,
+    t: Instant,
+    t_start: Instant,
+) -> Result<SolveReply, CoreError> {
+    let stiffness = fem::assembly::assemble_stiffness(scene, meshes, &dofs)?;
+    let f = fem::assembly::assemble_loads(scene, meshes, &dofs, &stiffness);
+    timings.assembly = t.elapsed().as_secs_f64();
+    let g = cons.g();
+    let sol = match scene.method {
+        MethodName::Auto | MethodName::ActiveSet => {
+            methods::full::solve_active_set(&stiffness.k, &f, &cons, &g, &scene.settings)?
+        }
+        MethodName::InteriorPoint => methods::full::solve_interior_point(&stiffness.k, &f, &cons, &g, &scene.settings)?,
+        other => {
+            return Err(CoreError::invalid(
+                InvalidKind::Request,
+                "/settings/formulation",
+                format!(
+                "the full formulation is offered for the exact methods active_set and interior_point, not {other:?}"
+            ),
+            ))
+        }
+    };
+    timings.contact_solve = sol.t_contact;
+    let stage = Stage {
+        meshes,
+        dofs: &dofs,
+        cons: &cons,
+        k: &stiffness.k,
+        f: &f,
+    };
+    Ok(finish(scene, &stage, sol, timings, t_start, CacheState::Off))
+}
+
+/// Certificate, status, contact zones, optional fields: the reply.
+fn finish(
+    scene: &Scene,
+    st: &Stage,
+    sol: methods::Solution,
+    mut timings: Timings,
+    t_start: Instant,
+    cache: CacheState,
+) -> SolveReply {
     let t = Instant::now();
-    let (certificate, gaps) = certify(&op.stiffness.k, &f, &cons, &sol.u, &sol.lambda);
-    let (pairs, resultant, n_active) = post::pairs(scene, &cons, &sol.lambda, &sol.in_contact, &gaps);
+    let (certificate, gaps) = certify(st.k, st.f, st.cons, &sol.u, &sol.lambda);
+    let (pairs, resultant, n_active) = post::pairs(scene, st.cons, &sol.lambda, &sol.in_contact, &gaps);
     let status = if !certificate.is_finite() {
         SolveStatus::NumericalError
     } else if !sol.converged {
@@ -206,11 +279,10 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
     } else {
         SolveStatus::Solved
     };
-    let bodies = body_outputs(scene, &meshes, &dofs, &sol.u);
+    let bodies = body_outputs(scene, st.meshes, st.dofs, &sol.u);
     timings.post = t.elapsed().as_secs_f64();
     timings.total = t_start.elapsed().as_secs_f64();
-
-    Ok(SolveReply {
+    SolveReply {
         version: proto::PROTOCOL_VERSION.to_string(),
         client_id: scene.client_id.clone(),
         status,
@@ -220,15 +292,15 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
         resultant,
         certificate,
         size: ProblemSize {
-            dofs: dofs.n_free,
-            candidates: cons.len(),
+            dofs: st.dofs.n_free,
+            candidates: st.cons.len(),
             active: n_active,
         },
         timings,
-        cache: cache_state,
+        cache,
         steps: None,
         bodies,
-    })
+    }
 }
 
 /// Optional per-body fields, only when the request lists them.

@@ -16,6 +16,7 @@
 pub mod active_set;
 pub mod barrier;
 pub mod condensed;
+pub mod full;
 pub mod interior_point;
 pub mod penalty;
 

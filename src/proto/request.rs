@@ -292,6 +292,10 @@ pub struct SolverSettings {
     /// the natural compliance L/E (largest body size over largest modulus).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub penalty: Option<f64>,
+    /// `condensed` (default: one factorization, the LCP on the contact
+    /// candidates) or `full` (active set / interior point on the whole system,
+    /// refactoring per iteration; for comparison, exact methods only).
+    pub formulation: Formulation,
     /// Barrier parameter ζ of `barrier` [pressure × length]: the pressure at a
     /// candidate is ζ / gap. Default: 1e-8 of E·L (largest modulus × body size).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -306,8 +310,18 @@ impl Default for SolverSettings {
             prune_gap_ratio: 0.5,
             penalty: None,
             barrier: None,
+            formulation: Formulation::Condensed,
         }
     }
+}
+
+/// Where the exact methods work.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Formulation {
+    #[default]
+    Condensed,
+    Full,
 }
 
 /// Optional reply content.
