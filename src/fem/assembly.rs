@@ -3,7 +3,7 @@
 //! Global DOF 2·(node + node_offset[body]) + c. Prescribed DOFs are eliminated:
 //! K_ff u_f = f_f − K_fd u_d. Only the lower triangle of K_ff is stored.
 
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::SparseColMat;
 
 use super::element;
 use super::material::d_matrix;
@@ -143,17 +143,57 @@ fn check_rigid_modes(rows: &[[f64; 3]], path: &str, name: &str) -> Result<(), Co
     }
 }
 
-/// Assembles K_ff and K_fd of all bodies.
+/// CSC pattern of the lower triangle of K_ff from the node graph: column of
+/// free DOF j holds the free DOFs i ≥ j of the nodes sharing an element with j's
+/// node. Free indices grow with the global DOF number, so rows come out sorted.
+fn pattern(meshes: &[Mesh2d], dofs: &DofMap) -> (Vec<usize>, Vec<usize>) {
+    let total: usize = meshes.iter().map(|m| m.nodes.len()).sum();
+    // Neighbours b ≥ a of each global node a (small, so linear insertion).
+    let mut adj: Vec<Vec<u32>> = vec![Vec::new(); total];
+    for (b, mesh) in meshes.iter().enumerate() {
+        let off = dofs.node_offset[b];
+        for e in 0..mesh.n_elems() {
+            let conn = mesh.elem(e);
+            for &p in conn {
+                for &q in conn {
+                    let (a, c) = (off + p, off + q);
+                    if c >= a && !adj[a].contains(&(c as u32)) {
+                        adj[a].push(c as u32);
+                    }
+                }
+            }
+        }
+    }
+    let mut col_ptr = Vec::with_capacity(dofs.n_free + 1);
+    let mut row_idx = Vec::new();
+    col_ptr.push(0);
+    for (a, nb) in adj.iter_mut().enumerate() {
+        nb.sort_unstable();
+        for ca in 0..2 {
+            if dofs.free[2 * a + ca] == FIXED {
+                continue;
+            }
+            for &bn in nb.iter() {
+                let bn = bn as usize;
+                for cb in 0..2 {
+                    let i = dofs.free[2 * bn + cb];
+                    if i != FIXED && (bn > a || cb >= ca) {
+                        row_idx.push(i);
+                    }
+                }
+            }
+            col_ptr.push(row_idx.len());
+        }
+    }
+    (col_ptr, row_idx)
+}
+
+/// Assembles K_ff and K_fd of all bodies: the pattern once from the node graph,
+/// then element matrices added in place (no triplet sort).
 pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Result<Stiffness, CoreError> {
     let n = dofs.n_free;
-    let est: usize = meshes
-        .iter()
-        .map(|m| {
-            let k = 2 * m.order.nodes_per_element();
-            m.n_elems() * k * (k + 1) / 2
-        })
-        .sum();
-    let mut trips: Vec<Triplet<usize, usize, f64>> = Vec::with_capacity(est);
+    let (col_ptr, row_idx) = pattern(meshes, dofs);
+    let mut vals = vec![0.0; row_idx.len()];
     let mut k_fd = Vec::new();
     let mut ke = [0.0; 144];
     for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
@@ -183,15 +223,20 @@ pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Re
                             k_fd.push((fa, gd[c], v));
                         }
                     } else if fc <= fa {
-                        trips.push(Triplet::new(fa, fc, v));
+                        let col = &row_idx[col_ptr[fc]..col_ptr[fc + 1]];
+                        let pos = col.binary_search(&fa).expect("pattern covers every element coupling");
+                        vals[col_ptr[fc] + pos] += v;
                     }
                 }
             }
         }
     }
-    let k = SparseColMat::try_new_from_triplets(n, n, &trips)
-        .map_err(|e| crate::linalg::LinalgError::Faer(format!("{e:?}")))?;
-    Ok(Stiffness { k, k_fd })
+    // SAFETY-free construction: the checked constructor validates sortedness and bounds.
+    let sym = faer::sparse::SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+    Ok(Stiffness {
+        k: SparseColMat::new(sym, vals),
+        k_fd,
+    })
 }
 
 /// Right-hand side f_f − K_fd u_d from tractions, pressures, body forces and
