@@ -71,6 +71,9 @@ enum Cmd {
         /// CSV output path.
         #[arg(long, default_value = "bench_out/bench.csv")]
         csv: PathBuf,
+        /// Runs per row; the median is reported.
+        #[arg(long, default_value_t = 1)]
+        repeat: usize,
     },
     /// Write the JSON Schemas of the protocol.
     Schema {
@@ -139,9 +142,9 @@ fn run() -> anyhow::Result<ExitCode> {
             rt.block_on(contact::service::run(cfg))?;
             Ok(ExitCode::SUCCESS)
         }
-        Cmd::Bench { quick, csv } => {
+        Cmd::Bench { quick, csv, repeat } => {
             println!("{}", contact::bench::Row::table_header());
-            let rows = contact::bench::run(quick, |r| println!("{}", r.table_line()));
+            let rows = contact::bench::run(quick, repeat, |r| println!("{}", r.table_line()));
             if let Some(dir) = csv.parent() {
                 std::fs::create_dir_all(dir)?;
             }
