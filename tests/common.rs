@@ -74,3 +74,13 @@ pub fn assert_kkt(r: &SolveReply, tol: f64) {
         }
     }
 }
+
+/// Largest pointwise pressure difference between two replies of the same scene.
+pub fn max_pressure_diff(a: &SolveReply, b: &SolveReply) -> f64 {
+    a.pairs[0]
+        .points
+        .iter()
+        .zip(&b.pairs[0].points)
+        .map(|(p, q)| (p.pressure - q.pressure).abs())
+        .fold(0.0, f64::max)
+}

@@ -274,12 +274,7 @@ fn penalty_converges_linearly_and_augmented_lagrangian_is_exact() {
                 assert!((-p.gap / zeta - p.pressure).abs() <= 1e-6 * peak);
             }
         }
-        let err = r.pairs[0]
-            .points
-            .iter()
-            .zip(&exact.pairs[0].points)
-            .map(|(a, b)| (a.pressure - b.pressure).abs())
-            .fold(0.0, f64::max);
+        let err = max_pressure_diff(&r, &exact);
         assert!(
             err < 0.05 * last,
             "error {err} did not fall ~linearly (previous {last})"
@@ -314,12 +309,7 @@ fn barrier_never_penetrates_and_converges_with_zeta() {
             assert!(p.gap > 0.0);
             assert!((p.pressure * p.gap / zeta - 1.0).abs() < 1e-5, "pressure is ζ/gap");
         }
-        let err = r.pairs[0]
-            .points
-            .iter()
-            .zip(&exact.pairs[0].points)
-            .map(|(a, b)| (a.pressure - b.pressure).abs())
-            .fold(0.0, f64::max);
+        let err = max_pressure_diff(&r, &exact);
         assert!(err < 0.05 * last, "error {err} did not fall with ζ (previous {last})");
         assert_eq!(r.pairs[0].zones, exact.pairs[0].zones);
         last = err;
