@@ -11,6 +11,7 @@ pub enum InvalidKind {
     Geometry,
     NoSupport,
     NoContactCandidates,
+    IncompatibleLoads,
 }
 
 #[derive(Debug, thiserror::Error)]

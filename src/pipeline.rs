@@ -12,8 +12,8 @@ use crate::fem::{self, element, material::d_matrix};
 use crate::mesh::{generate, Mesh2d};
 use crate::methods::{self, Problem};
 use crate::proto::{
-    self, BodyOutput, CacheState, ErrorReply, Formulation, LoadStep, MethodName, ProblemSize, SolveReply, SolveStatus,
-    Timings,
+    self, BodyOutput, CacheState, ErrorReply, Formulation, LoadStep, MethodName, ProblemSize, PunchResult, SolveReply,
+    SolveStatus, Timings,
 };
 use crate::scene::{parse::parse_request, Limits, MeshSource, Scene};
 use crate::solution::{certificate::certify, post};
@@ -147,7 +147,15 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
             ),
         });
     }
+    let punches = PunchSetup::try_new(scene, &cons)?;
     if scene.settings.formulation == Formulation::Full {
+        if !punches.free.is_empty() {
+            return Err(CoreError::invalid(
+                InvalidKind::Request,
+                "/settings/formulation",
+                "load-controlled punches are solved on the condensed formulation only",
+            ));
+        }
         return solve_full(scene, &meshes, dofs, cons, timings, t, t_start);
     }
     let key = cache::key(scene, &meshes, &dofs, &cons);
@@ -192,6 +200,10 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
             .barrier
             .map(|z| z / (scene.scales.modulus * scene.scales.length))
             .unwrap_or(1e-8),
+        punch: (!punches.free.is_empty()).then_some(methods::PunchBlock {
+            c: &punches.c,
+            rhs: &punches.rhs,
+        }),
     };
     let sol = methods::solve(&problem, scene.method)?;
     timings.contact_solve = sol.t_contact;
@@ -201,6 +213,7 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
         cons: &cons,
         k: &op.stiffness.k,
         f: &f,
+        punches: Some(&punches),
     };
     Ok(finish(scene, &stage, sol, timings, t_start, cache_state))
 }
@@ -212,6 +225,97 @@ struct Stage<'a> {
     cons: &'a contact::ConstraintSet,
     k: &'a faer::sparse::SparseColMat<usize, f64>,
     f: &'a [f64],
+    punches: Option<&'a PunchSetup>,
+}
+
+/// The load-controlled punch motions of a scene after the compatibility check.
+struct PunchSetup {
+    /// (obstacle, component, nondimensional load) of each free motion kept.
+    free: Vec<(usize, usize, f64)>,
+    /// C_F (m × free) and the equilibrium right-hand side −P_F.
+    c: faer::Mat<f64>,
+    rhs: Vec<f64>,
+    /// Free motions no candidate resists (zero load): fixed at 0, not unique.
+    undetermined: Vec<(usize, usize)>,
+}
+
+const COMPONENT: [&str; 3] = ["horizontal", "vertical", "rotation"];
+
+impl PunchSetup {
+    fn try_new(scene: &Scene, cons: &contact::ConstraintSet) -> Result<Self, CoreError> {
+        let (free_all, c_all) = cons.punch_block(scene);
+        let sc = scene.scales;
+        let load_scale = |k: usize| if k == 2 { sc.moment(1.0) } else { sc.force(1.0) };
+        let mut keep = Vec::new();
+        let mut undetermined = Vec::new();
+        for (j, &(o, k, load)) in free_all.iter().enumerate() {
+            let col_max = (0..c_all.nrows()).map(|i| c_all[(i, j)].abs()).fold(0.0, f64::max);
+            if col_max <= 1e-12 {
+                if load != 0.0 {
+                    return Err(CoreError::invalid(
+                        InvalidKind::IncompatibleLoads,
+                        format!("/obstacles/{o}/punch/{}/load", COMPONENT[k]),
+                        format!(
+                            "no contact normal has a component along the {} motion of punch '{}', so contact cannot carry its load {:.6e}: it must be 0",
+                            COMPONENT[k],
+                            scene.obstacles[o].name,
+                            load * load_scale(k)
+                        ),
+                    ));
+                }
+                undetermined.push((o, k));
+            } else {
+                keep.push(j);
+            }
+        }
+        let free: Vec<(usize, usize, f64)> = keep.iter().map(|&j| free_all[j]).collect();
+        let c = faer::Mat::<f64>::from_fn(c_all.nrows(), keep.len(), |i, t| c_all[(i, keep[t])]);
+        let rhs: Vec<f64> = free.iter().map(|f| -f.2).collect();
+        if !free.is_empty() {
+            if let Err(bad) = contact::rigid::check(&c, &rhs) {
+                let fmt = |v: Option<f64>, k: usize, inf: &str| {
+                    v.map(|x| format!("{:.6e}", x * load_scale(k)))
+                        .unwrap_or_else(|| inf.to_string())
+                };
+                let ranges: Vec<String> = bad
+                    .iter()
+                    .map(|r| {
+                        let (_, k, load) = free[r.component];
+                        format!(
+                            "the {} load {:.6e} must lie in [{}, {}]",
+                            COMPONENT[k],
+                            load * load_scale(k),
+                            fmt(r.min, k, "-inf"),
+                            fmt(r.max, k, "+inf")
+                        )
+                    })
+                    .collect();
+                let (o, k, _) = free[bad[0].component];
+                return Err(CoreError::invalid(
+                    InvalidKind::IncompatibleLoads,
+                    format!("/obstacles/{o}/punch/{}/load", COMPONENT[k]),
+                    format!(
+                        "no non-negative contact pressure on the candidate zone balances the loads on punch '{}'; with the other loads as given, {}",
+                        scene.obstacles[o].name,
+                        ranges.join("; or ")
+                    ),
+                ));
+            }
+        }
+        Ok(Self {
+            free,
+            c,
+            rhs,
+            undetermined,
+        })
+    }
+
+    /// C_F β per candidate.
+    fn shift(&self, beta: &[f64]) -> Vec<f64> {
+        (0..self.c.nrows())
+            .map(|i| (0..beta.len()).map(|j| self.c[(i, j)] * beta[j]).sum())
+            .collect()
+    }
 }
 
 /// Full-system exact methods: no condensation, no cache (they are the comparison).
@@ -250,6 +354,7 @@ fn solve_full(
         cons: &cons,
         k: &stiffness.k,
         f: &f,
+        punches: None,
     };
     Ok(finish(scene, &stage, sol, timings, t_start, CacheState::Off))
 }
@@ -264,7 +369,27 @@ fn finish(
     cache: CacheState,
 ) -> SolveReply {
     let t = Instant::now();
-    let (certificate, gaps) = certify(st.k, st.f, st.cons, &sol.u, &sol.lambda);
+    let shift = st.punches.filter(|p| !p.free.is_empty()).map(|p| p.shift(&sol.beta));
+    let (mut certificate, gaps) = certify(st.k, st.f, st.cons, &sol.u, &sol.lambda, shift.as_deref());
+    if let Some(p) = st.punches.filter(|p| !p.free.is_empty()) {
+        // Punch equilibrium C_Fᵀλ = −P_F joins the equilibrium residual.
+        let mut worst: f64 = 0.0;
+        for j in 0..p.free.len() {
+            let (mut ct, mut scale) = (0.0, p.rhs[j].abs());
+            for (i, l) in sol.lambda.iter().enumerate() {
+                ct += p.c[(i, j)] * l;
+                scale = scale.max((p.c[(i, j)] * l).abs());
+            }
+            if scale > 0.0 {
+                worst = worst.max((ct - p.rhs[j]).abs() / scale);
+            }
+        }
+        certificate.equilibrium = certificate.equilibrium.max(worst);
+    }
+    let punches = st
+        .punches
+        .map(|p| punch_results(scene, st.cons, p, &sol))
+        .unwrap_or_default();
     let (pairs, resultant, n_active) = post::pairs(scene, st.cons, &sol.lambda, &sol.in_contact, &gaps);
     let status = if !certificate.is_finite() {
         SolveStatus::NumericalError
@@ -299,8 +424,68 @@ fn finish(
         timings,
         cache,
         steps: None,
+        punches,
         bodies,
     }
+}
+
+/// Motion and loads of every punch, in the caller's units.
+fn punch_results(
+    scene: &Scene,
+    cons: &contact::ConstraintSet,
+    p: &PunchSetup,
+    sol: &methods::Solution,
+) -> Vec<PunchResult> {
+    let sc = scene.scales;
+    let mut out = Vec::new();
+    for (o, ob) in scene.obstacles.iter().enumerate() {
+        let Some(pu) = &ob.punch else { continue };
+        let mut motion = [0.0; 3];
+        for (k, ctl) in pu.controls.iter().enumerate() {
+            if let proto::Control::Displacement(v) = ctl {
+                motion[k] = *v;
+            }
+        }
+        for (j, &(fo, k, _)) in p.free.iter().enumerate() {
+            if fo == o {
+                motion[k] = sol.beta.get(j).copied().unwrap_or(0.0);
+            }
+        }
+        // Loads on the punch balance the contact forces: P = −Σ λ_i c_i.
+        let mut load = [0.0; 3];
+        for (c, l) in cons.candidates.iter().zip(&sol.lambda) {
+            if let Some((po, row)) = c.punch {
+                if po == o {
+                    for k in 0..3 {
+                        load[k] -= l * row[k];
+                    }
+                }
+            }
+        }
+        let undetermined: Vec<&str> = p
+            .undetermined
+            .iter()
+            .filter(|u| u.0 == o)
+            .map(|u| COMPONENT[u.1])
+            .collect();
+        out.push(PunchResult {
+            name: ob.name.clone(),
+            alpha1: sc.length(motion[0]),
+            alpha2: sc.length(motion[1]),
+            theta: motion[2],
+            p1: sc.force(load[0]),
+            p2: sc.force(load[1]),
+            m: sc.moment(load[2]),
+            unique: undetermined.is_empty(),
+            note: (!undetermined.is_empty()).then(|| {
+                format!(
+                    "the {} motion is not determined: no contact normal resists it and its load is 0; it is reported as 0, any value is a solution",
+                    undetermined.join(" and ")
+                )
+            }),
+        });
+    }
+    out
 }
 
 /// Optional per-body fields, only when the request lists them.

@@ -23,8 +23,12 @@ pub struct Candidate {
     pub weight: f64,
     /// Free DOFs and their coefficients in the row.
     pub row: Vec<(usize, f64)>,
-    /// Right-hand side of the row (gap less the prescribed motion).
+    /// Right-hand side of the row (gap less the prescribed motion of the body,
+    /// plus the prescribed motion of a punch).
     pub g: f64,
+    /// For a punch: its obstacle index and the row c of −C, so that the
+    /// constraint reads n·u − c·(α1, α2, θ) ≤ s: c = (n_x, n_y, (x − x_r) n_y − (y − y_r) n_x).
+    pub punch: Option<(usize, [f64; 3])>,
 }
 
 #[derive(Debug, Clone, Default)]
@@ -72,6 +76,30 @@ impl ConstraintSet {
     pub fn g(&self) -> Vec<f64> {
         self.candidates.iter().map(|c| c.g).collect()
     }
+
+    /// The load-controlled punch motions (obstacle, component, load) present in
+    /// the rows, and the matrix C_F (m × their number) with C_Fᵀλ = −P_F their
+    /// equilibrium and −C_F β_F their share of the rows.
+    pub fn punch_block(&self, scene: &Scene) -> (Vec<(usize, usize, f64)>, faer::Mat<f64>) {
+        let mut free = Vec::new();
+        for (o, ob) in scene.obstacles.iter().enumerate() {
+            if let Some(pu) = &ob.punch {
+                if !self.candidates.iter().any(|c| c.punch.is_some_and(|p| p.0 == o)) {
+                    continue;
+                }
+                for (k, ctl) in pu.controls.iter().enumerate() {
+                    if let crate::proto::Control::Load(v) = ctl {
+                        free.push((o, k, *v));
+                    }
+                }
+            }
+        }
+        let c = faer::Mat::<f64>::from_fn(self.len(), free.len(), |i, j| match self.candidates[i].punch {
+            Some((o, row)) if o == free[j].0 => row[free[j].1],
+            _ => 0.0,
+        });
+        (free, c)
+    }
 }
 
 pub fn build(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> ConstraintSet {
@@ -108,7 +136,18 @@ pub fn build(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> ConstraintSet {
                 pruned += 1;
                 continue;
             }
+            let punch = scene.obstacles[pair.obstacle].punch.as_ref().map(|pu| {
+                let (dx, dy) = (x[0] - pu.reference[0], x[1] - pu.reference[1]);
+                let c = [bn.normal[0], bn.normal[1], dx * bn.normal[1] - dy * bn.normal[0]];
+                for (k, ctl) in pu.controls.iter().enumerate() {
+                    if let crate::proto::Control::Displacement(v) = ctl {
+                        g += c[k] * v;
+                    }
+                }
+                (pair.obstacle, c)
+            });
             set.candidates.push(Candidate {
+                punch,
                 pair: p,
                 body: pair.body,
                 node: bn.node,

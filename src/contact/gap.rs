@@ -32,6 +32,25 @@ pub fn gap_along_normal(shape: &Shape, x: [f64; 2], n: [f64; 2]) -> Option<f64> 
             }
             Some(t)
         }
+        Shape::Profile { reference, psi } => {
+            // Vertical normal: the graph gives the gap exactly.
+            if n[0].abs() <= 1e-12 * n[1].abs() && n[1] > 0.0 {
+                let psi_x = psi.eval(x[0] - reference[0])?;
+                return Some((reference[1] + psi_x - x[1]) / n[1]);
+            }
+            // Otherwise intersect with the profile sampled finely, traversed right
+            // to left so that the rigid side (above) is to the right of travel.
+            let (t0, t1) = psi.extent();
+            let k = 4096;
+            let points: Vec<[f64; 2]> = (0..=k)
+                .rev()
+                .filter_map(|i| {
+                    let t = t0 + (t1 - t0) * i as f64 / k as f64;
+                    psi.eval(t).map(|v| [reference[0] + t, reference[1] + v])
+                })
+                .collect();
+            gap_along_normal(&Shape::Polyline { points }, x, n)
+        }
         Shape::Polyline { points } => {
             let mut best: Option<f64> = None;
             for w in points.windows(2) {

@@ -2,5 +2,6 @@
 
 pub mod candidates;
 pub mod gap;
+pub mod rigid;
 
 pub use candidates::{build, Candidate, ConstraintSet};

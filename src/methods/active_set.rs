@@ -133,3 +133,92 @@ fn lawson_hanson(w: &Mat<f64>, q: &[f64], max_outer: usize) -> LcpResult {
         }
     }
 }
+
+/// Mixed LCP of a scene with load-controlled punches:
+///
+/// ```text
+/// λ ≥ 0,   w = Wλ + q + Cβ ≥ 0,   λᵀw = 0,   Cᵀλ = r   (β free: the punch motions)
+/// ```
+///
+/// PDAS again: on the active set A, [W_AA C_A; C_Aᵀ 0][λ_A; β] = [−q_A; r], solved
+/// through the Schur complement C_Aᵀ W_AA⁻¹ C_A (size = number of free motions).
+/// Starts from every candidate under a punch (or penetrating), which for a flat
+/// punch is the answer and for a curved one shrinks in a few steps.
+pub fn solve_mlcp(w: &Mat<f64>, q: &[f64], c: &Mat<f64>, r: &[f64], s: &SolverSettings) -> (LcpResult, Vec<f64>) {
+    let m = q.len();
+    let k = c.ncols();
+    let diag_mean = (0..m).map(|i| w[(i, i)]).sum::<f64>() / m.max(1) as f64;
+    let cpar = 1.0 / diag_mean;
+    let mut active: Vec<bool> = (0..m).map(|i| q[i] < 0.0 || (0..k).any(|j| c[(i, j)] != 0.0)).collect();
+    let mut lambda = vec![0.0; m];
+    let mut beta = vec![0.0; k];
+    let mut seen: Vec<Vec<bool>> = Vec::new();
+    for it in 1..=s.max_iterations {
+        let idx: Vec<usize> = (0..m).filter(|&i| active[i]).collect();
+        let Some((la, b)) = saddle(w, q, c, r, &idx) else {
+            break;
+        };
+        lambda.iter_mut().for_each(|l| *l = 0.0);
+        for (t, &i) in idx.iter().enumerate() {
+            lambda[i] = la[t];
+        }
+        beta = b;
+        let wl = matvec(w, &lambda);
+        let gap: Vec<f64> = (0..m)
+            .map(|i| wl[i] + q[i] + (0..k).map(|j| c[(i, j)] * beta[j]).sum::<f64>())
+            .collect();
+        let next: Vec<bool> = (0..m).map(|i| lambda[i] - cpar * gap[i] > 0.0).collect();
+        if next == active {
+            return (
+                LcpResult {
+                    lambda,
+                    iterations: it,
+                    converged: true,
+                },
+                beta,
+            );
+        }
+        if seen.contains(&next) {
+            break;
+        }
+        seen.push(active.clone());
+        active = next;
+    }
+    (
+        LcpResult {
+            lambda,
+            iterations: s.max_iterations,
+            converged: false,
+        },
+        beta,
+    )
+}
+
+/// [W_AA C_A; C_Aᵀ 0][λ_A; β] = [−q_A; r]; None if singular.
+fn saddle(w: &Mat<f64>, q: &[f64], c: &Mat<f64>, r: &[f64], idx: &[usize]) -> Option<(Vec<f64>, Vec<f64>)> {
+    let (a, k) = (idx.len(), c.ncols());
+    if a == 0 {
+        return None;
+    }
+    let waa = Mat::<f64>::from_fn(a, a, |i, j| w[(idx[i], idx[j])]);
+    let llt = waa.llt(faer::Side::Lower).ok()?;
+    // Columns: −q_A, then C_A.
+    let rhs = Mat::<f64>::from_fn(a, 1 + k, |i, j| if j == 0 { -q[idx[i]] } else { c[(idx[i], j - 1)] });
+    let sol = faer::linalg::solvers::Solve::solve(&llt, &rhs);
+    // S β = C_Aᵀ y − r with S = C_Aᵀ X.
+    let s = Mat::<f64>::from_fn(k, k, |p, t| (0..a).map(|i| c[(idx[i], p)] * sol[(i, 1 + t)]).sum());
+    let bvec = Mat::<f64>::from_fn(k, 1, |p, _| {
+        (0..a).map(|i| c[(idx[i], p)] * sol[(i, 0)]).sum::<f64>() - r[p]
+    });
+    let beta: Vec<f64> = if k == 0 {
+        Vec::new()
+    } else {
+        let lu = s.partial_piv_lu();
+        let b = faer::linalg::solvers::Solve::solve(&lu, &bvec);
+        (0..k).map(|p| b[(p, 0)]).collect()
+    };
+    let la: Vec<f64> = (0..a)
+        .map(|i| sol[(i, 0)] - (0..k).map(|t| sol[(i, 1 + t)] * beta[t]).sum::<f64>())
+        .collect();
+    (la.iter().chain(&beta).all(|v| v.is_finite())).then_some((la, beta))
+}

@@ -66,11 +66,45 @@ pub fn solve_condensed(
     Ok(Solution {
         u,
         lambda: res.lambda,
+        beta: Vec::new(),
         in_contact,
         iterations: res.iterations,
         converged: res.converged,
         method: name,
         exact,
+        t_contact: t.elapsed().as_secs_f64(),
+    })
+}
+
+/// As `solve_condensed`, with load-controlled punch motions β_F: the mixed LCP
+/// of `active_set::solve_mlcp`.
+pub fn solve_condensed_mixed(p: &Problem, pb: &super::PunchBlock) -> Result<Solution, CoreError> {
+    let t = Instant::now();
+    let op = p.op;
+    let u0 = op.chol.solve(p.f);
+    let bu0 = p.cons.apply(&u0);
+    let q: Vec<f64> = p.cons.candidates.iter().zip(&bu0).map(|(c, b)| c.g - b).collect();
+    let (res, beta) = super::active_set::solve_mlcp(&op.w, &q, pb.c, pb.rhs, p.settings);
+    let wl = dense::matvec(&op.w, &res.lambda);
+    let in_contact = (0..q.len())
+        .map(|i| {
+            let cb: f64 = (0..beta.len()).map(|j| pb.c[(i, j)] * beta[j]).sum();
+            res.lambda[i] > 0.0 && res.lambda[i] * op.w[(i, i)] > wl[i] + q[i] + cb
+        })
+        .collect();
+    let mut rhs = p.f.to_vec();
+    let neg: Vec<f64> = res.lambda.iter().map(|l| -l).collect();
+    p.cons.apply_transpose_into(&neg, &mut rhs);
+    let u = op.chol.solve(&rhs);
+    Ok(Solution {
+        u,
+        lambda: res.lambda,
+        beta,
+        in_contact,
+        iterations: res.iterations,
+        converged: res.converged,
+        method: "active_set",
+        exact: true,
         t_contact: t.elapsed().as_secs_f64(),
     })
 }

@@ -208,6 +208,7 @@ fn solution(run: ActiveSetRun, name: &'static str, t: std::time::Instant, extra_
     Solution {
         u: run.u,
         lambda: run.lambda,
+        beta: Vec::new(),
         in_contact,
         iterations: run.iterations + extra_iterations,
         converged: run.converged,

@@ -34,6 +34,13 @@ pub struct Problem<'a> {
     pub zeta: f64,
     /// Nondimensional barrier parameter.
     pub barrier: f64,
+    /// Load-controlled punch motions: rows −C_F β_F and equilibrium C_Fᵀλ = rhs.
+    pub punch: Option<PunchBlock<'a>>,
+}
+
+pub struct PunchBlock<'a> {
+    pub c: &'a faer::Mat<f64>,
+    pub rhs: &'a [f64],
 }
 
 /// Result of the LCP stage.
@@ -46,6 +53,8 @@ pub struct LcpResult {
 pub struct Solution {
     pub u: Vec<f64>,
     pub lambda: Vec<f64>,
+    /// Free punch motions β_F (empty without load-controlled punches).
+    pub beta: Vec<f64>,
     /// Candidates in contact: λ_i > 0 and λ_i W_ii > gap_i (the force's own
     /// displacement exceeds what is left of the gap). For exact methods this is
     /// λ_i > 0; for the penalty, penetration; for the barrier, gap_i² < ζ w_i W_ii.
@@ -70,6 +79,16 @@ pub fn solve(problem: &Problem, method: MethodName) -> Result<Solution, CoreErro
         condensed::solve_condensed(problem, name, exact, lcp)
     };
     let s = problem.settings;
+    if let Some(pb) = &problem.punch {
+        return match method {
+            MethodName::Auto | MethodName::ActiveSet => condensed::solve_condensed_mixed(problem, pb),
+            other => Err(CoreError::invalid(
+                crate::error::InvalidKind::Request,
+                "/method",
+                format!("load-controlled punches are solved by active_set (and auto) so far, not {other:?}"),
+            )),
+        };
+    }
     match method {
         MethodName::Auto | MethodName::ActiveSet => run("active_set", true, &|w, q| active_set::solve_lcp(w, q, s)),
         MethodName::InteriorPoint => run("interior_point", true, &|w, q| interior_point::solve_lcp(w, q, s)),

@@ -24,6 +24,9 @@ pub enum ErrorCode {
     NoSupport,
     /// A contact pair with no candidate that can close.
     NoContactCandidates,
+    /// Loads on a body or punch held only by contact that no non-negative
+    /// contact pressure can balance (Fichera's condition fails).
+    IncompatibleLoads,
     /// The problem exceeds a size limit of the service.
     TooLarge,
     /// The linear algebra failed (e.g. the stiffness is not positive definite).
@@ -70,6 +73,7 @@ impl From<&crate::error::CoreError> for ErrorReply {
                 InvalidKind::Geometry => ErrorCode::InvalidGeometry,
                 InvalidKind::NoSupport => ErrorCode::NoSupport,
                 InvalidKind::NoContactCandidates => ErrorCode::NoContactCandidates,
+                InvalidKind::IncompatibleLoads => ErrorCode::IncompatibleLoads,
             },
             CoreError::TooLarge { .. } => ErrorCode::TooLarge,
             CoreError::Linalg(_) => ErrorCode::LinearAlgebra,

@@ -29,6 +29,9 @@ pub struct SolveReply {
     pub timings: Timings,
     /// Whether the factorization and condensed operator came from the service's cache.
     pub cache: CacheState,
+    /// Motion and loads of every punch (obstacle with `punch`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub punches: Vec<PunchResult>,
     /// One entry per load factor when the request lists `load_factors`; the
     /// top-level fields then describe the last factor.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -36,6 +39,27 @@ pub struct SolveReply {
     /// Per body, when `outputs` asks for it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub bodies: Option<Vec<BodyOutput>>,
+}
+
+/// A punch's rigid motion and the loads on it (prescribed or reactions).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PunchResult {
+    pub name: String,
+    /// Horizontal displacement α1 [length].
+    pub alpha1: f64,
+    /// Vertical displacement α2 [length].
+    pub alpha2: f64,
+    /// Rotation θ about the reference point [radian], counter-clockwise.
+    pub theta: f64,
+    /// Loads on the punch balancing the contact: P1, P2 [force], M about the reference [force × length].
+    pub p1: f64,
+    pub p2: f64,
+    pub m: f64,
+    /// False when some motion is not determined by the contact (e.g. sliding of a flat punch).
+    pub unique: bool,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
 }
 
 /// The answer at one load factor.

@@ -211,13 +211,70 @@ pub struct TractionSpec {
     pub pressure: Option<f64>,
 }
 
-/// A rigid obstacle.
+/// A rigid obstacle, fixed or (with `punch`) a rigid punch whose motion and loads
+/// are partly prescribed.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ObstacleSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
     pub shape: ObstacleShape,
+    /// Rigid-body motion of the obstacle: without it the obstacle is fixed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub punch: Option<PunchSpec>,
+}
+
+/// The three rigid motions of a punch, each prescribed as a displacement or as a
+/// load (then the displacement is solved for). Loads act on the punch: forces in
+/// the global axes, the moment about `reference`, counter-clockwise positive. A
+/// punch pressed down onto a body below has a negative vertical load.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PunchSpec {
+    /// Point about which the punch rotates and moments are taken.
+    pub reference: [f64; 2],
+    /// α1 [length] or P1 [force]; default: displacement 0.
+    #[serde(default)]
+    pub horizontal: Control,
+    /// α2 [length] or P2 [force]; default: displacement 0.
+    #[serde(default)]
+    pub vertical: Control,
+    /// θ [radian, small] or M [force × length]; default: displacement 0.
+    #[serde(default)]
+    pub rotation: Control,
+}
+
+/// One side of a (motion, load) pair.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum Control {
+    Displacement(f64),
+    Load(f64),
+}
+
+impl Default for Control {
+    fn default() -> Self {
+        Control::Displacement(0.0)
+    }
+}
+
+/// Punch profile ψ(t): the rigid surface is y = y_r + ψ(x − x_r) with the rigid
+/// material above it (a punch coming down onto a body).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum ProfileSpec {
+    /// Flat base |t| ≤ half_width, with corners rounded by `corner_radius` (0: sharp).
+    Flat {
+        half_width: f64,
+        #[serde(default)]
+        corner_radius: f64,
+    },
+    /// Circle of the given radius whose lowest point is at t = 0, ψ(0) = 0.
+    Circle { radius: f64 },
+    /// Points (t, ψ) with increasing t, linear in between.
+    Polyline { points: Vec<[f64; 2]> },
+    /// Tabulated ψ at increasing t, linear in between.
+    Table { t: Vec<f64>, psi: Vec<f64> },
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
@@ -231,6 +288,8 @@ pub enum ObstacleShape {
     /// Polyline surface; the rigid material lies to the right of the direction
     /// of travel (a floor is given left to right). Extends no further than its ends.
     Polyline { points: Vec<[f64; 2]> },
+    /// Punch profile: surface y = reference_y + ψ(x − reference_x), rigid above.
+    Profile { reference: [f64; 2], psi: ProfileSpec },
 }
 
 /// A contact pair: an edge set of a body against an obstacle.

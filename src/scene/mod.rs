@@ -111,6 +111,79 @@ pub enum Traction {
 pub struct Obstacle {
     pub name: String,
     pub shape: Shape,
+    /// Rigid motion controls; None: fixed.
+    pub punch: Option<Punch>,
+}
+
+/// A rigid punch: motion (α1, α2, θ) about `reference`, each component either
+/// prescribed or paired with a prescribed load (P1, P2, M) on the punch.
+#[derive(Debug, Clone)]
+pub struct Punch {
+    pub reference: [f64; 2],
+    pub controls: [crate::proto::Control; 3],
+}
+
+/// Punch profile ψ(t), t = x − x_r.
+#[derive(Debug, Clone)]
+pub enum Psi {
+    Flat {
+        half_width: f64,
+        corner_radius: f64,
+    },
+    Circle {
+        radius: f64,
+    },
+    /// (t, ψ) with increasing t.
+    Points(Vec<[f64; 2]>),
+}
+
+impl Psi {
+    /// ψ(t), or None outside the profile's extent.
+    pub fn eval(&self, t: f64) -> Option<f64> {
+        // Nodes placed at a profile's end by a mesh generator land there only to
+        // round-off: accept them.
+        let (t0, t1) = self.extent();
+        let slack = 1e-9 * (t1 - t0);
+        let t = if t < t0 && t >= t0 - slack {
+            t0
+        } else if t > t1 && t <= t1 + slack {
+            t1
+        } else {
+            t
+        };
+        match self {
+            Psi::Flat {
+                half_width,
+                corner_radius,
+            } => {
+                let a = t.abs();
+                let flat = half_width - corner_radius;
+                if a <= flat {
+                    Some(0.0)
+                } else if a <= *half_width {
+                    let d = a - flat;
+                    Some(corner_radius - (corner_radius * corner_radius - d * d).max(0.0).sqrt())
+                } else {
+                    None
+                }
+            }
+            Psi::Circle { radius } => (t.abs() < *radius).then(|| radius - (radius * radius - t * t).sqrt()),
+            Psi::Points(p) => {
+                let k = p.windows(2).position(|w| t >= w[0][0] && t <= w[1][0])?;
+                let (a, b) = (p[k], p[k + 1]);
+                Some(a[1] + (b[1] - a[1]) * (t - a[0]) / (b[0] - a[0]))
+            }
+        }
+    }
+
+    /// Extent [t_min, t_max] of the profile.
+    pub fn extent(&self) -> (f64, f64) {
+        match self {
+            Psi::Flat { half_width, .. } => (-half_width, *half_width),
+            Psi::Circle { radius } => (-radius, *radius),
+            Psi::Points(p) => (p[0][0], p[p.len() - 1][0]),
+        }
+    }
 }
 
 #[derive(Debug, Clone)]
@@ -127,6 +200,11 @@ pub enum Shape {
     /// Rigid material to the right of the direction of travel.
     Polyline {
         points: Vec<[f64; 2]>,
+    },
+    /// Surface y = reference_y + ψ(x − reference_x), rigid above.
+    Profile {
+        reference: [f64; 2],
+        psi: Psi,
     },
 }
 

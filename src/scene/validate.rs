@@ -10,6 +10,7 @@ use crate::mesh::{
     quality,
 };
 use crate::proto::{self, BodyRef, ElementKind, MeshSpec, ObstacleShape, OutputKind, SolveRequest};
+use crate::scene::{Psi, Punch};
 
 /// Size limits of a deployment (the CLI and the service set them).
 #[derive(Debug, Clone, Copy)]
@@ -350,6 +351,53 @@ impl Scene {
                         radius: l(*radius),
                     }
                 }
+                ObstacleShape::Profile { reference, psi } => {
+                    finite(reference[0], &format!("{op}/profile/reference/0"), K::Geometry)?;
+                    finite(reference[1], &format!("{op}/profile/reference/1"), K::Geometry)?;
+                    let pp = format!("{op}/profile/psi");
+                    let psi = match psi {
+                        proto::ProfileSpec::Flat {
+                            half_width,
+                            corner_radius,
+                        } => {
+                            positive(*half_width, &format!("{pp}/flat/half_width"), K::Geometry, "half_width")?;
+                            finite(*corner_radius, &format!("{pp}/flat/corner_radius"), K::Geometry)?;
+                            if *corner_radius < 0.0 || *corner_radius > *half_width {
+                                return Err(invalid(
+                                    K::Geometry,
+                                    format!("{pp}/flat/corner_radius"),
+                                    "corner_radius must lie in [0, half_width]",
+                                ));
+                            }
+                            Psi::Flat {
+                                half_width: l(*half_width),
+                                corner_radius: l(*corner_radius),
+                            }
+                        }
+                        proto::ProfileSpec::Circle { radius } => {
+                            positive(*radius, &format!("{pp}/circle/radius"), K::Geometry, "radius")?;
+                            Psi::Circle { radius: l(*radius) }
+                        }
+                        proto::ProfileSpec::Polyline { points } => {
+                            Psi::Points(profile_points(points, &format!("{pp}/polyline/points"), length)?)
+                        }
+                        proto::ProfileSpec::Table { t, psi } => {
+                            if t.len() != psi.len() {
+                                return Err(invalid(
+                                    K::Geometry,
+                                    format!("{pp}/table/psi"),
+                                    format!("{} values of psi for {} values of t", psi.len(), t.len()),
+                                ));
+                            }
+                            let pts: Vec<[f64; 2]> = t.iter().zip(psi).map(|(a, b)| [*a, *b]).collect();
+                            Psi::Points(profile_points(&pts, &format!("{pp}/table/t"), length)?)
+                        }
+                    };
+                    Shape::Profile {
+                        reference: lp(*reference),
+                        psi,
+                    }
+                }
                 ObstacleShape::Polyline { points } => {
                     if points.len() < 2 {
                         return Err(invalid(
@@ -374,7 +422,37 @@ impl Scene {
                     }
                 }
             };
-            obstacles.push(Obstacle { name, shape });
+            let punch = match &o.punch {
+                None => None,
+                Some(pp) => {
+                    let pth = format!("/obstacles/{i}/punch");
+                    finite(pp.reference[0], &format!("{pth}/reference/0"), K::Geometry)?;
+                    finite(pp.reference[1], &format!("{pth}/reference/1"), K::Geometry)?;
+                    let scale = |c: proto::Control, k: usize, name: &str| -> Result<proto::Control, CoreError> {
+                        let (v, is_load) = match c {
+                            proto::Control::Displacement(v) => (v, false),
+                            proto::Control::Load(v) => (v, true),
+                        };
+                        let kind = if is_load { "load" } else { "displacement" };
+                        finite(v, &format!("{pth}/{name}/{kind}"), K::Request)?;
+                        Ok(match (is_load, k) {
+                            (false, 2) => proto::Control::Displacement(v),
+                            (false, _) => proto::Control::Displacement(v / length),
+                            (true, 2) => proto::Control::Load(v / (modulus * length * length)),
+                            (true, _) => proto::Control::Load(v / (modulus * length)),
+                        })
+                    };
+                    Some(Punch {
+                        reference: lp(pp.reference),
+                        controls: [
+                            scale(pp.horizontal, 0, "horizontal")?,
+                            scale(pp.vertical, 1, "vertical")?,
+                            scale(pp.rotation, 2, "rotation")?,
+                        ],
+                    })
+                }
+            };
+            obstacles.push(Obstacle { name, shape, punch });
         }
 
         if req.contacts.is_empty() {
@@ -517,4 +595,24 @@ fn check_mesh_spec(m: &MeshSpec, path: &str) -> Result<(), CoreError> {
         }
     }
     Ok(())
+}
+
+/// Profile points (t, ψ): at least two, finite, t strictly increasing; scaled by 1/length.
+fn profile_points(points: &[[f64; 2]], path: &str, length: f64) -> Result<Vec<[f64; 2]>, CoreError> {
+    use InvalidKind as K;
+    if points.len() < 2 {
+        return Err(invalid(K::Geometry, path, "a profile needs at least 2 points"));
+    }
+    for (k, p) in points.iter().enumerate() {
+        finite(p[0], &format!("{path}/{k}"), K::Geometry)?;
+        finite(p[1], &format!("{path}/{k}"), K::Geometry)?;
+        if k > 0 && p[0] <= points[k - 1][0] {
+            return Err(invalid(
+                K::Geometry,
+                format!("{path}/{k}"),
+                "profile abscissae must increase strictly",
+            ));
+        }
+    }
+    Ok(points.iter().map(|p| [p[0] / length, p[1] / length]).collect())
 }

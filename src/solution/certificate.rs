@@ -26,15 +26,19 @@ fn ratio(num: f64, den: f64) -> f64 {
 }
 
 /// Returns the certificate and the final gaps g − Bu.
+/// `shift`: the rows' share of free punch motions (C_F β), added to the gaps.
 pub fn certify(
     k: &SparseColMat<usize, f64>,
     f: &[f64],
     cons: &ConstraintSet,
     u: &[f64],
     lambda: &[f64],
+    shift: Option<&[f64]>,
 ) -> (Certificate, Vec<f64>) {
     let bu = cons.apply(u);
-    let gaps: Vec<f64> = cons.candidates.iter().zip(&bu).map(|(c, b)| c.g - b).collect();
+    let gaps: Vec<f64> = (0..cons.len())
+        .map(|i| cons.candidates[i].g - bu[i] + shift.map_or(0.0, |s| s[i]))
+        .collect();
     let d = {
         let du = inf_norm(u);
         if du > 0.0 {

@@ -1,0 +1,114 @@
+//! Compatibility of the loads on load-controlled punches (Fichera's condition).
+//!
+//! A punch whose motion β_F is free is held only by contact: a solution exists
+//! only if some non-negative contact force on the candidates balances its loads,
+//! i.e. the LP {λ ≥ 0 : C_Fᵀλ = −P_F} is feasible. When it is not, each load
+//! component's admissible range (with the other components as given) tells the
+//! user what to change: [min, max] of −(C_Fᵀλ)_j over λ ≥ 0 meeting the others.
+
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus, ZeroConeT};
+use faer::Mat;
+
+/// Outcome of one LP over λ ≥ 0 with C_Fᵀλ = rhs on the rows in `keep`.
+enum Lp {
+    Optimal(f64),
+    Infeasible,
+    Unbounded,
+}
+
+fn lp(c: &Mat<f64>, rhs: &[f64], keep: &[usize], objective: Option<(usize, f64)>) -> Lp {
+    let m = c.nrows();
+    let (mut rows, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
+    for (r, &j) in keep.iter().enumerate() {
+        for i in 0..m {
+            if c[(i, j)] != 0.0 {
+                rows.push(r);
+                cols.push(i);
+                vals.push(c[(i, j)]);
+            }
+        }
+    }
+    let ne = keep.len();
+    for i in 0..m {
+        rows.push(ne + i);
+        cols.push(i);
+        vals.push(-1.0);
+    }
+    let a = CscMatrix::new_from_triplets(ne + m, m, rows, cols, vals);
+    let mut b: Vec<f64> = keep.iter().map(|&j| rhs[j]).collect();
+    b.extend(std::iter::repeat_n(0.0, m));
+    let q: Vec<f64> = match objective {
+        Some((j, sign)) => (0..m).map(|i| sign * c[(i, j)]).collect(),
+        None => vec![0.0; m],
+    };
+    let p = CscMatrix::zeros((m, m));
+    let settings = DefaultSettingsBuilder::default()
+        .verbose(false)
+        .build()
+        .expect("static settings");
+    let cones = [ZeroConeT(ne), NonnegativeConeT(m)];
+    let Ok(mut solver) = DefaultSolver::new(&p, &q, &a, &b, &cones, settings) else {
+        return Lp::Infeasible;
+    };
+    solver.solve();
+    match solver.solution.status {
+        SolverStatus::Solved | SolverStatus::AlmostSolved => Lp::Optimal(solver.solution.obj_val),
+        SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => Lp::Infeasible,
+        _ => Lp::Unbounded,
+    }
+}
+
+/// Ok if a non-negative λ with C_Fᵀλ = rhs exists; otherwise, per component
+/// whose value cannot be met with the others as given, its admissible range of
+/// loads (−(C_Fᵀλ)_j; None = unbounded on that side).
+/// A free load component that cannot be met, with its admissible range
+/// (None: unbounded on that side), both in the units of the load.
+#[derive(Debug, Clone, Copy)]
+pub struct LoadRange {
+    pub component: usize,
+    pub min: Option<f64>,
+    pub max: Option<f64>,
+}
+
+pub fn check(c: &Mat<f64>, rhs: &[f64]) -> Result<(), Vec<LoadRange>> {
+    let k = c.ncols();
+    let all: Vec<usize> = (0..k).collect();
+    if !matches!(lp(c, rhs, &all, None), Lp::Infeasible) {
+        return Ok(());
+    }
+    let mut bad = Vec::new();
+    for j in 0..k {
+        let others: Vec<usize> = (0..k).filter(|&t| t != j).collect();
+        // (C_Fᵀλ)_j ranges over [lo, hi]; the load is its negative.
+        let lo = match lp(c, rhs, &others, Some((j, 1.0))) {
+            Lp::Optimal(v) => Some(v),
+            Lp::Unbounded => None,
+            Lp::Infeasible => continue, // the others alone are infeasible: not this component's fault
+        };
+        let hi = match lp(c, rhs, &others, Some((j, -1.0))) {
+            Lp::Optimal(v) => Some(-v),
+            _ => None,
+        };
+        let inside = lo.is_none_or(|l| rhs[j] >= l - 1e-12 * l.abs().max(1e-300))
+            && hi.is_none_or(|h| rhs[j] <= h + 1e-12 * h.abs().max(1e-300));
+        if !inside {
+            bad.push(LoadRange {
+                component: j,
+                min: hi.map(|h| -h),
+                max: lo.map(|l| -l),
+            });
+        }
+    }
+    if bad.is_empty() {
+        // Jointly infeasible although each alone fits: report every component with its range.
+        bad = (0..k)
+            .map(|j| LoadRange {
+                component: j,
+                min: None,
+                max: None,
+            })
+            .collect();
+    }
+    Err(bad)
+}

@@ -1,0 +1,111 @@
+//! Rigid punches under prescribed loads or motions (issue: rigid indentation),
+//! against Sadowsky and Hertz, with the consistency of load and motion control
+//! and Fichera's compatibility condition.
+
+mod common;
+use common::*;
+use contact::proto::ErrorCode;
+use serde_json::json;
+
+/// Flat punch, b = 1, P = 10. The resultant is P to round-off (punch
+/// equilibrium is an equation of the discrete problem). Away from the singular
+/// corners (|x| ≤ 0.8b) the nodal pressure matches P/(π√(b² − x²)); we measure
+/// ≤ 1.2 % on this mesh (h = 0.01 = b/100, block 20b deep, whose finite depth
+/// and the corner singularity perturb the interior), and test 2 %.
+#[test]
+fn flat_punch_matches_sadowsky() {
+    let r = solved(&example("indentation_flat_punch.json"));
+    let (p, b) = (10.0, 1.0);
+    assert!((r.resultant.fy + p).abs() < 1e-10 * p, "fy {}", r.resultant.fy);
+    let punch = &r.punches[0];
+    assert!((punch.p2 + p).abs() < 1e-10 * p && punch.m.abs() < 1e-10 * p * b);
+    assert!(punch.alpha2 < 0.0, "the punch moves down into the block");
+    assert!(!punch.unique, "a frictionless flat punch may slide: not unique");
+    assert_eq!(r.pairs[0].zones.len(), 1);
+    let z = r.pairs[0].zones[0];
+    assert!(
+        (z[0] + b).abs() < 1e-9 && (z[1] - b).abs() < 1e-9,
+        "the whole face is in contact: {z:?}"
+    );
+    for q in &r.pairs[0].points {
+        if q.x.abs() <= 0.8 * b + 1e-9 {
+            let exact = p / (std::f64::consts::PI * (b * b - q.x * q.x).sqrt());
+            assert!(
+                (q.pressure / exact - 1.0).abs() < 0.02,
+                "x = {}: {} vs {exact}",
+                q.x,
+                q.pressure
+            );
+        }
+    }
+    assert_kkt(&r, 1e-8);
+}
+
+/// Circular punch R = 8 under P = 10: Hertz half-width and peak within 2 %
+/// (zone ends on nodes spaced 0.01 = 1.5 % of a).
+#[test]
+fn circular_punch_matches_hertz() {
+    let r = solved(&example("indentation_circular_punch.json"));
+    let (a, p0) = hertz(10.0, 8.0, 200.0, 0.3);
+    assert!((half_width(&r) / a - 1.0).abs() < 0.02);
+    assert!((peak_pressure(&r) / p0 - 1.0).abs() < 0.02);
+    assert!((r.resultant.fy + 10.0).abs() < 1e-10 * 10.0);
+    assert_kkt(&r, 1e-8);
+}
+
+/// Prescribing the motion found under load control gives the load back
+/// (vertical: α2 ↔ P2; rotation: θ ↔ M with an eccentric load).
+#[test]
+fn load_and_motion_control_are_consistent() {
+    let mut req = example("indentation_flat_punch.json");
+    req["obstacles"][0]["punch"]["rotation"] = json!({ "load": 2.0 }); // eccentric: M = 2 with P2 = −10
+    let loaded = solved(&req);
+    let pu = &loaded.punches[0];
+    assert!(pu.theta != 0.0);
+    let mut by_alpha = req.clone();
+    by_alpha["obstacles"][0]["punch"]["vertical"] = json!({ "displacement": pu.alpha2 });
+    let r = solved(&by_alpha);
+    assert!(
+        (r.punches[0].p2 - pu.p2).abs() <= 1e-8 * pu.p2.abs(),
+        "{} vs {}",
+        r.punches[0].p2,
+        pu.p2
+    );
+    let mut by_theta = req.clone();
+    by_theta["obstacles"][0]["punch"]["rotation"] = json!({ "displacement": pu.theta });
+    let r = solved(&by_theta);
+    assert!((r.punches[0].m - 2.0).abs() <= 1e-8 * 2.0, "M {}", r.punches[0].m);
+}
+
+/// Fichera: loads no non-negative pressure can balance are refused, naming the
+/// component and its admissible range.
+#[test]
+fn incompatible_loads_are_refused() {
+    let cases = [
+        ("horizontal", json!({ "load": 1.0 })), // a flat punch carries no P1
+        ("vertical", json!({ "load": 10.0 })),  // pulling the punch off
+        ("rotation", json!({ "load": 20.0 })),  // |M| must stay below P2·b = 10
+    ];
+    for (component, control) in cases {
+        let mut req = example("indentation_flat_punch.json");
+        req["obstacles"][0]["punch"][component] = control;
+        let e = solve(&req).expect_err("incompatible loads must be refused");
+        assert_eq!(e.code, ErrorCode::IncompatibleLoads, "{component}: {e:?}");
+        // M = 20 with P2 = −10 can be mended on either: the path names one of them.
+        let ok = e.path == format!("/obstacles/0/punch/{component}/load")
+            || (component == "rotation" && e.path == "/obstacles/0/punch/vertical/load");
+        assert!(ok, "{e:?}");
+    }
+    // Given P2 = −10 the moment's admissible range is [P2·b, −P2·b] = [−10, 10]
+    // (to the LP's tolerance, 1e-5 relative): the message names it.
+    let mut req = example("indentation_flat_punch.json");
+    req["obstacles"][0]["punch"]["rotation"] = json!({ "load": 20.0 });
+    let msg = solve(&req).unwrap_err().message;
+    let range = msg.split("rotation load").nth(1).expect("rotation range named");
+    let nums: Vec<f64> = range
+        .split(['[', ']', ','])
+        .filter_map(|t| t.trim().parse().ok())
+        .collect();
+    assert!(nums.len() >= 2, "{msg}");
+    assert!((nums[0] + 10.0).abs() < 1e-3 && (nums[1] - 10.0).abs() < 1e-3, "{msg}");
+}
