@@ -145,11 +145,25 @@ fn lawson_hanson(w: &Mat<f64>, q: &[f64], max_outer: usize) -> LcpResult {
 /// Starts from every candidate under a punch (or penetrating), which for a flat
 /// punch is the answer and for a curved one shrinks in a few steps.
 pub fn solve_mlcp(w: &Mat<f64>, q: &[f64], c: &Mat<f64>, r: &[f64], s: &SolverSettings) -> (LcpResult, Vec<f64>) {
+    let start = (0..q.len())
+        .map(|i| q[i] < 0.0 || (0..c.ncols()).any(|j| c[(i, j)] != 0.0))
+        .collect();
+    solve_mlcp_from(w, q, c, r, s, start)
+}
+
+/// `solve_mlcp` from a given initial active set (warm start, crossover).
+pub fn solve_mlcp_from(
+    w: &Mat<f64>,
+    q: &[f64],
+    c: &Mat<f64>,
+    r: &[f64],
+    s: &SolverSettings,
+    mut active: Vec<bool>,
+) -> (LcpResult, Vec<f64>) {
     let m = q.len();
     let k = c.ncols();
     let diag_mean = (0..m).map(|i| w[(i, i)]).sum::<f64>() / m.max(1) as f64;
     let cpar = 1.0 / diag_mean;
-    let mut active: Vec<bool> = (0..m).map(|i| q[i] < 0.0 || (0..k).any(|j| c[(i, j)] != 0.0)).collect();
     let mut lambda = vec![0.0; m];
     let mut beta = vec![0.0; k];
     let mut seen: Vec<Vec<bool>> = Vec::new();
@@ -195,7 +209,7 @@ pub fn solve_mlcp(w: &Mat<f64>, q: &[f64], c: &Mat<f64>, r: &[f64], s: &SolverSe
 }
 
 /// [W_AA C_A; C_Aᵀ 0][λ_A; β] = [−q_A; r]; None if singular.
-fn saddle(w: &Mat<f64>, q: &[f64], c: &Mat<f64>, r: &[f64], idx: &[usize]) -> Option<(Vec<f64>, Vec<f64>)> {
+pub fn saddle(w: &Mat<f64>, q: &[f64], c: &Mat<f64>, r: &[f64], idx: &[usize]) -> Option<(Vec<f64>, Vec<f64>)> {
     let (a, k) = (idx.len(), c.ncols());
     if a == 0 {
         return None;

@@ -17,25 +17,55 @@ use crate::linalg::dense::{matvec, solve_principal};
 use crate::proto::SolverSettings;
 
 pub fn solve_barrier(w: &Mat<f64>, q: &[f64], weights: &[f64], zeta: f64, s: &SolverSettings) -> LcpResult {
+    solve_barrier_mixed(w, q, &Mat::<f64>::zeros(q.len(), 0), &[], weights, zeta, s).0
+}
+
+/// With load-controlled punches: unknowns (λ, β), F = (λ∘(Wλ + q + Cβ) − ζw,
+/// Cᵀλ − r), the Newton system [diag(gap/λ) + W, C; Cᵀ, 0] solved as a saddle point.
+pub fn solve_barrier_mixed(
+    w: &Mat<f64>,
+    q: &[f64],
+    c: &Mat<f64>,
+    r: &[f64],
+    weights: &[f64],
+    zeta: f64,
+    s: &SolverSettings,
+) -> (LcpResult, Vec<f64>) {
+    let k = c.ncols();
+    let mut beta = vec![0.0; k];
     let m = q.len();
-    let fail = |lambda: Vec<f64>, iterations| LcpResult {
-        lambda,
-        iterations,
-        converged: false,
+    let fail = |lambda: Vec<f64>, iterations, beta: Vec<f64>| {
+        (
+            LcpResult {
+                lambda,
+                iterations,
+                converged: false,
+            },
+            beta,
+        )
     };
     // Strictly feasible start: λ = t·1 with W·1 > 0 and t large enough that gap > 0.
     let ones = vec![1.0; m];
     let w1 = matvec(w, &ones);
     if w1.iter().any(|&v| v <= 0.0) {
-        return fail(vec![0.0; m], 0);
+        return fail(vec![0.0; m], 0, beta);
     }
     let t = (0..m).map(|i| (-q[i] / w1[i]).max(0.0)).fold(0.0f64, f64::max);
     let qmax = q.iter().fold(0.0f64, |a, v| a.max(v.abs()));
     let dmax = (0..m).map(|i| w[(i, i)]).fold(0.0f64, f64::max);
-    let mut lambda = vec![2.0 * t + qmax / dmax; m];
-    let gap_of = |l: &[f64]| -> Vec<f64> { matvec(w, l).iter().zip(q).map(|(a, b)| a + b).collect() };
+    // Scale of the start: the gaps' (q/W) or, when every gap is zero (a flat punch
+    // resting on the surface), the punch loads shared by the candidates.
+    let rmax = r.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let base = (qmax / dmax).max(rmax / m as f64).max(f64::MIN_POSITIVE);
+    let mut lambda = vec![2.0 * t + base; m];
+    let gap_of = |l: &[f64], b: &[f64]| -> Vec<f64> {
+        let wl = matvec(w, l);
+        (0..m)
+            .map(|i| wl[i] + q[i] + (0..k).map(|j| c[(i, j)] * b[j]).sum::<f64>())
+            .collect()
+    };
     // Start ζ at the average centring of the start point, never below the target.
-    let g0 = gap_of(&lambda);
+    let g0 = gap_of(&lambda, &beta);
     let mut z = ((0..m).map(|i| lambda[i] * g0[i] / weights[i]).sum::<f64>() / m as f64).max(zeta);
     let all: Vec<usize> = (0..m).collect();
     let mut iterations = 0;
@@ -43,9 +73,16 @@ pub fn solve_barrier(w: &Mat<f64>, q: &[f64], weights: &[f64], zeta: f64, s: &So
         // Newton on the current ζ.
         let mut converged = false;
         for _ in 0..s.max_iterations {
-            let gap = gap_of(&lambda);
+            let gap = gap_of(&lambda, &beta);
             let f: Vec<f64> = (0..m).map(|i| lambda[i] * gap[i] - z * weights[i]).collect();
-            let fnorm = (0..m).map(|i| (f[i] / (z * weights[i])).abs()).fold(0.0f64, f64::max);
+            let f2: Vec<f64> = (0..k)
+                .map(|j| (0..m).map(|i| c[(i, j)] * lambda[i]).sum::<f64>() - r[j])
+                .collect();
+            let f2_scale = r.iter().fold(0.0f64, |a, v| a.max(v.abs())).max(f64::MIN_POSITIVE);
+            let fnorm = (0..m)
+                .map(|i| (f[i] / (z * weights[i])).abs())
+                .chain(f2.iter().map(|v| v.abs() / f2_scale))
+                .fold(0.0f64, f64::max);
             // Loose centring on the way down; at the requested ζ, 1e-6 relative
             // (round-off in gap = Wλ + q limits it near contact, and the barrier's
             // own error in the pressure is far larger).
@@ -59,11 +96,25 @@ pub fn solve_barrier(w: &Mat<f64>, q: &[f64], weights: &[f64], zeta: f64, s: &So
             for i in 0..m {
                 j[(i, i)] += gap[i] / lambda[i];
             }
-            let rhs: Vec<f64> = (0..m).map(|i| -f[i] / lambda[i]).collect();
-            let Some(dl) = solve_principal(&j, &all, &rhs) else {
-                return fail(lambda, iterations);
+            let (dl, db) = if k == 0 {
+                let rhs: Vec<f64> = (0..m).map(|i| -f[i] / lambda[i]).collect();
+                let Some(dl) = solve_principal(&j, &all, &rhs) else {
+                    return fail(lambda, iterations, beta);
+                };
+                (dl, Vec::new())
+            } else {
+                // [J C; Cᵀ 0][Δλ; Δβ] = [−F/λ; −F2]
+                let fq: Vec<f64> = (0..m).map(|i| f[i] / lambda[i]).collect();
+                let fr: Vec<f64> = f2.iter().map(|v| -v).collect();
+                let Some(step) = crate::methods::active_set::saddle(&j, &fq, c, &fr, &all) else {
+                    return fail(lambda, iterations, beta);
+                };
+                step
             };
-            let dg = matvec(w, &dl);
+            let dwl = matvec(w, &dl);
+            let dg: Vec<f64> = (0..m)
+                .map(|i| dwl[i] + (0..k).map(|t| c[(i, t)] * db[t]).sum::<f64>())
+                .collect();
             let mut alpha: f64 = 1.0;
             for i in 0..m {
                 if dl[i] < 0.0 {
@@ -76,16 +127,22 @@ pub fn solve_barrier(w: &Mat<f64>, q: &[f64], weights: &[f64], zeta: f64, s: &So
             for i in 0..m {
                 lambda[i] += alpha * dl[i];
             }
+            for t in 0..k {
+                beta[t] += alpha * db[t];
+            }
         }
         if !converged {
-            return fail(lambda, iterations);
+            return fail(lambda, iterations, beta);
         }
         if z <= zeta {
-            return LcpResult {
-                lambda,
-                iterations,
-                converged: true,
-            };
+            return (
+                LcpResult {
+                    lambda,
+                    iterations,
+                    converged: true,
+                },
+                beta,
+            );
         }
         z = (0.1 * z).max(zeta);
     }

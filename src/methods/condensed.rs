@@ -76,15 +76,21 @@ pub fn solve_condensed(
     })
 }
 
-/// As `solve_condensed`, with load-controlled punch motions β_F: the mixed LCP
-/// of `active_set::solve_mlcp`.
-pub fn solve_condensed_mixed(p: &Problem, pb: &super::PunchBlock) -> Result<Solution, CoreError> {
+/// As `solve_condensed`, with load-controlled punch motions β_F: a mixed LCP
+/// (equilibrium of the punches as equality constraints).
+pub fn solve_condensed_mixed(
+    p: &Problem,
+    pb: &super::PunchBlock,
+    name: &'static str,
+    exact: bool,
+    mlcp: super::MixedSolver,
+) -> Result<Solution, CoreError> {
     let t = Instant::now();
     let op = p.op;
     let u0 = op.chol.solve(p.f);
     let bu0 = p.cons.apply(&u0);
     let q: Vec<f64> = p.cons.candidates.iter().zip(&bu0).map(|(c, b)| c.g - b).collect();
-    let (res, beta) = super::active_set::solve_mlcp(&op.w, &q, pb.c, pb.rhs, p.settings);
+    let (res, beta) = mlcp(&op.w, &q);
     let wl = dense::matvec(&op.w, &res.lambda);
     let in_contact = (0..q.len())
         .map(|i| {
@@ -103,8 +109,8 @@ pub fn solve_condensed_mixed(p: &Problem, pb: &super::PunchBlock) -> Result<Solu
         in_contact,
         iterations: res.iterations,
         converged: res.converged,
-        method: "active_set",
-        exact: true,
+        method: name,
+        exact,
         t_contact: t.elapsed().as_secs_f64(),
     })
 }

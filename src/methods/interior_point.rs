@@ -124,3 +124,85 @@ fn polish(w: &Mat<f64>, q: &[f64], lambda: &[f64]) -> Option<Vec<f64>> {
     let feasible = la.iter().all(|&l| l >= 0.0) && (0..m).all(|i| out[i] > 0.0 || gap[i] >= -1e-12 * qmax);
     feasible.then_some(out)
 }
+
+/// The mixed problem with load-controlled punches: min ½λᵀWλ + qᵀλ over λ ≥ 0
+/// with C_Fᵀλ = r (Clarabel's zero cone; its multipliers are the punch motions
+/// β), then the active-set iteration from Clarabel's active set.
+pub fn solve_mlcp(w: &Mat<f64>, q: &[f64], c: &Mat<f64>, r: &[f64], s: &SolverSettings) -> (LcpResult, Vec<f64>) {
+    use clarabel::solver::ZeroConeT;
+    let (m, k) = (q.len(), c.ncols());
+    let dmax = (0..m).map(|i| w[(i, i)]).fold(0.0f64, f64::max);
+    let scale = q
+        .iter()
+        .chain(r)
+        .fold(0.0f64, |a, v| a.max(v.abs()))
+        .max(f64::MIN_POSITIVE);
+    let sigma = scale / dmax.max(f64::MIN_POSITIVE);
+    let mut colptr = Vec::with_capacity(m + 1);
+    let mut rowval = Vec::new();
+    let mut nzval = Vec::new();
+    colptr.push(0);
+    for j in 0..m {
+        for i in 0..=j {
+            rowval.push(i);
+            nzval.push(w[(i, j)]);
+        }
+        colptr.push(rowval.len());
+    }
+    let p = CscMatrix::new(m, m, colptr, rowval, nzval);
+    let qs: Vec<f64> = q.iter().map(|v| v / sigma).collect();
+    let (mut rows, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
+    for j in 0..k {
+        for i in 0..m {
+            if c[(i, j)] != 0.0 {
+                rows.push(j);
+                cols.push(i);
+                vals.push(c[(i, j)]);
+            }
+        }
+    }
+    for i in 0..m {
+        rows.push(k + i);
+        cols.push(i);
+        vals.push(-1.0);
+    }
+    let a = CscMatrix::new_from_triplets(k + m, m, rows, cols, vals);
+    let mut b: Vec<f64> = r.iter().map(|v| v / sigma).collect();
+    b.extend(std::iter::repeat_n(0.0, m));
+    let tol = (1e-2 * s.tolerance).max(1e-13);
+    let settings = DefaultSettingsBuilder::default()
+        .verbose(false)
+        .max_iter(s.max_iterations as u32)
+        .tol_gap_abs(tol)
+        .tol_gap_rel(tol)
+        .tol_feas(tol)
+        .build()
+        .expect("static clarabel settings are valid");
+    let cones = [ZeroConeT(k), NonnegativeConeT(m)];
+    let failed = || {
+        (
+            LcpResult {
+                lambda: vec![0.0; m],
+                iterations: 0,
+                converged: false,
+            },
+            vec![0.0; k],
+        )
+    };
+    let Ok(mut solver) = DefaultSolver::new(&p, &qs, &a, &b, &cones, settings) else {
+        return failed();
+    };
+    solver.solve();
+    let sol = &solver.solution;
+    if !matches!(sol.status, SolverStatus::Solved | SolverStatus::AlmostSolved) {
+        let mut f = failed();
+        f.0.iterations = sol.iterations as usize;
+        return f;
+    }
+    let lambda: Vec<f64> = sol.x.iter().map(|v| (v * sigma).max(0.0)).collect();
+    // The gap is the multiplier of λ ≥ 0 (scaled by σ like q).
+    let start: Vec<bool> = (0..m).map(|i| lambda[i] * w[(i, i)] > sol.z[k + i] * sigma).collect();
+    let (mut res, beta) = super::active_set::solve_mlcp_from(w, q, c, r, s, start);
+    res.iterations += sol.iterations as usize;
+    (res, beta)
+}

@@ -38,6 +38,9 @@ pub struct Problem<'a> {
     pub punch: Option<PunchBlock<'a>>,
 }
 
+/// A solver of the mixed LCP (W, q) with the punch block bound in: returns (λ, β).
+pub type MixedSolver<'a> = &'a dyn Fn(&faer::Mat<f64>, &[f64]) -> (LcpResult, Vec<f64>);
+
 pub struct PunchBlock<'a> {
     pub c: &'a faer::Mat<f64>,
     pub rhs: &'a [f64],
@@ -80,13 +83,26 @@ pub fn solve(problem: &Problem, method: MethodName) -> Result<Solution, CoreErro
     };
     let s = problem.settings;
     if let Some(pb) = &problem.punch {
+        let (c, r) = (pb.c, pb.rhs);
+        let run = |name: &'static str, exact: bool, mlcp: MixedSolver| {
+            condensed::solve_condensed_mixed(problem, pb, name, exact, mlcp)
+        };
         return match method {
-            MethodName::Auto | MethodName::ActiveSet => condensed::solve_condensed_mixed(problem, pb),
-            other => Err(CoreError::invalid(
-                crate::error::InvalidKind::Request,
-                "/method",
-                format!("load-controlled punches are solved by active_set (and auto) so far, not {other:?}"),
-            )),
+            MethodName::Auto | MethodName::ActiveSet => {
+                run("active_set", true, &|w, q| active_set::solve_mlcp(w, q, c, r, s))
+            }
+            MethodName::InteriorPoint => run("interior_point", true, &|w, q| {
+                interior_point::solve_mlcp(w, q, c, r, s)
+            }),
+            MethodName::Penalty => run("penalty", false, &|w, q| {
+                penalty::solve_penalty_mixed(w, q, c, r, &d, s)
+            }),
+            MethodName::AugmentedLagrangian => run("augmented_lagrangian", true, &|w, q| {
+                penalty::solve_augmented_lagrangian_mixed(w, q, c, r, &d, s)
+            }),
+            MethodName::Barrier => run("barrier", false, &|w, q| {
+                barrier::solve_barrier_mixed(w, q, c, r, &weights, problem.barrier, s)
+            }),
         };
     }
     match method {

@@ -98,3 +98,81 @@ pub fn solve_augmented_lagrangian(w: &Mat<f64>, q: &[f64], d: &[f64], s: &Solver
         converged: false,
     }
 }
+
+/// W + D⁻¹: with springs of stiffness D the penalty problem is the LCP
+/// λ ≥ 0, (W + D⁻¹)λ + q + Cβ ≥ 0, complementary, since λ_i = −D_i gap_i where
+/// λ_i > 0. Used for scenes with load-controlled punches.
+fn with_springs(w: &Mat<f64>, d: &[f64]) -> Mat<f64> {
+    let mut wd = w.clone();
+    for (i, di) in d.iter().enumerate() {
+        wd[(i, i)] += 1.0 / di;
+    }
+    wd
+}
+
+pub fn solve_penalty_mixed(
+    w: &Mat<f64>,
+    q: &[f64],
+    c: &Mat<f64>,
+    r: &[f64],
+    d: &[f64],
+    s: &SolverSettings,
+) -> (LcpResult, Vec<f64>) {
+    super::active_set::solve_mlcp(&with_springs(w, d), q, c, r, s)
+}
+
+/// ALM step: λ = max(0, μ − D·gap) is the LCP with W + D⁻¹ and q − D⁻¹μ.
+pub fn solve_augmented_lagrangian_mixed(
+    w: &Mat<f64>,
+    q: &[f64],
+    c: &Mat<f64>,
+    r: &[f64],
+    d: &[f64],
+    s: &SolverSettings,
+) -> (LcpResult, Vec<f64>) {
+    let wd = with_springs(w, d);
+    let m = q.len();
+    let mut mu = vec![0.0; m];
+    let mut total = 0;
+    let mut beta = vec![0.0; c.ncols()];
+    for _ in 0..s.max_iterations {
+        let qs: Vec<f64> = (0..m).map(|i| q[i] - mu[i] / d[i]).collect();
+        let (res, b) = super::active_set::solve_mlcp(&wd, &qs, c, r, s);
+        total += res.iterations;
+        beta = b;
+        if !res.converged {
+            return (
+                LcpResult {
+                    iterations: total,
+                    ..res
+                },
+                beta,
+            );
+        }
+        let change = res
+            .lambda
+            .iter()
+            .zip(&mu)
+            .fold(0.0f64, |a, (l, m)| a.max((l - m).abs()));
+        let scale = res.lambda.iter().fold(0.0f64, |a, l| a.max(l.abs()));
+        mu = res.lambda;
+        if change <= 1e-2 * s.tolerance * scale {
+            return (
+                LcpResult {
+                    lambda: mu,
+                    iterations: total,
+                    converged: true,
+                },
+                beta,
+            );
+        }
+    }
+    (
+        LcpResult {
+            lambda: mu,
+            iterations: total,
+            converged: false,
+        },
+        beta,
+    )
+}
