@@ -318,6 +318,9 @@ impl PunchSetup {
     }
 }
 
+/// Largest problem the full-system interior point accepts.
+const FULL_IPM_MAX_DOFS: usize = 200_000;
+
 /// Full-system exact methods: no condensation, no cache (they are the comparison).
 fn solve_full(
     scene: &Scene,
@@ -336,7 +339,20 @@ fn solve_full(
         MethodName::Auto | MethodName::ActiveSet => {
             methods::full::solve_active_set(&stiffness.k, &f, &cons, &g, &scene.settings)?
         }
-        MethodName::InteriorPoint => methods::full::solve_interior_point(&stiffness.k, &f, &cons, &g, &scene.settings)?,
+        MethodName::InteriorPoint => {
+            // Clarabel on the full QP needs ~4 GB and a minute at 1M DOF (measured in
+            // ../shared/DEPENDENCIES.md); it is a comparison, not a production path.
+            if dofs.n_free > FULL_IPM_MAX_DOFS {
+                return Err(CoreError::TooLarge {
+                    path: "/settings/formulation".into(),
+                    reason: format!(
+                        "interior_point on the full formulation is limited to {FULL_IPM_MAX_DOFS} DOFs ({} requested); use the condensed formulation",
+                        dofs.n_free
+                    ),
+                });
+            }
+            methods::full::solve_interior_point(&stiffness.k, &f, &cons, &g, &scene.settings)?
+        }
         other => {
             return Err(CoreError::invalid(
                 InvalidKind::Request,

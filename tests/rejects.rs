@@ -130,3 +130,17 @@ fn too_large_is_refused_before_meshing() {
     r["bodies"][0]["mesh"]["rectangle"]["grading"]["extent"] = json!(20.0);
     expect(&r, ErrorCode::TooLarge, "/bodies");
 }
+
+/// The dense condensed operator grows as m²: past the deployment's candidate
+/// limit the request is refused before anything is factored.
+#[test]
+fn too_many_candidates_are_refused() {
+    let req = example("signorini_roller_on_flat.json");
+    let limits = contact::scene::Limits {
+        max_candidates: 100,
+        ..Default::default()
+    };
+    let e = contact::solve_bytes(serde_json::to_string(&req).unwrap().as_bytes(), &limits).unwrap_err();
+    assert_eq!(e.code, ErrorCode::TooLarge);
+    assert_eq!(e.path, "/contacts");
+}

@@ -17,7 +17,9 @@ use crate::scene::{Psi, Punch};
 pub struct Limits {
     /// Largest number of degrees of freedom (2 per node, before supports).
     pub max_dofs: usize,
-    /// Largest number of contact candidates over all pairs.
+    /// Largest number of contact candidates over all pairs. The condensed
+    /// operator is dense: about 56·m² bytes (W, the trailing factor and Bᵀ), so
+    /// 4000 candidates take about 0.9 GB.
     pub max_candidates: usize,
 }
 
@@ -25,7 +27,7 @@ impl Default for Limits {
     fn default() -> Self {
         Self {
             max_dofs: 2_500_000,
-            max_candidates: 20_000,
+            max_candidates: 4_000,
         }
     }
 }

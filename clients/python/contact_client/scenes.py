@@ -17,6 +17,8 @@ from __future__ import annotations
 import math
 
 __all__ = [
+    "punch_on_block",
+    "sadowsky_pressure",
     "hertz_cylinder",
     "hertz_reference",
     "hertz_pressure",
@@ -164,3 +166,70 @@ def hertz_measure(reply: dict, pair: int = 0) -> dict:
         "zone": (x0, x1),
         "h_edge": max(spacing_beyond(x0, -1), spacing_beyond(x1, +1)),
     }
+
+
+def punch_on_block(
+    profile: dict,
+    load: float = 10.0,
+    moment: float = 0.0,
+    horizontal_load: float = 0.0,
+    youngs_modulus: float = 200.0,
+    poisson_ratio: float = 0.3,
+    width: float = 40.0,
+    depth: float = 20.0,
+    h_min: float = 0.01,
+    extent: float = 1.2,
+    element: str = "t3",
+    method: str = "auto",
+) -> dict:
+    """Request: a rigid punch pressed with ``load`` (force per unit thickness,
+    downward) into the top face (y = 0) of an elastic block ``width`` x ``depth``
+    with its bottom fixed, plane strain. The punch's reference point is the
+    origin; its profile is one of the protocol's ``psi`` forms, e.g.
+    ``{"flat": {"half_width": 1.0}}`` (Sadowsky) or ``{"circle": {"radius": 8.0}}``
+    (Hertz). ``moment`` (counter-clockwise, about the origin) and
+    ``horizontal_load`` act on the punch; all three motions are load-controlled.
+    The mesh is uniform at ``h_min`` within ``extent`` of the origin (cover the
+    contact zone) and graded by 1.1 up to size 1 elsewhere.
+    """
+    return {
+        "version": PROTOCOL_VERSION,
+        "description": f"rigid punch {profile} pressed with P = {load} into an elastic block {width} x {depth}",
+        "analysis": "plane_strain",
+        "bodies": [
+            {
+                "name": "block",
+                "material": {"youngs_modulus": youngs_modulus, "poisson_ratio": poisson_ratio},
+                "mesh": {
+                    "rectangle": {
+                        "corner": [-0.5 * width, -depth],
+                        "width": width,
+                        "height": depth,
+                        "size": 1.0,
+                        "element": element,
+                        "grading": {"focus": [0.0, 0.0], "h_min": h_min, "ratio": 1.1, "extent": extent},
+                    }
+                },
+                "supports": [{"edges": "bottom", "ux": 0.0, "uy": 0.0}],
+            }
+        ],
+        "obstacles": [
+            {
+                "name": "punch",
+                "shape": {"profile": {"reference": [0.0, 0.0], "psi": profile}},
+                "punch": {
+                    "reference": [0.0, 0.0],
+                    "horizontal": {"load": horizontal_load},
+                    "vertical": {"load": -load},
+                    "rotation": {"load": moment},
+                },
+            }
+        ],
+        "contacts": [{"body": "block", "edges": "top", "obstacle": "punch"}],
+        "method": method,
+    }
+
+
+def sadowsky_pressure(x: float, P: float, b: float) -> float:
+    """Pressure under a rigid flat punch of half-width b with a centred load P (|x| < b)."""
+    return P / (math.pi * math.sqrt(b * b - x * x)) if abs(x) < b else 0.0

@@ -1,0 +1,39 @@
+"""Rigid punches through zenoh: Sadowsky and Hertz references, and the
+structured refusal of loads no contact can balance."""
+
+from __future__ import annotations
+
+import pytest
+
+from contact_client import ContactError, scenes
+
+
+def test_flat_punch_sadowsky(client):
+    reply = client.solve(scenes.punch_on_block({"flat": {"half_width": 1.0}}, load=10.0))
+    assert reply["status"] == "solved"
+    assert abs(reply["resultant"]["fy"] + 10.0) < 1e-9
+    punch = reply["punches"][0]
+    assert punch["unique"] is False  # a frictionless flat punch may slide
+    # Away from the singular corners the nodal pressure follows P/(pi sqrt(b^2-x^2));
+    # 2 % covers the mesh (h = b/100) and the block's finite depth (20 b).
+    for p in reply["pairs"][0]["points"]:
+        if abs(p["x"]) <= 0.8:
+            exact = scenes.sadowsky_pressure(p["x"], 10.0, 1.0)
+            assert abs(p["pressure"] / exact - 1.0) < 0.02
+
+
+def test_circular_punch_hertz(client):
+    reply = client.solve(scenes.punch_on_block({"circle": {"radius": 8.0}}, load=10.0, extent=0.8))
+    a, p0 = scenes.hertz_reference(10.0, 8.0, 200.0, 0.3)
+    zone = reply["pairs"][0]["zones"][0]
+    peak = max(p["pressure"] for p in reply["pairs"][0]["points"])
+    assert abs(0.5 * (zone[1] - zone[0]) / a - 1.0) < 0.02  # zone ends on nodes 0.01 apart (1.5 % of a)
+    assert abs(peak / p0 - 1.0) < 0.02
+
+
+def test_moment_out_of_range_is_refused(client):
+    with pytest.raises(ContactError) as err:
+        client.solve(scenes.punch_on_block({"flat": {"half_width": 1.0}}, load=10.0, moment=20.0))
+    assert err.value.code == "incompatible_loads"
+    assert err.value.path.startswith("/obstacles/0/punch/")
+    assert client.health()["solves_served"] >= 1  # still up
