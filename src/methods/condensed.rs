@@ -49,31 +49,9 @@ pub fn solve_condensed(
     exact: bool,
     lcp: &dyn Fn(&Mat<f64>, &[f64]) -> LcpResult,
 ) -> Result<Solution, CoreError> {
-    let t = Instant::now();
-    let op = p.op;
-    let u0 = op.chol.solve(p.f);
-    let bu0 = p.cons.apply(&u0);
-    let q: Vec<f64> = p.cons.candidates.iter().zip(&bu0).map(|(c, b)| c.g - b).collect();
-    let res = lcp(&op.w, &q);
-    let wl = dense::matvec(&op.w, &res.lambda);
-    let in_contact = (0..q.len())
-        .map(|i| res.lambda[i] > 0.0 && res.lambda[i] * op.w[(i, i)] > wl[i] + q[i])
-        .collect();
-    let mut rhs = p.f.to_vec();
-    let neg: Vec<f64> = res.lambda.iter().map(|l| -l).collect();
-    p.cons.apply_transpose_into(&neg, &mut rhs);
-    let u = op.chol.solve(&rhs);
-    Ok(Solution {
-        u,
-        lambda: res.lambda,
-        beta: Vec::new(),
-        in_contact,
-        iterations: res.iterations,
-        converged: res.converged,
-        method: name,
-        exact,
-        t_contact: t.elapsed().as_secs_f64(),
-    })
+    let none = Mat::<f64>::zeros(p.cons.len(), 0);
+    let pb = super::PunchBlock { c: &none, rhs: &[] };
+    solve_condensed_mixed(p, &pb, name, exact, &|w, q| (lcp(w, q), Vec::new()))
 }
 
 /// As `solve_condensed`, with load-controlled punch motions β_F: a mixed LCP

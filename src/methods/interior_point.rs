@@ -41,19 +41,7 @@ pub fn solve_lcp(w: &Mat<f64>, q: &[f64], s: &SolverSettings) -> LcpResult {
         };
     }
     let sigma = qmax / dmax;
-    // Upper triangle of W, column by column, rows sorted.
-    let mut colptr = Vec::with_capacity(m + 1);
-    let mut rowval = Vec::with_capacity(m * (m + 1) / 2);
-    let mut nzval = Vec::with_capacity(m * (m + 1) / 2);
-    colptr.push(0);
-    for j in 0..m {
-        for i in 0..=j {
-            rowval.push(i);
-            nzval.push(w[(i, j)]);
-        }
-        colptr.push(rowval.len());
-    }
-    let p = CscMatrix::new(m, m, colptr, rowval, nzval);
+    let p = upper_triangle(w);
     let qs: Vec<f64> = q.iter().map(|v| v / sigma).collect();
     let a = CscMatrix::new(m, m, (0..=m).collect(), (0..m).collect(), vec![-1.0; m]);
     let b = vec![0.0; m];
@@ -138,18 +126,7 @@ pub fn solve_mlcp(w: &Mat<f64>, q: &[f64], c: &Mat<f64>, r: &[f64], s: &SolverSe
         .fold(0.0f64, |a, v| a.max(v.abs()))
         .max(f64::MIN_POSITIVE);
     let sigma = scale / dmax.max(f64::MIN_POSITIVE);
-    let mut colptr = Vec::with_capacity(m + 1);
-    let mut rowval = Vec::new();
-    let mut nzval = Vec::new();
-    colptr.push(0);
-    for j in 0..m {
-        for i in 0..=j {
-            rowval.push(i);
-            nzval.push(w[(i, j)]);
-        }
-        colptr.push(rowval.len());
-    }
-    let p = CscMatrix::new(m, m, colptr, rowval, nzval);
+    let p = upper_triangle(w);
     let qs: Vec<f64> = q.iter().map(|v| v / sigma).collect();
     let (mut rows, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
     for j in 0..k {
@@ -205,4 +182,21 @@ pub fn solve_mlcp(w: &Mat<f64>, q: &[f64], c: &Mat<f64>, r: &[f64], s: &SolverSe
     let (mut res, beta) = super::active_set::solve_mlcp_from(w, q, c, r, s, start);
     res.iterations += sol.iterations as usize;
     (res, beta)
+}
+
+/// The upper triangle of the dense W as Clarabel's P (column by column, rows sorted).
+fn upper_triangle(w: &Mat<f64>) -> CscMatrix<f64> {
+    let m = w.nrows();
+    let mut colptr = Vec::with_capacity(m + 1);
+    let mut rowval = Vec::with_capacity(m * (m + 1) / 2);
+    let mut nzval = Vec::with_capacity(m * (m + 1) / 2);
+    colptr.push(0);
+    for j in 0..m {
+        for i in 0..=j {
+            rowval.push(i);
+            nzval.push(w[(i, j)]);
+        }
+        colptr.push(rowval.len());
+    }
+    CscMatrix::new(m, m, colptr, rowval, nzval)
 }
