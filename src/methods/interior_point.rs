@@ -45,16 +45,8 @@ pub fn solve_lcp(w: &Mat<f64>, q: &[f64], s: &SolverSettings) -> LcpResult {
     let qs: Vec<f64> = q.iter().map(|v| v / sigma).collect();
     let a = CscMatrix::new(m, m, (0..=m).collect(), (0..m).collect(), vec![-1.0; m]);
     let b = vec![0.0; m];
-    let tol = (1e-2 * s.tolerance).max(1e-13);
-    let settings = DefaultSettingsBuilder::default()
-        .verbose(false)
-        .max_iter(s.max_iterations as u32)
-        .tol_gap_abs(tol)
-        .tol_gap_rel(tol)
-        .tol_feas(tol)
-        .tol_ktratio(1e-8)
-        .build()
-        .expect("static clarabel settings are valid");
+    let mut settings = clarabel_settings(s);
+    settings.tol_ktratio = 1e-8;
     let cones = [NonnegativeConeT(m)];
     let Ok(mut solver) = DefaultSolver::new(&p, &qs, &a, &b, &cones, settings) else {
         return LcpResult {
@@ -146,15 +138,7 @@ pub fn solve_mlcp(w: &Mat<f64>, q: &[f64], c: &Mat<f64>, r: &[f64], s: &SolverSe
     let a = CscMatrix::new_from_triplets(k + m, m, rows, cols, vals);
     let mut b: Vec<f64> = r.iter().map(|v| v / sigma).collect();
     b.extend(std::iter::repeat_n(0.0, m));
-    let tol = (1e-2 * s.tolerance).max(1e-13);
-    let settings = DefaultSettingsBuilder::default()
-        .verbose(false)
-        .max_iter(s.max_iterations as u32)
-        .tol_gap_abs(tol)
-        .tol_gap_rel(tol)
-        .tol_feas(tol)
-        .build()
-        .expect("static clarabel settings are valid");
+    let settings = clarabel_settings(s);
     let cones = [ZeroConeT(k), NonnegativeConeT(m)];
     let failed = || {
         (
@@ -199,4 +183,18 @@ fn upper_triangle(w: &Mat<f64>) -> CscMatrix<f64> {
         colptr.push(rowval.len());
     }
     CscMatrix::new(m, m, colptr, rowval, nzval)
+}
+
+/// Clarabel with tolerances two orders below ours (the crossover then makes the
+/// answer exact), capped at round-off.
+fn clarabel_settings(s: &SolverSettings) -> clarabel::solver::DefaultSettings<f64> {
+    let tol = (1e-2 * s.tolerance).max(1e-13);
+    DefaultSettingsBuilder::default()
+        .verbose(false)
+        .max_iter(s.max_iterations as u32)
+        .tol_gap_abs(tol)
+        .tol_gap_rel(tol)
+        .tol_feas(tol)
+        .build()
+        .expect("static clarabel settings are valid")
 }
