@@ -6,7 +6,10 @@ use std::time::Instant;
 use std::sync::Arc;
 
 use crate::cache::{self, OperatorCache};
-use crate::contact;
+use crate::contact::{
+    self,
+    free_motions::{self, FreeMotions, Motion},
+};
 use crate::error::{CoreError, InvalidKind};
 use crate::fem::{self, element, material::d_matrix};
 use crate::mesh::{generate, Mesh2d};
@@ -131,8 +134,8 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
                 InvalidKind::NoContactCandidates,
                 format!("{}/edges", pair.path),
                 format!(
-                    "no node of edge set '{}' can reach obstacle '{}' along its outward normal ({} pruned: the ray misses the obstacle or the gap exceeds prune_gap_ratio × body size)",
-                    pair.edges, scene.obstacles[pair.obstacle].name, cons.pruned[p]
+                    "no node of edge set '{}' can reach {} along its outward normal ({} pruned: the ray misses the obstacle or the gap exceeds prune_gap_ratio × body size)",
+                    pair.edges, pair_target_name(scene, pair), cons.pruned[p]
                 ),
             ));
         }
@@ -147,13 +150,14 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
             ),
         });
     }
-    let punches = PunchSetup::try_new(scene, &cons)?;
+    let external = fem::assembly::external_loads(scene, &meshes, &dofs);
+    let free = FreeMotions::try_new(scene, &cons, &dofs, &meshes, &external)?;
     if scene.settings.formulation == Formulation::Full {
-        if !punches.free.is_empty() {
+        if !free.motions.is_empty() {
             return Err(CoreError::invalid(
                 InvalidKind::Request,
                 "/settings/formulation",
-                "load-controlled punches are solved on the condensed formulation only",
+                "load-controlled punches and bodies held only by contact are solved on the condensed formulation only",
             ));
         }
         return solve_full(scene, &meshes, dofs, cons, timings, t, t_start);
@@ -200,9 +204,9 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
             .barrier
             .map(|z| z / (scene.scales.modulus * scene.scales.length))
             .unwrap_or(1e-8),
-        punch: (!punches.free.is_empty()).then_some(methods::PunchBlock {
-            c: &punches.c,
-            rhs: &punches.rhs,
+        punch: (!free.is_empty()).then_some(methods::PunchBlock {
+            c: &free.c,
+            rhs: &free.rhs,
         }),
     };
     let sol = methods::solve(&problem, scene.method)?;
@@ -213,7 +217,7 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
         cons: &cons,
         k: &op.stiffness.k,
         f: &f,
-        punches: Some(&punches),
+        free: Some(&free),
     };
     Ok(finish(scene, &stage, sol, timings, t_start, cache_state))
 }
@@ -225,97 +229,7 @@ struct Stage<'a> {
     cons: &'a contact::ConstraintSet,
     k: &'a faer::sparse::SparseColMat<usize, f64>,
     f: &'a [f64],
-    punches: Option<&'a PunchSetup>,
-}
-
-/// The load-controlled punch motions of a scene after the compatibility check.
-struct PunchSetup {
-    /// (obstacle, component, nondimensional load) of each free motion kept.
-    free: Vec<(usize, usize, f64)>,
-    /// C_F (m × free) and the equilibrium right-hand side −P_F.
-    c: faer::Mat<f64>,
-    rhs: Vec<f64>,
-    /// Free motions no candidate resists (zero load): fixed at 0, not unique.
-    undetermined: Vec<(usize, usize)>,
-}
-
-const COMPONENT: [&str; 3] = ["horizontal", "vertical", "rotation"];
-
-impl PunchSetup {
-    fn try_new(scene: &Scene, cons: &contact::ConstraintSet) -> Result<Self, CoreError> {
-        let (free_all, c_all) = cons.punch_block(scene);
-        let sc = scene.scales;
-        let load_scale = |k: usize| if k == 2 { sc.moment(1.0) } else { sc.force(1.0) };
-        let mut keep = Vec::new();
-        let mut undetermined = Vec::new();
-        for (j, &(o, k, load)) in free_all.iter().enumerate() {
-            let col_max = (0..c_all.nrows()).map(|i| c_all[(i, j)].abs()).fold(0.0, f64::max);
-            if col_max <= 1e-12 {
-                if load != 0.0 {
-                    return Err(CoreError::invalid(
-                        InvalidKind::IncompatibleLoads,
-                        format!("/obstacles/{o}/punch/{}/load", COMPONENT[k]),
-                        format!(
-                            "no contact normal has a component along the {} motion of punch '{}', so contact cannot carry its load {:.6e}: it must be 0",
-                            COMPONENT[k],
-                            scene.obstacles[o].name,
-                            load * load_scale(k)
-                        ),
-                    ));
-                }
-                undetermined.push((o, k));
-            } else {
-                keep.push(j);
-            }
-        }
-        let free: Vec<(usize, usize, f64)> = keep.iter().map(|&j| free_all[j]).collect();
-        let c = faer::Mat::<f64>::from_fn(c_all.nrows(), keep.len(), |i, t| c_all[(i, keep[t])]);
-        let rhs: Vec<f64> = free.iter().map(|f| -f.2).collect();
-        if !free.is_empty() {
-            if let Err(bad) = contact::rigid::check(&c, &rhs) {
-                let fmt = |v: Option<f64>, k: usize, inf: &str| {
-                    v.map(|x| format!("{:.6e}", x * load_scale(k)))
-                        .unwrap_or_else(|| inf.to_string())
-                };
-                let ranges: Vec<String> = bad
-                    .iter()
-                    .map(|r| {
-                        let (_, k, load) = free[r.component];
-                        format!(
-                            "the {} load {:.6e} must lie in [{}, {}]",
-                            COMPONENT[k],
-                            load * load_scale(k),
-                            fmt(r.min, k, "-inf"),
-                            fmt(r.max, k, "+inf")
-                        )
-                    })
-                    .collect();
-                let (o, k, _) = free[bad[0].component];
-                return Err(CoreError::invalid(
-                    InvalidKind::IncompatibleLoads,
-                    format!("/obstacles/{o}/punch/{}/load", COMPONENT[k]),
-                    format!(
-                        "no non-negative contact pressure on the candidate zone balances the loads on punch '{}'; with the other loads as given, {}",
-                        scene.obstacles[o].name,
-                        ranges.join("; or ")
-                    ),
-                ));
-            }
-        }
-        Ok(Self {
-            free,
-            c,
-            rhs,
-            undetermined,
-        })
-    }
-
-    /// C_F β per candidate.
-    fn shift(&self, beta: &[f64]) -> Vec<f64> {
-        (0..self.c.nrows())
-            .map(|i| (0..beta.len()).map(|j| self.c[(i, j)] * beta[j]).sum())
-            .collect()
-    }
+    free: Option<&'a FreeMotions>,
 }
 
 /// Largest problem the full-system interior point accepts.
@@ -370,7 +284,7 @@ fn solve_full(
         cons: &cons,
         k: &stiffness.k,
         f: &f,
-        punches: None,
+        free: None,
     };
     Ok(finish(scene, &stage, sol, timings, t_start, CacheState::Off))
 }
@@ -385,12 +299,14 @@ fn finish(
     cache: CacheState,
 ) -> SolveReply {
     let t = Instant::now();
-    let shift = st.punches.filter(|p| !p.free.is_empty()).map(|p| p.shift(&sol.beta));
+    let free = st.free.filter(|p| !p.motions.is_empty());
+    let beta = free.map(|p| p.motion(&sol.beta)).unwrap_or_default();
+    let shift = free.filter(|p| !p.is_empty()).map(|p| p.shift(&sol.beta));
     let (mut certificate, gaps) = certify(st.k, st.f, st.cons, &sol.u, &sol.lambda, shift.as_deref());
-    if let Some(p) = st.punches.filter(|p| !p.free.is_empty()) {
-        // Punch equilibrium C_Fᵀλ = −P_F joins the equilibrium residual.
+    if let Some(p) = free.filter(|p| !p.is_empty()) {
+        // Equilibrium of the free motions, (CV)ᵀλ = −VᵀP, joins the equilibrium residual.
         let mut worst: f64 = 0.0;
-        for j in 0..p.free.len() {
+        for j in 0..p.c.ncols() {
             let (mut ct, mut scale) = (0.0, p.rhs[j].abs());
             for (i, l) in sol.lambda.iter().enumerate() {
                 ct += p.c[(i, j)] * l;
@@ -402,11 +318,11 @@ fn finish(
         }
         certificate.equilibrium = certificate.equilibrium.max(worst);
     }
-    let punches = st
-        .punches
-        .map(|p| punch_results(scene, st.cons, p, &sol))
+    let punches = free
+        .map(|p| punch_results(scene, st.cons, p, &beta, &sol.lambda))
         .unwrap_or_default();
-    let (pairs, resultant, n_active) = post::pairs(scene, st.cons, &sol.lambda, &sol.in_contact, &gaps);
+    let notes = st.free.map(|p| p.notes.clone()).unwrap_or_default();
+    let (pairs, resultant, n_active) = post::pairs(scene, st.meshes, st.cons, &sol.lambda, &sol.in_contact, &gaps);
     let status = if !certificate.is_finite() {
         SolveStatus::NumericalError
     } else if !sol.converged {
@@ -420,7 +336,7 @@ fn finish(
     } else {
         SolveStatus::Solved
     };
-    let bodies = body_outputs(scene, st.meshes, st.dofs, &sol.u);
+    let bodies = body_outputs(scene, st.meshes, st.dofs, &sol.u, free.map(|p| (p, beta.as_slice())));
     timings.post = t.elapsed().as_secs_f64();
     timings.total = t_start.elapsed().as_secs_f64();
     SolveReply {
@@ -442,6 +358,7 @@ fn finish(
         steps: None,
         punches,
         bodies,
+        notes,
     }
 }
 
@@ -449,27 +366,20 @@ fn finish(
 fn punch_results(
     scene: &Scene,
     cons: &contact::ConstraintSet,
-    p: &PunchSetup,
-    sol: &methods::Solution,
+    fm: &FreeMotions,
+    beta: &[f64],
+    lambda: &[f64],
 ) -> Vec<PunchResult> {
     let sc = scene.scales;
     let mut out = Vec::new();
     for (o, ob) in scene.obstacles.iter().enumerate() {
-        let Some(pu) = &ob.punch else { continue };
-        let mut motion = [0.0; 3];
-        for (k, ctl) in pu.controls.iter().enumerate() {
-            if let proto::Control::Displacement(v) = ctl {
-                motion[k] = *v;
-            }
+        if ob.punch.is_none() {
+            continue;
         }
-        for (j, &(fo, k, _)) in p.free.iter().enumerate() {
-            if fo == o {
-                motion[k] = sol.beta.get(j).copied().unwrap_or(0.0);
-            }
-        }
+        let motion = free_motions::punch_motion(scene, fm, beta, o);
         // Loads on the punch balance the contact forces: P = −Σ λ_i c_i.
         let mut load = [0.0; 3];
-        for (c, l) in cons.candidates.iter().zip(&sol.lambda) {
+        for (c, l) in cons.candidates.iter().zip(lambda) {
             if let Some((po, row)) = c.punch {
                 if po == o {
                     for k in 0..3 {
@@ -478,11 +388,16 @@ fn punch_results(
                 }
             }
         }
-        let undetermined: Vec<&str> = p
-            .undetermined
+        let undetermined: Vec<&str> = fm
+            .motions
             .iter()
-            .filter(|u| u.0 == o)
-            .map(|u| COMPONENT[u.1])
+            .enumerate()
+            .filter_map(|(k, (mo, _))| match *mo {
+                Motion::Punch { obstacle, component } if obstacle == o && !fm.is_determined(k) => {
+                    Some(free_motions::COMPONENT[component])
+                }
+                _ => None,
+            })
             .collect();
         out.push(PunchResult {
             name: ob.name.clone(),
@@ -505,12 +420,36 @@ fn punch_results(
 }
 
 /// Optional per-body fields, only when the request lists them.
-fn body_outputs(scene: &Scene, meshes: &[Mesh2d], dofs: &fem::DofMap, u: &[f64]) -> Option<Vec<BodyOutput>> {
+/// `free`: the free motions and their amplitudes β, whose body modes add R β
+/// to the displacement of bodies held by contact.
+fn body_outputs(
+    scene: &Scene,
+    meshes: &[Mesh2d],
+    dofs: &fem::DofMap,
+    u: &[f64],
+    free: Option<(&FreeMotions, &[f64])>,
+) -> Option<Vec<BodyOutput>> {
     let o = scene.outputs;
     if !(o.displacement || o.mesh || o.stress) {
         return None;
     }
     let sc = scene.scales;
+    let rigid = |b: usize, x: [f64; 2]| {
+        let mut r = [0.0; 2];
+        if let Some((fm, beta)) = free {
+            for ((mo, _), a) in fm.motions.iter().zip(beta) {
+                if let Motion::Body { set, dir } = *mo {
+                    let rm = &dofs.rigid[set];
+                    if rm.body == b {
+                        let d = rm.at_dir(dir, x);
+                        r[0] += a * d[0];
+                        r[1] += a * d[1];
+                    }
+                }
+            }
+        }
+        r
+    };
     let value = |d: usize| match dofs.free[d] {
         fem::assembly::FIXED => dofs.prescribed[d],
         k => u[k],
@@ -522,7 +461,10 @@ fn body_outputs(scene: &Scene, meshes: &[Mesh2d], dofs: &fem::DofMap, u: &[f64])
             .zip(meshes)
             .enumerate()
             .map(|(b, (body, mesh))| {
-                let disp = |node: usize| [value(dofs.dof(b, node, 0)), value(dofs.dof(b, node, 1))];
+                let disp = |node: usize| {
+                    let r = rigid(b, mesh.nodes[node]);
+                    [value(dofs.dof(b, node, 0)) + r[0], value(dofs.dof(b, node, 1)) + r[1]]
+                };
                 BodyOutput {
                     name: body.name.clone(),
                     nodes: o
@@ -555,4 +497,13 @@ fn body_outputs(scene: &Scene, meshes: &[Mesh2d], dofs: &fem::DofMap, u: &[f64])
             })
             .collect(),
     )
+}
+
+fn pair_target_name(scene: &Scene, pair: &crate::scene::Pair) -> String {
+    match &pair.target {
+        crate::scene::Target::Obstacle(o) => format!("obstacle '{}'", scene.obstacles[*o].name),
+        crate::scene::Target::Body { body, edges, .. } => {
+            format!("edge set '{edges}' of body '{}'", scene.bodies[*body].name)
+        }
+    }
 }

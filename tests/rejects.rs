@@ -101,13 +101,24 @@ fn bad_meshes() {
 
 #[test]
 fn missing_supports_and_candidates() {
+    // A body with rigid modes and no contact pair that could hold it.
+    let mut r = base();
+    let mut free_body = r["bodies"][0].clone();
+    free_body["name"] = json!("loose");
+    free_body["supports"] = json!([]);
+    r["bodies"].as_array_mut().unwrap().push(free_body);
+    expect(&r, ErrorCode::NoSupport, "/bodies/1/supports");
+    // Held only by contact and pulled off the floor: no pressure can balance that.
     let mut r = base();
     r["bodies"][0]["supports"] = json!([]);
-    expect(&r, ErrorCode::NoSupport, "/bodies/0/supports");
-    // Only vertical support: a rigid horizontal translation stays free.
+    r["bodies"][0]["tractions"] = json!([{"edges": "top", "traction": [0.0, 1.0]}]);
+    expect(&r, ErrorCode::IncompatibleLoads, "/bodies/0/tractions");
+    // Pushed sideways: the body's normals on the floor are vertical, so contact
+    // cannot carry a horizontal load.
     let mut r = base();
-    r["bodies"][0]["supports"] = json!([{"edges": "top", "uy": 0.0}]);
-    expect(&r, ErrorCode::NoSupport, "/bodies/0/supports");
+    r["bodies"][0]["supports"] = json!([]);
+    r["bodies"][0]["tractions"] = json!([{"edges": "top", "traction": [0.1, -1.0]}]);
+    expect(&r, ErrorCode::IncompatibleLoads, "/bodies/0/tractions");
     let mut r = base();
     r["contacts"][0]["edges"] = json!("nowhere");
     expect(&r, ErrorCode::InvalidRequest, "/contacts/0/edges");

@@ -1,16 +1,24 @@
-//! Node-to-rigid-obstacle candidates: one row per boundary node of each contact pair,
+//! Contact candidates: one row of B u ≤ g per candidate node.
+//!
+//! Against a rigid obstacle (one row per boundary node of the pair)
 //!
 //! ```text
 //! n_i · u_i ≤ s_i − n_i · ū_i     (ū: prescribed part of the displacement)
 //! ```
 //!
-//! on the free DOFs. Candidates whose gap cannot close (no intersection, or a
-//! gap beyond `prune_gap_ratio` of the body size) are dropped and counted.
+//! on the free DOFs; against another body, the rows of `two_body`. Every row is
+//! first written as nodal terms Σ c_k · u_k over the nodes it touches (fixed
+//! components included), from which the free-DOF row, the prescribed part of
+//! the gap, the rigid-mode coefficients and the nodal contact forces all follow.
+//! Candidates whose gap cannot close (no intersection, or a gap beyond
+//! `prune_gap_ratio` of the body size) are dropped and counted.
 
 use super::gap::gap_along_normal;
+use super::two_body::{self, Surface};
 use crate::fem::assembly::{DofMap, FIXED};
 use crate::mesh::{boundary::boundary_nodes, Mesh2d};
-use crate::scene::Scene;
+use crate::proto::Discretization;
+use crate::scene::{Scene, Target};
 
 #[derive(Debug, Clone)]
 pub struct Candidate {
@@ -21,6 +29,8 @@ pub struct Candidate {
     pub normal: [f64; 2],
     /// Tributary length ∫ N_i ds.
     pub weight: f64,
+    /// The row over nodes: Σ coef · u_node (fixed components included).
+    pub terms: Vec<Term>,
     /// Free DOFs and their coefficients in the row.
     pub row: Vec<(usize, f64)>,
     /// Right-hand side of the row (gap less the prescribed motion of the body,
@@ -29,6 +39,37 @@ pub struct Candidate {
     /// For a punch: its obstacle index and the row c of −C, so that the
     /// constraint reads n·u − c·(α1, α2, θ) ≤ s: c = (n_x, n_y, (x − x_r) n_y − (y − y_r) n_x).
     pub punch: Option<(usize, [f64; 3])>,
+}
+
+/// One node's share of a candidate row; the contact force the row's
+/// multiplier λ puts on that node is −λ · coef.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Term {
+    pub body: usize,
+    pub node: usize,
+    pub coef: [f64; 2],
+}
+
+/// Splits nodal terms into the free-DOF row and the prescribed part, which
+/// moves to the right-hand side: returns (row, s − Σ coef · ū).
+pub fn free_row(terms: &[Term], dofs: &DofMap, s: f64) -> (Vec<(usize, f64)>, f64) {
+    let mut row: Vec<(usize, f64)> = Vec::with_capacity(2 * terms.len());
+    let mut g = s;
+    for t in terms {
+        for c in 0..2 {
+            let d = dofs.dof(t.body, t.node, c);
+            let coef = t.coef[c];
+            if dofs.free[d] == FIXED {
+                g -= coef * dofs.prescribed[d];
+            } else if coef != 0.0 {
+                match row.iter_mut().find(|e| e.0 == dofs.free[d]) {
+                    Some(e) => e.1 += coef,
+                    None => row.push((dofs.free[d], coef)),
+                }
+            }
+        }
+    }
+    (row, g)
 }
 
 #[derive(Debug, Clone, Default)]
@@ -104,61 +145,120 @@ impl ConstraintSet {
 
 pub fn build(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> ConstraintSet {
     let mut set = ConstraintSet::default();
-    let limit = scene.settings.prune_gap_ratio; // body size is 1 after scaling
     for (p, pair) in scene.pairs.iter().enumerate() {
-        let mesh = &meshes[pair.body];
-        let shape = &scene.obstacles[pair.obstacle].shape;
-        let mut pruned = 0;
-        let edges = &mesh.edge_sets[&pair.edges];
-        for bn in boundary_nodes(mesh, edges) {
-            let x = mesh.nodes[bn.node];
-            let Some(s) = gap_along_normal(shape, x, bn.normal) else {
-                pruned += 1;
-                continue;
+        // Relative to the pair's own bodies, not to the scene's length scale, so
+        // that an unrelated body elsewhere changes nothing.
+        let limit = scene.settings.prune_gap_ratio
+            * match &pair.target {
+                Target::Obstacle(_) => meshes[pair.body].size(),
+                Target::Body { body, .. } => meshes[pair.body].size().max(meshes[*body].size()),
             };
-            if s > limit {
-                pruned += 1;
-                continue;
-            }
-            let mut row = Vec::with_capacity(2);
-            let mut g = s;
-            for c in 0..2 {
-                let d = dofs.dof(pair.body, bn.node, c);
-                let coef = bn.normal[c];
-                if dofs.free[d] == FIXED {
-                    g -= coef * dofs.prescribed[d];
-                } else if coef != 0.0 {
-                    row.push((dofs.free[d], coef));
-                }
-            }
-            if row.is_empty() {
-                // Fully prescribed node: nothing to solve for.
-                pruned += 1;
-                continue;
-            }
-            let punch = scene.obstacles[pair.obstacle].punch.as_ref().map(|pu| {
-                let (dx, dy) = (x[0] - pu.reference[0], x[1] - pu.reference[1]);
-                let c = [bn.normal[0], bn.normal[1], dx * bn.normal[1] - dy * bn.normal[0]];
-                for (k, ctl) in pu.controls.iter().enumerate() {
-                    if let crate::proto::Control::Displacement(v) = ctl {
-                        g += c[k] * v;
+        let pruned = match &pair.target {
+            Target::Obstacle(o) => against_obstacle(scene, p, *o, meshes, dofs, limit, &mut set.candidates),
+            Target::Body {
+                body,
+                edges,
+                discretization,
+            } => {
+                let master = Surface {
+                    body: *body,
+                    mesh: &meshes[*body],
+                    edges: &meshes[*body].edge_sets[edges],
+                };
+                let slave = Surface {
+                    body: pair.body,
+                    mesh: &meshes[pair.body],
+                    edges: &meshes[pair.body].edge_sets[&pair.edges],
+                };
+                let rows = match discretization {
+                    Discretization::NodeToSegment => two_body::node_to_segment(&slave, &master, limit),
+                    Discretization::Mortar => two_body::mortar(&slave, &master, limit),
+                };
+                let mut pruned = rows.pruned;
+                for r in rows.rows {
+                    let (row, g) = free_row(&r.terms, dofs, r.gap);
+                    if row.is_empty() {
+                        pruned += 1;
+                        continue;
                     }
+                    set.candidates.push(Candidate {
+                        pair: p,
+                        body: pair.body,
+                        node: r.node,
+                        x: meshes[pair.body].nodes[r.node],
+                        normal: r.normal,
+                        weight: r.weight,
+                        terms: r.terms,
+                        row,
+                        g,
+                        punch: None,
+                    });
                 }
-                (pair.obstacle, c)
-            });
-            set.candidates.push(Candidate {
-                punch,
-                pair: p,
-                body: pair.body,
-                node: bn.node,
-                x,
-                normal: bn.normal,
-                weight: bn.weight,
-                row,
-                g,
-            });
-        }
+                pruned
+            }
+        };
         set.pruned.push(pruned);
     }
     set
+}
+
+/// Node-to-rigid-obstacle rows of pair `p`; returns the number pruned.
+fn against_obstacle(
+    scene: &Scene,
+    p: usize,
+    obstacle: usize,
+    meshes: &[Mesh2d],
+    dofs: &DofMap,
+    limit: f64,
+    out: &mut Vec<Candidate>,
+) -> usize {
+    let pair = &scene.pairs[p];
+    let mesh = &meshes[pair.body];
+    let shape = &scene.obstacles[obstacle].shape;
+    let mut pruned = 0;
+    for bn in boundary_nodes(mesh, &mesh.edge_sets[&pair.edges]) {
+        let x = mesh.nodes[bn.node];
+        let Some(s) = gap_along_normal(shape, x, bn.normal) else {
+            pruned += 1;
+            continue;
+        };
+        if s > limit {
+            pruned += 1;
+            continue;
+        }
+        let terms = vec![Term {
+            body: pair.body,
+            node: bn.node,
+            coef: bn.normal,
+        }];
+        let (row, mut g) = free_row(&terms, dofs, s);
+        if row.is_empty() {
+            // Fully prescribed node: nothing to solve for.
+            pruned += 1;
+            continue;
+        }
+        let punch = scene.obstacles[obstacle].punch.as_ref().map(|pu| {
+            let (dx, dy) = (x[0] - pu.reference[0], x[1] - pu.reference[1]);
+            let c = [bn.normal[0], bn.normal[1], dx * bn.normal[1] - dy * bn.normal[0]];
+            for (k, ctl) in pu.controls.iter().enumerate() {
+                if let crate::proto::Control::Displacement(v) = ctl {
+                    g += c[k] * v;
+                }
+            }
+            (obstacle, c)
+        });
+        out.push(Candidate {
+            punch,
+            pair: p,
+            body: pair.body,
+            node: bn.node,
+            x,
+            normal: bn.normal,
+            weight: bn.weight,
+            terms,
+            row,
+            g,
+        });
+    }
+    pruned
 }

@@ -7,6 +7,7 @@ use faer::sparse::SparseColMat;
 
 use super::element;
 use super::material::d_matrix;
+use super::rigid_modes::{self, free_modes, mode_row, virtual_supports, RigidModes};
 use crate::error::{CoreError, InvalidKind};
 use crate::mesh::{boundary::edge_normal, Mesh2d};
 use crate::scene::{Scene, Traction};
@@ -23,6 +24,8 @@ pub struct DofMap {
     /// Prescribed value of each global DOF (0 where free).
     pub prescribed: Vec<f64>,
     pub n_free: usize,
+    /// Free rigid modes of bodies held (partly) by contact, with their virtual supports.
+    pub rigid: Vec<RigidModes>,
 }
 
 impl DofMap {
@@ -47,7 +50,10 @@ pub struct Assembled {
     pub f: Vec<f64>,
 }
 
-/// Builds the DOF map from the supports, rejecting supports that leave a rigid motion free.
+/// Builds the DOF map from the supports. Rigid motions the supports leave free
+/// are allowed for bodies that take part in a contact pair (contact may hold
+/// them): they get virtual supports (`rigid_modes`) and become free rigid
+/// motions of the contact problem. A body with free modes and no contact is rejected.
 pub fn dof_map(scene: &Scene, meshes: &[Mesh2d]) -> Result<DofMap, CoreError> {
     let mut node_offset = Vec::with_capacity(meshes.len());
     let mut total = 0;
@@ -57,6 +63,7 @@ pub fn dof_map(scene: &Scene, meshes: &[Mesh2d]) -> Result<DofMap, CoreError> {
     }
     let mut fixed = vec![false; 2 * total];
     let mut prescribed = vec![0.0; 2 * total];
+    let mut rigid = Vec::new();
     for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
         let mut rows: Vec<[f64; 3]> = Vec::new();
         let c0 = centroid(mesh);
@@ -78,13 +85,48 @@ pub fn dof_map(scene: &Scene, meshes: &[Mesh2d]) -> Result<DofMap, CoreError> {
                         fixed[d] = true;
                         prescribed[d] = v;
                         let p = mesh.nodes[node];
-                        let (x, y) = (p[0] - c0[0], p[1] - c0[1]);
-                        rows.push(if c == 0 { [1.0, 0.0, -y] } else { [0.0, 1.0, x] });
+                        rows.push(mode_row(c, p[0] - c0[0], p[1] - c0[1]));
                     }
                 }
             }
         }
-        check_rigid_modes(&rows, &format!("{}/supports", body.path), &body.name)?;
+        let basis = free_modes(&rows);
+        if basis.is_empty() {
+            continue;
+        }
+        let in_contact = scene
+            .pairs
+            .iter()
+            .any(|p| p.body == b || matches!(p.target, crate::scene::Target::Body { body, .. } if body == b));
+        if !in_contact {
+            let modes: Vec<String> = basis
+                .iter()
+                .map(|m| rigid_modes::describe(*m, c0, scene.scales.length(1.0)))
+                .collect();
+            return Err(CoreError::invalid(
+                InvalidKind::NoSupport,
+                format!("{}/supports", body.path),
+                format!(
+                    "the supports of body '{}' leave its {} free and no contact pair involves the body to hold it",
+                    body.name,
+                    modes.join(" and ")
+                ),
+            ));
+        }
+        let off = node_offset[b];
+        let virtual_dofs: Vec<usize> = virtual_supports(&mesh.nodes, c0, &basis, |n, c| fixed[2 * (off + n) + c])
+            .into_iter()
+            .map(|(n, c)| 2 * (off + n) + c)
+            .collect();
+        for &d in &virtual_dofs {
+            fixed[d] = true;
+        }
+        rigid.push(RigidModes {
+            body: b,
+            center: c0,
+            basis,
+            virtual_dofs,
+        });
     }
     let mut free = vec![FIXED; 2 * total];
     let mut n_free = 0;
@@ -99,6 +141,7 @@ pub fn dof_map(scene: &Scene, meshes: &[Mesh2d]) -> Result<DofMap, CoreError> {
         free,
         prescribed,
         n_free,
+        rigid,
     })
 }
 
@@ -106,41 +149,6 @@ fn centroid(m: &Mesh2d) -> [f64; 2] {
     let n = m.nodes.len() as f64;
     let s = m.nodes.iter().fold([0.0, 0.0], |a, p| [a[0] + p[0], a[1] + p[1]]);
     [s[0] / n, s[1] / n]
-}
-
-/// The constrained DOFs must rule out the three rigid motions: the Gram matrix
-/// of the rigid modes restricted to them must be nonsingular.
-fn check_rigid_modes(rows: &[[f64; 3]], path: &str, name: &str) -> Result<(), CoreError> {
-    let mut g = [[0.0; 3]; 3];
-    for r in rows {
-        for i in 0..3 {
-            for j in 0..3 {
-                g[i][j] += r[i] * r[j];
-            }
-        }
-    }
-    let free_mode = if g[0][0] == 0.0 {
-        Some("translation in x")
-    } else if g[1][1] == 0.0 {
-        Some("translation in y")
-    } else {
-        // Cholesky-style pivots of the 3×3 Gram matrix, relative to its scale.
-        let scale = g[0][0] + g[1][1] + g[2][2];
-        let d1 = g[0][0];
-        let g11 = g[1][1] - g[0][1] * g[0][1] / d1;
-        let g12 = g[1][2] - g[0][1] * g[0][2] / d1;
-        let g22 = g[2][2] - g[0][2] * g[0][2] / d1;
-        let d3 = g22 - g12 * g12 / g11;
-        (d3 <= 1e-12 * scale).then_some("rotation")
-    };
-    match free_mode {
-        Some(mode) => Err(CoreError::invalid(
-            InvalidKind::NoSupport,
-            path,
-            format!("the supports of body '{name}' leave a rigid {mode} free; this solver needs every body held against rigid motion by its supports"),
-        )),
-        None => Ok(()),
-    }
 }
 
 /// CSC pattern of the lower triangle of K_ff from the node graph: column of
@@ -243,9 +251,21 @@ pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Re
 /// prescribed displacements.
 pub fn assemble_loads(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap, stiffness: &Stiffness) -> Vec<f64> {
     let mut f = vec![0.0; dofs.n_free];
+    for (d, v) in external_loads(scene, meshes, dofs).into_iter().enumerate() {
+        if dofs.free[d] != FIXED {
+            f[dofs.free[d]] += v;
+        }
+    }
     for &(row, d, v) in &stiffness.k_fd {
         f[row] -= v * dofs.prescribed[d];
     }
+    f
+}
+
+/// Nodal external loads (tractions, pressures, body forces) on every global
+/// DOF, fixed ones included: the rigid modes of a body need them all.
+pub fn external_loads(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Vec<f64> {
+    let mut f = vec![0.0; dofs.free.len()];
     let mut fe = [0.0; 12];
     for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
         let k = mesh.order.nodes_per_element();
@@ -259,10 +279,7 @@ pub fn assemble_loads(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap, stiffness
                 element::body_load(mesh.order, &x[..k], body.body_force, &mut fe);
                 for (i, &node) in conn.iter().enumerate() {
                     for c in 0..2 {
-                        let fd = dofs.free[dofs.dof(b, node, c)];
-                        if fd != FIXED {
-                            f[fd] += fe[2 * i + c];
-                        }
+                        f[dofs.dof(b, node, c)] += fe[2 * i + c];
                     }
                 }
             }
@@ -294,10 +311,7 @@ pub fn assemble_loads(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap, stiffness
                     });
                     for (i, &node) in nodes.iter().enumerate() {
                         for (c, tc) in tr.iter().enumerate() {
-                            let fd = dofs.free[dofs.dof(b, node, c)];
-                            if fd != FIXED {
-                                f[fd] += g[1] * jac * nn[i] * tc;
-                            }
+                            f[dofs.dof(b, node, c)] += g[1] * jac * nn[i] * tc;
                         }
                     }
                 }

@@ -3,5 +3,6 @@
 pub mod assembly;
 pub mod element;
 pub mod material;
+pub mod rigid_modes;
 
 pub use assembly::{assemble, Assembled, DofMap};

@@ -20,6 +20,9 @@ pub struct Grading {
     pub extent: f64,
 }
 
+/// Relative slack of the mesh generators' size comparisons.
+const TIE: f64 = 1e-9;
+
 /// Graded 1D points on [lo, hi]: spacing h_min within `extent` of `focus`
 /// (clamped into the interval), then growing by `ratio` up to `h_max`, the last
 /// interval on each side adjusted to land on the end.
@@ -35,13 +38,16 @@ pub fn graded_points(lo: f64, hi: f64, focus: f64, g: Grading, h_max: f64) -> Ve
         let mut h = h_min.min(h_max);
         let mut s = 0.0;
         loop {
-            if s + h >= len - 0.5 * h {
+            // Round-number parameters put these comparisons on exact ties; the
+            // slack decides ties the same way at every length scale (the mesh
+            // must not change when the scene is rescaled).
+            if s + h >= len - 0.5 * h - TIE * h {
                 out.push(len);
                 break;
             }
             s += h;
             out.push(s);
-            if s >= extent {
+            if s >= extent - TIE * h {
                 h = (h * ratio).min(h_max);
             }
         }
@@ -183,13 +189,13 @@ pub fn half_disk(
         let mut h = h_min.min(size);
         let mut r = radius;
         loop {
-            if r - h <= 0.75 * h {
+            if r - h <= 0.75 * h + TIE * h {
                 break;
             }
             r -= h;
             radii.push(r);
             // Keep h_min through the depth of the fine zone below the apex.
-            if radius - r >= g.extent {
+            if radius - r >= g.extent - TIE * h {
                 h = (h * ratio).min(size);
             }
         }

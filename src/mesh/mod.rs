@@ -69,6 +69,18 @@ impl Mesh2d {
     }
 
     /// Nodes of an edge set, each once, in order of first appearance.
+    /// Largest side of the bounding box: the body's size.
+    pub fn size(&self) -> f64 {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in &self.nodes {
+            for c in 0..2 {
+                lo[c] = lo[c].min(p[c]);
+                hi[c] = hi[c].max(p[c]);
+            }
+        }
+        (hi[0] - lo[0]).max(hi[1] - lo[1])
+    }
+
     pub fn edge_set_nodes(&self, name: &str) -> Vec<usize> {
         let mut seen = std::collections::HashSet::new();
         let mut out = Vec::new();

@@ -39,6 +39,10 @@ pub struct SolveReply {
     /// Per body, when `outputs` asks for it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub bodies: Option<Vec<BodyOutput>>,
+    /// What the user should know about this solution (e.g. a rigid motion of a
+    /// body held only by contact that nothing determines).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
 }
 
 /// A punch's rigid motion and the loads on it (prescribed or reactions).
@@ -100,9 +104,19 @@ pub enum SolveStatus {
 #[serde(deny_unknown_fields)]
 pub struct PairResult {
     pub body: String,
-    pub obstacle: String,
+    /// The rigid obstacle of an obstacle pair.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub obstacle: Option<String>,
+    /// The other body of a two-body pair (its `against` edge set).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub against: Option<String>,
+    /// Discretization of a two-body pair.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub discretization: Option<crate::proto::Discretization>,
     /// Intervals [x_start, x_end] along x1 where the body touches, from the
-    /// first to the last node of each run of consecutive active candidates.
+    /// first to the last node of each run of consecutive active candidates
+    /// (mortar: the support of the interpolated pressure Σ p_i N_i, which
+    /// reaches the neighbouring open nodes).
     pub zones: Vec<[f64; 2]>,
     /// Every contact candidate of the pair, ordered along the boundary.
     pub points: Vec<ContactPoint>,
@@ -112,6 +126,31 @@ pub struct PairResult {
     pub max_penetration: f64,
     /// Candidates dropped because their initial gap cannot close.
     pub pruned: usize,
+    /// Two bodies: the pressure as the other body sees it, at its nodes on the
+    /// `against` edge set (nodal contact force over its tributary length).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub other_points: Option<Vec<CounterPoint>>,
+    /// Two bodies: contact force and moment about the origin on the other body
+    /// (equal and opposite to `resultant`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub other_resultant: Option<Resultant>,
+}
+
+/// A node of the other body of a two-body pair.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CounterPoint {
+    /// Undeformed position.
+    pub x: f64,
+    pub y: f64,
+    /// Contact pressure on this body, positive in compression [force/length²].
+    pub pressure: f64,
+    /// Nodal contact force (per unit thickness) along the inward normal.
+    pub force: f64,
+    /// Tributary length of the node on the edge set.
+    pub weight: f64,
+    /// Node index in this body's mesh.
+    pub node: usize,
 }
 
 /// A contact candidate node.

@@ -292,16 +292,50 @@ pub enum ObstacleShape {
     Profile { reference: [f64; 2], psi: ProfileSpec },
 }
 
-/// A contact pair: an edge set of a body against an obstacle.
+/// A contact pair: an edge set of a body against exactly one of an obstacle
+/// (`obstacle`) or an edge set of another deformable body (`against`).
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSpec {
     /// Body index (0-based) or name.
     pub body: BodyRef,
-    /// Name of the body's edge set whose nodes are contact candidates.
+    /// Name of the body's edge set whose nodes are contact candidates (for two
+    /// bodies: the non-mortar or "slave" side, where the pressure is discretized).
     pub edges: String,
-    /// Obstacle index (0-based) or name.
-    pub obstacle: BodyRef,
+    /// Rigid obstacle index (0-based) or name.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub obstacle: Option<BodyRef>,
+    /// The other deformable body's facing edge set (the mortar or "master" side).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub against: Option<SurfaceSpec>,
+    /// How the non-penetration condition between two bodies is discretized
+    /// (ignored for rigid obstacles).
+    #[serde(default)]
+    pub discretization: Discretization,
+}
+
+/// An edge set of a body.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SurfaceSpec {
+    /// Body index (0-based) or name.
+    pub body: BodyRef,
+    /// Name of the body's edge set.
+    pub edges: String,
+}
+
+/// Discretization of the two-body contact condition.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Discretization {
+    /// Segment-to-segment (mortar): the gap is weighted by the non-mortar shape
+    /// functions and integrated over the overlap of the two surfaces; passes the
+    /// contact patch test (transmits a uniform pressure exactly).
+    #[default]
+    Mortar,
+    /// Node-to-segment: each non-mortar node is projected along its normal onto
+    /// the other body's surface; cheaper, fails the patch test on non-matching meshes.
+    NodeToSegment,
 }
 
 /// Reference to a body or obstacle by index or by name.
@@ -343,7 +377,7 @@ pub struct SolverSettings {
     pub tolerance: f64,
     /// Iteration cap of the contact iteration.
     pub max_iterations: usize,
-    /// Candidates whose initial gap exceeds this multiple of the body size are
+    /// Candidates whose initial gap exceeds this multiple of the pair's body size are
     /// dropped before the solve (they cannot close under small strain).
     pub prune_gap_ratio: f64,
     /// Penalty parameter ζ of `penalty` and `augmented_lagrangian`: the

@@ -212,6 +212,27 @@ pub enum Shape {
 pub struct Pair {
     pub body: usize,
     pub edges: String,
-    pub obstacle: usize,
+    pub target: Target,
     pub path: String,
+}
+
+/// What the pair's edge set may touch.
+#[derive(Debug, Clone)]
+pub enum Target {
+    Obstacle(usize),
+    /// An edge set of another deformable body.
+    Body {
+        body: usize,
+        edges: String,
+        discretization: crate::proto::Discretization,
+    },
+}
+
+impl Pair {
+    pub fn obstacle(&self) -> Option<usize> {
+        match self.target {
+            Target::Obstacle(o) => Some(o),
+            Target::Body { .. } => None,
+        }
+    }
 }

@@ -268,9 +268,6 @@ impl Scene {
                     uy: s.uy.map(l),
                 });
             }
-            if supports.is_empty() {
-                return Err(invalid(K::NoSupport, format!("{bp}/supports"), format!("body '{name}' has no support; it would be held only by contact, which this solver does not handle yet (a body must be fixed against rigid motion)")));
-            }
             let mut tractions = Vec::new();
             for (k, t) in b.tractions.iter().enumerate() {
                 let tp = format!("{bp}/tractions/{k}");
@@ -468,18 +465,49 @@ impl Scene {
         for (k, c) in req.contacts.iter().enumerate() {
             let cp = format!("/contacts/{k}");
             let body = resolve(&c.body, &names, &format!("{cp}/body"), "body")?;
-            let obstacle = resolve(&c.obstacle, &obstacle_names, &format!("{cp}/obstacle"), "obstacle")?;
-            if !edge_names(&req.bodies[body].mesh).contains(&c.edges) {
-                return Err(invalid(
-                    K::Request,
-                    format!("{cp}/edges"),
-                    format!("body '{}' has no edge set named '{}'", names[body], c.edges),
-                ));
-            }
+            let has_edges = |b: usize, edges: &str, path: String| {
+                if edge_names(&req.bodies[b].mesh).iter().any(|e| e == edges) {
+                    Ok(())
+                } else {
+                    Err(invalid(
+                        K::Request,
+                        path,
+                        format!("body '{}' has no edge set named '{}'", names[b], edges),
+                    ))
+                }
+            };
+            has_edges(body, &c.edges, format!("{cp}/edges"))?;
+            let target =
+                match (&c.obstacle, &c.against) {
+                    (Some(o), None) => {
+                        Target::Obstacle(resolve(o, &obstacle_names, &format!("{cp}/obstacle"), "obstacle")?)
+                    }
+                    (None, Some(a)) => {
+                        let other = resolve(&a.body, &names, &format!("{cp}/against/body"), "body")?;
+                        if other == body {
+                            return Err(invalid(
+                                K::Request,
+                                format!("{cp}/against/body"),
+                                "a body cannot be in contact with itself (self-contact is not supported)",
+                            ));
+                        }
+                        has_edges(other, &a.edges, format!("{cp}/against/edges"))?;
+                        Target::Body {
+                            body: other,
+                            edges: a.edges.clone(),
+                            discretization: c.discretization,
+                        }
+                    }
+                    _ => return Err(invalid(
+                        K::Request,
+                        cp.clone(),
+                        "a contact pair names exactly one of 'obstacle' (rigid) or 'against' (another body's edge set)",
+                    )),
+                };
             pairs.push(Pair {
                 body,
                 edges: c.edges.clone(),
-                obstacle,
+                target,
                 path: cp,
             });
         }

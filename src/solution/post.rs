@@ -3,14 +3,48 @@
 //! Pressure at a candidate p_i = λ_i / w_i (w_i its tributary length), positive
 //! in compression. Which candidates are in contact is the method's verdict
 //! (`methods::Solution::in_contact`); zones are the x1-extents of runs of
-//! consecutive contact candidates ordered by x1.
+//! consecutive contact candidates ordered by x1. Forces on nodes come from the
+//! rows' nodal terms (−λ · coef), so resultants hold for every discretization,
+//! and for two bodies the other side's pressure is its nodal force over its
+//! tributary length.
+
+use std::collections::BTreeMap;
 
 use crate::contact::ConstraintSet;
-use crate::proto::{ContactPoint, PairResult, Resultant};
-use crate::scene::Scene;
+use crate::mesh::{boundary::boundary_nodes, Mesh2d};
+use crate::proto::{ContactPoint, CounterPoint, Discretization, PairResult, Resultant};
+use crate::scene::{Scene, Target};
+
+/// Nodal contact forces of pair `p` on `body`: node → force.
+fn nodal_forces(cons: &ConstraintSet, lambda: &[f64], p: usize, body: usize) -> BTreeMap<usize, [f64; 2]> {
+    let mut out: BTreeMap<usize, [f64; 2]> = BTreeMap::new();
+    for (c, &l) in cons.candidates.iter().zip(lambda) {
+        if c.pair != p {
+            continue;
+        }
+        for t in c.terms.iter().filter(|t| t.body == body) {
+            let f = out.entry(t.node).or_insert([0.0; 2]);
+            f[0] -= l * t.coef[0];
+            f[1] -= l * t.coef[1];
+        }
+    }
+    out
+}
+
+fn resultant_of(forces: &BTreeMap<usize, [f64; 2]>, mesh: &Mesh2d) -> Resultant {
+    let mut r = Resultant::default();
+    for (&n, f) in forces {
+        let x = mesh.nodes[n];
+        r.fx += f[0];
+        r.fy += f[1];
+        r.m += x[0] * f[1] - x[1] * f[0];
+    }
+    r
+}
 
 pub fn pairs(
     scene: &Scene,
+    meshes: &[Mesh2d],
     cons: &ConstraintSet,
     lambda: &[f64],
     in_contact: &[bool],
@@ -26,30 +60,35 @@ pub fn pairs(
             let (xa, xb) = (cons.candidates[a].x, cons.candidates[b].x);
             xa[0].total_cmp(&xb[0]).then(xa[1].total_cmp(&xb[1]))
         });
-        let mut res = Resultant::default();
         let mut points = Vec::with_capacity(idx.len());
         let mut zones: Vec<[f64; 2]> = Vec::new();
         let mut open: Option<[f64; 2]> = None;
         let mut max_pen: f64 = 0.0;
+        // The mortar pressure is the field Σ p_i N_i: it is positive up to the
+        // neighbouring nodes of the active ones, so its zone reaches them.
+        let field = matches!(
+            pair.target,
+            Target::Body {
+                discretization: Discretization::Mortar,
+                ..
+            }
+        );
+        let mut prev: Option<f64> = None;
         for &i in &idx {
             let c = &cons.candidates[i];
             let l = lambda[i];
-            // Contact force on the body: −λ n (the obstacle pushes against the outward normal).
-            let (fx, fy) = (-l * c.normal[0], -l * c.normal[1]);
-            res.fx += fx;
-            res.fy += fy;
-            res.m += c.x[0] * fy - c.x[1] * fx;
             max_pen = max_pen.max(-gaps[i]);
             let x = sc.length(c.x[0]);
             if in_contact[i] {
                 n_active += 1;
                 open = Some(match open {
                     Some(z) => [z[0], x],
-                    None => [x, x],
+                    None => [if field { prev.unwrap_or(x) } else { x }, x],
                 });
             } else if let Some(z) = open.take() {
-                zones.push(z);
+                zones.push(if field { [z[0], x] } else { z });
             }
+            prev = Some(x);
             points.push(ContactPoint {
                 x,
                 y: sc.length(c.x[1]),
@@ -64,17 +103,57 @@ pub fn pairs(
         if let Some(z) = open {
             zones.push(z);
         }
-        let res = Resultant {
-            fx: sc.force(res.fx),
-            fy: sc.force(res.fy),
-            m: sc.moment(res.m),
+        let to_user = |r: Resultant| Resultant {
+            fx: sc.force(r.fx),
+            fy: sc.force(r.fy),
+            m: sc.moment(r.m),
+        };
+        let res = to_user(resultant_of(
+            &nodal_forces(cons, lambda, p, pair.body),
+            &meshes[pair.body],
+        ));
+        let other = match &pair.target {
+            Target::Obstacle(_) => None,
+            Target::Body { body, edges, .. } => {
+                let (mesh, forces) = (&meshes[*body], nodal_forces(cons, lambda, p, *body));
+                let mut pts: Vec<CounterPoint> = boundary_nodes(mesh, &mesh.edge_sets[edges])
+                    .into_iter()
+                    .map(|bn| {
+                        let f = forces.get(&bn.node).copied().unwrap_or([0.0; 2]);
+                        // Compression pushes against the outward normal.
+                        let fn_ = -(f[0] * bn.normal[0] + f[1] * bn.normal[1]);
+                        let x = mesh.nodes[bn.node];
+                        CounterPoint {
+                            x: sc.length(x[0]),
+                            y: sc.length(x[1]),
+                            pressure: sc.stress(fn_ / bn.weight),
+                            force: sc.force(fn_),
+                            weight: sc.length(bn.weight),
+                            node: bn.node,
+                        }
+                    })
+                    .collect();
+                pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+                Some((pts, to_user(resultant_of(&forces, mesh))))
+            }
         };
         total.fx += res.fx;
         total.fy += res.fy;
         total.m += res.m;
+        let (obstacle, against, discretization) = match &pair.target {
+            Target::Obstacle(o) => (Some(scene.obstacles[*o].name.clone()), None, None),
+            Target::Body {
+                body, discretization, ..
+            } => (None, Some(scene.bodies[*body].name.clone()), Some(*discretization)),
+        };
+        let (other_points, other_resultant) = other.map_or((None, None), |(p, r)| (Some(p), Some(r)));
         out.push(PairResult {
             body: scene.bodies[pair.body].name.clone(),
-            obstacle: scene.obstacles[pair.obstacle].name.clone(),
+            obstacle,
+            against,
+            discretization,
+            other_points,
+            other_resultant,
             zones,
             points,
             resultant: res,

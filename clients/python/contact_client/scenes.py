@@ -17,6 +17,8 @@ from __future__ import annotations
 import math
 
 __all__ = [
+    "two_cylinders",
+    "hertz_two_cylinders",
     "punch_on_block",
     "sadowsky_pressure",
     "hertz_cylinder",
@@ -233,3 +235,88 @@ def punch_on_block(
 def sadowsky_pressure(x: float, P: float, b: float) -> float:
     """Pressure under a rigid flat punch of half-width b with a centred load P (|x| < b)."""
     return P / (math.pi * math.sqrt(b * b - x * x)) if abs(x) < b else 0.0
+
+
+def hertz_two_cylinders(
+    P: float,
+    R1: float,
+    R2: float,
+    E1: float,
+    nu1: float,
+    E2: float,
+    nu2: float,
+    analysis: str = "plane_strain",
+) -> tuple[float, float]:
+    """(a, p0) of two elastic cylinders pressed together with P per unit thickness.
+
+    Effective radius 1/R = 1/R1 + 1/R2 and modulus 1/E* = 1/E1* + 1/E2*, with
+    Ei* = Ei / (1 - nui^2) in plane strain (Ei in plane stress)."""
+    R = 1.0 / (1.0 / R1 + 1.0 / R2)
+    e_star = 1.0 / (1.0 / effective_modulus(E1, nu1, analysis) + 1.0 / effective_modulus(E2, nu2, analysis))
+    a = math.sqrt(4.0 * P * R / (math.pi * e_star))
+    return a, (2.0 * P / (math.pi * a) if a > 0 else 0.0)
+
+
+def two_cylinders(
+    R1: float = 8.0,
+    R2: float = 12.0,
+    E1: float = 200.0,
+    nu1: float = 0.3,
+    E2: float = 100.0,
+    nu2: float = 0.25,
+    approach: float = 0.08,
+    h_min: float = 0.01,
+    element: str = "t3",
+    discretization: str = "mortar",
+) -> dict:
+    """Two elastic half-disks pressed together (plane strain).
+
+    The upper one (radius R1, modulus E1 and Poisson ratio nu1, arc down,
+    touching the lower one at the origin) has its flat top clamped and moved
+    down by ``approach``; the lower one (R2, E2, nu2, arc up) is clamped on its
+    flat bottom. Both meshes are graded toward the contact point, with element
+    sizes ``h_min`` and 1.3 h_min there, so the two meshes do not match. The
+    upper arc carries the pressure (slave side); ``discretization`` is
+    "mortar" or "node_to_segment". Units are the caller's, consistent.
+    Compare with ``hertz_two_cylinders`` using P = reply["pairs"][0]["resultant"]["fy"].
+    """
+
+    def half_disk(center, radius, facing, h):
+        return {
+            "half_disk": {
+                "center": center,
+                "radius": radius,
+                "facing": facing,
+                "size": radius / 16.0,
+                "element": element,
+                "grading": {"h_min": h, "ratio": 1.1, "extent": 0.15 * min(R1, R2)},
+            }
+        }
+
+    return {
+        "version": PROTOCOL_VERSION,
+        "analysis": "plane_strain",
+        "bodies": [
+            {
+                "name": "upper",
+                "material": {"youngs_modulus": E1, "poisson_ratio": nu1},
+                "mesh": half_disk([0.0, R1], R1, "down", h_min),
+                "supports": [{"edges": "flat", "ux": 0.0, "uy": -approach}],
+            },
+            {
+                "name": "lower",
+                "material": {"youngs_modulus": E2, "poisson_ratio": nu2},
+                "mesh": half_disk([0.0, -R2], R2, "up", 1.3 * h_min),
+                "supports": [{"edges": "flat", "ux": 0.0, "uy": 0.0}],
+            },
+        ],
+        "obstacles": [],
+        "contacts": [
+            {
+                "body": "upper",
+                "edges": "arc",
+                "against": {"body": "lower", "edges": "arc"},
+                "discretization": discretization,
+            }
+        ],
+    }

@@ -28,10 +28,12 @@ EXPECTED: dict[str, tuple[str, tuple[str, ...]]] = {
     "inverted_triangle":         ("invalid_mesh", ("/bodies/0/mesh/inline/elements/1",)),
     "element_index_out_of_range": ("invalid_mesh", ("/bodies/0/mesh/inline/elements/0",
                                                     "/bodies/0/mesh/inline/elements/0/2")),
-    "no_supports":               ("no_support", ("/bodies/0", "/bodies/0/supports")),
-    # Supports that leave a rigid motion free (rollers under the bottom only: x
-    # translation is free and the frictionless contact cannot hold it).
-    "rigid_motion_free":         ("no_support", ("/bodies/0", "/bodies/0/supports")),
+    # A body held only by contact whose loads no contact pressure can balance
+    # (Fichera's condition fails).
+    "held_by_contact_pulled_off": ("incompatible_loads", ("/bodies/0/tractions",)),
+    # A body whose supports leave rigid motions free and that no contact pair
+    # involves: nothing can hold it.
+    "unsupported_body_without_contact": ("no_support", ("/bodies/1", "/bodies/1/supports")),
     # Naming an edge set the body does not have is the same mistake wherever it is
     # made, so it is expected to get the same code as for a support (below).
     "unknown_contact_edge_set":  ("invalid_request", ("/contacts/0/edges",)),

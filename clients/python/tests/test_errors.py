@@ -64,6 +64,21 @@ def _delete(path: str):
     return fn
 
 
+def _pulled_off(req):
+    # No supports: the body is held only by the flat above it, and a traction
+    # pulls it down, away from the flat: no contact pressure can balance that.
+    req["bodies"][0]["supports"] = []
+    req["bodies"][0]["tractions"] = [{"edges": "bottom", "traction": [0.0, -1.0]}]
+
+
+def _loose_second_body(req):
+    # A second body with no supports and no contact pair: nothing holds it.
+    loose = json.loads(json.dumps(req["bodies"][0]))
+    loose["name"] = "loose"
+    loose["supports"] = []
+    req["bodies"].append(loose)
+
+
 # case id -> payload builder (dict, str or bytes) on the small scene
 PAYLOADS = {
     "malformed_json": _text('{"version": "1", "bodies": ['),
@@ -83,8 +98,8 @@ PAYLOADS = {
     # element 1 listed clockwise: (0,-1) -> (0,0) -> (1,0) has negative signed area
     "inverted_triangle": _mutate(_set("/bodies/0/mesh/inline/elements", [[0, 1, 2], [0, 3, 2]])),
     "element_index_out_of_range": _mutate(_set("/bodies/0/mesh/inline/elements", [[0, 1, 7], [0, 2, 3]])),
-    "no_supports": _mutate(_delete("/bodies/0/supports")),
-    "rigid_motion_free": _mutate(_set("/bodies/0/supports", [{"edges": "bottom", "uy": 0.0}])),
+    "held_by_contact_pulled_off": _mutate(_pulled_off),
+    "unsupported_body_without_contact": _mutate(_loose_second_body),
     "unknown_contact_edge_set": _mutate(_set("/contacts/0/edges", "roof")),
     "unknown_support_edge_set": _mutate(_set("/bodies/0/supports/0/edges", "floor")),
     "contact_body_out_of_range": _mutate(_set("/contacts/0/body", 5)),
