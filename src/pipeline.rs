@@ -8,6 +8,7 @@ use std::sync::Arc;
 use crate::cache::{self, OperatorCache};
 use crate::contact::{
     self,
+    foundation::Foundations,
     free_motions::{self, FreeMotions, Motion},
 };
 use crate::error::{CoreError, InvalidKind};
@@ -152,12 +153,13 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
     }
     let external = fem::assembly::external_loads(scene, &meshes, &dofs);
     let free = FreeMotions::try_new(scene, &cons, &dofs, &meshes, &external)?;
+    let foundations = Foundations::try_new(scene, &cons)?;
     if scene.settings.formulation == Formulation::Full {
-        if !free.motions.is_empty() {
+        if !free.motions.is_empty() || !foundations.is_empty() {
             return Err(CoreError::invalid(
                 InvalidKind::Request,
                 "/settings/formulation",
-                "load-controlled punches and bodies held only by contact are solved on the condensed formulation only",
+                "load-controlled punches, bodies held only by contact and foundations are solved on the condensed formulation only",
             ));
         }
         return solve_full(scene, &meshes, dofs, cons, timings, t, t_start);
@@ -187,6 +189,7 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
     };
     let t = Instant::now();
     let f = fem::assembly::assemble_loads(scene, &meshes, &dofs, &op.stiffness);
+    let compliance = (!foundations.is_empty()).then(|| foundations.compliance(&cons));
     timings.assembly += t.elapsed().as_secs_f64();
 
     let problem = Problem {
@@ -208,6 +211,7 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
             c: &free.c,
             rhs: &free.rhs,
         }),
+        compliance: compliance.as_ref(),
     };
     let sol = methods::solve(&problem, scene.method)?;
     timings.contact_solve = sol.t_contact;
@@ -218,6 +222,7 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
         k: &op.stiffness.k,
         f: &f,
         free: Some(&free),
+        foundations: Some((&foundations, compliance.as_ref())),
     };
     Ok(finish(scene, &stage, sol, timings, t_start, cache_state))
 }
@@ -230,6 +235,8 @@ struct Stage<'a> {
     k: &'a faer::sparse::SparseColMat<usize, f64>,
     f: &'a [f64],
     free: Option<&'a FreeMotions>,
+    /// The foundations and their compliance D F D (None when there are none).
+    foundations: Option<(&'a Foundations, Option<&'a faer::Mat<f64>>)>,
 }
 
 /// Largest problem the full-system interior point accepts.
@@ -285,6 +292,7 @@ fn solve_full(
         k: &stiffness.k,
         f: &f,
         free: None,
+        foundations: None,
     };
     Ok(finish(scene, &stage, sol, timings, t_start, CacheState::Off))
 }
@@ -301,7 +309,13 @@ fn finish(
     let t = Instant::now();
     let free = st.free.filter(|p| !p.motions.is_empty());
     let beta = free.map(|p| p.motion(&sol.beta)).unwrap_or_default();
-    let shift = free.filter(|p| !p.is_empty()).map(|p| p.shift(&sol.beta));
+    let mut shift = free.filter(|p| !p.is_empty()).map(|p| p.shift(&sol.beta));
+    // The foundations' deflection opens the gaps: D F D λ joins the shift.
+    if let Some((_, Some(wf))) = st.foundations {
+        let opened = crate::linalg::dense::matvec(wf, &sol.lambda);
+        let s = shift.get_or_insert_with(|| vec![0.0; opened.len()]);
+        s.iter_mut().zip(&opened).for_each(|(a, b)| *a += b);
+    }
     let (mut certificate, gaps) = certify(st.k, st.f, st.cons, &sol.u, &sol.lambda, shift.as_deref());
     if let Some(p) = free.filter(|p| !p.is_empty()) {
         // Equilibrium of the free motions, (CV)ᵀλ = −VᵀP, joins the equilibrium residual.
@@ -322,6 +336,10 @@ fn finish(
         .map(|p| punch_results(scene, st.cons, p, &beta, &sol.lambda))
         .unwrap_or_default();
     let notes = st.free.map(|p| p.notes.clone()).unwrap_or_default();
+    let foundations = st
+        .foundations
+        .map(|(f, _)| foundation_results(scene, st.cons, f, &sol.lambda))
+        .unwrap_or_default();
     let (pairs, resultant, n_active) = post::pairs(scene, st.meshes, st.cons, &sol.lambda, &sol.in_contact, &gaps);
     let status = if !certificate.is_finite() {
         SolveStatus::NumericalError
@@ -358,6 +376,7 @@ fn finish(
         steps: None,
         punches,
         bodies,
+        foundations,
         notes,
     }
 }
@@ -505,5 +524,41 @@ fn pair_target_name(scene: &Scene, pair: &crate::scene::Pair) -> String {
         crate::scene::Target::Body { body, edges, .. } => {
             format!("edge set '{edges}' of body '{}'", scene.bodies[*body].name)
         }
+        crate::scene::Target::Foundation(f) => format!("foundation '{}'", scene.foundations[*f].name),
     }
+}
+
+/// Deflection of every loaded foundation in the caller's units.
+fn foundation_results(
+    scene: &Scene,
+    cons: &contact::ConstraintSet,
+    f: &Foundations,
+    lambda: &[f64],
+) -> Vec<proto::FoundationResult> {
+    let sc = scene.scales;
+    f.deflections(scene, cons, lambda)
+        .into_iter()
+        .map(|(k, x, w)| {
+            let fnd = &scene.foundations[k];
+            let load: f64 = cons
+                .candidates
+                .iter()
+                .zip(lambda)
+                .filter_map(|(c, l)| c.foundation.filter(|r| r.foundation == k).map(|r| r.proj * l))
+                .sum();
+            let (model, reference_distance) = match fnd.model {
+                crate::scene::FoundationModel::Winkler { .. } => ("winkler", None),
+                crate::scene::FoundationModel::Pasternak { .. } => ("pasternak", None),
+                crate::scene::FoundationModel::HalfPlane { d, .. } => ("half_plane", Some(sc.length(d))),
+            };
+            proto::FoundationResult {
+                name: fnd.name.clone(),
+                model: model.to_string(),
+                x: x.into_iter().map(|v| sc.length(v)).collect(),
+                w: w.into_iter().map(|v| sc.length(v)).collect(),
+                reference_distance,
+                load: sc.force(load),
+            }
+        })
+        .collect()
 }

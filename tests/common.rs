@@ -84,3 +84,22 @@ pub fn max_pressure_diff(a: &SolveReply, b: &SolveReply) -> f64 {
         .map(|(p, q)| (p.pressure - q.pressure).abs())
         .fold(0.0, f64::max)
 }
+
+/// Solves `req` with `active_set` and with `interior_point`: every candidate's
+/// pressure agrees to `tol` of the peak (the exact methods solve one problem).
+pub fn assert_exact_methods_agree(req: &Value, tol: f64) {
+    let mut req = req.clone();
+    req["method"] = Value::from("active_set");
+    let a = solved(&req);
+    req["method"] = Value::from("interior_point");
+    let b = solved(&req);
+    let peak = peak_pressure(&a);
+    for (p, q) in a.pairs[0].points.iter().zip(&b.pairs[0].points) {
+        assert!(
+            (p.pressure - q.pressure).abs() <= tol * peak,
+            "{} vs {}",
+            p.pressure,
+            q.pressure
+        );
+    }
+}

@@ -269,20 +269,7 @@ fn a_much_stiffer_body_acts_as_a_rigid_obstacle() {
 /// The exact methods agree on the two-body problem as on every other.
 #[test]
 fn exact_methods_agree_on_two_bodies() {
-    let mut req = example("two_bodies_cylinders.json");
-    req["method"] = json!("active_set");
-    let a = solved(&req);
-    req["method"] = json!("interior_point");
-    let b = solved(&req);
-    let peak = peak_pressure(&a);
-    for (p, q) in a.pairs[0].points.iter().zip(&b.pairs[0].points) {
-        assert!(
-            (p.pressure - q.pressure).abs() <= 1e-7 * peak,
-            "{} vs {}",
-            p.pressure,
-            q.pressure
-        );
-    }
+    assert_exact_methods_agree(&example("two_bodies_cylinders.json"), 1e-7);
 }
 
 /// A cylinder held only by contact, pressed by a traction on its flat face:

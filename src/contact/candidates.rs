@@ -13,6 +13,7 @@
 //! Candidates whose gap cannot close (no intersection, or a gap beyond
 //! `prune_gap_ratio` of the body size) are dropped and counted.
 
+use super::foundation::{self, FoundationRow};
 use super::gap::gap_along_normal;
 use super::two_body::{self, Surface};
 use crate::fem::assembly::{DofMap, FIXED};
@@ -39,6 +40,8 @@ pub struct Candidate {
     /// For a punch: its obstacle index and the row c of −C, so that the
     /// constraint reads n·u − c·(α1, α2, θ) ≤ s: c = (n_x, n_y, (x − x_r) n_y − (y − y_r) n_x).
     pub punch: Option<(usize, [f64; 3])>,
+    /// For a row on a foundation: which one, the row's panel and projection.
+    pub foundation: Option<FoundationRow>,
 }
 
 /// One node's share of a candidate row; the contact force the row's
@@ -52,6 +55,38 @@ pub struct Term {
 
 /// Splits nodal terms into the free-DOF row and the prescribed part, which
 /// moves to the right-hand side: returns (row, s − Σ coef · ū).
+/// Whether a row with no free DOF still constrains something: its node may be
+/// held by a virtual support of a body whose rigid modes are free (they move it).
+pub fn moves_rigidly(terms: &[Term], dofs: &DofMap) -> bool {
+    terms.iter().any(|t| dofs.rigid.iter().any(|r| r.body == t.body))
+}
+
+/// Nodal terms, free-DOF row and right-hand side of a row.
+pub type NodeRow = (Vec<Term>, Vec<(usize, f64)>, f64);
+
+/// The one-node row n · u_node ≤ s against something that does not move with
+/// the body's DOFs (an obstacle, a foundation); None when the gap cannot close
+/// (beyond `limit`) or the node is fully prescribed.
+pub fn node_row(
+    body: usize,
+    node: usize,
+    normal: [f64; 2],
+    s: f64,
+    limit: f64,
+    dofs: &DofMap,
+) -> Option<NodeRow> {
+    if s > limit {
+        return None;
+    }
+    let terms = vec![Term {
+        body,
+        node,
+        coef: normal,
+    }];
+    let (row, g) = free_row(&terms, dofs, s);
+    (!row.is_empty() || moves_rigidly(&terms, dofs)).then_some((terms, row, g))
+}
+
 pub fn free_row(terms: &[Term], dofs: &DofMap, s: f64) -> (Vec<(usize, f64)>, f64) {
     let mut row: Vec<(usize, f64)> = Vec::with_capacity(2 * terms.len());
     let mut g = s;
@@ -150,11 +185,12 @@ pub fn build(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> ConstraintSet {
         // that an unrelated body elsewhere changes nothing.
         let limit = scene.settings.prune_gap_ratio
             * match &pair.target {
-                Target::Obstacle(_) => meshes[pair.body].size(),
+                Target::Obstacle(_) | Target::Foundation(_) => meshes[pair.body].size(),
                 Target::Body { body, .. } => meshes[pair.body].size().max(meshes[*body].size()),
             };
         let pruned = match &pair.target {
             Target::Obstacle(o) => against_obstacle(scene, p, *o, meshes, dofs, limit, &mut set.candidates),
+            Target::Foundation(f) => foundation::rows(scene, p, *f, meshes, dofs, &mut set.candidates),
             Target::Body {
                 body,
                 edges,
@@ -177,7 +213,7 @@ pub fn build(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> ConstraintSet {
                 let mut pruned = rows.pruned;
                 for r in rows.rows {
                     let (row, g) = free_row(&r.terms, dofs, r.gap);
-                    if row.is_empty() {
+                    if row.is_empty() && !moves_rigidly(&r.terms, dofs) {
                         pruned += 1;
                         continue;
                     }
@@ -192,6 +228,7 @@ pub fn build(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> ConstraintSet {
                         row,
                         g,
                         punch: None,
+                        foundation: None,
                     });
                 }
                 pruned
@@ -218,25 +255,12 @@ fn against_obstacle(
     let mut pruned = 0;
     for bn in boundary_nodes(mesh, &mesh.edge_sets[&pair.edges]) {
         let x = mesh.nodes[bn.node];
-        let Some(s) = gap_along_normal(shape, x, bn.normal) else {
+        let row =
+            gap_along_normal(shape, x, bn.normal).and_then(|s| node_row(pair.body, bn.node, bn.normal, s, limit, dofs));
+        let Some((terms, row, mut g)) = row else {
             pruned += 1;
             continue;
         };
-        if s > limit {
-            pruned += 1;
-            continue;
-        }
-        let terms = vec![Term {
-            body: pair.body,
-            node: bn.node,
-            coef: bn.normal,
-        }];
-        let (row, mut g) = free_row(&terms, dofs, s);
-        if row.is_empty() {
-            // Fully prescribed node: nothing to solve for.
-            pruned += 1;
-            continue;
-        }
         let punch = scene.obstacles[obstacle].punch.as_ref().map(|pu| {
             let (dx, dy) = (x[0] - pu.reference[0], x[1] - pu.reference[1]);
             let c = [bn.normal[0], bn.normal[1], dx * bn.normal[1] - dy * bn.normal[0]];
@@ -258,6 +282,7 @@ fn against_obstacle(
             terms,
             row,
             g,
+            foundation: None,
         });
     }
     pruned

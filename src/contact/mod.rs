@@ -2,6 +2,7 @@
 //! motions (punches, bodies held only by contact) that enter them.
 
 pub mod candidates;
+pub mod foundation;
 pub mod free_motions;
 pub mod gap;
 pub mod rigid;

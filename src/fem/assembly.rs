@@ -114,10 +114,28 @@ pub fn dof_map(scene: &Scene, meshes: &[Mesh2d]) -> Result<DofMap, CoreError> {
             ));
         }
         let off = node_offset[b];
-        let virtual_dofs: Vec<usize> = virtual_supports(&mesh.nodes, c0, &basis, |n, c| fixed[2 * (off + n) + c])
-            .into_iter()
-            .map(|(n, c)| 2 * (off + n) + c)
-            .collect();
+        // Away from the contact edges if possible: a row whose node is held by a
+        // virtual support sees the body only through its rigid modes.
+        let mut contact_nodes = std::collections::HashSet::new();
+        for p in &scene.pairs {
+            if p.body == b {
+                contact_nodes.extend(mesh.edge_set_nodes(&p.edges));
+            }
+            if let crate::scene::Target::Body { body, edges, .. } = &p.target {
+                if *body == b {
+                    contact_nodes.extend(mesh.edge_set_nodes(edges));
+                }
+            }
+        }
+        let away = virtual_supports(&mesh.nodes, c0, &basis, |n, c| {
+            fixed[2 * (off + n) + c] || contact_nodes.contains(&n)
+        });
+        let chosen = if away.len() == basis.len() {
+            away
+        } else {
+            virtual_supports(&mesh.nodes, c0, &basis, |n, c| fixed[2 * (off + n) + c])
+        };
+        let virtual_dofs: Vec<usize> = chosen.into_iter().map(|(n, c)| 2 * (off + n) + c).collect();
         for &d in &virtual_dofs {
             fixed[d] = true;
         }

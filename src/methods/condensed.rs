@@ -68,12 +68,22 @@ pub fn solve_condensed_mixed(
     let u0 = op.chol.solve(p.f);
     let bu0 = p.cons.apply(&u0);
     let q: Vec<f64> = p.cons.candidates.iter().zip(&bu0).map(|(c, b)| c.g - b).collect();
-    let (res, beta) = mlcp(&op.w, &q);
-    let wl = dense::matvec(&op.w, &res.lambda);
+    // Foundations add their compliance to the bodies' (per request: it is not
+    // part of the cached operator).
+    let with_foundation;
+    let w = match p.compliance {
+        Some(c) => {
+            with_foundation = &op.w + c;
+            &with_foundation
+        }
+        None => &op.w,
+    };
+    let (res, beta) = mlcp(w, &q);
+    let wl = dense::matvec(w, &res.lambda);
     let in_contact = (0..q.len())
         .map(|i| {
             let cb: f64 = (0..beta.len()).map(|j| pb.c[(i, j)] * beta[j]).sum();
-            res.lambda[i] > 0.0 && res.lambda[i] * op.w[(i, i)] > wl[i] + q[i] + cb
+            res.lambda[i] > 0.0 && res.lambda[i] * w[(i, i)] > wl[i] + q[i] + cb
         })
         .collect();
     let mut rhs = p.f.to_vec();

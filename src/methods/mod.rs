@@ -38,8 +38,11 @@ pub struct Problem<'a> {
     pub zeta: f64,
     /// Nondimensional barrier parameter.
     pub barrier: f64,
-    /// Load-controlled punch motions: rows −C_F β_F and equilibrium C_Fᵀλ = rhs.
+    /// Free rigid motions (punches, bodies held by contact): rows −C β and
+    /// their equilibrium Cᵀλ = rhs.
     pub punch: Option<PunchBlock<'a>>,
+    /// Compliance added to W (foundations), m × m.
+    pub compliance: Option<&'a faer::Mat<f64>>,
 }
 
 /// A solver of the mixed LCP (W, q) with the punch block bound in: returns (λ, β).

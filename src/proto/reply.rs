@@ -39,6 +39,9 @@ pub struct SolveReply {
     /// Per body, when `outputs` asks for it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub bodies: Option<Vec<BodyOutput>>,
+    /// Surface deflection of every foundation a body rests on.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub foundations: Vec<FoundationResult>,
     /// What the user should know about this solution (e.g. a rigid motion of a
     /// body held only by contact that nothing determines).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -110,13 +113,17 @@ pub struct PairResult {
     /// The other body of a two-body pair (its `against` edge set).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub against: Option<String>,
+    /// The foundation of a foundation pair.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub foundation: Option<String>,
     /// Discretization of a two-body pair.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub discretization: Option<crate::proto::Discretization>,
     /// Intervals [x_start, x_end] along x1 where the body touches, from the
     /// first to the last node of each run of consecutive active candidates
     /// (mortar: the support of the interpolated pressure Σ p_i N_i, which
-    /// reaches the neighbouring open nodes).
+    /// reaches the neighbouring open nodes; foundation: the union of the active
+    /// nodes' panels, on which the foundation pressure is constant).
     pub zones: Vec<[f64; 2]>,
     /// Every contact candidate of the pair, ordered along the boundary.
     pub points: Vec<ContactPoint>,
@@ -235,4 +242,22 @@ pub struct BodyOutput {
     /// Element-centroid stress [σxx, σyy, σxy].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stress: Option<Vec<[f64; 3]>>,
+}
+
+/// A foundation's surface deflection w(x) (downward positive) along its whole
+/// length, also outside the contact zone where the model spreads it.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FoundationResult {
+    pub name: String,
+    /// "winkler", "pasternak" or "half_plane".
+    pub model: String,
+    pub x: Vec<f64>,
+    pub w: Vec<f64>,
+    /// Half-plane: the distance from a load at which its deflection is zero
+    /// (the reference that fixes the 2D half-plane's rigid motion).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reference_distance: Option<f64>,
+    /// Total force the foundation carries (per unit thickness, downward).
+    pub load: f64,
 }

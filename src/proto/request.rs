@@ -24,7 +24,11 @@ pub struct SolveRequest {
     /// Rigid obstacles the bodies may touch.
     #[serde(default)]
     pub obstacles: Vec<ObstacleSpec>,
-    /// Contact pairs: which boundary edges of which body may touch which obstacle.
+    /// Tensionless deformable foundations the bodies may rest on.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub foundations: Vec<FoundationSpec>,
+    /// Contact pairs: which boundary edges of which body may touch which
+    /// obstacle, other body or foundation.
     pub contacts: Vec<ContactSpec>,
     /// Constraint treatment.
     #[serde(default)]
@@ -293,7 +297,8 @@ pub enum ObstacleShape {
 }
 
 /// A contact pair: an edge set of a body against exactly one of an obstacle
-/// (`obstacle`) or an edge set of another deformable body (`against`).
+/// (`obstacle`), an edge set of another deformable body (`against`) or a
+/// foundation (`foundation`).
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSpec {
@@ -308,10 +313,53 @@ pub struct ContactSpec {
     /// The other deformable body's facing edge set (the mortar or "master" side).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub against: Option<SurfaceSpec>,
+    /// Foundation index (0-based) or name: the edge set rests on it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub foundation: Option<BodyRef>,
     /// How the non-penetration condition between two bodies is discretized
     /// (ignored for rigid obstacles).
     #[serde(default)]
     pub discretization: Discretization,
+}
+
+/// A tensionless foundation under the bodies: its surface is the horizontal
+/// segment y = `y`, x_min ≤ x ≤ x_max, with the foundation below it. It pushes
+/// up where a body presses on it and never pulls.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FoundationSpec {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Height of the unloaded surface [length].
+    pub y: f64,
+    /// Extent of the foundation along x [length]: body nodes outside it find no
+    /// foundation; a Pasternak layer ends there (free ends).
+    pub x_min: f64,
+    pub x_max: f64,
+    pub model: FoundationModel,
+}
+
+/// The foundation's response to the pressure p(x) it carries (deflection w,
+/// positive downward).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum FoundationModel {
+    /// p = k w: independent springs of stiffness `stiffness` [pressure / length].
+    Winkler { stiffness: f64 },
+    /// p = k w − (μ w')': springs `stiffness` k [pressure / length] coupled by a
+    /// shear layer `shear` μ [force per unit thickness]; outside the loaded zone
+    /// the surface decays over √(μ/k).
+    Pasternak { stiffness: f64, shear: f64 },
+    /// An elastic half-plane (plane strain), w = T[p] with the Flamant kernel
+    /// (2 / (π E*)) ln(d / |x − t|), E* = E / (1 − ν²). The surface displacement of
+    /// a 2D half-plane is defined only up to a rigid motion: w = 0 at the
+    /// distance `reference_distance` d from a point load; d must exceed a quarter
+    /// of the loaded length.
+    HalfPlane {
+        youngs_modulus: f64,
+        poisson_ratio: f64,
+        reference_distance: f64,
+    },
 }
 
 /// An edge set of a body.

@@ -21,6 +21,7 @@ pub struct Scene {
     pub scales: Scales,
     pub bodies: Vec<Body>,
     pub obstacles: Vec<Obstacle>,
+    pub foundations: Vec<Foundation>,
     pub pairs: Vec<Pair>,
     pub method: MethodName,
     pub settings: SolverSettings,
@@ -220,6 +221,8 @@ pub struct Pair {
 #[derive(Debug, Clone)]
 pub enum Target {
     Obstacle(usize),
+    /// A foundation of `Scene::foundations`.
+    Foundation(usize),
     /// An edge set of another deformable body.
     Body {
         body: usize,
@@ -232,7 +235,33 @@ impl Pair {
     pub fn obstacle(&self) -> Option<usize> {
         match self.target {
             Target::Obstacle(o) => Some(o),
-            Target::Body { .. } => None,
+            _ => None,
         }
     }
+}
+
+/// A tensionless foundation (nondimensional).
+#[derive(Debug, Clone)]
+pub struct Foundation {
+    pub name: String,
+    pub y: f64,
+    pub x_min: f64,
+    pub x_max: f64,
+    pub model: FoundationModel,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FoundationModel {
+    Winkler {
+        k: f64,
+    },
+    Pasternak {
+        k: f64,
+        mu: f64,
+    },
+    /// E* = E / (1 − ν²) and the reference distance d.
+    HalfPlane {
+        e_star: f64,
+        d: f64,
+    },
 }

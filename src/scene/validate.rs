@@ -44,6 +44,20 @@ fn finite(v: f64, path: &str, kind: InvalidKind) -> Result<f64, CoreError> {
     }
 }
 
+/// Poisson's ratio of an isotropic elastic material: −1 < ν < 0.5.
+fn poisson(nu: f64, path: &str) -> Result<f64, CoreError> {
+    finite(nu, path, InvalidKind::Material)?;
+    if nu > -1.0 && nu < 0.5 {
+        Ok(nu)
+    } else {
+        Err(invalid(
+            InvalidKind::Material,
+            path,
+            format!("Poisson's ratio must satisfy -1 < nu < 0.5, got {nu}"),
+        ))
+    }
+}
+
 fn positive(v: f64, path: &str, kind: InvalidKind, what: &str) -> Result<f64, CoreError> {
     finite(v, path, kind)?;
     if v > 0.0 {
@@ -158,14 +172,7 @@ impl Scene {
                 K::Material,
                 "Young's modulus",
             )?;
-            let nu = finite(b.material.poisson_ratio, &format!("{p}/poisson_ratio"), K::Material)?;
-            if !(nu > -1.0 && nu < 0.5) {
-                return Err(invalid(
-                    K::Material,
-                    format!("{p}/poisson_ratio"),
-                    format!("Poisson's ratio must satisfy -1 < nu < 0.5, got {nu}"),
-                ));
-            }
+            poisson(b.material.poisson_ratio, &format!("{p}/poisson_ratio"))?;
             modulus = modulus.max(e);
             self::check_mesh_spec(&b.mesh, &format!("/bodies/{i}/mesh"))?;
             let (ext, n) = mesh_extent_and_nodes(&b.mesh);
@@ -454,6 +461,94 @@ impl Scene {
             obstacles.push(Obstacle { name, shape, punch });
         }
 
+        let mut foundation_names = Vec::new();
+        let mut foundations = Vec::new();
+        for (i, f) in req.foundations.iter().enumerate() {
+            let fp = format!("/foundations/{i}");
+            let name = f.name.clone().unwrap_or_else(|| format!("foundation{i}"));
+            if foundation_names.contains(&name) {
+                return Err(invalid(
+                    K::Request,
+                    format!("{fp}/name"),
+                    format!("duplicate foundation name '{name}'"),
+                ));
+            }
+            foundation_names.push(name.clone());
+            let y = finite(f.y, &format!("{fp}/y"), K::Geometry)?;
+            let x_min = finite(f.x_min, &format!("{fp}/x_min"), K::Geometry)?;
+            let x_max = finite(f.x_max, &format!("{fp}/x_max"), K::Geometry)?;
+            if x_max <= x_min {
+                return Err(invalid(
+                    K::Geometry,
+                    format!("{fp}/x_max"),
+                    format!("the foundation must have x_max > x_min, got [{x_min}, {x_max}]"),
+                ));
+            }
+            let mp = format!("{fp}/model");
+            let model = match &f.model {
+                proto::FoundationModel::Winkler { stiffness } => FoundationModel::Winkler {
+                    k: positive(
+                        *stiffness,
+                        &format!("{mp}/winkler/stiffness"),
+                        K::Material,
+                        "the Winkler stiffness",
+                    )? * length
+                        / modulus,
+                },
+                proto::FoundationModel::Pasternak { stiffness, shear } => {
+                    let k = positive(
+                        *stiffness,
+                        &format!("{mp}/pasternak/stiffness"),
+                        K::Material,
+                        "the Pasternak stiffness",
+                    )?;
+                    let mu = finite(*shear, &format!("{mp}/pasternak/shear"), K::Material)?;
+                    if mu < 0.0 {
+                        return Err(invalid(
+                            K::Material,
+                            format!("{mp}/pasternak/shear"),
+                            format!("the shear layer's μ must be ≥ 0, got {mu}"),
+                        ));
+                    }
+                    FoundationModel::Pasternak {
+                        k: k * length / modulus,
+                        mu: mu / (modulus * length),
+                    }
+                }
+                proto::FoundationModel::HalfPlane {
+                    youngs_modulus,
+                    poisson_ratio,
+                    reference_distance,
+                } => {
+                    let hp = format!("{mp}/half_plane");
+                    let e = positive(
+                        *youngs_modulus,
+                        &format!("{hp}/youngs_modulus"),
+                        K::Material,
+                        "Young's modulus",
+                    )?;
+                    let nu = poisson(*poisson_ratio, &format!("{hp}/poisson_ratio"))?;
+                    let d = positive(
+                        *reference_distance,
+                        &format!("{hp}/reference_distance"),
+                        K::Geometry,
+                        "the reference distance",
+                    )?;
+                    FoundationModel::HalfPlane {
+                        e_star: e / (1.0 - nu * nu) / modulus,
+                        d: d / length,
+                    }
+                }
+            };
+            foundations.push(Foundation {
+                name,
+                y: y / length,
+                x_min: x_min / length,
+                x_max: x_max / length,
+                model,
+            });
+        }
+
         if req.contacts.is_empty() {
             return Err(invalid(
                 K::NoContactCandidates,
@@ -477,33 +572,37 @@ impl Scene {
                 }
             };
             has_edges(body, &c.edges, format!("{cp}/edges"))?;
-            let target =
-                match (&c.obstacle, &c.against) {
-                    (Some(o), None) => {
-                        Target::Obstacle(resolve(o, &obstacle_names, &format!("{cp}/obstacle"), "obstacle")?)
+            let target = match (&c.obstacle, &c.against, &c.foundation) {
+                (Some(o), None, None) => {
+                    Target::Obstacle(resolve(o, &obstacle_names, &format!("{cp}/obstacle"), "obstacle")?)
+                }
+                (None, None, Some(f)) => {
+                    Target::Foundation(resolve(f, &foundation_names, &format!("{cp}/foundation"), "foundation")?)
+                }
+                (None, Some(a), None) => {
+                    let other = resolve(&a.body, &names, &format!("{cp}/against/body"), "body")?;
+                    if other == body {
+                        return Err(invalid(
+                            K::Request,
+                            format!("{cp}/against/body"),
+                            "a body cannot be in contact with itself (self-contact is not supported)",
+                        ));
                     }
-                    (None, Some(a)) => {
-                        let other = resolve(&a.body, &names, &format!("{cp}/against/body"), "body")?;
-                        if other == body {
-                            return Err(invalid(
-                                K::Request,
-                                format!("{cp}/against/body"),
-                                "a body cannot be in contact with itself (self-contact is not supported)",
-                            ));
-                        }
-                        has_edges(other, &a.edges, format!("{cp}/against/edges"))?;
-                        Target::Body {
-                            body: other,
-                            edges: a.edges.clone(),
-                            discretization: c.discretization,
-                        }
+                    has_edges(other, &a.edges, format!("{cp}/against/edges"))?;
+                    Target::Body {
+                        body: other,
+                        edges: a.edges.clone(),
+                        discretization: c.discretization,
                     }
-                    _ => return Err(invalid(
+                }
+                _ => {
+                    return Err(invalid(
                         K::Request,
                         cp.clone(),
-                        "a contact pair names exactly one of 'obstacle' (rigid) or 'against' (another body's edge set)",
-                    )),
-                };
+                        "a contact pair names exactly one of 'obstacle' (rigid), 'against' (another body's edge set) or 'foundation'",
+                    ))
+                }
+            };
             pairs.push(Pair {
                 body,
                 edges: c.edges.clone(),
@@ -540,6 +639,7 @@ impl Scene {
             scales,
             bodies,
             obstacles,
+            foundations,
             pairs,
             method: req.method,
             settings: s.clone(),

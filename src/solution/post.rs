@@ -79,11 +79,16 @@ pub fn pairs(
             let l = lambda[i];
             max_pen = max_pen.max(-gaps[i]);
             let x = sc.length(c.x[0]);
+            // A foundation's pressure is constant on each row's panel.
+            let (lo, hi) = match c.foundation {
+                Some(fr) => (sc.length(fr.panel[0]), sc.length(fr.panel[1])),
+                None => (x, x),
+            };
             if in_contact[i] {
                 n_active += 1;
                 open = Some(match open {
-                    Some(z) => [z[0], x],
-                    None => [if field { prev.unwrap_or(x) } else { x }, x],
+                    Some(z) => [z[0], hi],
+                    None => [if field { prev.unwrap_or(x) } else { lo }, hi],
                 });
             } else if let Some(z) = open.take() {
                 zones.push(if field { [z[0], x] } else { z });
@@ -113,7 +118,7 @@ pub fn pairs(
             &meshes[pair.body],
         ));
         let other = match &pair.target {
-            Target::Obstacle(_) => None,
+            Target::Obstacle(_) | Target::Foundation(_) => None,
             Target::Body { body, edges, .. } => {
                 let (mesh, forces) = (&meshes[*body], nodal_forces(cons, lambda, p, *body));
                 let mut pts: Vec<CounterPoint> = boundary_nodes(mesh, &mesh.edge_sets[edges])
@@ -140,8 +145,13 @@ pub fn pairs(
         total.fx += res.fx;
         total.fy += res.fy;
         total.m += res.m;
+        let foundation = match &pair.target {
+            Target::Foundation(f) => Some(scene.foundations[*f].name.clone()),
+            _ => None,
+        };
         let (obstacle, against, discretization) = match &pair.target {
             Target::Obstacle(o) => (Some(scene.obstacles[*o].name.clone()), None, None),
+            Target::Foundation(_) => (None, None, None),
             Target::Body {
                 body, discretization, ..
             } => (None, Some(scene.bodies[*body].name.clone()), Some(*discretization)),
@@ -151,6 +161,7 @@ pub fn pairs(
             body: scene.bodies[pair.body].name.clone(),
             obstacle,
             against,
+            foundation,
             discretization,
             other_points,
             other_resultant,

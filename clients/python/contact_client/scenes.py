@@ -17,6 +17,8 @@ from __future__ import annotations
 import math
 
 __all__ = [
+    "footing_on_foundation",
+    "pasternak_deflection",
     "two_cylinders",
     "hertz_two_cylinders",
     "punch_on_block",
@@ -320,3 +322,58 @@ def two_cylinders(
             }
         ],
     }
+
+
+def footing_on_foundation(
+    model: dict,
+    width: float = 2.0,
+    height: float = 0.5,
+    pressure: float = 1.0,
+    youngs_modulus: float = 1000.0,
+    poisson_ratio: float = 0.25,
+    size: float = 0.05,
+    extent: float = 5.0,
+    element: str = "t3",
+) -> dict:
+    """A rectangular footing ``width`` x ``height`` with no other support resting
+    on a tensionless foundation along y = 0, x in [-extent, extent], under a
+    uniform ``pressure`` on its top (P = pressure * width per unit thickness).
+
+    ``model`` is the protocol's foundation model, e.g.
+    ``{"winkler": {"stiffness": k}}`` (k: pressure per length),
+    ``{"pasternak": {"stiffness": k, "shear": mu}}`` (mu: force per unit thickness),
+    ``{"half_plane": {"youngs_modulus": E, "poisson_ratio": nu, "reference_distance": d}}``.
+    The footing's horizontal translation is not resisted by a frictionless
+    foundation; the reply says so in ``notes``.
+    """
+    return {
+        "version": PROTOCOL_VERSION,
+        "analysis": "plane_strain",
+        "bodies": [
+            {
+                "name": "footing",
+                "material": {"youngs_modulus": youngs_modulus, "poisson_ratio": poisson_ratio},
+                "mesh": {
+                    "rectangle": {
+                        "corner": [-0.5 * width, 0.0],
+                        "width": width,
+                        "height": height,
+                        "size": size,
+                        "element": element,
+                    }
+                },
+                "supports": [],
+                "tractions": [{"edges": "top", "pressure": pressure}],
+            }
+        ],
+        "foundations": [{"name": "soil", "y": 0.0, "x_min": -extent, "x_max": extent, "model": model}],
+        "contacts": [{"body": "footing", "edges": "bottom", "foundation": "soil"}],
+    }
+
+
+def pasternak_deflection(x: float, P: float, a: float, k: float, mu: float) -> float:
+    """Deflection of a Pasternak layer (p = k w - mu w'') under a rigid footing of
+    half-width a carrying P per unit thickness: w0 = P / (2 (k a + sqrt(k mu)))
+    under it, w0 exp(-(|x| - a) / sqrt(mu/k)) outside."""
+    w0 = P / (2.0 * (k * a + math.sqrt(k * mu)))
+    return w0 if abs(x) <= a else w0 * math.exp(-(abs(x) - a) / math.sqrt(mu / k))

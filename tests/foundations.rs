@@ -1,0 +1,232 @@
+//! Bodies on tensionless foundations: Winkler exactness, Pasternak's limit and
+//! decay, the elastic half-plane against Hertz, lift-off, and refusals.
+
+mod common;
+use common::*;
+use contact::proto::{ErrorCode, FoundationResult};
+use serde_json::json;
+
+fn foundation(r: &contact::proto::SolveReply) -> &FoundationResult {
+    &r.foundations[0]
+}
+
+/// Uniform stress is exact in the FE model, so a block under a uniform load on
+/// Winkler springs transmits exactly that load and settles load/k (to round-off;
+/// 1e-8 asked). Every candidate is in contact and the zone is the whole base.
+#[test]
+fn winkler_uniform_load_is_exact() {
+    for element in ["t3", "t6"] {
+        let mut req = example("foundation_winkler_footing.json");
+        req["bodies"][0]["mesh"]["rectangle"]["element"] = json!(element);
+        let r = solved(&req);
+        assert_kkt(&r, 1e-8);
+        let pair = &r.pairs[0];
+        assert_eq!(pair.foundation.as_deref(), Some("soil"));
+        for p in &pair.points {
+            assert!(
+                (p.pressure - 1.0).abs() < 1e-8,
+                "{element}: p({}) = {}",
+                p.x,
+                p.pressure
+            );
+        }
+        assert_eq!(pair.zones, vec![[-1.0, 1.0]]);
+        let f = foundation(&r);
+        assert_eq!(f.model, "winkler");
+        assert!((f.load - 2.0).abs() < 1e-12);
+        for (x, w) in f.x.iter().zip(&f.w) {
+            let expected = if x.abs() <= 1.0 { 0.01 } else { 0.0 };
+            assert!((w - expected).abs() < 1e-8 * 0.01, "{element}: w({x}) = {w}");
+        }
+    }
+}
+
+/// With μ = 0 the Pasternak layer is the Winkler foundation (the same lumped
+/// springs, no coupling): identical pressures, to round-off.
+#[test]
+fn pasternak_without_shear_is_winkler() {
+    let winkler = solved(&example("foundation_winkler_footing.json"));
+    let mut req = example("foundation_winkler_footing.json");
+    req["foundations"][0]["model"] = json!({ "pasternak": { "stiffness": 100.0, "shear": 0.0 } });
+    let pasternak = solved(&req);
+    for (p, q) in winkler.pairs[0].points.iter().zip(&pasternak.pairs[0].points) {
+        assert!(
+            (p.pressure - q.pressure).abs() < 1e-12,
+            "{} vs {}",
+            p.pressure,
+            q.pressure
+        );
+    }
+    // A thin shear layer changes the answer by little: the edge line loads
+    // √(kμ) w0 carry a share 2√(kμ)/(2ka + 2√(kμ)) of the load (1 % here).
+    req["foundations"][0]["model"] = json!({ "pasternak": { "stiffness": 100.0, "shear": 0.01 } });
+    let thin = solved(&req);
+    let at_centre = |f: &FoundationResult| f.w[f.x.iter().position(|x| x.abs() < 1e-9).expect("x = 0")];
+    let (w_thin, w_winkler) = (at_centre(&thin.foundations[0]), at_centre(&winkler.foundations[0]));
+    assert!((w_thin / w_winkler - 1.0).abs() < 0.02, "{w_thin} vs {w_winkler}");
+}
+
+/// A rigid (10⁶ times stiffer) footing on a Pasternak layer (VERIFICATION.md §4):
+/// settlement w0 = P / (2 (k a + √(kμ))) and, outside, w0 exp(−(|x| − a)/√(μ/k)).
+/// The layer's cells are at most a fifth of the decay length: measured errors
+/// 1.6e-4 (w0) and 1.1e-3 (decay); 1 % asked.
+#[test]
+fn pasternak_settlement_and_decay_match_the_closed_form() {
+    let r = solved(&example("foundation_pasternak_footing.json"));
+    assert_kkt(&r, 1e-8);
+    let (k, mu, a, p) = (100.0f64, 25.0f64, 1.0, 2.0);
+    let decay = (mu / k).sqrt();
+    let w0 = p / (2.0 * (k * a + (k * mu).sqrt()));
+    let f = foundation(&r);
+    assert_eq!(f.model, "pasternak");
+    let mut outside = 0;
+    for (&x, &w) in f.x.iter().zip(&f.w) {
+        let exact = if x.abs() <= a {
+            w0
+        } else {
+            w0 * (-(x.abs() - a) / decay).exp()
+        };
+        if x.abs() < 6.0 {
+            assert!((w - exact).abs() < 0.01 * w0, "w({x}) = {w}, closed form {exact}");
+            outside += usize::from(x.abs() > a);
+        }
+    }
+    assert!(
+        outside > 20,
+        "the deflection is reported outside the footing ({outside} points)"
+    );
+    // Under the footing, away from the edge line loads, the pressure is k w0.
+    for pt in &r.pairs[0].points {
+        if pt.x.abs() < 0.9 {
+            assert!(
+                (pt.pressure - k * w0).abs() < 0.01 * k * w0,
+                "p({}) = {}",
+                pt.x,
+                pt.pressure
+            );
+        }
+    }
+}
+
+/// A roller 10⁶ times stiffer than an elastic half-plane foundation reproduces
+/// Hertz for a rigid cylinder on the half-plane: half-width and peak within 1 %
+/// (measured −0.6 % and +0.23 %; the zone is the union of the active panels of
+/// 0.005, 0.7 % of a).
+#[test]
+fn half_plane_foundation_reproduces_hertz() {
+    let r = solved(&example("foundation_half_plane_roller.json"));
+    assert_kkt(&r, 1e-8);
+    let p = r.pairs[0].resultant.fy;
+    assert!((p - 10.0).abs() < 1e-9, "the load is carried: {p}");
+    let (a, p0) = hertz(p, 8.0, 200.0, 0.3);
+    let ea = half_width(&r) / a - 1.0;
+    let ep = peak_pressure(&r) / p0 - 1.0;
+    assert!(ea.abs() < 0.01, "half-width error {ea:+.4}");
+    assert!(ep.abs() < 0.01, "peak error {ep:+.4}");
+    let f = foundation(&r);
+    assert_eq!(f.reference_distance, Some(20.0));
+    // The surface sinks most under the load and less away from it, and the
+    // deflection is reported across the foundation's whole length.
+    let (xs, ws) = (&f.x, &f.w);
+    let centre = ws[xs.iter().position(|x| x.abs() < 1e-9).expect("x = 0 reported")];
+    assert!(xs.first() == Some(&-4.0) && xs.last() == Some(&4.0));
+    assert!(ws[0] < centre && ws[ws.len() - 1] < centre);
+}
+
+/// Tensionless: a stiff footing on Winkler springs loaded off-centre lifts off.
+/// With the load's eccentricity e beyond B/6 the classical answer is a
+/// triangular pressure over c = 3 (B/2 − e) on the loaded side, peak 2P/c: the
+/// contact zone is part of the solution.
+#[test]
+fn eccentric_load_lifts_the_footing_off_a_winkler_foundation() {
+    let mut req = example("foundation_winkler_footing.json");
+    req["bodies"][0]["material"]["youngs_modulus"] = json!(1.0e7);
+    req["bodies"][0]["tractions"] = json!([]);
+    // A fixed rigid roller pressed 0.01 into the top at x = 0.6 is the load.
+    req["obstacles"] = json!([{ "name": "press", "shape": { "circle": { "center": [0.6, 1.49], "radius": 1.0 } } }]);
+    req["contacts"] = json!([
+        { "body": "footing", "edges": "bottom", "foundation": "soil" },
+        { "body": "footing", "edges": "top", "obstacle": "press" }
+    ]);
+    let r = solved(&req);
+    assert_kkt(&r, 1e-8);
+    let load = &r.pairs[1].resultant;
+    let p = -load.fy;
+    let e = load.m / load.fy; // the load's line of action: x = M / Fy
+    let c = 3.0 * (1.0 - e);
+    assert!(e > 1.0 / 3.0 && c < 2.0, "e = {e}: beyond the kern, lift-off expected");
+    let zone = r.pairs[0].zones[0];
+    assert_eq!(r.pairs[0].zones.len(), 1);
+    assert!((zone[1] - 1.0).abs() < 1e-12, "{zone:?}");
+    // The zone's left end is quantized by the panels (0.05).
+    assert!(
+        (zone[0] - (1.0 - c)).abs() < 0.05 + 1e-9,
+        "zone {zone:?}, expected from {}",
+        1.0 - c
+    );
+    let peak = peak_pressure(&r);
+    assert!(
+        (peak / (2.0 * p / c) - 1.0).abs() < 0.03,
+        "peak {peak} vs {}",
+        2.0 * p / c
+    );
+    for pt in &r.pairs[0].points {
+        if pt.x < 1.0 - c - 0.05 {
+            assert_eq!(pt.pressure, 0.0, "no tension at x = {}", pt.x);
+            assert!(pt.gap > 0.0);
+        }
+    }
+}
+
+/// A body resting only on a foundation must be pushed onto it.
+#[test]
+fn a_load_pulling_the_body_off_is_refused() {
+    let mut req = example("foundation_winkler_footing.json");
+    req["bodies"][0]["tractions"] = json!([{ "edges": "top", "traction": [0.0, 1.0] }]);
+    let e = solve(&req).expect_err("nothing holds the footing down");
+    assert_eq!(e.code, ErrorCode::IncompatibleLoads, "{e:?}");
+    assert_eq!(e.path, "/bodies/0/tractions");
+}
+
+/// Bad foundation parameters are refused with a path.
+#[test]
+fn bad_foundations_are_refused() {
+    let cases = [
+        (
+            json!({ "winkler": { "stiffness": -1.0 } }),
+            "/foundations/0/model/winkler/stiffness",
+        ),
+        (
+            json!({ "pasternak": { "stiffness": 1.0, "shear": -1.0 } }),
+            "/foundations/0/model/pasternak/shear",
+        ),
+        (
+            json!({ "half_plane": { "youngs_modulus": 1.0, "poisson_ratio": 0.5, "reference_distance": 10.0 } }),
+            "/foundations/0/model/half_plane/poisson_ratio",
+        ),
+        // Shorter than a quarter of the loaded length (2): the kernel is not
+        // positive definite there.
+        (
+            json!({ "half_plane": { "youngs_modulus": 1.0, "poisson_ratio": 0.3, "reference_distance": 0.4 } }),
+            "/foundations/0/model/half_plane/reference_distance",
+        ),
+    ];
+    for (model, path) in cases {
+        let mut req = example("foundation_winkler_footing.json");
+        req["foundations"][0]["model"] = model;
+        let e = solve(&req).expect_err("refused");
+        assert_eq!(e.path, path, "{e:?}");
+    }
+    let mut req = example("foundation_winkler_footing.json");
+    req["foundations"][0]["x_max"] = json!(-6.0);
+    assert_eq!(solve(&req).unwrap_err().path, "/foundations/0/x_max");
+}
+
+/// The exact methods agree on a foundation scene as on every other (the
+/// foundation only adds its compliance to the condensed operator).
+#[test]
+fn exact_methods_agree_on_a_foundation() {
+    let mut req = example("foundation_pasternak_footing.json");
+    req["bodies"][0]["tractions"] = json!([{ "edges": "top", "traction": [0.0, -1.0] }]);
+    assert_exact_methods_agree(&req, 1e-7);
+}
