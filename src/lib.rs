@@ -19,6 +19,7 @@
 
 pub mod bench;
 pub mod cache;
+pub mod cancel;
 pub mod contact;
 pub mod error;
 pub mod fem;

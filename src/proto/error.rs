@@ -47,6 +47,15 @@ pub struct ErrorReply {
     pub message: String,
     /// JSON pointer into the request ("" for the whole request).
     pub path: String,
+    /// Echo of the request's `client_id`, when the payload was JSON with one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub client_id: Option<String>,
+    /// Server-side id of this request, `<instance>-<n>` (set by the service, absent from the CLI).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub request_id: Option<String>,
+    /// With `busy`: requests admitted and not yet answered when this one arrived.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub queue_depth: Option<usize>,
 }
 
 impl ErrorReply {
@@ -56,7 +65,21 @@ impl ErrorReply {
             code,
             message: message.into(),
             path: path.into(),
+            client_id: None,
+            request_id: None,
+            queue_depth: None,
         }
+    }
+
+    /// Echoes the `client_id` of `payload` (best effort: a payload that is not
+    /// a JSON object with a string `client_id` leaves it absent).
+    pub fn with_client_id_of(mut self, payload: &[u8]) -> Self {
+        #[derive(Deserialize)]
+        struct Id {
+            client_id: Option<String>,
+        }
+        self.client_id = serde_json::from_slice::<Id>(payload).ok().and_then(|i| i.client_id);
+        self
     }
 }
 
@@ -77,6 +100,7 @@ impl From<&crate::error::CoreError> for ErrorReply {
             },
             CoreError::TooLarge { .. } => ErrorCode::TooLarge,
             CoreError::Linalg(_) => ErrorCode::LinearAlgebra,
+            CoreError::Timeout { .. } => ErrorCode::Timeout,
         };
         let message = match e {
             CoreError::Invalid { reason, .. } | CoreError::TooLarge { reason, .. } => reason.clone(),
