@@ -53,7 +53,7 @@ pub struct ErrorReply {
     /// Server-side id of this request, `<instance>-<n>` (set by the service, absent from the CLI).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub request_id: Option<String>,
-    /// With `busy`: requests admitted and not yet answered when this one arrived.
+    /// With `busy`: requests waiting for a worker when this one arrived (as in `contact/health`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub queue_depth: Option<usize>,
 }

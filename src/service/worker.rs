@@ -29,12 +29,13 @@ pub fn dispatch(query: Query, key: &'static str, state: Arc<State>) {
     let arrived = Instant::now();
     let id = format!("{}-{}", state.instance, state.next_id.fetch_add(1, Ordering::Relaxed));
     let Some(admitted) = admit(&state) else {
-        let depth = state.pending.load(Ordering::SeqCst);
+        let (pending, running) = (state.pending.load(Ordering::SeqCst), state.in_flight.load(Ordering::SeqCst));
+        let depth = pending.saturating_sub(running);
         let mut err = ErrorReply::new(
             ErrorCode::Busy,
             format!(
-                "service busy: {depth} requests admitted and not yet answered (limit {}); retry later",
-                state.cfg.workers + state.cfg.queue_limit
+                "service busy: {depth} requests queued (limit {}) and {running} solving; retry later",
+                state.cfg.queue_limit
             ),
             "",
         );
