@@ -29,6 +29,7 @@ pub mod methods;
 pub mod pipeline;
 pub mod proto;
 pub mod scene;
+#[cfg(feature = "service")]
 pub mod service;
 pub mod solution;
 

@@ -97,7 +97,10 @@ fn serve_answers_over_loopback() {
     assert_eq!(reply["status"], "solved");
     assert_eq!(reply["client_id"], "vee-1");
     assert_eq!(reply["request_id"], format!("{instance}-1"));
-    assert!(direct.request_id.is_none(), "the library leaves the request id to the service");
+    assert!(
+        direct.request_id.is_none(),
+        "the library leaves the request id to the service"
+    );
     for (a, b) in reply["pairs"][0]["points"]
         .as_array()
         .unwrap()
@@ -120,15 +123,25 @@ fn serve_answers_over_loopback() {
     let (ok, err) = query(&session, "contact/solve", &bytes(&req));
     assert!(!ok);
     assert_eq!(err["code"], "invalid_material");
-    assert_eq!((&err["client_id"], &err["request_id"]), (&json!("vee-1"), &json!(format!("{instance}-3"))));
+    assert_eq!(
+        (&err["client_id"], &err["request_id"]),
+        (&json!("vee-1"), &json!(format!("{instance}-3")))
+    );
 
     let h = health(&session);
     assert_eq!(h["solves_served"], 1);
     assert_eq!(h["errors_served"], 2);
-    assert_eq!(h["outcomes"], json!({"solved": 1, "malformed_json": 1, "invalid_material": 1}));
+    assert_eq!(
+        h["outcomes"],
+        json!({"solved": 1, "malformed_json": 1, "invalid_material": 1})
+    );
     assert_eq!(h["latency_s"]["window"], 3);
     let l = &h["latency_s"];
-    let (p50, p99, max) = (l["p50"].as_f64().unwrap(), l["p99"].as_f64().unwrap(), l["max"].as_f64().unwrap());
+    let (p50, p99, max) = (
+        l["p50"].as_f64().unwrap(),
+        l["p99"].as_f64().unwrap(),
+        l["max"].as_f64().unwrap(),
+    );
     assert!(0.0 < p50 && p50 <= p99 && p99 <= max, "{l}");
     assert!(h["uptime_s"].as_f64().unwrap() > 0.0);
     assert_eq!((&h["queue_depth"], &h["in_flight"]), (&json!(0), &json!(0)));
@@ -172,10 +185,16 @@ fn limits_are_reported_and_enforced() {
     let mut fine = hertz.clone();
     fine["bodies"][0]["mesh"]["rectangle"]["size"] = json!(0.05);
     let r = query(&session, "contact/solve", &bytes(&fine));
-    assert_eq!((code(&r), r.1["path"].as_str().unwrap()), ("too_large".into(), "/bodies"));
+    assert_eq!(
+        (code(&r), r.1["path"].as_str().unwrap()),
+        ("too_large".into(), "/bodies")
+    );
     let roller = common::example("signorini_roller_on_flat.json");
     let r = query(&session, "contact/solve", &bytes(&roller));
-    assert_eq!((code(&r), r.1["path"].as_str().unwrap()), ("too_large".into(), "/contacts"));
+    assert_eq!(
+        (code(&r), r.1["path"].as_str().unwrap()),
+        ("too_large".into(), "/contacts")
+    );
 
     // Meshing the Hertz scene alone takes far more than 1 ms: certainly cut.
     let mut tiny = hertz.clone();
@@ -208,7 +227,10 @@ fn limits_are_reported_and_enforced() {
         if h["in_flight"] == 1 && h["queue_depth"] == 1 {
             break;
         }
-        assert!(start.elapsed() < Duration::from_secs(20), "the slow request never ran: {h}");
+        assert!(
+            start.elapsed() < Duration::from_secs(20),
+            "the slow request never ran: {h}"
+        );
         std::thread::sleep(Duration::from_millis(5));
     }
     let r = query(&session, "contact/solve", &bytes(&hertz));
@@ -228,8 +250,17 @@ fn limits_are_reported_and_enforced() {
     let h = health(&session);
     let o = &h["outcomes"];
     assert_eq!(
-        (&o["busy"], &o["timeout"], &o["too_large"], &o["solved"], &o["malformed_json"]),
+        (
+            &o["busy"],
+            &o["timeout"],
+            &o["too_large"],
+            &o["solved"],
+            &o["malformed_json"]
+        ),
         (&json!(1), &json!(2), &json!(3), &json!(2), &json!(1))
     );
-    assert_eq!((&h["rejected_busy"], &h["panics"], &h["in_flight"]), (&json!(1), &json!(0), &json!(0)));
+    assert_eq!(
+        (&h["rejected_busy"], &h["panics"], &h["in_flight"]),
+        (&json!(1), &json!(0), &json!(0))
+    );
 }

@@ -29,7 +29,10 @@ pub fn dispatch(query: Query, key: &'static str, state: Arc<State>) {
     let arrived = Instant::now();
     let id = format!("{}-{}", state.instance, state.next_id.fetch_add(1, Ordering::Relaxed));
     let Some(admitted) = admit(&state) else {
-        let (pending, running) = (state.pending.load(Ordering::SeqCst), state.in_flight.load(Ordering::SeqCst));
+        let (pending, running) = (
+            state.pending.load(Ordering::SeqCst),
+            state.in_flight.load(Ordering::SeqCst),
+        );
         let depth = pending.saturating_sub(running);
         let mut err = ErrorReply::new(
             ErrorCode::Busy,
