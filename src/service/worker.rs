@@ -42,7 +42,7 @@ pub fn dispatch(query: Query, key: &'static str, state: Arc<State>) {
             ),
             "",
         );
-        err.queue_depth = Some(depth);
+        err.queue_depth = Some(u32::try_from(depth).unwrap_or(u32::MAX));
         let (body, outcome) = wire(&id, Err(err));
         state.record(&outcome, None, false);
         tokio::spawn(async move { send(&query, key, &id, body).await });
@@ -144,7 +144,7 @@ fn wire(id: &str, result: Result<SolveReply, ErrorReply>) -> (Body, String) {
             }
         }
         Err(mut err) => {
-            err.request_id = Some(id.to_string());
+            err.request_id = Some(id.into());
             if err.code != ErrorCode::Busy {
                 tracing::info!(request_id = %id, code = ?err.code, path = %err.path, "error reply: {}", err.message);
             }
