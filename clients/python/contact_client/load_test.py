@@ -23,15 +23,14 @@ import ipaddress
 import json
 import math
 import socket
-import subprocess
 import sys
 import threading
 import time
-from contextlib import contextmanager
 from dataclasses import dataclass, field
 
 from . import scenes
 from .client import Client, ContactError, TransportError
+from .local import local_service
 
 #: Reply fields that legitimately differ between two answers to one request.
 VOLATILE = ("timings", "cache", "request_id", "client_id")
@@ -219,36 +218,6 @@ def check_loopback(connect: str) -> None:
         raise ValueError(f"cannot read a loopback address from {connect!r}") from e
     if not addr.is_loopback:
         raise ValueError(f"{connect!r} is not a loopback endpoint; the load test only targets this machine")
-
-
-@contextmanager
-def local_service(binary: str, startup_s: float = 30.0, extra: tuple[str, ...] = ()):
-    """``binary serve`` on a free 127.0.0.1 port for the duration; yields its endpoint."""
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
-    endpoint = f"tcp/127.0.0.1:{port}"
-    proc = subprocess.Popen([binary, "serve", "--listen", endpoint, *extra], stdin=subprocess.DEVNULL,
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    try:
-        deadline = time.monotonic() + startup_s
-        while True:
-            try:
-                with Client(endpoint) as c:
-                    c.health(timeout=2.0)
-                break
-            except (TransportError, ContactError):
-                if proc.poll() is not None or time.monotonic() > deadline:
-                    raise RuntimeError(f"`{binary} serve` did not come up on {endpoint}")
-                time.sleep(0.2)
-        yield endpoint
-    finally:
-        proc.terminate()
-        try:
-            proc.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait()
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -23,7 +23,7 @@ import zenoh
 
 from contact_client import Client, ContactError, TransportError
 from contact_client.load_test import judge, references, with_client_id, workload
-from support import free_loopback_port
+from contact_client.local import free_loopback_port, stop
 
 STARTUP_S = 30.0
 QUERY_TIMEOUT_S = 10.0
@@ -54,13 +54,14 @@ def _instance_of(log: Path, deadline: float) -> str:
 @pytest.fixture
 def fleet(contact_bin, tmp_path):
     router = f"tcp/127.0.0.1:{free_loopback_port()}"
-    procs, logs = [], []
+    procs, logs, files = [], [], []
 
     def start(name: str, *args: str) -> subprocess.Popen:
-        log = tmp_path / f"{name}.log"
+        log = tmp_path / f"{name}-{len(logs)}.log"
         logs.append(log)
+        files.append(open(log, "wb"))
         p = subprocess.Popen([str(contact_bin), *args, "--log-format", "json"], stdin=subprocess.DEVNULL,
-                             stdout=subprocess.DEVNULL, stderr=open(log, "wb"))
+                             stdout=subprocess.DEVNULL, stderr=files[-1])
         procs.append(p)
         return p
 
@@ -87,14 +88,9 @@ def fleet(contact_bin, tmp_path):
         yield Fleet(router, services, logs)
     finally:
         for p in procs:
-            if p.poll() is None:
-                p.terminate()
-        for p in procs:
-            try:
-                p.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                p.kill()
-                p.wait()
+            stop(p)
+        for f in files:
+            f.close()
 
 
 def _instance(reply_or_error: dict) -> str:
