@@ -1,0 +1,64 @@
+//! Every iterative method stops at an expired deadline (and only then): the
+//! per-iteration hooks of `contact::cancel`, below the stage checks that turn
+//! such a cut into a `timeout` reply.
+
+use std::time::Duration;
+
+use contact::cancel::Deadline;
+use contact::methods::{active_set, barrier, interior_point, penalty, LcpResult};
+use contact::proto::SolverSettings;
+use faer::Mat;
+
+/// A 1D chain of springs pushed into a wavy floor: about half the candidates
+/// touch, so every method needs several iterations.
+fn lcp() -> (Mat<f64>, Vec<f64>) {
+    let m = 60;
+    let w = Mat::<f64>::from_fn(m, m, |i, j| match i.abs_diff(j) {
+        0 => 2.0,
+        1 => -0.9,
+        _ => 0.0,
+    });
+    let q = (0..m)
+        .map(|i| if i % 3 == 0 { 0.4 } else { -1.0 + 0.01 * i as f64 })
+        .collect();
+    (w, q)
+}
+
+fn methods() -> Vec<(&'static str, Box<dyn Fn(&Mat<f64>, &[f64]) -> LcpResult>)> {
+    let s = SolverSettings::default();
+    let d = penalty::springs(&[1.0; 60], 1e-3);
+    let (s1, s2, s3, s4, s5) = (s.clone(), s.clone(), s.clone(), s.clone(), s);
+    let d2 = d.clone();
+    vec![
+        ("active_set", Box::new(move |w, q| active_set::solve_lcp(w, q, &s1))),
+        (
+            "interior_point",
+            Box::new(move |w, q| interior_point::solve_lcp(w, q, &s2)),
+        ),
+        ("penalty", Box::new(move |w, q| penalty::solve_penalty(w, q, &d, &s3))),
+        (
+            "augmented_lagrangian",
+            Box::new(move |w, q| penalty::solve_augmented_lagrangian(w, q, &d2, &s4)),
+        ),
+        (
+            "barrier",
+            Box::new(move |w, q| barrier::solve_barrier(w, q, &[1.0; 60], 1e-6, &s5)),
+        ),
+    ]
+}
+
+#[test]
+fn every_method_converges_without_a_deadline_and_stops_at_an_expired_one() {
+    let (w, q) = lcp();
+    for (name, solve) in methods() {
+        let free = solve(&w, &q);
+        assert!(
+            free.converged && free.iterations > 1,
+            "{name}: {} iterations",
+            free.iterations
+        );
+        let _expired = Deadline::install(Duration::ZERO);
+        let cut = solve(&w, &q);
+        assert!(!cut.converged, "{name} ignored the expired deadline");
+    }
+}
