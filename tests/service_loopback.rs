@@ -202,6 +202,7 @@ fn limits_are_reported_and_enforced() {
     let r = query(&session, "contact/solve", &bytes(&tiny));
     assert_eq!(code(&r), "timeout");
     assert!(r.1["message"].as_str().unwrap().contains("0.001 s"), "{}", r.1);
+    assert_eq!(health(&session)["cache_entries"], 0, "a cancelled solve keeps nothing");
     let (ok, next) = query(&session, "contact/solve", &bytes(&hertz));
     assert!(ok && next["status"] == "solved", "the worker is free again: {next}");
 

@@ -115,8 +115,14 @@ def test_each_query_is_answered_by_one_instance(fleet):
 
 def test_spread_shares_the_load(fleet):
     with Client(fleet.router, spread=True) as c:
-        served = {_instance(c.solve(_hertz())) for _ in range(6)}
-    assert served == set(fleet.services)
+        ids = [c.solve(_hertz())["request_id"] for _ in range(6)]
+    assert {_instance({"request_id": i}) for i in ids} == set(fleet.services)
+    # `--log-format json`: one JSON object per line, each reply logged under its request id.
+    logged = set()
+    for log in fleet.logs:
+        for line in log.read_text().splitlines():
+            logged.add(json.loads(line).get("fields", {}).get("request_id"))
+    assert set(ids) <= logged
 
 
 @pytest.mark.parametrize("spread", [False, True], ids=["zenoh_routing", "spread"])
