@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import signal
+import socket
 import subprocess
 import threading
 import time
@@ -51,6 +52,17 @@ def _instance_of(log: Path, deadline: float) -> str:
     raise AssertionError(f"no startup line in {log}:\n{log.read_text(errors='replace')[-2000:]}")
 
 
+def _wait_for_listener(endpoint: str, deadline: float) -> None:
+    host, port = endpoint.split("/", 1)[1].rsplit(":", 1)
+    while True:
+        try:
+            socket.create_connection((host, int(port)), timeout=1.0).close()
+            return
+        except OSError:
+            assert time.monotonic() < deadline, f"nothing listens on {endpoint}"
+            time.sleep(0.1)
+
+
 @pytest.fixture
 def fleet(contact_bin, tmp_path):
     router = f"tcp/127.0.0.1:{free_loopback_port()}"
@@ -68,13 +80,10 @@ def fleet(contact_bin, tmp_path):
     try:
         start("router", "router", "--listen", router)
         deadline = time.monotonic() + STARTUP_S
+        _wait_for_listener(router, deadline)  # a service whose router is not up yet exits at once
         services = {}
         for name in ("a", "b"):
-            while True:  # a service whose router is not up yet exits at once: start it again
-                p = start(name, "serve", "--connect", router, "--workers", "1")
-                time.sleep(0.3)
-                if p.poll() is None or time.monotonic() > deadline:
-                    break
+            p = start(name, "serve", "--connect", router, "--workers", "1")
             services[_instance_of(logs[-1], deadline)] = p
         while True:
             try:
