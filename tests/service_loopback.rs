@@ -207,11 +207,11 @@ fn limits_are_reported_and_enforced() {
     assert!(ok && next["status"] == "solved", "the worker is free again: {next}");
 
     // One factor solves in well under a second from the cached operator; 10⁴ of
-    // them keep the only worker busy until the 3 s limit cuts the request. A
+    // them keep the only worker busy until the 5 s limit cuts the request. A
     // second request then waits in the queue of one, and a third is refused.
     let mut slow = hertz.clone();
     slow["load_factors"] = json!(vec![1.0; 10_000]);
-    slow["time_limit"] = json!(3.0);
+    slow["time_limit"] = json!(5.0);
     let submit = |payload: Vec<u8>| {
         session
             .get("contact/solve")
@@ -220,20 +220,22 @@ fn limits_are_reported_and_enforced() {
             .wait()
             .unwrap()
     };
-    let running = submit(bytes(&slow));
-    let queued = submit(b"{".to_vec());
-    let start = Instant::now();
-    loop {
-        let h = health(&session);
-        if h["in_flight"] == 1 && h["queue_depth"] == 1 {
-            break;
+    // Submitted one after the other, so the slow one surely holds the worker.
+    let wait_for = |in_flight: u64, queue_depth: u64| {
+        let start = Instant::now();
+        loop {
+            let h = health(&session);
+            if h["in_flight"] == in_flight && h["queue_depth"] == queue_depth {
+                break;
+            }
+            assert!(start.elapsed() < Duration::from_secs(20), "never reached: {h}");
+            std::thread::sleep(Duration::from_millis(5));
         }
-        assert!(
-            start.elapsed() < Duration::from_secs(20),
-            "the slow request never ran: {h}"
-        );
-        std::thread::sleep(Duration::from_millis(5));
-    }
+    };
+    let running = submit(bytes(&slow));
+    wait_for(1, 0);
+    let queued = submit(b"{".to_vec());
+    wait_for(1, 1);
     let r = query(&session, "contact/solve", &bytes(&hertz));
     assert_eq!(code(&r), "busy");
     assert_eq!(r.1["queue_depth"], 1);
@@ -243,7 +245,7 @@ fn limits_are_reported_and_enforced() {
     };
     let err = error_of(running);
     assert_eq!(err["code"], "timeout");
-    assert!(err["message"].as_str().unwrap().contains("3 s"), "{err}");
+    assert!(err["message"].as_str().unwrap().contains("5 s"), "{err}");
     assert_eq!(error_of(queued)["code"], "malformed_json");
 
     let (ok, next) = query(&session, "contact/solve", &bytes(&hertz));
