@@ -31,6 +31,9 @@ pub enum CoreError {
     TooLarge { path: String, reason: String },
     #[error(transparent)]
     Linalg(#[from] crate::linalg::LinalgError),
+    /// The solve ran past its time limit and was stopped after `stage`.
+    #[error("the solve exceeded its time limit of {limit_s} s and was stopped after stage '{stage}'")]
+    Timeout { stage: &'static str, limit_s: f64 },
 }
 
 impl CoreError {

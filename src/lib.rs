@@ -19,6 +19,7 @@
 
 pub mod bench;
 pub mod cache;
+pub mod cancel;
 pub mod contact;
 pub mod error;
 pub mod fem;
@@ -28,6 +29,7 @@ pub mod methods;
 pub mod pipeline;
 pub mod proto;
 pub mod scene;
+#[cfg(feature = "service")]
 pub mod service;
 pub mod solution;
 

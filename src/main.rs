@@ -3,6 +3,7 @@
 //! - `contact solve FILE|-`: one request, no zenoh; prints the reply JSON (or the
 //!   error JSON and exits 1) exactly as the service would answer.
 //! - `contact serve`: the zenoh service.
+//! - `contact router`: a zenoh router (what `zenohd` does) for scale-out without installing zenohd.
 //! - `contact schema`: writes the JSON Schemas into proto/.
 
 use std::io::{Read, Write};
@@ -57,9 +58,29 @@ enum Cmd {
         /// Largest accepted number of degrees of freedom.
         #[arg(long)]
         max_dofs: Option<usize>,
+        /// Largest accepted number of contact candidates.
+        #[arg(long)]
+        max_candidates: Option<usize>,
+        /// Largest accepted request payload in bytes.
+        #[arg(long, default_value_t = 64 << 20)]
+        max_request_bytes: usize,
+        /// Seconds a solve may run before it is stopped and answered `timeout`.
+        #[arg(long, default_value_t = 300.0, value_parser = positive_seconds)]
+        max_solve_s: f64,
         /// Memory for cached factorizations in MiB (0 disables the cache).
         #[arg(long, default_value_t = 2048)]
         cache_mb: usize,
+        #[arg(long, value_enum, default_value_t = LogFormat::Text)]
+        log_format: LogFormat,
+    },
+    /// Run a zenoh router (zenoh's own routing, as zenohd) for several `serve` instances.
+    Router {
+        /// zenoh JSON5 configuration file (replaces the loopback defaults).
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Listen endpoint(s) (default tcp/127.0.0.1:7447; repeatable).
+        #[arg(long)]
+        listen: Vec<String>,
         #[arg(long, value_enum, default_value_t = LogFormat::Text)]
         log_format: LogFormat,
     },
@@ -120,6 +141,9 @@ fn run() -> anyhow::Result<ExitCode> {
             workers,
             queue_limit,
             max_dofs,
+            max_candidates,
+            max_request_bytes,
+            max_solve_s,
             cache_mb,
             log_format,
         } => {
@@ -129,6 +153,8 @@ fn run() -> anyhow::Result<ExitCode> {
                 listen: (!listen.is_empty()).then_some(listen),
                 connect,
                 queue_limit,
+                max_request_bytes,
+                max_solve_time: std::time::Duration::from_secs_f64(max_solve_s),
                 cache_bytes: cache_mb << 20,
                 ..Default::default()
             };
@@ -138,8 +164,21 @@ fn run() -> anyhow::Result<ExitCode> {
             if let Some(m) = max_dofs {
                 cfg.limits.max_dofs = m;
             }
+            if let Some(m) = max_candidates {
+                cfg.limits.max_candidates = m;
+            }
             let rt = tokio::runtime::Builder::new_multi_thread().enable_all().build()?;
             rt.block_on(contact::service::run(cfg))?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Cmd::Router {
+            config,
+            listen,
+            log_format,
+        } => {
+            init_logging(log_format);
+            let rt = tokio::runtime::Builder::new_multi_thread().enable_all().build()?;
+            rt.block_on(contact::service::router::run(config, listen))?;
             Ok(ExitCode::SUCCESS)
         }
         Cmd::Bench { quick, csv, repeat } => {
@@ -167,6 +206,13 @@ fn run() -> anyhow::Result<ExitCode> {
             }
             Ok(ExitCode::SUCCESS)
         }
+    }
+}
+
+fn positive_seconds(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 && v < 1e9 => Ok(v),
+        _ => Err(format!("expected a positive number of seconds, got '{s}'")),
     }
 }
 

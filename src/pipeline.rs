@@ -35,10 +35,11 @@ pub fn solve_bytes_cached(
 ) -> Result<SolveReply, ErrorReply> {
     let run = || -> Result<SolveReply, CoreError> {
         let req = parse_request(bytes)?;
+        let _limit = crate::cancel::request_limit(req.time_limit, "/time_limit")?;
         let scene = Scene::try_new(&req, limits)?;
         solve(&scene, limits, cache)
     };
-    run().map_err(|e| ErrorReply::from(&e))
+    run().map_err(|e| ErrorReply::from(&e).with_client_id_of(bytes))
 }
 
 pub fn build_meshes(scene: &Scene) -> Vec<Mesh2d> {
@@ -115,6 +116,7 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
     let t = Instant::now();
     let meshes = build_meshes(scene);
     timings.mesh = t.elapsed().as_secs_f64();
+    crate::cancel::check("mesh")?;
     let n_dofs: usize = meshes.iter().map(|m| 2 * m.nodes.len()).sum();
     if n_dofs > limits.max_dofs {
         return Err(CoreError::TooLarge {
@@ -170,6 +172,7 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
         Some(op) => (op, CacheState::Hit),
         None => {
             let stiffness = Arc::new(fem::assembly::assemble_stiffness(scene, &meshes, &dofs)?);
+            crate::cancel::check("assembly")?;
             timings.assembly = t.elapsed().as_secs_f64();
             let op = Arc::new(methods::condensed::prepare(stiffness, &cons)?);
             timings.factorization = op.t_factorization;
@@ -187,6 +190,7 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
             )
         }
     };
+    crate::cancel::check("condensation")?;
     let t = Instant::now();
     let f = fem::assembly::assemble_loads(scene, &meshes, &dofs, &op.stiffness);
     let compliance = (!foundations.is_empty()).then(|| foundations.compliance(&cons));
@@ -214,6 +218,7 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
         compliance: compliance.as_ref(),
     };
     let sol = methods::solve(&problem, scene.method)?;
+    crate::cancel::check("contact_solve")?;
     timings.contact_solve = sol.t_contact;
     let stage = Stage {
         meshes: &meshes,
@@ -255,6 +260,7 @@ fn solve_full(
     let stiffness = fem::assembly::assemble_stiffness(scene, meshes, &dofs)?;
     let f = fem::assembly::assemble_loads(scene, meshes, &dofs, &stiffness);
     timings.assembly = t.elapsed().as_secs_f64();
+    crate::cancel::check("assembly")?;
     let g = cons.g();
     let sol = match scene.method {
         MethodName::Auto | MethodName::ActiveSet => {
@@ -284,6 +290,7 @@ fn solve_full(
             ))
         }
     };
+    crate::cancel::check("contact_solve")?;
     timings.contact_solve = sol.t_contact;
     let stage = Stage {
         meshes,
@@ -360,6 +367,7 @@ fn finish(
     SolveReply {
         version: proto::PROTOCOL_VERSION.to_string(),
         client_id: scene.client_id.clone(),
+        request_id: None,
         status,
         method: sol.method.to_string(),
         iterations: sol.iterations,

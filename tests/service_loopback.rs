@@ -1,11 +1,15 @@
-//! The zenoh shell end to end on loopback: a `contact serve` process on a free
-//! port answers health, a good solve (identical to the library's answer) and a
-//! bad request (structured error), and stays up.
+//! The zenoh shell end to end on loopback: `contact serve` processes on free
+//! ports answer health, good solves (identical to the library's answer) and bad
+//! requests (structured errors with the request id), enforce every configured
+//! limit (busy, too_large, timeout) and stay up.
+
+mod common;
 
 use std::net::TcpListener;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
+use serde_json::{json, Value};
 use zenoh::Wait;
 
 struct Server(Child);
@@ -20,18 +24,41 @@ fn free_port() -> u16 {
     TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().port()
 }
 
-fn client(endpoint: &str) -> zenoh::Session {
+fn client_config(endpoint: &str) -> zenoh::Config {
     let mut c = zenoh::Config::default();
     c.insert_json5("mode", r#""client""#).unwrap();
     c.insert_json5("connect/endpoints", &format!(r#"["{endpoint}"]"#))
         .unwrap();
     c.insert_json5("scouting/multicast/enabled", "false").unwrap();
     c.insert_json5("scouting/gossip/enabled", "false").unwrap();
-    zenoh::open(c).wait().expect("client session")
+    c
+}
+
+/// `contact serve --listen <free port> <extra>` and a client session to it
+/// (a client cannot open against a port nobody listens on yet: retried).
+fn serve(extra: &[&str]) -> (Server, zenoh::Session) {
+    let endpoint = format!("tcp/127.0.0.1:{}", free_port());
+    let server = Server(
+        Command::new(env!("CARGO_BIN_EXE_contact"))
+            .args(["serve", "--listen", &endpoint])
+            .args(extra)
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap(),
+    );
+    let start = Instant::now();
+    loop {
+        if let Ok(s) = zenoh::open(client_config(&endpoint)).wait() {
+            return (server, s);
+        }
+        assert!(start.elapsed() < Duration::from_secs(30), "service did not come up");
+        std::thread::sleep(Duration::from_millis(100));
+    }
 }
 
 /// (ok?, payload) of the first reply.
-fn query(s: &zenoh::Session, key: &str, payload: &[u8]) -> (bool, serde_json::Value) {
+fn query(s: &zenoh::Session, key: &str, payload: &[u8]) -> (bool, Value) {
     let replies = s
         .get(key)
         .payload(payload.to_vec())
@@ -45,44 +72,35 @@ fn query(s: &zenoh::Session, key: &str, payload: &[u8]) -> (bool, serde_json::Va
     }
 }
 
+fn health(s: &zenoh::Session) -> Value {
+    let (ok, h) = query(s, "contact/health", b"");
+    assert!(ok, "{h}");
+    h
+}
+
+fn bytes(v: &Value) -> Vec<u8> {
+    serde_json::to_vec(v).unwrap()
+}
+
 #[test]
 fn serve_answers_over_loopback() {
-    let endpoint = format!("tcp/127.0.0.1:{}", free_port());
-    let _server = Server(
-        Command::new(env!("CARGO_BIN_EXE_contact"))
-            .args(["serve", "--listen", &endpoint])
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .unwrap(),
-    );
-    // A client cannot open against a port nobody listens on yet: retry.
-    let start = Instant::now();
-    let session = loop {
-        let mut c = zenoh::Config::default();
-        c.insert_json5("mode", r#""client""#).unwrap();
-        c.insert_json5("connect/endpoints", &format!(r#"["{endpoint}"]"#))
-            .unwrap();
-        c.insert_json5("scouting/multicast/enabled", "false").unwrap();
-        if zenoh::open(c).wait().is_ok() {
-            break client(&endpoint);
-        }
-        assert!(start.elapsed() < Duration::from_secs(30), "service did not come up");
-        std::thread::sleep(Duration::from_millis(100));
-    };
-    let (ok, health) = query(&session, "contact/health", b"");
-    assert!(ok);
-    assert_eq!(health["protocol"], "1");
+    let (_server, session) = serve(&[]);
+    let h = health(&session);
+    assert_eq!(h["protocol"], "1");
+    let instance = h["instance"].as_str().expect("instance id").to_string();
 
-    let path = format!(
-        "{}/proto/examples/signorini_inline_block_on_vee.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let body = std::fs::read(&path).unwrap();
-    let (ok, reply) = query(&session, "contact/solve", &body);
+    let mut req = common::example("signorini_inline_block_on_vee.json");
+    req["client_id"] = json!("vee-1");
+    let (ok, reply) = query(&session, "contact/solve", &bytes(&req));
     assert!(ok, "{reply}");
-    let direct = contact::solve_bytes(&body, &Default::default()).unwrap();
+    let direct = contact::solve_bytes(&bytes(&req), &Default::default()).unwrap();
     assert_eq!(reply["status"], "solved");
+    assert_eq!(reply["client_id"], "vee-1");
+    assert_eq!(reply["request_id"], format!("{instance}-1"));
+    assert!(
+        direct.request_id.is_none(),
+        "the library leaves the request id to the service"
+    );
     for (a, b) in reply["pairs"][0]["points"]
         .as_array()
         .unwrap()
@@ -99,8 +117,153 @@ fn serve_answers_over_loopback() {
     let (ok, err) = query(&session, "contact/solve", b"{not json");
     assert!(!ok);
     assert_eq!(err["code"], "malformed_json");
-    let (ok, health) = query(&session, "contact/health", b"");
-    assert!(ok);
-    assert_eq!(health["solves_served"], 1);
-    assert_eq!(health["errors_served"], 1);
+    assert_eq!(err["request_id"], format!("{instance}-2"));
+    // An error reply echoes the client id whenever the payload was JSON carrying one.
+    req["bodies"][0]["material"]["poisson_ratio"] = json!(0.5);
+    let (ok, err) = query(&session, "contact/solve", &bytes(&req));
+    assert!(!ok);
+    assert_eq!(err["code"], "invalid_material");
+    assert_eq!(
+        (&err["client_id"], &err["request_id"]),
+        (&json!("vee-1"), &json!(format!("{instance}-3")))
+    );
+
+    let h = health(&session);
+    assert_eq!(h["solves_served"], 1);
+    assert_eq!(h["errors_served"], 2);
+    assert_eq!(
+        h["outcomes"],
+        json!({"solved": 1, "malformed_json": 1, "invalid_material": 1})
+    );
+    assert_eq!(h["latency_s"]["window"], 3);
+    let l = &h["latency_s"];
+    let (p50, p99, max) = (
+        l["p50"].as_f64().unwrap(),
+        l["p99"].as_f64().unwrap(),
+        l["max"].as_f64().unwrap(),
+    );
+    assert!(0.0 < p50 && p50 <= p99 && p99 <= max, "{l}");
+    assert!(h["uptime_s"].as_f64().unwrap() > 0.0);
+    assert_eq!((&h["queue_depth"], &h["in_flight"]), (&json!(0), &json!(0)));
+}
+
+/// Every limit of the command line is reported by health and enforced: the
+/// request size, DOFs and candidates (`too_large`), the solve time (`timeout`,
+/// naming the stage, after which the next request is served) and the queue
+/// (`busy` with the queue depth, at once).
+#[test]
+fn limits_are_reported_and_enforced() {
+    let (_server, session) = serve(&[
+        "--workers",
+        "1",
+        "--queue-limit",
+        "1",
+        "--max-request-bytes",
+        "200000",
+        "--max-dofs",
+        "200000",
+        "--max-candidates",
+        "300",
+        "--max-solve-s",
+        "30",
+    ]);
+    let h = health(&session);
+    assert_eq!(
+        h["limits"],
+        json!({"queue_limit": 1, "max_request_bytes": 200000, "max_dofs": 200000, "max_candidates": 300,
+               "max_solve_time_s": 30.0, "cache_limit_bytes": 2048u64 << 20})
+    );
+    assert_eq!(h["workers"], 1);
+
+    let hertz = common::example("signorini_hertz_cylinder.json");
+    let code = |r: &(bool, Value)| {
+        assert!(!r.0, "expected an error, got {}", r.1);
+        r.1["code"].as_str().unwrap().to_string()
+    };
+    let padded = json!({"version": "1", "description": "x".repeat(200_001)});
+    assert_eq!(code(&query(&session, "contact/solve", &bytes(&padded))), "too_large");
+    let mut fine = hertz.clone();
+    fine["bodies"][0]["mesh"]["rectangle"]["size"] = json!(0.05);
+    let r = query(&session, "contact/solve", &bytes(&fine));
+    assert_eq!(
+        (code(&r), r.1["path"].as_str().unwrap()),
+        ("too_large".into(), "/bodies")
+    );
+    let roller = common::example("signorini_roller_on_flat.json");
+    let r = query(&session, "contact/solve", &bytes(&roller));
+    assert_eq!(
+        (code(&r), r.1["path"].as_str().unwrap()),
+        ("too_large".into(), "/contacts")
+    );
+
+    // Meshing the Hertz scene alone takes far more than 1 ms: certainly cut.
+    let mut tiny = hertz.clone();
+    tiny["time_limit"] = json!(0.001);
+    let r = query(&session, "contact/solve", &bytes(&tiny));
+    assert_eq!(code(&r), "timeout");
+    assert!(r.1["message"].as_str().unwrap().contains("0.001 s"), "{}", r.1);
+    assert_eq!(health(&session)["cache_entries"], 0, "a cancelled solve keeps nothing");
+    let (ok, next) = query(&session, "contact/solve", &bytes(&hertz));
+    assert!(ok && next["status"] == "solved", "the worker is free again: {next}");
+
+    // One factor solves in well under a second from the cached operator; 10⁴ of
+    // them keep the only worker busy until the 5 s limit cuts the request. A
+    // second request then waits in the queue of one, and a third is refused.
+    let mut slow = hertz.clone();
+    slow["load_factors"] = json!(vec![1.0; 10_000]);
+    slow["time_limit"] = json!(5.0);
+    let submit = |payload: Vec<u8>| {
+        session
+            .get("contact/solve")
+            .payload(payload)
+            .timeout(Duration::from_secs(60))
+            .wait()
+            .unwrap()
+    };
+    // Submitted one after the other, so the slow one surely holds the worker.
+    let wait_for = |in_flight: u64, queue_depth: u64| {
+        let start = Instant::now();
+        loop {
+            let h = health(&session);
+            if h["in_flight"] == in_flight && h["queue_depth"] == queue_depth {
+                break;
+            }
+            assert!(start.elapsed() < Duration::from_secs(20), "never reached: {h}");
+            std::thread::sleep(Duration::from_millis(5));
+        }
+    };
+    let running = submit(bytes(&slow));
+    wait_for(1, 0);
+    let queued = submit(b"{".to_vec());
+    wait_for(1, 1);
+    let r = query(&session, "contact/solve", &bytes(&hertz));
+    assert_eq!(code(&r), "busy");
+    assert_eq!(r.1["queue_depth"], 1);
+    let error_of = |replies: zenoh::handlers::FifoChannelHandler<zenoh::query::Reply>| -> Value {
+        let reply = replies.recv().expect("a reply");
+        serde_json::from_slice(&reply.result().unwrap_err().payload().to_bytes()).unwrap()
+    };
+    let err = error_of(running);
+    assert_eq!(err["code"], "timeout");
+    assert!(err["message"].as_str().unwrap().contains("5 s"), "{err}");
+    assert_eq!(error_of(queued)["code"], "malformed_json");
+
+    let (ok, next) = query(&session, "contact/solve", &bytes(&hertz));
+    assert!(ok && next["status"] == "solved", "{next}");
+    let h = health(&session);
+    let o = &h["outcomes"];
+    assert_eq!(
+        (
+            &o["busy"],
+            &o["timeout"],
+            &o["too_large"],
+            &o["solved"],
+            &o["malformed_json"]
+        ),
+        (&json!(1), &json!(2), &json!(3), &json!(2), &json!(1))
+    );
+    assert_eq!(
+        (&h["rejected_busy"], &h["panics"], &h["in_flight"]),
+        (&json!(1), &json!(0), &json!(0))
+    );
 }

@@ -67,14 +67,7 @@ pub type NodeRow = (Vec<Term>, Vec<(usize, f64)>, f64);
 /// The one-node row n · u_node ≤ s against something that does not move with
 /// the body's DOFs (an obstacle, a foundation); None when the gap cannot close
 /// (beyond `limit`) or the node is fully prescribed.
-pub fn node_row(
-    body: usize,
-    node: usize,
-    normal: [f64; 2],
-    s: f64,
-    limit: f64,
-    dofs: &DofMap,
-) -> Option<NodeRow> {
+pub fn node_row(body: usize, node: usize, normal: [f64; 2], s: f64, limit: f64, dofs: &DofMap) -> Option<NodeRow> {
     if s > limit {
         return None;
     }

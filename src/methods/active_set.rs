@@ -36,7 +36,7 @@ pub fn solve_lcp_from(w: &Mat<f64>, q: &[f64], s: &SolverSettings, mut active: V
     let mut lambda = vec![0.0; m];
     let pdas_cap = (s.max_iterations / 2).max(1);
     let mut seen: Vec<Vec<bool>> = Vec::new();
-    for it in 1..=pdas_cap {
+    for it in (1..=pdas_cap).take_while(|_| !crate::cancel::expired()) {
         let idx: Vec<usize> = (0..m).filter(|&i| active[i]).collect();
         let rhs: Vec<f64> = idx.iter().map(|&i| -q[i]).collect();
         let Some(la) = solve_principal(w, &idx, &rhs) else {
@@ -86,7 +86,7 @@ fn lawson_hanson(w: &Mat<f64>, q: &[f64], max_outer: usize) -> LcpResult {
                 converged: true,
             };
         };
-        if iterations >= max_outer * m.max(1) {
+        if iterations >= max_outer * m.max(1) || crate::cancel::expired() {
             return LcpResult {
                 lambda,
                 iterations,
@@ -167,7 +167,7 @@ pub fn solve_mlcp_from(
     let mut lambda = vec![0.0; m];
     let mut beta = vec![0.0; k];
     let mut seen: Vec<Vec<bool>> = Vec::new();
-    for it in 1..=s.max_iterations {
+    for it in (1..=s.max_iterations).take_while(|_| !crate::cancel::expired()) {
         let idx: Vec<usize> = (0..m).filter(|&i| active[i]).collect();
         let Some((la, b)) = saddle(w, q, c, r, &idx) else {
             break;

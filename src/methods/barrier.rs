@@ -72,7 +72,7 @@ pub fn solve_barrier_mixed(
     loop {
         // Newton on the current ζ.
         let mut converged = false;
-        for _ in 0..s.max_iterations {
+        for _ in (0..s.max_iterations).take_while(|_| !crate::cancel::expired()) {
             let gap = gap_of(&lambda, &beta);
             let f: Vec<f64> = (0..m).map(|i| lambda[i] * gap[i] - z * weights[i]).collect();
             let f2: Vec<f64> = (0..k)

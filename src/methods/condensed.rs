@@ -21,6 +21,7 @@ pub fn prepare(stiffness: Arc<Stiffness>, cons: &ConstraintSet) -> Result<Prepar
     let cdofs = cons.dofs();
     let chol = Cholesky::try_new(&stiffness.k, &cdofs)?;
     let t_factorization = t0.elapsed().as_secs_f64();
+    crate::cancel::check("factorization")?;
     let t1 = Instant::now();
     let mut pos = std::collections::HashMap::with_capacity(cdofs.len());
     for (k, &d) in cdofs.iter().enumerate() {

@@ -130,6 +130,7 @@ fn active_set_full(
     let mut seen: Vec<Vec<bool>> = Vec::new();
     let mut last = None;
     for it in 1..=s.max_iterations {
+        crate::cancel::check("contact_solve")?;
         let mut fixed = vec![f64::NAN; n];
         for i in 0..m {
             if active[i] {
@@ -279,6 +280,7 @@ pub fn solve_interior_point(
     let settings = DefaultSettingsBuilder::default()
         .verbose(false)
         .max_iter(s.max_iterations as u32)
+        .time_limit(crate::cancel::remaining_secs())
         .build()
         .expect("static clarabel settings are valid");
     let mut solver = DefaultSolver::new(&p, &qv, &a, g, &[NonnegativeConeT(m)], settings)

@@ -192,6 +192,7 @@ fn clarabel_settings(s: &SolverSettings) -> clarabel::solver::DefaultSettings<f6
     DefaultSettingsBuilder::default()
         .verbose(false)
         .max_iter(s.max_iterations as u32)
+        .time_limit(crate::cancel::remaining_secs())
         .tol_gap_abs(tol)
         .tol_gap_rel(tol)
         .tol_feas(tol)

@@ -78,7 +78,7 @@ fn augmented_lagrangian(q: &[f64], d: &[f64], s: &SolverSettings, inner: Penalty
     let mut mu = vec![0.0; m];
     let mut total = 0;
     let mut beta = Vec::new();
-    for _ in 0..s.max_iterations {
+    for _ in (0..s.max_iterations).take_while(|_| !crate::cancel::expired()) {
         let qs: Vec<f64> = (0..m).map(|i| q[i] - mu[i] / d[i]).collect();
         let (res, b) = inner(&qs);
         total += res.iterations;

@@ -47,6 +47,16 @@ pub struct ErrorReply {
     pub message: String,
     /// JSON pointer into the request ("" for the whole request).
     pub path: String,
+    // Boxed strings and a u32 keep the error small: it is the `Err` of every solve.
+    /// Echo of the request's `client_id`, when the payload was JSON with one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub client_id: Option<Box<str>>,
+    /// Server-side id of this request, `<instance>-<n>` (set by the service, absent from the CLI).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub request_id: Option<Box<str>>,
+    /// With `busy`: requests waiting for a worker when this one arrived (as in `contact/health`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub queue_depth: Option<u32>,
 }
 
 impl ErrorReply {
@@ -56,7 +66,21 @@ impl ErrorReply {
             code,
             message: message.into(),
             path: path.into(),
+            client_id: None,
+            request_id: None,
+            queue_depth: None,
         }
+    }
+
+    /// Echoes the `client_id` of `payload` (best effort: a payload that is not
+    /// a JSON object with a string `client_id` leaves it absent).
+    pub fn with_client_id_of(mut self, payload: &[u8]) -> Self {
+        #[derive(Deserialize)]
+        struct Id {
+            client_id: Option<Box<str>>,
+        }
+        self.client_id = serde_json::from_slice::<Id>(payload).ok().and_then(|i| i.client_id);
+        self
     }
 }
 
@@ -77,6 +101,7 @@ impl From<&crate::error::CoreError> for ErrorReply {
             },
             CoreError::TooLarge { .. } => ErrorCode::TooLarge,
             CoreError::Linalg(_) => ErrorCode::LinearAlgebra,
+            CoreError::Timeout { .. } => ErrorCode::Timeout,
         };
         let message = match e {
             CoreError::Invalid { reason, .. } | CoreError::TooLarge { reason, .. } => reason.clone(),

@@ -11,6 +11,9 @@ pub struct SolveReply {
     /// Echo of the request's `client_id`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub client_id: Option<String>,
+    /// Server-side id of this request, `<instance>-<n>` (set by the service, absent from the CLI).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub request_id: Option<String>,
     /// "solved" when the certificate meets the tolerance; otherwise why not.
     pub status: SolveStatus,
     /// The method that ran (after `auto` made its choice).

@@ -16,6 +16,9 @@ pub struct SolveRequest {
     /// Optional caller id, returned unchanged in the reply for correlation.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub client_id: Option<String>,
+    /// Optional limit on the solve time in seconds; the service applies the smaller of this and its own limit.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub time_limit: Option<f64>,
     /// Plane strain (default) or plane stress.
     #[serde(default)]
     pub analysis: Analysis,

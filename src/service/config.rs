@@ -1,9 +1,12 @@
 //! Service settings → zenoh::Config. Defaults: peer mode, listen on
 //! tcp/127.0.0.1:7447 only, no connect endpoints, multicast and gossip scouting
-//! off. A zenoh JSON5 file replaces the defaults; `--listen` still overrides
-//! its listen endpoints.
+//! off. With connect endpoints (a router) and no listen endpoint the service is
+//! a zenoh client of that router: several instances then run on one machine
+//! without competing for a port. A zenoh JSON5 file replaces the defaults;
+//! `--listen`/`--connect` still override its endpoints.
 
 use std::path::PathBuf;
+use std::time::Duration;
 
 use crate::scene::Limits;
 
@@ -19,6 +22,9 @@ pub struct ServiceConfig {
     pub queue_limit: usize,
     pub max_request_bytes: usize,
     pub limits: Limits,
+    /// A solve still running after this is stopped at its next stage boundary
+    /// or iteration and answered `timeout`.
+    pub max_solve_time: Duration,
     /// Memory bound of the factorization cache (0 disables it).
     pub cache_bytes: usize,
 }
@@ -35,6 +41,7 @@ impl Default for ServiceConfig {
             queue_limit: 16,
             max_request_bytes: 64 << 20,
             limits: Limits::default(),
+            max_solve_time: Duration::from_secs(300),
             cache_bytes: 2 << 30,
         }
     }
@@ -42,28 +49,54 @@ impl Default for ServiceConfig {
 
 impl ServiceConfig {
     pub fn zenoh_config(&self) -> anyhow::Result<zenoh::Config> {
-        let err = |e: Box<dyn std::error::Error + Send + Sync>| anyhow::anyhow!("zenoh config: {e}");
         let mut c = match &self.config_file {
-            Some(p) => zenoh::Config::from_file(p).map_err(err)?,
-            None => {
-                let mut c = zenoh::Config::default();
-                c.insert_json5("mode", r#""peer""#).map_err(err)?;
-                c.insert_json5("listen/endpoints", &serde_json::to_string(&[DEFAULT_LISTEN])?)
-                    .map_err(err)?;
-                c.insert_json5("connect/endpoints", "[]").map_err(err)?;
-                c.insert_json5("scouting/multicast/enabled", "false").map_err(err)?;
-                c.insert_json5("scouting/gossip/enabled", "false").map_err(err)?;
-                c
+            Some(p) => zenoh::Config::from_file(p).map_err(zerr)?,
+            None if !self.connect.is_empty() && self.listen.is_none() => {
+                loopback_defaults("client", &[], &self.connect)?
             }
+            None => loopback_defaults("peer", &[DEFAULT_LISTEN.to_string()], &[])?,
         };
         if let Some(l) = &self.listen {
             c.insert_json5("listen/endpoints", &serde_json::to_string(l)?)
-                .map_err(err)?;
+                .map_err(zerr)?;
         }
         if !self.connect.is_empty() {
             c.insert_json5("connect/endpoints", &serde_json::to_string(&self.connect)?)
-                .map_err(err)?;
+                .map_err(zerr)?;
         }
         Ok(c)
     }
+}
+
+fn zerr(e: Box<dyn std::error::Error + Send + Sync>) -> anyhow::Error {
+    anyhow::anyhow!("zenoh config: {e}")
+}
+
+/// `mode` with explicit endpoints only and no scouting, so nothing leaves them.
+fn loopback_defaults(mode: &str, listen: &[String], connect: &[String]) -> anyhow::Result<zenoh::Config> {
+    let mut c = zenoh::Config::default();
+    c.insert_json5("mode", &serde_json::to_string(mode)?).map_err(zerr)?;
+    if mode != "client" {
+        c.insert_json5("listen/endpoints", &serde_json::to_string(listen)?)
+            .map_err(zerr)?;
+    }
+    c.insert_json5("connect/endpoints", &serde_json::to_string(connect)?)
+        .map_err(zerr)?;
+    c.insert_json5("scouting/multicast/enabled", "false").map_err(zerr)?;
+    c.insert_json5("scouting/gossip/enabled", "false").map_err(zerr)?;
+    Ok(c)
+}
+
+/// A zenoh router (`contact router`): zenoh's own routing, as `zenohd` does it,
+/// listening on `listen` (default tcp/127.0.0.1:7447), multicast scouting off.
+pub fn router_config(config_file: Option<&std::path::Path>, listen: &[String]) -> anyhow::Result<zenoh::Config> {
+    let mut c = match config_file {
+        Some(p) => zenoh::Config::from_file(p).map_err(zerr)?,
+        None => loopback_defaults("router", &[DEFAULT_LISTEN.to_string()], &[])?,
+    };
+    if !listen.is_empty() {
+        c.insert_json5("listen/endpoints", &serde_json::to_string(listen)?)
+            .map_err(zerr)?;
+    }
+    Ok(c)
 }

@@ -4,9 +4,20 @@
 //! with `{version, code, message, path}`), `contact/health`, `contact/schema`.
 //! Solves run on a bounded pool of blocking workers; past the queue limit a
 //! request is answered `busy` at once.
+//!
+//! Scale-out is zenoh's: several services on the same keys behind a router.
+//! The queryables are declared *complete*, so a query with zenoh's default
+//! target (`BestMatching`) is routed to exactly one of them rather than to all
+//! (which is what incomplete queryables get); when that one leaves, the router
+//! routes to the next. zenoh picks the same instance for every such query, so
+//! to spread the load each instance also holds a liveliness token
+//! `contact/instance/<zid>` and answers `contact/instance/<zid>/solve`: a
+//! client lists the live instances and takes turns (the Python client's
+//! `spread=True`). No process of ours sits between clients and services.
 
 pub mod config;
 pub mod health;
+pub mod router;
 pub mod worker;
 
 use std::sync::Arc;
@@ -19,6 +30,8 @@ use health::State;
 pub const KEY_SOLVE: &str = "contact/solve";
 pub const KEY_HEALTH: &str = "contact/health";
 pub const KEY_SCHEMA: &str = "contact/schema";
+/// Liveliness tokens of the running instances: `contact/instance/<zid>`.
+pub const KEY_INSTANCES: &str = "contact/instance";
 
 /// Runs the service until ctrl-c (or SIGTERM).
 pub async fn run(cfg: ServiceConfig) -> anyhow::Result<()> {
@@ -26,33 +39,51 @@ pub async fn run(cfg: ServiceConfig) -> anyhow::Result<()> {
     let session = zenoh::open(zconf)
         .await
         .map_err(|e| anyhow::anyhow!("cannot open zenoh session: {e}"))?;
-    let solve_q = session
-        .declare_queryable(KEY_SOLVE)
+    let queryable = |key: &'static str| {
+        let s = &session;
+        async move {
+            s.declare_queryable(key)
+                .complete(true)
+                .await
+                .map_err(|e| anyhow::anyhow!("declaring {key}: {e}"))
+        }
+    };
+    let solve_q = queryable(KEY_SOLVE).await?;
+    let health_q = queryable(KEY_HEALTH).await?;
+    let schema_q = queryable(KEY_SCHEMA).await?;
+    let state = Arc::new(State::new(cfg.clone(), session.zid().to_string()));
+    let instance_key = format!("{KEY_INSTANCES}/{}", state.instance);
+    // Leaked once: the key lives as long as the process, like the constants.
+    let own_solve_key: &'static str = Box::leak(format!("{instance_key}/solve").into_boxed_str());
+    let own_solve_q = queryable(own_solve_key).await?;
+    let _alive = session
+        .liveliness()
+        .declare_token(&instance_key)
         .await
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
-    let health_q = session
-        .declare_queryable(KEY_HEALTH)
-        .await
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
-    let schema_q = session
-        .declare_queryable(KEY_SCHEMA)
-        .await
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
-    let state = Arc::new(State::new(cfg.clone()));
+        .map_err(|e| anyhow::anyhow!("declaring the liveliness token {instance_key}: {e}"))?;
     let schema_json = schema_payload();
+    // A panic message goes through tracing too, so `--log-format json` stays one JSON object per line.
+    std::panic::set_hook(Box::new(|info| tracing::error!(panic = %info, "panic")));
     tracing::info!(
         version = env!("CARGO_PKG_VERSION"),
+        instance = %state.instance,
         listen = ?cfg.listen,
+        connect = ?cfg.connect,
         workers = cfg.workers,
         queue_limit = cfg.queue_limit,
+        max_solve_time_s = cfg.max_solve_time.as_secs_f64(),
         "serving {KEY_SOLVE}, {KEY_HEALTH}, {KEY_SCHEMA}"
     );
     let mut term = tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate())?;
     loop {
         tokio::select! {
             q = solve_q.recv_async() => match q {
-                Ok(q) => worker::dispatch(q, state.clone()),
+                Ok(q) => worker::dispatch(q, KEY_SOLVE, state.clone()),
                 Err(e) => { tracing::error!("solve queryable closed: {e}"); break; }
+            },
+            q = own_solve_q.recv_async() => match q {
+                Ok(q) => worker::dispatch(q, own_solve_key, state.clone()),
+                Err(e) => { tracing::error!("instance solve queryable closed: {e}"); break; }
             },
             q = health_q.recv_async() => match q {
                 Ok(q) => {

@@ -1,41 +1,57 @@
 //! Admission control and the blocking worker pool.
 //!
 //! A request is admitted when fewer than `workers + queue_limit` are pending,
-//! otherwise answered `busy` at once. Admitted requests wait for a worker
-//! permit, run `pipeline::solve_bytes_cached` (with the shared operator
-//! cache) on a blocking thread under
-//! `catch_unwind` (a panic becomes `internal_error`; the process goes on), and
-//! reply on `contact/solve`.
+//! otherwise answered `busy` at once with the queue depth. Admitted requests
+//! over `max_request_bytes` are answered `too_large` without parsing; the others
+//! wait for a worker permit and run `pipeline::solve_bytes_cached` (with the
+//! shared operator cache) on a blocking thread under a deadline of
+//! `max_solve_time` (`cancel`: answered `timeout`, the thread is free again)
+//! and `catch_unwind` (a panic is answered `internal_error` and logged with the
+//! request id; the process goes on). Every reply carries the request id
+//! `<instance>-<n>`, and the client's `client_id` when it could be read.
 
 use std::panic::AssertUnwindSafe;
 use std::sync::atomic::Ordering;
 use std::sync::Arc;
+use std::time::{Duration, Instant};
 
+use serde::Serialize;
 use zenoh::query::Query;
 
 use super::health::State;
-use super::KEY_SOLVE;
-use crate::proto::{ErrorCode, ErrorReply};
+use crate::proto::{ErrorCode, ErrorReply, SolveReply};
 
-pub fn dispatch(query: Query, state: Arc<State>) {
-    let id = state.next_id.fetch_add(1, Ordering::Relaxed);
-    let capacity = state.cfg.workers + state.cfg.queue_limit;
-    let pending = state.pending.fetch_add(1, Ordering::SeqCst);
-    if pending >= capacity {
-        state.pending.fetch_sub(1, Ordering::SeqCst);
-        state.rejected_busy.fetch_add(1, Ordering::Relaxed);
-        let err = ErrorReply::new(
+/// What goes back on the wire: `Ok` for `reply`, `Err` for `reply_err`.
+type Body = Result<Vec<u8>, Vec<u8>>;
+
+/// Answers one query on `contact/solve`; `key` is the queryable's own key (replies go there).
+pub fn dispatch(query: Query, key: &'static str, state: Arc<State>) {
+    let arrived = Instant::now();
+    let id = format!("{}-{}", state.instance, state.next_id.fetch_add(1, Ordering::Relaxed));
+    let Some(admitted) = admit(&state) else {
+        let (pending, running) = (
+            state.pending.load(Ordering::SeqCst),
+            state.in_flight.load(Ordering::SeqCst),
+        );
+        let depth = pending.saturating_sub(running);
+        let mut err = ErrorReply::new(
             ErrorCode::Busy,
-            format!("service busy: {pending} requests pending (limit {capacity}); retry later"),
+            format!(
+                "service busy: {depth} requests queued (limit {}) and {running} solving; retry later",
+                state.cfg.queue_limit
+            ),
             "",
         );
-        tokio::spawn(async move { send(&query, Err(err), id).await });
+        err.queue_depth = Some(u32::try_from(depth).unwrap_or(u32::MAX));
+        let (body, outcome) = wire(&id, Err(err));
+        state.record(&outcome, None, false);
+        tokio::spawn(async move { send(&query, key, &id, body).await });
         return;
-    }
+    };
     tokio::spawn(async move {
         let payload: Vec<u8> = query.payload().map(|p| p.to_bytes().into_owned()).unwrap_or_default();
-        let result = if payload.len() > state.cfg.max_request_bytes {
-            Err(ErrorReply::new(
+        let (body, outcome, panicked) = if payload.len() > state.cfg.max_request_bytes {
+            let err = ErrorReply::new(
                 ErrorCode::TooLarge,
                 format!(
                     "request of {} bytes exceeds the limit of {} bytes",
@@ -43,51 +59,207 @@ pub fn dispatch(query: Query, state: Arc<State>) {
                     state.cfg.max_request_bytes
                 ),
                 "",
-            ))
+            );
+            let (body, outcome) = wire(&id, Err(err));
+            (body, outcome, false)
         } else {
-            let _permit = state.workers.acquire().await.expect("semaphore never closed");
-            state.in_flight.fetch_add(1, Ordering::SeqCst);
-            let limits = state.cfg.limits;
-            let st = state.clone();
-            let joined = tokio::task::spawn_blocking(move || {
-                std::panic::catch_unwind(AssertUnwindSafe(|| {
-                    let cache = (st.cfg.cache_bytes > 0).then_some(&st.cache);
-                    crate::pipeline::solve_bytes_cached(&payload, &limits, cache)
-                }))
-            })
-            .await;
-            state.in_flight.fetch_sub(1, Ordering::SeqCst);
-            match joined {
-                Ok(Ok(r)) => r.map(|reply| serde_json::to_vec(&reply).unwrap_or_default()),
-                _ => {
-                    state.panics.fetch_add(1, Ordering::Relaxed);
-                    tracing::error!(request_id = id, "solve panicked");
-                    Err(ErrorReply::new(
-                        ErrorCode::InternalError,
-                        format!("internal error while solving request {id}; the service goes on"),
-                        "",
-                    ))
-                }
-            }
+            solve_on_worker(payload, &state, &id).await
         };
-        match &result {
-            Ok(_) => state.served_ok.fetch_add(1, Ordering::Relaxed),
-            Err(_) => state.served_err.fetch_add(1, Ordering::Relaxed),
-        };
-        send(&query, result, id).await;
-        state.pending.fetch_sub(1, Ordering::SeqCst);
+        state.record(&outcome, Some(arrived.elapsed()), panicked);
+        tracing::info!(
+            request_id = %id,
+            outcome = %outcome,
+            latency_ms = arrived.elapsed().as_secs_f64() * 1e3,
+            "reply"
+        );
+        send(&query, key, &id, body).await;
+        drop(admitted);
     });
 }
 
-async fn send(query: &Query, result: Result<Vec<u8>, ErrorReply>, id: u64) {
-    let outcome = match result {
-        Ok(body) => query.reply(KEY_SOLVE, body).await,
-        Err(e) => {
-            tracing::info!(request_id = id, code = ?e.code, path = %e.path, "error reply: {}", e.message);
-            query.reply_err(serde_json::to_vec(&e).unwrap_or_default()).await
+/// Waits for a worker permit, then solves on a blocking thread.
+async fn solve_on_worker(payload: Vec<u8>, state: &Arc<State>, id: &str) -> (Body, String, bool) {
+    let _permit = state.workers.acquire().await.expect("semaphore never closed");
+    let _running = Counted::new(state, |s| &s.in_flight);
+    let (st, rid) = (state.clone(), id.to_string());
+    let joined = tokio::task::spawn_blocking(move || {
+        let (result, panicked) = run_isolated(&rid, st.cfg.max_solve_time, || {
+            let cache = (st.cfg.cache_bytes > 0).then_some(&st.cache);
+            crate::pipeline::solve_bytes_cached(&payload, &st.cfg.limits, cache)
+        });
+        drop(payload);
+        let (body, outcome) = wire(&rid, result);
+        (body, outcome, panicked)
+    })
+    .await;
+    joined.unwrap_or_else(|e| {
+        tracing::error!(request_id = %id, "worker task failed: {e}");
+        let (body, outcome) = wire(id, Err(internal_error(id)));
+        (body, outcome, true)
+    })
+}
+
+/// Runs `solve` under a deadline of `limit` and `catch_unwind`; a panic becomes
+/// `internal_error` (second value true), logged with the request id.
+pub fn run_isolated(
+    id: &str,
+    limit: Duration,
+    solve: impl FnOnce() -> Result<SolveReply, ErrorReply>,
+) -> (Result<SolveReply, ErrorReply>, bool) {
+    let _deadline = crate::cancel::Deadline::install(limit);
+    match std::panic::catch_unwind(AssertUnwindSafe(solve)) {
+        Ok(result) => (result, false),
+        Err(panic) => {
+            let what = panic
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| panic.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "non-text panic payload".into());
+            tracing::error!(request_id = %id, panic = %what, "solve panicked; answered internal_error");
+            (Err(internal_error(id)), true)
         }
+    }
+}
+
+fn internal_error(id: &str) -> ErrorReply {
+    ErrorReply::new(
+        ErrorCode::InternalError,
+        format!("internal error while solving request {id} (a bug, logged with this id); the service goes on"),
+        "",
+    )
+}
+
+/// Stamps the request id, serializes, and names the outcome (reply status or error code).
+fn wire(id: &str, result: Result<SolveReply, ErrorReply>) -> (Body, String) {
+    match result {
+        Ok(mut reply) => {
+            reply.request_id = Some(id.to_string());
+            let outcome = snake(&reply.status);
+            match serde_json::to_vec(&reply) {
+                Ok(bytes) => (Ok(bytes), outcome),
+                Err(e) => {
+                    tracing::error!(request_id = %id, "reply not serializable: {e}");
+                    wire(id, Err(internal_error(id)))
+                }
+            }
+        }
+        Err(mut err) => {
+            err.request_id = Some(id.into());
+            if err.code != ErrorCode::Busy {
+                tracing::info!(request_id = %id, code = ?err.code, path = %err.path, "error reply: {}", err.message);
+            }
+            let outcome = snake(&err.code);
+            (Err(serde_json::to_vec(&err).unwrap_or_default()), outcome)
+        }
+    }
+}
+
+/// The snake_case wire name of a unit enum value.
+fn snake<T: Serialize>(v: &T) -> String {
+    serde_json::to_value(v)
+        .ok()
+        .and_then(|v| v.as_str().map(str::to_string))
+        .unwrap_or_default()
+}
+
+async fn send(query: &Query, key: &str, id: &str, body: Body) {
+    let outcome = match body {
+        Ok(bytes) => query.reply(key, bytes).await,
+        Err(bytes) => query.reply_err(bytes).await,
     };
     if let Err(e) = outcome {
-        tracing::warn!(request_id = id, "reply failed: {e}");
+        tracing::warn!(request_id = %id, "reply failed: {e}");
+    }
+}
+
+/// A slot of `pending`, taken only while under `workers + queue_limit` and
+/// given back on drop, whatever path the request takes.
+fn admit(state: &Arc<State>) -> Option<Counted> {
+    let capacity = state.cfg.workers + state.cfg.queue_limit;
+    let slot = Counted::new(state, |s| &s.pending);
+    (slot.before < capacity).then_some(slot)
+}
+
+/// +1 on a counter of the state for the guard's life.
+struct Counted {
+    state: Arc<State>,
+    counter: fn(&State) -> &std::sync::atomic::AtomicUsize,
+    before: usize,
+}
+
+impl Counted {
+    fn new(state: &Arc<State>, counter: fn(&State) -> &std::sync::atomic::AtomicUsize) -> Self {
+        let before = counter(state).fetch_add(1, Ordering::SeqCst);
+        Self {
+            state: state.clone(),
+            counter,
+            before,
+        }
+    }
+}
+
+impl Drop for Counted {
+    fn drop(&mut self) {
+        (self.counter)(&self.state).fetch_sub(1, Ordering::SeqCst);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_panicking_solve_is_an_internal_error_with_the_request_id() {
+        let (result, panicked) = run_isolated("inst-7", Duration::from_secs(60), || panic!("injected fault"));
+        assert!(panicked);
+        let err = result.unwrap_err();
+        assert_eq!(err.code, ErrorCode::InternalError);
+        assert!(err.message.contains("inst-7"), "{}", err.message);
+        let (body, outcome) = wire("inst-7", Err(err));
+        assert_eq!(outcome, "internal_error");
+        let json: serde_json::Value = serde_json::from_slice(&body.unwrap_err()).unwrap();
+        assert_eq!(json["request_id"], "inst-7");
+        // The thread goes on, without the panicking solve's deadline.
+        assert!(crate::cancel::check("post").is_ok());
+    }
+
+    #[test]
+    fn an_expired_deadline_is_answered_timeout_and_lifted() {
+        let example = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/proto/examples/signorini_hertz_cylinder.json"
+        );
+        let bytes = std::fs::read(example).unwrap();
+        let limits = crate::scene::Limits::default();
+        let (result, panicked) = run_isolated("inst-8", Duration::ZERO, || {
+            crate::pipeline::solve_bytes(&bytes, &limits)
+        });
+        assert!(!panicked);
+        let err = result.unwrap_err();
+        assert_eq!(err.code, ErrorCode::Timeout);
+        assert!(err.message.contains("'mesh'"), "{}", err.message);
+        assert!(crate::cancel::check("mesh").is_ok());
+    }
+
+    #[test]
+    fn admission_stops_at_workers_plus_queue_and_gives_slots_back() {
+        let cfg = super::super::ServiceConfig {
+            workers: 1,
+            queue_limit: 1,
+            ..Default::default()
+        };
+        let state = Arc::new(State::new(cfg, "t".into()));
+        let a = admit(&state).expect("first");
+        let b = admit(&state).expect("second");
+        assert!(admit(&state).is_none(), "third must be refused");
+        assert_eq!(
+            state.pending.load(Ordering::SeqCst),
+            2,
+            "a refusal leaves no slot taken"
+        );
+        drop(a);
+        let c = admit(&state).expect("a slot came back");
+        drop((b, c));
+        assert_eq!(state.pending.load(Ordering::SeqCst), 0);
     }
 }

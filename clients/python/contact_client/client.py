@@ -11,6 +11,18 @@ The service declares three queryables:
 ``contact/schema``
     ``ok`` reply: ``{"request": ..., "reply": ..., "error": ...}`` (JSON Schemas).
 
+Every solve reply and error reply carries ``request_id`` (``<instance>-<n>``, the
+id the service logs it under) and echoes the request's ``client_id``.
+
+Several service instances may serve the same keys behind a zenoh router. Their
+queryables are *complete*, so zenoh's default query target routes each query to
+exactly one instance (always the same one while it lives; the next one when it
+goes). ``Client(spread=True)`` spreads the load instead: it lists the live
+instances (zenoh liveliness tokens ``contact/instance/<zid>``) and takes turns
+querying ``contact/instance/<zid>/solve``. ``solve(..., retries=n)`` retries what
+may succeed on a second try: no answer (an instance that died mid-query) and
+``busy``; solving is a pure function of the request, so a retry is safe.
+
 Two failure kinds are kept apart:
 
 * :class:`ContactError`: the service understood the query and answered with a
@@ -28,12 +40,14 @@ multicast scouting off, so nothing leaves the given address.
 from __future__ import annotations
 
 import json
+import time
 from typing import Any, Union
 
 import zenoh
 
 __all__ = [
     "DEFAULT_CONNECT",
+    "KEY_INSTANCES",
     "KEY_SOLVE",
     "KEY_HEALTH",
     "KEY_SCHEMA",
@@ -50,9 +64,15 @@ DEFAULT_CONNECT = "tcp/127.0.0.1:7447"
 KEY_SOLVE = "contact/solve"
 KEY_HEALTH = "contact/health"
 KEY_SCHEMA = "contact/schema"
+#: Liveliness tokens of the running instances, ``contact/instance/<zid>``.
+KEY_INSTANCES = "contact/instance/*"
 
 #: Timeout of the small queries (health, schema), seconds.
 SMALL_QUERY_TIMEOUT = 10.0
+#: With ``spread=True``, the list of instances is refreshed after this many seconds.
+INSTANCE_REFRESH_S = 2.0
+#: Pause before retrying a ``busy`` answer, seconds (doubled on each retry).
+BUSY_BACKOFF_S = 0.05
 
 Request = Union[dict, str, bytes, bytearray]
 
@@ -137,7 +157,7 @@ def _query(session: zenoh.Session, key: str, payload: bytes | None, timeout: flo
     except zenoh.ZError as e:
         raise TransportError(f"query on {key!r} failed: {e}") from e
     if first is None:
-        raise TransportError(f"no reply on {key!r} within {timeout} s (is the service running?)")
+        raise TransportError(f"no reply on {key!r} (timeout {timeout} s; is the service running?)")
 
     ok = first.ok
     if ok is not None:
@@ -178,9 +198,13 @@ class Client:
             reply = c.solve(request)
     """
 
-    def __init__(self, connect: str = DEFAULT_CONNECT, timeout: float = 60.0):
+    def __init__(self, connect: str = DEFAULT_CONNECT, timeout: float = 60.0, spread: bool = False):
         self.connect = connect
         self.timeout = float(timeout)
+        self.spread = spread
+        self._instances: list[str] = []
+        self._listed_at = float("-inf")
+        self._turn = 0
         self._session: zenoh.Session | None = _open(connect)
 
     @property
@@ -189,14 +213,63 @@ class Client:
             raise TransportError("client is closed")
         return self._session
 
-    def solve(self, request: Request, timeout: float | None = None) -> dict:
+    def solve(self, request: Request, timeout: float | None = None, retries: int = 0) -> dict:
         """Solve one request; returns the reply dict.
 
         Raises :class:`ContactError` for a structured error reply and
-        :class:`TransportError` when no structured answer arrives.
+        :class:`TransportError` when no structured answer arrives. Up to
+        ``retries`` more attempts follow a :class:`TransportError` or ``busy``
+        (with ``spread=True``, on another instance).
         """
         payload = encode_request(request)
-        return _query(self.session, KEY_SOLVE, payload, self.timeout if timeout is None else float(timeout))
+        timeout = self.timeout if timeout is None else float(timeout)
+        backoff = BUSY_BACKOFF_S
+        for attempt in range(retries + 1):
+            key = self._solve_key()
+            try:
+                return _query(self.session, key, payload, timeout)
+            except TransportError:
+                self._forget(key)
+                if attempt == retries:
+                    raise
+            except ContactError as e:
+                if e.code != "busy" or attempt == retries:
+                    raise
+                time.sleep(backoff)
+                backoff *= 2
+        raise AssertionError("unreachable")
+
+    def instances(self, timeout: float = SMALL_QUERY_TIMEOUT) -> list[str]:
+        """The zenoh ids of the live service instances, sorted."""
+        try:
+            replies = self.session.liveliness().get(KEY_INSTANCES, timeout=timeout)
+            return sorted(str(r.ok.key_expr).rsplit("/", 1)[1] for r in replies if r.ok is not None)
+        except zenoh.ZError as e:
+            raise TransportError(f"listing instances failed: {e}") from e
+
+    def health_all(self, timeout: float = SMALL_QUERY_TIMEOUT) -> list[dict]:
+        """The health record of every instance reachable (target ALL, no consolidation)."""
+        try:
+            replies = self.session.get(KEY_HEALTH, timeout=timeout, target=zenoh.QueryTarget.ALL,
+                                       consolidation=zenoh.ConsolidationMode.NONE)
+            return [json.loads(_payload_text(r.ok.payload)) for r in replies if r.ok is not None]
+        except (zenoh.ZError, json.JSONDecodeError) as e:
+            raise TransportError(f"health of all instances failed: {e}") from e
+
+    def _solve_key(self) -> str:
+        if not self.spread:
+            return KEY_SOLVE
+        if not self._instances or time.monotonic() - self._listed_at > INSTANCE_REFRESH_S:
+            self._instances = self.instances()
+            self._listed_at = time.monotonic()
+        if not self._instances:
+            return KEY_SOLVE
+        self._turn += 1
+        return f"contact/instance/{self._instances[self._turn % len(self._instances)]}/solve"
+
+    def _forget(self, key: str) -> None:
+        """After no answer from ``key``: drop that instance until the next listing."""
+        self._instances = [z for z in self._instances if f"/{z}/" not in key]
 
     def health(self, timeout: float = SMALL_QUERY_TIMEOUT) -> dict:
         """The service's health record (version, uptime_s, solves_served, queue_depth, in_flight, ...)."""

@@ -12,15 +12,14 @@ Environment:
 from __future__ import annotations
 
 import os
-import subprocess
-import time
 from pathlib import Path
 
 import pytest
 
-from contact_client import Client, ContactError, TransportError
+from contact_client import Client
+from contact_client.local import local_service
 
-from support import HERTZ_EXAMPLE, PROTO, REPO, free_loopback_port, load_json, validator_for
+from support import HERTZ_EXAMPLE, PROTO, REPO, load_json, validator_for
 
 STARTUP_TIMEOUT_S = 30.0
 
@@ -71,45 +70,9 @@ def hertz_example(hertz_example_path) -> dict:
 @pytest.fixture(scope="session")
 def service(contact_bin, tmp_path_factory):
     """Start `contact serve` on a free 127.0.0.1 port; yield its endpoint."""
-    port = free_loopback_port()
-    endpoint = f"tcp/127.0.0.1:{port}"
-    log_path = tmp_path_factory.mktemp("service") / "contact-serve.log"
-    log = open(log_path, "wb")
-    proc = subprocess.Popen(
-        [str(contact_bin), "serve", "--listen", endpoint],
-        stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-    )
-
-    def log_tail() -> str:
-        log.flush()
-        return log_path.read_text(errors="replace")[-4000:]
-
-    try:
-        deadline = time.monotonic() + STARTUP_TIMEOUT_S
-        last = None
-        while True:
-            if proc.poll() is not None:
-                pytest.fail(f"`contact serve` exited with {proc.returncode} during startup:\n{log_tail()}")
-            try:
-                # A client-mode open fails at once while nobody listens: retry until it answers.
-                with Client(endpoint) as c:
-                    c.health(timeout=2.0)
-                break
-            except (TransportError, ContactError) as e:
-                last = e
-            if time.monotonic() > deadline:
-                pytest.fail(f"service on {endpoint} did not answer contact/health within "
-                            f"{STARTUP_TIMEOUT_S} s (last: {last}):\n{log_tail()}")
-            time.sleep(0.2)
+    log = tmp_path_factory.mktemp("service") / "contact-serve.log"
+    with local_service(contact_bin, STARTUP_TIMEOUT_S, log=log) as endpoint:
         yield endpoint
-    finally:
-        proc.terminate()
-        try:
-            proc.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait(timeout=10)
-        log.close()
 
 
 @pytest.fixture(scope="session")

@@ -3,21 +3,15 @@
 from __future__ import annotations
 
 import json
-import socket
 from pathlib import Path
+
+from contact_client.local import free_loopback_port  # noqa: F401  (re-exported for the tests)
 
 # tests/ -> python/ -> clients/ -> repository root
 REPO = Path(__file__).resolve().parents[3]
 PROTO = REPO / "proto"
 EXAMPLES = PROTO / "examples"
 HERTZ_EXAMPLE = EXAMPLES / "signorini_hertz_cylinder.json"
-
-
-def free_loopback_port() -> int:
-    """A TCP port on 127.0.0.1 that nobody listens on right now."""
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 def load_json(path: Path):

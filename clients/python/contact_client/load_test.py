@@ -1,0 +1,246 @@
+"""Load test of a ``contact`` service on loopback: N concurrent clients, each
+sending M requests from a fixed mix of valid and invalid ones.
+
+Every answer is checked against the answer to the same request sent alone
+(sequentially, before the load): a valid request must get the identical reply
+(all fields but ``timings``, ``cache``, ``request_id`` and the echoed
+``client_id``, which must be the one sent), an invalid one the same error code.
+A query with no structured answer within its timeout is *lost*; an answer that
+differs is *wrong*; ``busy`` is retried (and counted). Bounded in count and in
+time (``--max-seconds``), and loopback only::
+
+    python -m contact_client.load_test --serve target/release/contact --clients 16 --requests 50
+    python -m contact_client.load_test --connect tcp/127.0.0.1:7447 --clients 16 --requests 50
+
+Prints throughput, latency percentiles and the counts; exits 1 when any reply
+was lost or wrong.
+"""
+
+from __future__ import annotations
+
+import argparse
+import ipaddress
+import json
+import math
+import socket
+import sys
+import threading
+import time
+from dataclasses import dataclass, field
+
+from . import scenes
+from .client import Client, ContactError, TransportError
+from .local import local_service
+
+#: Reply fields that legitimately differ between two answers to one request.
+VOLATILE = ("timings", "cache", "request_id", "client_id")
+
+
+def workload() -> list[tuple[str, bytes]]:
+    """(name, payload) of the mix: 6 valid scenes and 6 invalid requests."""
+
+    def hertz(**kw) -> dict:
+        return scenes.hertz_cylinder(h_min=0.05, **kw)
+
+    bad_material = hertz()
+    bad_material["bodies"][0]["material"]["poisson_ratio"] = 0.5
+    unknown_field = hertz()
+    unknown_field["bodies"][0]["colour"] = "red"
+    cut = hertz()
+    cut["time_limit"] = 1e-6  # meshing alone takes longer: certainly a timeout
+    valid = {
+        "hertz_fine": scenes.hertz_cylinder(),
+        "hertz_t3": hertz(),
+        "hertz_t6_shallow": hertz(depth=0.08, element="t6"),
+        "hertz_penalty": hertz(depth=0.1) | {"method": "penalty"},
+        "flat_punch": scenes.punch_on_block({"flat": {"half_width": 1.0}}, load=10.0, h_min=0.05),
+        "circle_punch": scenes.punch_on_block({"circle": {"radius": 8.0}}, load=10.0, h_min=0.05),
+    }
+    invalid = {
+        "malformed_json": b'{"version": "1", "bodies": [',
+        "not_utf8": b'{"version": "\xff\xfe"}',
+        "bad_material": bad_material,
+        "unsupported_version": hertz() | {"version": "99"},
+        "unknown_field": unknown_field,
+        "timeout": cut,
+    }
+    enc = lambda r: r if isinstance(r, bytes) else json.dumps(r).encode()  # noqa: E731
+    return [(k, enc(v)) for k, v in (valid | invalid).items()]
+
+
+def with_client_id(payload: bytes, client_id: str) -> bytes:
+    """The payload with ``client_id`` set (left as is when it is not a JSON object)."""
+    try:
+        req = json.loads(payload)
+    except (UnicodeDecodeError, json.JSONDecodeError):
+        return payload
+    return json.dumps(req | {"client_id": client_id}).encode()
+
+
+def outcome(client: Client, payload: bytes, timeout: float) -> tuple[str, object]:
+    """("ok", reply) | ("error", code) | ("lost", reason), after retrying ``busy``."""
+    try:
+        return "ok", client.solve(payload, timeout=timeout, retries=20)
+    except ContactError as e:
+        return "error", e.code
+    except TransportError as e:
+        return "lost", str(e)
+
+
+def stable(reply: dict) -> dict:
+    return {k: v for k, v in reply.items() if k not in VOLATILE}
+
+
+def references(client: Client, work: list[tuple[str, bytes]], timeout: float) -> dict[str, tuple[str, object]]:
+    """Each request of the mix answered alone: what every later answer must equal."""
+    out = {}
+    for name, payload in work:
+        kind, value = outcome(client, payload, timeout)
+        if kind == "lost":
+            raise TransportError(f"reference answer to {name} lost: {value}")
+        out[name] = (kind, stable(value) if kind == "ok" else value)
+    return out
+
+
+def judge(expected: tuple[str, object], got: tuple[str, object], client_id: str) -> str:
+    """'ok', 'wrong' or 'lost' for one answer."""
+    kind, value = got
+    if kind == "lost":
+        return "lost"
+    if kind != expected[0]:
+        return "wrong"
+    if kind == "ok":
+        return "ok" if value.get("client_id") == client_id and stable(value) == expected[1] else "wrong"
+    return "ok" if value == expected[1] else "wrong"
+
+
+@dataclass
+class Tally:
+    counts: dict = field(default_factory=lambda: {"ok": 0, "wrong": 0, "lost": 0})
+    latencies: list = field(default_factory=list)
+    valid_identical: int = 0
+    notes: list = field(default_factory=list)
+    lock: threading.Lock = field(default_factory=threading.Lock)
+
+    def add(self, verdict: str, latency: float, name: str, expected_kind: str, detail: str) -> None:
+        with self.lock:
+            self.counts[verdict] += 1
+            self.latencies.append(latency)
+            if verdict == "ok" and expected_kind == "ok":
+                self.valid_identical += 1
+            if verdict != "ok" and len(self.notes) < 20:
+                self.notes.append(f"{verdict}: {name}: {detail[:300]}")
+
+
+def percentile(sorted_values: list[float], p: float) -> float:
+    """Nearest rank, as the service's health does."""
+    if not sorted_values:
+        return 0.0
+    return sorted_values[min(len(sorted_values), max(1, math.ceil(p * len(sorted_values)))) - 1]
+
+
+def run(connect: str, clients: int = 16, requests: int = 50, timeout: float = 60.0,
+        max_seconds: float = 600.0, spread: bool = False) -> dict:
+    """The load test against a running service; returns the figures (see ``report``)."""
+    check_loopback(connect)
+    work = workload()
+    with Client(connect, timeout=timeout) as c:
+        reference = references(c, work, timeout)
+    tally = Tally()
+    stop_at = time.monotonic() + max_seconds
+    barrier = threading.Barrier(clients)
+
+    def one_client(k: int) -> None:
+        with Client(connect, timeout=timeout, spread=spread) as c:
+            barrier.wait()
+            for i in range(requests):
+                if time.monotonic() > stop_at:
+                    return
+                name, payload = work[(k + i) % len(work)]
+                cid = f"load-{k}-{i}"
+                t0 = time.perf_counter()
+                got = outcome(c, with_client_id(payload, cid), timeout)
+                verdict = judge(reference[name], got, cid)
+                tally.add(verdict, time.perf_counter() - t0, name, reference[name][0], repr(got[1]))
+
+    threads = [threading.Thread(target=one_client, args=(k,), daemon=True) for k in range(clients)]
+    t0 = time.perf_counter()
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join(timeout=max(0.0, stop_at - time.monotonic()) + timeout + 5.0)
+    wall = time.perf_counter() - t0
+    lat = sorted(tally.latencies)
+    sent = clients * requests
+    answered = sum(tally.counts.values())
+    return {
+        "clients": clients,
+        "requests_per_client": requests,
+        "sent": sent,
+        "answered": answered,
+        # A query never attempted (time bound hit) or still hanging is lost too.
+        "lost": tally.counts["lost"] + (sent - answered),
+        "wrong": tally.counts["wrong"],
+        "ok": tally.counts["ok"],
+        "valid_identical": tally.valid_identical,
+        "valid_sent": sum(1 for k in range(clients) for i in range(requests)
+                          if reference[work[(k + i) % len(work)][0]][0] == "ok"),
+        "wall_s": wall,
+        "throughput_per_s": answered / wall if wall > 0 else 0.0,
+        "latency_s": {"p50": percentile(lat, 0.50), "p90": percentile(lat, 0.90),
+                      "p99": percentile(lat, 0.99), "max": lat[-1] if lat else 0.0},
+        "notes": tally.notes,
+    }
+
+
+def report(r: dict) -> str:
+    lat = r["latency_s"]
+    lines = [
+        f"clients x requests : {r['clients']} x {r['requests_per_client']} = {r['sent']}",
+        f"wall time          : {r['wall_s']:.2f} s",
+        f"throughput         : {r['throughput_per_s']:.1f} replies/s",
+        f"latency            : p50 {lat['p50'] * 1e3:.1f} ms, p90 {lat['p90'] * 1e3:.1f} ms, "
+        f"p99 {lat['p99'] * 1e3:.1f} ms, max {lat['max'] * 1e3:.1f} ms",
+        f"answered correctly : {r['ok']}",
+        f"valid, identical to the sequential answer: {r['valid_identical']} of {r['valid_sent']}",
+        f"lost               : {r['lost']}",
+        f"wrong              : {r['wrong']}",
+    ]
+    return "\n".join(lines + [f"  {n}" for n in r["notes"]])
+
+
+def check_loopback(connect: str) -> None:
+    """Refuse any endpoint but a loopback address: this tool only loads the local machine."""
+    try:
+        host = connect.split("/", 1)[1].rsplit(":", 1)[0].strip("[]")
+        addr = ipaddress.ip_address(socket.gethostbyname(host) if host == "localhost" else host)
+    except (IndexError, ValueError, OSError) as e:
+        raise ValueError(f"cannot read a loopback address from {connect!r}") from e
+    if not addr.is_loopback:
+        raise ValueError(f"{connect!r} is not a loopback endpoint; the load test only targets this machine")
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(prog="python -m contact_client.load_test", description=__doc__.split("\n\n")[0])
+    where = p.add_mutually_exclusive_group(required=True)
+    where.add_argument("--connect", help="endpoint of a running service (loopback only), e.g. tcp/127.0.0.1:7447")
+    where.add_argument("--serve", metavar="BINARY", help="start `BINARY serve` on a free loopback port for the test")
+    p.add_argument("--clients", type=int, default=16, help="concurrent clients (default 16)")
+    p.add_argument("--requests", type=int, default=50, help="requests per client (default 50)")
+    p.add_argument("--timeout", type=float, default=60.0, help="per-query timeout in seconds (default 60)")
+    p.add_argument("--max-seconds", type=float, default=600.0, help="stop sending after this (default 600)")
+    p.add_argument("--spread", action="store_true", help="spread queries over all live instances")
+    a = p.parse_args(argv)
+    if a.clients < 1 or a.requests < 1 or a.clients * a.requests > 100_000:
+        p.error("--clients and --requests must be positive, at most 100000 queries in all")
+    if a.serve:
+        with local_service(a.serve) as endpoint:
+            r = run(endpoint, a.clients, a.requests, a.timeout, a.max_seconds, a.spread)
+    else:
+        r = run(a.connect, a.clients, a.requests, a.timeout, a.max_seconds, a.spread)
+    print(report(r))
+    return 1 if r["lost"] or r["wrong"] else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

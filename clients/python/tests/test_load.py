@@ -1,0 +1,27 @@
+"""A small run of the load test (``contact_client.load_test``) against the session's service:
+concurrent clients, a mix of valid and invalid requests, nothing lost or wrong."""
+
+from __future__ import annotations
+
+import pytest
+
+from contact_client import load_test
+
+
+def test_concurrent_mix_is_answered_like_sequential_requests(service):
+    r = load_test.run(service, clients=4, requests=12, timeout=60.0, max_seconds=120.0)
+    assert r["sent"] == r["answered"] == 48
+    assert (r["lost"], r["wrong"]) == (0, 0), load_test.report(r)
+    assert r["valid_identical"] == r["valid_sent"] > 0
+    assert 0 < r["latency_s"]["p50"] <= r["latency_s"]["p99"] <= r["latency_s"]["max"]
+
+
+@pytest.mark.parametrize("endpoint", ["tcp/10.0.0.1:7447", "tcp/192.168.1.2:7447", "tcp/example.org:7447"])
+def test_only_loopback_endpoints_are_loaded(endpoint):
+    with pytest.raises(ValueError):
+        load_test.check_loopback(endpoint)
+
+
+def test_loopback_endpoints_are_accepted():
+    for ep in ("tcp/127.0.0.1:7447", "tcp/localhost:7447", "tcp/[::1]:7447"):
+        load_test.check_loopback(ep)
