@@ -24,6 +24,8 @@ pub struct Prepared {
     pub stiffness: Arc<Stiffness>,
     pub chol: Cholesky,
     pub w: Mat<f64>,
+    /// `Cholesky::pivot_ratio` of the factor.
+    pub pivot_ratio: f64,
     pub t_factorization: f64,
     pub t_condensation: f64,
 }

@@ -32,6 +32,7 @@ pub mod scene;
 #[cfg(feature = "service")]
 pub mod service;
 pub mod solution;
+pub mod stability;
 
 pub use error::CoreError;
 pub use pipeline::{solve, solve_bytes, solve_bytes_cached};

@@ -7,7 +7,9 @@
 //! - `contact schema`: writes the JSON Schemas into proto/.
 
 use std::io::{Read, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+
+const DEFAULT_BENCH_CSV: &str = "bench_out/bench.csv";
 use std::process::ExitCode;
 
 use anyhow::Context;
@@ -90,11 +92,15 @@ enum Cmd {
         #[arg(long)]
         quick: bool,
         /// CSV output path.
-        #[arg(long, default_value = "bench_out/bench.csv")]
+        #[arg(long, default_value = DEFAULT_BENCH_CSV)]
         csv: PathBuf,
         /// Runs per row; the median is reported.
         #[arg(long, default_value_t = 1)]
         repeat: usize,
+        /// The numerical stress suite instead (one row per scene and axis value;
+        /// CSV to --csv, default bench_out/stability.csv).
+        #[arg(long)]
+        stability: bool,
     },
     /// Write the JSON Schemas of the protocol.
     Schema {
@@ -181,16 +187,41 @@ fn run() -> anyhow::Result<ExitCode> {
             rt.block_on(contact::service::router::run(config, listen))?;
             Ok(ExitCode::SUCCESS)
         }
-        Cmd::Bench { quick, csv, repeat } => {
-            println!("{}", contact::bench::Row::table_header());
-            let rows = contact::bench::run(quick, repeat, |r| println!("{}", r.table_line()));
+        Cmd::Bench {
+            quick,
+            csv,
+            repeat,
+            stability,
+        } => {
+            let (header, lines) = if stability {
+                println!("{}", contact::stability::Row::table_header());
+                let rows = contact::stability::run(quick, |r| println!("{}", r.table_line()));
+                let unclear = rows.iter().filter(|r| !r.is_clear()).count();
+                println!(
+                    "{} rows, {unclear} neither certified nor refused with a clear status",
+                    rows.len()
+                );
+                (
+                    contact::stability::Row::HEADER,
+                    rows.iter().map(|r| r.csv()).collect::<Vec<_>>(),
+                )
+            } else {
+                println!("{}", contact::bench::Row::table_header());
+                let rows = contact::bench::run(quick, repeat, |r| println!("{}", r.table_line()));
+                (contact::bench::Row::HEADER, rows.iter().map(|r| r.csv()).collect())
+            };
+            let csv = if stability && csv == Path::new(DEFAULT_BENCH_CSV) {
+                PathBuf::from("bench_out/stability.csv")
+            } else {
+                csv
+            };
             if let Some(dir) = csv.parent() {
                 std::fs::create_dir_all(dir)?;
             }
-            let mut text = String::from(contact::bench::Row::HEADER);
+            let mut text = String::from(header);
             text.push('\n');
-            for r in &rows {
-                text.push_str(&r.csv());
+            for l in &lines {
+                text.push_str(l);
                 text.push('\n');
             }
             std::fs::write(&csv, text).with_context(|| format!("writing {}", csv.display()))?;

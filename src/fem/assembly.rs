@@ -14,6 +14,10 @@ use crate::scene::{Scene, Traction};
 
 pub const FIXED: usize = usize::MAX;
 
+/// Poisson's ratio from which T6 in plane strain switches to selective reduced
+/// integration (the volumetric stiffness is then over ten times the shear one).
+pub const NEARLY_INCOMPRESSIBLE: f64 = 0.45;
+
 /// Numbering of degrees of freedom over all bodies.
 #[derive(Debug, Clone)]
 pub struct DofMap {
@@ -224,6 +228,12 @@ pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Re
     let mut ke = [0.0; 144];
     for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
         let d = d_matrix(body.youngs_modulus, body.poisson_ratio, scene.analysis);
+        // Nearly incompressible plane strain on T6: P2–P0 (see element::stiffness_selective).
+        let (e, nu) = (body.youngs_modulus, body.poisson_ratio);
+        let selective = (mesh.order == crate::mesh::Order::T6
+            && scene.analysis == crate::proto::Analysis::PlaneStrain
+            && nu >= NEARLY_INCOMPRESSIBLE)
+            .then(|| e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)));
         let k = mesh.order.nodes_per_element();
         let nd = 2 * k;
         let mut x = [[0.0; 2]; 6];
@@ -235,7 +245,10 @@ pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Re
                 gd[2 * i] = dofs.dof(b, node, 0);
                 gd[2 * i + 1] = dofs.dof(b, node, 1);
             }
-            element::stiffness(mesh.order, &x[..k], &d, &mut ke);
+            match selective {
+                Some(lambda) => element::stiffness_selective(mesh.order, &x[..k], &d, lambda, &mut ke),
+                None => element::stiffness(mesh.order, &x[..k], &d, &mut ke),
+            }
             for a in 0..nd {
                 let fa = dofs.free[gd[a]];
                 if fa == FIXED {

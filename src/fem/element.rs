@@ -97,11 +97,48 @@ pub fn order_len(order: Order) -> usize {
 
 /// Element stiffness (2k × 2k, row-major into `ke`), DOF order u0x, u0y, u1x, ...
 pub fn stiffness(order: Order, x: &[[f64; 2]], d: &[[f64; 3]; 3], ke: &mut [f64; 144]) {
+    let nd = 2 * order_len(order);
+    ke[..nd * nd].iter_mut().for_each(|v| *v = 0.0);
+    add_stiffness(order, x, d, rule(order), ke);
+    symmetrize(nd, ke);
+}
+
+/// Selective reduced integration for nearly incompressible plane strain on T6:
+/// the deviatoric part D − λ m mᵀ with the full 3-point rule, the volumetric
+/// part λ m mᵀ (m = (1, 1, 0)) at the centroid only. This is the P2–P0 mixed
+/// element with its constant pressure condensed out, which is inf-sup stable in
+/// 2D: it does not lock, and the contact pressure does not oscillate, as ν → ½
+/// (measured on Hertz at ν = 0.4999: node-to-node oscillation 0.51 of the peak
+/// with full integration).
+pub fn stiffness_selective(order: Order, x: &[[f64; 2]], d: &[[f64; 3]; 3], lambda: f64, ke: &mut [f64; 144]) {
+    let nd = 2 * order_len(order);
+    ke[..nd * nd].iter_mut().for_each(|v| *v = 0.0);
+    let mut dev = *d;
+    for row in dev.iter_mut().take(2) {
+        for v in row.iter_mut().take(2) {
+            *v -= lambda;
+        }
+    }
+    let vol = [[lambda, lambda, 0.0], [lambda, lambda, 0.0], [0.0, 0.0, 0.0]];
+    add_stiffness(order, x, &dev, rule(order), ke);
+    add_stiffness(order, x, &vol, &RULE1, ke);
+    symmetrize(nd, ke);
+}
+
+fn symmetrize(nd: usize, ke: &mut [f64; 144]) {
+    for a in 0..nd {
+        for b in 0..a {
+            ke[a * nd + b] = ke[b * nd + a];
+        }
+    }
+}
+
+/// Adds Σ_q w_q det J_q B_qᵀ D B_q over `points` to the upper triangle of `ke`.
+fn add_stiffness(order: Order, x: &[[f64; 2]], d: &[[f64; 3]; 3], points: &[[f64; 3]], ke: &mut [f64; 144]) {
     let k = order_len(order);
     let nd = 2 * k;
-    ke[..nd * nd].iter_mut().for_each(|v| *v = 0.0);
     let (mut n, mut dx, mut dy) = ([0.0; 6], [0.0; 6], [0.0; 6]);
-    for q in rule(order) {
+    for q in points {
         let det = gradients(order, x, q[0], q[1], &mut n, &mut dx, &mut dy);
         let w = q[2] * det;
         // DB columns for each DOF: B column of ux_i = (dx, 0, dy), of uy_i = (0, dy, dx).
@@ -126,11 +163,6 @@ pub fn stiffness(order: Order, x: &[[f64; 2]], d: &[[f64; 3]; 3], ke: &mut [f64;
                 };
                 ke[a * nd + b] += w * (bb[0] * dba[0] + bb[1] * dba[1] + bb[2] * dba[2]);
             }
-        }
-    }
-    for a in 0..nd {
-        for b in 0..a {
-            ke[a * nd + b] = ke[b * nd + a];
         }
     }
 }

@@ -100,6 +100,30 @@ impl Cholesky {
         (0..b.len()).map(|i| x[(i, 0)]).collect()
     }
 
+    /// (max L_ii / min L_ii)²: a cheap lower bound of the 2-norm condition number
+    /// of K (the ratio of the factor's pivots), reported with every solve so
+    /// that ill-conditioned scenes are visible.
+    pub fn pivot_ratio(&self) -> f64 {
+        let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
+            unreachable!("factorization is forced supernodal")
+        };
+        let llt = SupernodalLltRef::new(sym, &self.values);
+        let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+        for s in 0..sym.n_supernodes() {
+            let val = llt.supernode(s).val();
+            for j in 0..sym.supernode_end()[s] - sym.supernode_begin()[s] {
+                let d = val[(j, j)].abs();
+                lo = lo.min(d);
+                hi = hi.max(d);
+            }
+        }
+        if lo > 0.0 {
+            (hi / lo).powi(2)
+        } else {
+            f64::INFINITY
+        }
+    }
+
     /// The dense lower-triangular trailing block L_cc (Cholesky factor of the
     /// Schur complement on the `last` DOFs, in the order they were given).
     pub fn trailing_factor(&self) -> Mat<f64> {

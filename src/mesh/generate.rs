@@ -32,7 +32,9 @@ pub fn graded_points(lo: f64, hi: f64, focus: f64, g: Grading, h_max: f64) -> Ve
     let side = |len: f64| -> Vec<f64> {
         // Offsets from the focus, 0 excluded, last == len.
         let mut out = Vec::new();
-        if len <= 0.0 {
+        // A focus on the interval's end (up to round-off, which grows with the
+        // coordinates' magnitude) leaves no side there.
+        if len <= TIE * h_min {
             return out;
         }
         let mut h = h_min.min(h_max);
@@ -60,7 +62,7 @@ pub fn graded_points(lo: f64, hi: f64, focus: f64, g: Grading, h_max: f64) -> Ve
     pts.extend(right.iter().map(|d| f + d));
     pts[0] = lo;
     *pts.last_mut().unwrap() = hi;
-    pts.dedup_by(|a, b| (*a - *b).abs() < 1e-14 * (hi - lo));
+    pts.dedup_by(|a, b| (*a - *b).abs() <= TIE * h_min);
     pts
 }
 

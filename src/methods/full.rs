@@ -207,6 +207,7 @@ fn active_set_full(
 fn solution(run: ActiveSetRun, name: &'static str, t: std::time::Instant, extra_iterations: usize) -> Solution {
     let in_contact = run.lambda.iter().map(|&l| l > 0.0).collect();
     Solution {
+        refinements: 0,
         u: run.u,
         lambda: run.lambda,
         beta: Vec::new(),

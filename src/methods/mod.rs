@@ -78,6 +78,8 @@ pub struct Solution {
     pub exact: bool,
     /// LCP and the two solves.
     pub t_contact: f64,
+    /// Iterative-refinement steps the solves with K needed.
+    pub refinements: usize,
 }
 
 /// Runs the requested method (`auto` → condensed active set, the fastest exact

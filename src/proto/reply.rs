@@ -28,6 +28,8 @@ pub struct SolveReply {
     pub certificate: Certificate,
     /// Problem sizes.
     pub size: ProblemSize,
+    /// Numerical health of the solve.
+    pub diagnostics: Diagnostics,
     /// Wall-clock seconds per stage.
     pub timings: Timings,
     /// Whether the factorization and condensed operator came from the service's cache.
@@ -263,4 +265,17 @@ pub struct FoundationResult {
     pub reference_distance: Option<f64>,
     /// Total force the foundation carries (per unit thickness, downward).
     pub load: f64,
+}
+
+/// How well-posed the linear algebra was.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Diagnostics {
+    /// (max / min pivot of the Cholesky factor of K)², a lower bound of its
+    /// condition number (absent for the full formulation, which refactors).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub condition_estimate: Option<f64>,
+    /// Iterative-refinement steps the solves with K needed to bring their
+    /// residual below 1e-10 (relative); 0 on a well-conditioned K.
+    pub refinements: usize,
 }

@@ -27,6 +27,8 @@ pub struct Scene {
     pub settings: SolverSettings,
     pub outputs: Outputs,
     pub client_id: Option<String>,
+    /// What validation decided that the user should know (echoed in the reply's notes).
+    pub notes: Vec<String>,
     /// Load multipliers to solve for (empty: the loads as given).
     pub load_factors: Vec<f64>,
 }

@@ -1,0 +1,62 @@
+//! The quick part of the numerical stress suite (`contact bench --stability`):
+//! the extreme value of every axis on small meshes. Each row must be certified
+//! or refused with a clear status, never NaN or a panic, and its error against
+//! the reference must be what the physics allows.
+
+use contact::stability::{self, Row};
+
+fn clear(r: &Row) {
+    assert!(r.is_clear(), "{}", r.table_line());
+}
+
+/// Uniform compression is exact in the FE model whatever the element shape or
+/// the initial gap: round-off only.
+#[test]
+fn aspect_ratio_and_tiny_gaps_stay_exact() {
+    for r in [stability::aspect(100.0), stability::gap(1e-12), stability::gap(0.0)] {
+        clear(&r);
+        assert_eq!(r.status, "solved", "{}", r.table_line());
+        assert!(r.error < 1e-10, "{}", r.table_line());
+    }
+}
+
+/// ζ down to 1e-14 of the natural compliance: still solved, and the penalty's
+/// error falls with ζ to round-off (measured 3.7e-12).
+#[test]
+fn penalty_to_the_limit() {
+    let exact = contact::solve_bytes(
+        contact::bench::hertz_request(0.05, "t3", "active_set")
+            .to_string()
+            .as_bytes(),
+        &contact::scene::Limits::default(),
+    )
+    .unwrap();
+    let r = stability::penalty(1e-14, &exact, 0.05);
+    clear(&r);
+    assert_eq!(r.status, "solved");
+    assert!(r.error < 1e-9, "{}", r.table_line());
+}
+
+/// Nearly incompressible (ν = 0.4999) on T6: certified, and the pressure does
+/// not oscillate from node to node (second difference below 2 % of the peak).
+#[test]
+fn nearly_incompressible_t6_is_certified_without_oscillation() {
+    let mut req = contact::bench::hertz_request(0.05, "t6", "auto");
+    req["bodies"][0]["material"]["poisson_ratio"] = serde_json::json!(0.4999);
+    let r = contact::solve_bytes(req.to_string().as_bytes(), &contact::scene::Limits::default()).unwrap();
+    assert!(r.certificate.worst() <= 1e-8, "{:?}", r.certificate);
+    let osc = stability::oscillation(&r);
+    assert!(osc < 0.02, "oscillation {osc}");
+}
+
+/// Past the condensed operator's candidate limit the request is refused with
+/// `too_large`, and the full formulation solves it exactly.
+#[test]
+fn many_candidates_are_refused_or_solved_on_the_full_system() {
+    let refused = stability::candidates(10_000, false);
+    clear(&refused);
+    let full = stability::candidates(10_000, true);
+    clear(&full);
+    assert_eq!(full.status, "solved");
+    assert!(full.error < 1e-8, "{}", full.table_line());
+}
