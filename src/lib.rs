@@ -26,7 +26,10 @@ pub mod fem;
 pub mod linalg;
 pub mod mesh;
 pub mod methods;
+pub mod output;
 pub mod pipeline;
+pub mod progress;
+pub mod request_files;
 pub mod proto;
 pub mod scene;
 #[cfg(feature = "service")]

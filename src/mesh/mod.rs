@@ -8,6 +8,7 @@
 //!   the outward normal of edge a→b is (dy, −dx)/|ab|.
 
 pub mod boundary;
+pub mod gmsh;
 pub mod generate;
 pub mod quality;
 
