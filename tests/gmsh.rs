@@ -73,7 +73,8 @@ fn the_service_refuses_file_references_and_unknown_groups_are_named() {
     let e = solve(&req).unwrap_err();
     assert_eq!((e.code, e.path.as_str()), (ErrorCode::InvalidRequest, "/bodies/0/mesh/gmsh/file"));
     let mut req = example("signorini_hertz_cylinder_gmsh.json");
-    req["contacts"][0]["edges"] = json!("upper");
+    // The physical curve groups are the body's edge sets, listed when one is missing.
+    req["bodies"][0]["supports"][0]["edges"] = json!("upper");
     let e = solve(&req).unwrap_err();
     assert!(e.message.contains("bottom, left, right, top"), "{}", e.message);
 }
