@@ -26,12 +26,17 @@ pub fn solve(file: &str, bytes: &[u8], want_vtu: bool) -> Result<Solved, ErrorRe
     let bytes = contact::request_files::resolve_gmsh_files(bytes, |name| {
         std::fs::read_to_string(dir.join(name)).map_err(|e| e.to_string())
     })?;
-    let (bytes, asked) = if want_vtu { with_vtu_output(&bytes) } else { (bytes, true) };
+    let (bytes, asked) = if want_vtu {
+        with_vtu_output(&bytes)
+    } else {
+        (bytes, true)
+    };
     let mut reply = contact::solve_bytes(&bytes, &Limits::default())?;
-    let vtu = reply
-        .vtu
-        .as_deref()
-        .map(|b64| base64::engine::general_purpose::STANDARD.decode(b64).expect("the pipeline encodes valid base64"));
+    let vtu = reply.vtu.as_deref().map(|b64| {
+        base64::engine::general_purpose::STANDARD
+            .decode(b64)
+            .expect("the pipeline encodes valid base64")
+    });
     if !asked {
         reply.vtu = None;
     }

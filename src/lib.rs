@@ -29,8 +29,8 @@ pub mod methods;
 pub mod output;
 pub mod pipeline;
 pub mod progress;
-pub mod request_files;
 pub mod proto;
+pub mod request_files;
 pub mod scene;
 #[cfg(feature = "service")]
 pub mod service;

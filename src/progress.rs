@@ -28,7 +28,14 @@ pub struct Progress {
 
 /// The stages in the order a condensed solve runs them (`factorization` and
 /// `condensation` are skipped on a cache hit).
-pub const STAGES: [&str; 6] = ["mesh", "assembly", "factorization", "condensation", "contact_solve", "post"];
+pub const STAGES: [&str; 6] = [
+    "mesh",
+    "assembly",
+    "factorization",
+    "condensation",
+    "contact_solve",
+    "post",
+];
 
 struct Installed {
     sink: Box<dyn FnMut(&Progress)>,
@@ -112,7 +119,10 @@ mod tests {
         }
         stage("post");
         let seen = seen.lock().unwrap();
-        assert_eq!(*seen, vec![("mesh", None), ("contact_solve", None), ("contact_solve", Some(1))]);
+        assert_eq!(
+            *seen,
+            vec![("mesh", None), ("contact_solve", None), ("contact_solve", Some(1))]
+        );
     }
 
     #[test]
@@ -120,14 +130,21 @@ mod tests {
         let seen = Arc::new(Mutex::new(Vec::new()));
         let s = seen.clone();
         let _g = Sink::install(move |p| s.lock().unwrap().push(p.clone()));
-        let example = concat!(env!("CARGO_MANIFEST_DIR"), "/proto/examples/signorini_roller_on_flat.json");
+        let example = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/proto/examples/signorini_roller_on_flat.json"
+        );
         let reply = crate::solve_bytes(&std::fs::read(example).unwrap(), &crate::Limits::default()).unwrap();
         let seen = seen.lock().unwrap();
         let mut stages: Vec<&str> = seen.iter().map(|p| p.stage).collect();
         stages.dedup();
         assert_eq!(stages, STAGES.to_vec());
         let iterations = seen.iter().filter(|p| p.iteration.is_some()).count();
-        assert!(iterations >= 1 && iterations <= reply.iterations, "{iterations} vs {}", reply.iterations);
+        assert!(
+            iterations >= 1 && iterations <= reply.iterations,
+            "{iterations} vs {}",
+            reply.iterations
+        );
         let last = seen.iter().rev().find(|p| p.iteration.is_some()).unwrap();
         assert!(last.residual.unwrap() >= 0.0);
         assert!(seen.windows(2).all(|w| w[0].elapsed <= w[1].elapsed));

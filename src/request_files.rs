@@ -10,10 +10,7 @@ use crate::proto::{ErrorCode, ErrorReply};
 
 /// The request with every Gmsh `file` replaced by the file's text (`msh`).
 /// Bytes that are not a JSON object, or name no file, come back unchanged.
-pub fn resolve_gmsh_files(
-    bytes: &[u8],
-    read: impl Fn(&str) -> Result<String, String>,
-) -> Result<Vec<u8>, ErrorReply> {
+pub fn resolve_gmsh_files(bytes: &[u8], read: impl Fn(&str) -> Result<String, String>) -> Result<Vec<u8>, ErrorReply> {
     let Ok(mut value) = serde_json::from_slice::<serde_json::Value>(bytes) else {
         return Ok(bytes.to_vec());
     };
@@ -68,6 +65,9 @@ mod tests {
         assert!(err.message.contains("no.msh"));
         let plain = br#"{"bodies": [{"mesh": {"rectangle": {}}}]} "#;
         assert_eq!(resolve_gmsh_files(plain, |_| unreachable!()).unwrap(), plain.to_vec());
-        assert_eq!(resolve_gmsh_files(b"not json", |_| unreachable!()).unwrap(), b"not json".to_vec());
+        assert_eq!(
+            resolve_gmsh_files(b"not json", |_| unreachable!()).unwrap(),
+            b"not json".to_vec()
+        );
     }
 }

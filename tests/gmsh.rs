@@ -52,7 +52,10 @@ fn unsupported_elements_name_the_gmsh_entity_and_type() {
     // Turn the first triangle block (dim 2, type 2) into 4-node quadrangles' header: type 3.
     let msh = msh_of_example();
     let start = msh.find("$Elements").unwrap();
-    let block = msh[start..].lines().find(|l| l.starts_with("2 ") && l.split(' ').nth(2) == Some("2")).unwrap();
+    let block = msh[start..]
+        .lines()
+        .find(|l| l.starts_with("2 ") && l.split(' ').nth(2) == Some("2"))
+        .unwrap();
     let entity = block.split(' ').nth(1).unwrap();
     let quads = msh.replacen(block, &block.replacen(" 2 ", " 3 ", 1), 1);
     req["bodies"][0]["mesh"]["gmsh"]["msh"] = json!(quads);
@@ -71,7 +74,10 @@ fn the_service_refuses_file_references_and_unknown_groups_are_named() {
     let mut req = example("signorini_hertz_cylinder_gmsh.json");
     req["bodies"][0]["mesh"] = json!({"gmsh": {"file": "hertz.msh"}});
     let e = solve(&req).unwrap_err();
-    assert_eq!((e.code, e.path.as_str()), (ErrorCode::InvalidRequest, "/bodies/0/mesh/gmsh/file"));
+    assert_eq!(
+        (e.code, e.path.as_str()),
+        (ErrorCode::InvalidRequest, "/bodies/0/mesh/gmsh/file")
+    );
     let mut req = example("signorini_hertz_cylinder_gmsh.json");
     // The physical curve groups are the body's edge sets, listed when one is missing.
     req["bodies"][0]["supports"][0]["edges"] = json!("upper");
@@ -99,7 +105,10 @@ fn cli_reads_the_msh_file_next_to_the_request_and_writes_vtu_and_csv() {
     let reply: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let inline = solved(&example("signorini_hertz_cylinder_gmsh.json"));
     assert_eq!(reply["resultant"]["fy"].as_f64().unwrap(), inline.resultant.fy);
-    assert!(reply.get("vtu").is_none() && reply.get("bodies").is_none(), "only the file gets the VTU");
+    assert!(
+        reply.get("vtu").is_none() && reply.get("bodies").is_none(),
+        "only the file gets the VTU"
+    );
     let vtu = std::fs::read_to_string(dir.join("out.vtu")).unwrap();
     for field in ["displacement", "contact_pressure", "stress", "body"] {
         assert!(vtu.contains(&format!("Name=\"{field}\"")), "{field}");
@@ -116,7 +125,9 @@ fn vtu_output_in_the_reply_decodes_to_the_grid_of_every_body() {
     req["outputs"] = json!(["vtu"]);
     let r = solved(&req);
     assert!(r.bodies.is_none(), "fields not listed in outputs stay out of the reply");
-    let xml = base64::engine::general_purpose::STANDARD.decode(r.vtu.unwrap()).unwrap();
+    let xml = base64::engine::general_purpose::STANDARD
+        .decode(r.vtu.unwrap())
+        .unwrap();
     let xml = String::from_utf8(xml).unwrap();
     let mut with_mesh = example("two_bodies_cylinders.json");
     with_mesh["outputs"] = json!(["mesh"]);

@@ -41,14 +41,7 @@ pub struct Parsed {
 impl Parsed {
     /// Largest side of the bounding box and the node count (for scales and limits).
     pub fn extent_and_nodes(&self) -> (f64, f64) {
-        let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
-        for p in &self.nodes {
-            for k in 0..2 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-        }
-        ((hi[0] - lo[0]).max(hi[1] - lo[1]), self.nodes.len() as f64)
+        (super::extent(&self.nodes), self.nodes.len() as f64)
     }
 
     /// The checked mesh with coordinates divided by `length`; `path` is the
@@ -125,6 +118,21 @@ struct Tokens<'a> {
 }
 
 impl<'a> Tokens<'a> {
+    /// The tokens of the required section `$name` (`$Nodes`, `$Elements`) after its
+    /// header `numEntityBlocks numItems minTag maxTag`, and the number of blocks.
+    fn blocks(text: &'a str, name: &'static str, path: &'a str) -> Result<(Self, usize), CoreError> {
+        let body = section(text, name, path)?.ok_or_else(|| bad(path, format!("MSH file has no ${name} section")))?;
+        let mut t = Tokens {
+            it: body.split_ascii_whitespace(),
+            section: name,
+            path,
+        };
+        let blocks = t.count()?;
+        t.count()?;
+        t.int()?;
+        t.int()?;
+        Ok((t, blocks))
+    }
     fn next_str(&mut self) -> Result<&'a str, CoreError> {
         self.it
             .next()
@@ -132,8 +140,12 @@ impl<'a> Tokens<'a> {
     }
     fn int(&mut self) -> Result<i64, CoreError> {
         let t = self.next_str()?;
-        t.parse()
-            .map_err(|_| bad(self.path, format!("MSH section ${}: expected an integer, got '{t}'", self.section)))
+        t.parse().map_err(|_| {
+            bad(
+                self.path,
+                format!("MSH section ${}: expected an integer, got '{t}'", self.section),
+            )
+        })
     }
     fn count(&mut self) -> Result<usize, CoreError> {
         let v = self.int()?;
@@ -181,8 +193,8 @@ fn section<'a>(text: &'a str, name: &str, path: &str) -> Result<Option<&'a str>,
 /// Parses MSH 4.1 ASCII text; `surfaces` names the physical surface groups that
 /// make up the body (empty: every triangle). `path`: JSON pointer of the text.
 pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, CoreError> {
-    let format = section(text, "MeshFormat", path)?
-        .ok_or_else(|| bad(path, "not a Gmsh MSH file: no $MeshFormat section"))?;
+    let format =
+        section(text, "MeshFormat", path)?.ok_or_else(|| bad(path, "not a Gmsh MSH file: no $MeshFormat section"))?;
     let mut f = format.split_ascii_whitespace();
     let (version, file_type) = (f.next().unwrap_or(""), f.next().unwrap_or(""));
     if version != "4.1" {
@@ -264,7 +276,11 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
                 path,
                 format!(
                     "no physical surface group named '{s}' in the MSH file (it has: {})",
-                    if have.is_empty() { "none".to_string() } else { have.join(", ") }
+                    if have.is_empty() {
+                        "none".to_string()
+                    } else {
+                        have.join(", ")
+                    }
                 ),
             ));
         }
@@ -277,16 +293,7 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
     };
 
     // Nodes in file order: tag → (x, y).
-    let nodes_text = section(text, "Nodes", path)?.ok_or_else(|| bad(path, "MSH file has no $Nodes section"))?;
-    let mut t = Tokens {
-        it: nodes_text.split_ascii_whitespace(),
-        section: "Nodes",
-        path,
-    };
-    let blocks = t.count()?;
-    t.count()?;
-    t.int()?;
-    t.int()?;
+    let (mut t, blocks) = Tokens::blocks(text, "Nodes", path)?;
     let mut node_tags: Vec<u64> = Vec::new();
     let mut coords: Vec<[f64; 3]> = Vec::new();
     for _ in 0..blocks {
@@ -314,24 +321,16 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
     }
 
     // Elements: triangles of the body, lines of the physical curves.
-    let elems_text =
-        section(text, "Elements", path)?.ok_or_else(|| bad(path, "MSH file has no $Elements section"))?;
-    let mut t = Tokens {
-        it: elems_text.split_ascii_whitespace(),
-        section: "Elements",
-        path,
-    };
-    let blocks = t.count()?;
-    t.count()?;
-    t.int()?;
-    t.int()?;
+    let (mut t, blocks) = Tokens::blocks(text, "Elements", path)?;
     let mut tris: Vec<(u64, i64, Vec<usize>)> = Vec::new();
     let mut lines: BTreeMap<String, Vec<(u64, [usize; 2])>> = BTreeMap::new();
     let node_of = |tag: u64, element: u64| {
-        index_of_tag
-            .get(&tag)
-            .copied()
-            .ok_or_else(|| bad(path, format!("Gmsh element {element} refers to node {tag}, which $Nodes does not list")))
+        index_of_tag.get(&tag).copied().ok_or_else(|| {
+            bad(
+                path,
+                format!("Gmsh element {element} refers to node {tag}, which $Nodes does not list"),
+            )
+        })
     };
     for _ in 0..blocks {
         let dim = t.int()?;
@@ -369,7 +368,12 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
             (2, _) if !in_body(entity) => {}
             (2, _) => return Err(unsupported("surface")),
             (3, _) => return Err(unsupported("volume")),
-            _ => return Err(bad(path, format!("Gmsh element block of dimension {dim} (entity {entity})"))),
+            _ => {
+                return Err(bad(
+                    path,
+                    format!("Gmsh element block of dimension {dim} (entity {entity})"),
+                ))
+            }
         }
         for _ in 0..n {
             let tag = t.tag()?;
@@ -408,18 +412,11 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
     }
     let mut local = vec![usize::MAX; node_tags.len()];
     let mut nodes = Vec::new();
-    let size = {
-        let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
-        for (i, c) in coords.iter().enumerate().filter(|(i, _)| used[*i]) {
-            for k in 0..2 {
-                lo[k] = lo[k].min(c[k]);
-                hi[k] = hi[k].max(c[k]);
-            }
-            local[i] = nodes.len();
-            nodes.push([c[0], c[1]]);
-        }
-        (hi[0] - lo[0]).max(hi[1] - lo[1])
-    };
+    for (i, c) in coords.iter().enumerate().filter(|(i, _)| used[*i]) {
+        local[i] = nodes.len();
+        nodes.push([c[0], c[1]]);
+    }
+    let size = super::extent(&nodes);
     for (i, c) in coords.iter().enumerate().filter(|(i, _)| used[*i]) {
         // z is written with ~16 digits: anything beyond round-off of the size is a 3D node.
         if c[2].abs() > 1e-9 * size {
@@ -517,14 +514,20 @@ $Elements\n2 3 1 3\n1 1 1 1\n1 1 2\n{tri}$EndElements\n"
     fn quads_are_refused_naming_the_type_and_entity() {
         let e = try_parse(&square("2 1 3 1\n2 1 2 3 4\n"), &[], "/m").unwrap_err();
         let msg = e.to_string();
-        assert!(msg.contains("type 3") && msg.contains("entity 1") && msg.contains("quadrangle"), "{msg}");
+        assert!(
+            msg.contains("type 3") && msg.contains("entity 1") && msg.contains("quadrangle"),
+            "{msg}"
+        );
         assert_eq!(e.path(), "/m");
     }
 
     #[test]
     fn binary_and_old_versions_are_refused_with_the_option_to_set() {
         let bin = square("2 1 2 2\n2 1 2 3\n3 1 3 4\n").replace("4.1 0 8", "4.1 1 8");
-        assert!(try_parse(&bin, &[], "/m").unwrap_err().to_string().contains("Mesh.Binary"));
+        assert!(try_parse(&bin, &[], "/m")
+            .unwrap_err()
+            .to_string()
+            .contains("Mesh.Binary"));
         let old = square("2 1 2 2\n2 1 2 3\n3 1 3 4\n").replace("4.1 0 8", "2.2 0 8");
         assert!(try_parse(&old, &[], "/m").unwrap_err().to_string().contains("4.1"));
     }

@@ -62,10 +62,7 @@ pub fn try_build(
         return Err(bad(Item::Nodes, "a mesh needs at least 3 nodes".into()));
     }
     if elements.is_empty() {
-        return Err(bad(
-            Item::Elements,
-            "a mesh needs at least one element".into(),
-        ));
+        return Err(bad(Item::Elements, "a mesh needs at least one element".into()));
     }
     let npe = elements[0].len();
     let order = match npe {

@@ -29,8 +29,7 @@ mod tests {
 
     #[test]
     fn one_row_per_candidate_with_exact_values() {
-        let reply: SolveReply =
-            serde_json::from_str(include_str!("testdata/two_triangles_reply.json")).unwrap();
+        let reply: SolveReply = serde_json::from_str(include_str!("testdata/two_triangles_reply.json")).unwrap();
         let csv = points_csv(&reply);
         let lines: Vec<&str> = csv.lines().collect();
         assert_eq!(lines[0], HEADER);

@@ -48,7 +48,11 @@ pub fn vtu(reply: &SolveReply) -> Vec<u8> {
         for (e, el) in elems.iter().enumerate() {
             conn.extend(el.iter().map(|&n| (base + n) as i64));
             offsets.push(conn.len() as i64);
-            types.push(if el.len() == 6 { VTK_QUADRATIC_TRIANGLE } else { VTK_TRIANGLE });
+            types.push(if el.len() == 6 {
+                VTK_QUADRATIC_TRIANGLE
+            } else {
+                VTK_TRIANGLE
+            });
             stress.extend_from_slice(&s.get(e).copied().unwrap_or_default());
             body_id.push(b as i32);
         }
@@ -72,9 +76,13 @@ pub fn vtu(reply: &SolveReply) -> Vec<u8> {
     let n_cells = types.len();
     let mut x = String::new();
     x.push_str("<?xml version=\"1.0\"?>\n");
-    x.push_str("<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
+    x.push_str(
+        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n",
+    );
     x.push_str("<UnstructuredGrid>\n");
-    x.push_str(&format!("<Piece NumberOfPoints=\"{n_points}\" NumberOfCells=\"{n_cells}\">\n"));
+    x.push_str(&format!(
+        "<Piece NumberOfPoints=\"{n_points}\" NumberOfCells=\"{n_cells}\">\n"
+    ));
     x.push_str("<PointData>\n");
     array(&mut x, "Float64", "displacement", 3, &le(&disp));
     array(&mut x, "Float64", "contact_pressure", 1, &le(&pressure));
@@ -93,7 +101,7 @@ pub fn vtu(reply: &SolveReply) -> Vec<u8> {
 
 /// Little-endian bytes of numbers.
 fn le<T: Copy + ToLe>(v: &[T]) -> Vec<u8> {
-    let mut out = Vec::with_capacity(v.len() * std::mem::size_of::<T>());
+    let mut out = Vec::with_capacity(std::mem::size_of_val(v));
     for a in v {
         a.put(&mut out);
     }
@@ -151,7 +159,8 @@ mod tests {
         let reply: SolveReply = serde_json::from_str(include_str!("testdata/two_triangles_reply.json")).unwrap();
         let xml = String::from_utf8(vtu(&reply)).unwrap();
         assert!(xml.contains("NumberOfPoints=\"4\" NumberOfCells=\"2\""));
-        let f64s = |b: Vec<u8>| -> Vec<f64> { b.chunks(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect() };
+        let f64s =
+            |b: Vec<u8>| -> Vec<f64> { b.chunks(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect() };
         let p = f64s(decode(&xml, "contact_pressure"));
         // Nodes 0 and 1 are candidates with pressures 2 and 3; the others get 0.
         assert_eq!(p, vec![2.0, 3.0, 0.0, 0.0]);

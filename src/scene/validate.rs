@@ -91,16 +91,7 @@ fn mesh_extent_and_nodes(m: &MeshSpec, parsed: Option<&gmsh::Parsed>) -> (f64, f
             let nr = graded_count(d.radius, g, d.size);
             (2.0 * d.radius, nt * nr * factor(d.element))
         }
-        MeshSpec::Inline(m) => {
-            let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
-            for p in &m.nodes {
-                for k in 0..2 {
-                    lo[k] = lo[k].min(p[k]);
-                    hi[k] = hi[k].max(p[k]);
-                }
-            }
-            ((hi[0] - lo[0]).max(hi[1] - lo[1]), m.nodes.len() as f64)
-        }
+        MeshSpec::Inline(m) => (crate::mesh::extent(&m.nodes), m.nodes.len() as f64),
         MeshSpec::Gmsh(_) => parsed.map_or((0.0, 0.0), gmsh::Parsed::extent_and_nodes),
     }
 }
@@ -123,7 +114,11 @@ fn grading(g: Option<&proto::GradingSpec>, size: f64, scale: f64) -> Grading {
 
 fn edge_names(m: &MeshSpec, parsed: Option<&gmsh::Parsed>) -> BTreeSet<String> {
     let names: &[&str] = match m {
-        MeshSpec::Gmsh(_) => return parsed.map(|p| p.edge_sets.keys().cloned().collect()).unwrap_or_default(),
+        MeshSpec::Gmsh(_) => {
+            return parsed
+                .map(|p| p.edge_sets.keys().cloned().collect())
+                .unwrap_or_default()
+        }
         MeshSpec::Rectangle(_) => &["bottom", "right", "top", "left"],
         MeshSpec::HalfDisk(_) => &["flat", "arc"],
         MeshSpec::Inline(i) => return i.edge_sets.keys().cloned().collect(),
@@ -578,7 +573,10 @@ impl Scene {
             let cp = format!("/contacts/{k}");
             let body = resolve(&c.body, &names, &format!("{cp}/body"), "body")?;
             let has_edges = |b: usize, edges: &str, path: String| {
-                if edge_names(&req.bodies[b].mesh, parsed[b].as_ref()).iter().any(|e| e == edges) {
+                if edge_names(&req.bodies[b].mesh, parsed[b].as_ref())
+                    .iter()
+                    .any(|e| e == edges)
+                {
                     Ok(())
                 } else {
                     Err(invalid(
@@ -751,7 +749,11 @@ fn check_mesh_spec(m: &MeshSpec, path: &str) -> Result<(), CoreError> {
                 ));
             }
             if g.msh.is_none() {
-                return Err(invalid(K::Request, p, "a Gmsh mesh needs `msh`: the MSH 4.1 ASCII text"));
+                return Err(invalid(
+                    K::Request,
+                    p,
+                    "a Gmsh mesh needs `msh`: the MSH 4.1 ASCII text",
+                ));
             }
         }
     }

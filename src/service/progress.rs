@@ -65,7 +65,13 @@ mod tests {
     #[test]
     fn a_plain_client_id_is_the_key_and_anything_else_falls_back_to_the_request_id() {
         assert_eq!(key_for(br#"{"client_id": "run-7"}"#, "z-1"), "contact/progress/run-7");
-        for bad in [r#"{"client_id": "a/b"}"#, r#"{"client_id": "**"}"#, r#"{"client_id": ""}"#, "not json", "{}"] {
+        for bad in [
+            r#"{"client_id": "a/b"}"#,
+            r#"{"client_id": "**"}"#,
+            r#"{"client_id": ""}"#,
+            "not json",
+            "{}",
+        ] {
             assert_eq!(key_for(bad.as_bytes(), "z-1"), "contact/progress/z-1", "{bad}");
         }
         let long = format!(r#"{{"client_id": "{}"}}"#, "x".repeat(MAX_CHUNK + 1));

@@ -373,7 +373,7 @@ class _ProgressBar:
     def __call__(self, msg: dict) -> None:
         stage = msg.get("stage")
         if stage in STAGES:
-            self.bar.update(max(0, STAGES.index(stage) + 1 - self.bar.n))
+            self.bar.update(max(0, STAGES.index(stage) - self.bar.n))  # stages before this one are done
             self.bar.set_description(stage)
         if msg.get("iteration") is not None:
             self.bar.set_postfix(iteration=msg["iteration"], residual=f"{msg.get('residual', 0.0):.2e}")
