@@ -26,8 +26,11 @@ pub mod fem;
 pub mod linalg;
 pub mod mesh;
 pub mod methods;
+pub mod output;
 pub mod pipeline;
+pub mod progress;
 pub mod proto;
+pub mod request_files;
 pub mod scene;
 #[cfg(feature = "service")]
 pub mod service;

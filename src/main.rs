@@ -1,7 +1,8 @@
 //! `contact`: the command-line shell over the library.
 //!
 //! - `contact solve FILE|-`: one request, no zenoh; prints the reply JSON (or the
-//!   error JSON and exits 1) exactly as the service would answer.
+//!   error JSON and exits 1) exactly as the service would answer; `--vtu` and
+//!   `--points-csv` also write files (see `cli_files`).
 //! - `contact serve`: the zenoh service.
 //! - `contact router`: a zenoh router (what `zenohd` does) for scale-out without installing zenohd.
 //! - `contact schema`: writes the JSON Schemas into proto/.
@@ -15,8 +16,9 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
 
-use contact::scene::Limits;
 use contact::service::ServiceConfig;
+
+mod cli_files;
 
 #[derive(Parser)]
 #[command(name = "contact", version, about = "Frictionless 2D elastic contact solver")]
@@ -39,6 +41,12 @@ enum Cmd {
         /// Indent the JSON output.
         #[arg(long)]
         pretty: bool,
+        /// Also write every body's mesh, displacement, stress and contact pressure as a VTU file (ParaView).
+        #[arg(long, value_name = "OUT.vtu")]
+        vtu: Option<PathBuf>,
+        /// Also write the contact candidates as CSV (x, y, pair, body, gap, pressure, force, node).
+        #[arg(long, value_name = "OUT.csv")]
+        points_csv: Option<PathBuf>,
     },
     /// Run the zenoh solve service.
     Serve {
@@ -123,7 +131,12 @@ fn main() -> ExitCode {
 fn run() -> anyhow::Result<ExitCode> {
     let cli = Cli::parse();
     match cli.cmd {
-        Cmd::Solve { file, pretty } => {
+        Cmd::Solve {
+            file,
+            pretty,
+            vtu,
+            points_csv,
+        } => {
             let bytes = if file == "-" {
                 let mut b = Vec::new();
                 std::io::stdin().read_to_end(&mut b)?;
@@ -132,8 +145,11 @@ fn run() -> anyhow::Result<ExitCode> {
                 std::fs::read(&file).with_context(|| format!("reading {file}"))?
             };
             let out = |v: &dyn erased::Ser| if pretty { v.pretty() } else { v.compact() };
-            let (text, code) = match contact::solve_bytes(&bytes, &Limits::default()) {
-                Ok(reply) => (out(&reply), ExitCode::SUCCESS),
+            let (text, code) = match cli_files::solve(&file, &bytes, vtu.is_some()) {
+                Ok(reply) => {
+                    cli_files::write_outputs(&reply, vtu.as_deref(), points_csv.as_deref())?;
+                    (out(&reply.shown), ExitCode::SUCCESS)
+                }
                 Err(err) => (out(&err), ExitCode::from(1)),
             };
             // A closed pipe (e.g. `| head`) is the reader's choice, not an error of ours.

@@ -114,6 +114,7 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
     let mut timings = Timings::default();
 
     let t = Instant::now();
+    crate::progress::stage("mesh");
     let meshes = build_meshes(scene);
     timings.mesh = t.elapsed().as_secs_f64();
     crate::cancel::check("mesh")?;
@@ -129,6 +130,7 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
     }
 
     let t = Instant::now();
+    crate::progress::stage("assembly");
     let dofs = fem::assembly::dof_map(scene, &meshes)?;
     let cons = contact::build(scene, &meshes, &dofs);
     for (p, pair) in scene.pairs.iter().enumerate() {
@@ -183,6 +185,7 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
             let stiffness = Arc::new(fem::assembly::assemble_stiffness(scene, &meshes, &dofs)?);
             crate::cancel::check("assembly")?;
             timings.assembly = t.elapsed().as_secs_f64();
+            crate::progress::stage("factorization");
             let op = Arc::new(methods::condensed::prepare(stiffness, &cons)?);
             timings.factorization = op.t_factorization;
             timings.condensation = op.t_condensation;
@@ -226,6 +229,7 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
         }),
         compliance: compliance.as_ref(),
     };
+    crate::progress::stage("contact_solve");
     let sol = methods::solve(&problem, scene.method)?;
     crate::cancel::check("contact_solve")?;
     timings.contact_solve = sol.t_contact;
@@ -285,6 +289,7 @@ fn solve_full(
     timings.assembly = t.elapsed().as_secs_f64();
     crate::cancel::check("assembly")?;
     let g = cons.g();
+    crate::progress::stage("contact_solve");
     let sol = match scene.method {
         MethodName::Auto | MethodName::ActiveSet => {
             methods::full::solve_active_set(&stiffness.k, &f, &cons, &g, &scene.settings)?
@@ -338,6 +343,7 @@ fn finish(
     cache: CacheState,
 ) -> SolveReply {
     let t = Instant::now();
+    crate::progress::stage("post");
     let free = st.free.filter(|p| !p.motions.is_empty());
     let beta = free.map(|p| p.motion(&sol.beta)).unwrap_or_default();
     let mut shift = free.filter(|p| !p.is_empty()).map(|p| p.shift(&sol.beta));
@@ -402,7 +408,7 @@ fn finish(
     let bodies = body_outputs(scene, st.meshes, st.dofs, &sol.u, free.map(|p| (p, beta.as_slice())));
     timings.post = t.elapsed().as_secs_f64();
     timings.total = t_start.elapsed().as_secs_f64();
-    SolveReply {
+    let mut reply = SolveReply {
         version: proto::PROTOCOL_VERSION.to_string(),
         client_id: scene.client_id.clone(),
         request_id: None,
@@ -428,7 +434,10 @@ fn finish(
         bodies,
         foundations,
         notes,
-    }
+        vtu: None,
+    };
+    crate::output::attach_vtu(&mut reply, scene.outputs);
+    reply
 }
 
 /// Motion and loads of every punch, in the caller's units.
@@ -499,9 +508,11 @@ fn body_outputs(
     free: Option<(&FreeMotions, &[f64])>,
 ) -> Option<Vec<BodyOutput>> {
     let o = scene.outputs;
-    if !(o.displacement || o.mesh || o.stress) {
+    if !(o.displacement || o.mesh || o.stress || o.vtu) {
         return None;
     }
+    // The VTU file needs every field; `output::attach_vtu` drops those not asked for.
+    let (o_mesh, o_displacement, o_stress) = (o.mesh || o.vtu, o.displacement || o.vtu, o.stress || o.vtu);
     let sc = scene.scales;
     let rigid = |b: usize, x: [f64; 2]| {
         let mut r = [0.0; 2];
@@ -536,13 +547,9 @@ fn body_outputs(
                 };
                 BodyOutput {
                     name: body.name.clone(),
-                    nodes: o
-                        .mesh
-                        .then(|| mesh.nodes.iter().map(|p| [sc.length(p[0]), sc.length(p[1])]).collect()),
-                    elements: o
-                        .mesh
-                        .then(|| (0..mesh.n_elems()).map(|e| mesh.elem(e).to_vec()).collect()),
-                    displacement: o.displacement.then(|| {
+                    nodes: o_mesh.then(|| mesh.nodes.iter().map(|p| [sc.length(p[0]), sc.length(p[1])]).collect()),
+                    elements: o_mesh.then(|| (0..mesh.n_elems()).map(|e| mesh.elem(e).to_vec()).collect()),
+                    displacement: o_displacement.then(|| {
                         (0..mesh.nodes.len())
                             .map(|n| {
                                 let d = disp(n);
@@ -550,7 +557,7 @@ fn body_outputs(
                             })
                             .collect()
                     }),
-                    stress: o.stress.then(|| {
+                    stress: o_stress.then(|| {
                         let dm = d_matrix(body.youngs_modulus, body.poisson_ratio, scene.analysis);
                         (0..mesh.n_elems())
                             .map(|e| {

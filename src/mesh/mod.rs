@@ -9,6 +9,7 @@
 
 pub mod boundary;
 pub mod generate;
+pub mod gmsh;
 pub mod quality;
 
 use std::collections::BTreeMap;
@@ -71,14 +72,7 @@ impl Mesh2d {
     /// Nodes of an edge set, each once, in order of first appearance.
     /// Largest side of the bounding box: the body's size.
     pub fn size(&self) -> f64 {
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for p in &self.nodes {
-            for c in 0..2 {
-                lo[c] = lo[c].min(p[c]);
-                hi[c] = hi[c].max(p[c]);
-            }
-        }
-        (hi[0] - lo[0]).max(hi[1] - lo[1])
+        extent(&self.nodes)
     }
 
     pub fn edge_set_nodes(&self, name: &str) -> Vec<usize> {
@@ -95,6 +89,18 @@ impl Mesh2d {
         }
         out
     }
+}
+
+/// Largest side of the bounding box of `nodes`.
+pub fn extent(nodes: &[[f64; 2]]) -> f64 {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in nodes {
+        for c in 0..2 {
+            lo[c] = lo[c].min(p[c]);
+            hi[c] = hi[c].max(p[c]);
+        }
+    }
+    (hi[0] - lo[0]).max(hi[1] - lo[1])
 }
 
 /// Signed area of triangle (p, q, r); positive when counter-clockwise.

@@ -11,6 +11,19 @@ use crate::error::{CoreError, InvalidKind};
 /// element stiffness loses all accuracy.
 const MIN_SHAPE_RATIO: f64 = 1e-8;
 
+/// A part of a user-given mesh, to say where a check failed.
+#[derive(Debug, Clone, Copy)]
+pub enum Item<'a> {
+    Nodes,
+    Elements,
+    Element(usize),
+    /// Local node `k` of element `e`.
+    ElementNode(usize, usize),
+    EdgeSet(&'a str),
+    /// Edge `k` of the named edge set.
+    Edge(&'a str, usize),
+}
+
 /// Builds a mesh from inline data; `path` is the JSON pointer of the inline mesh.
 pub fn try_inline(
     nodes: &[[f64; 2]],
@@ -18,15 +31,38 @@ pub fn try_inline(
     edge_sets: &BTreeMap<String, Vec<[usize; 2]>>,
     path: &str,
 ) -> Result<Mesh2d, CoreError> {
-    let bad = |p: String, r: String| CoreError::invalid(InvalidKind::Mesh, p, r);
+    let locate = |item: Item| {
+        let p = match item {
+            Item::Nodes => format!("{path}/nodes"),
+            Item::Elements => format!("{path}/elements"),
+            Item::Element(e) => format!("{path}/elements/{e}"),
+            Item::ElementNode(e, k) => format!("{path}/elements/{e}/{k}"),
+            Item::EdgeSet(name) => format!("{path}/edge_sets/{name}"),
+            Item::Edge(name, k) => format!("{path}/edge_sets/{name}/{k}"),
+        };
+        (p, String::new())
+    };
+    try_build(nodes, elements, edge_sets, &locate)
+}
+
+/// The checks of `try_inline` for a mesh from any source: `locate` turns a
+/// failing item into the error's JSON pointer and a prefix of its message
+/// (an imported file names its own element tags there).
+pub fn try_build(
+    nodes: &[[f64; 2]],
+    elements: &[Vec<usize>],
+    edge_sets: &BTreeMap<String, Vec<[usize; 2]>>,
+    locate: &dyn Fn(Item) -> (String, String),
+) -> Result<Mesh2d, CoreError> {
+    let bad = |item: Item, r: String| {
+        let (p, context) = locate(item);
+        CoreError::invalid(InvalidKind::Mesh, p, format!("{context}{r}"))
+    };
     if nodes.len() < 3 {
-        return Err(bad(format!("{path}/nodes"), "a mesh needs at least 3 nodes".into()));
+        return Err(bad(Item::Nodes, "a mesh needs at least 3 nodes".into()));
     }
     if elements.is_empty() {
-        return Err(bad(
-            format!("{path}/elements"),
-            "a mesh needs at least one element".into(),
-        ));
+        return Err(bad(Item::Elements, "a mesh needs at least one element".into()));
     }
     let npe = elements[0].len();
     let order = match npe {
@@ -34,17 +70,16 @@ pub fn try_inline(
         6 => Order::T6,
         k => {
             return Err(bad(
-                format!("{path}/elements/0"),
+                Item::Element(0),
                 format!("element has {k} nodes; expected 3 (T3) or 6 (T6)"),
             ))
         }
     };
     let mut elems = Vec::with_capacity(elements.len() * npe);
     for (e, el) in elements.iter().enumerate() {
-        let ep = format!("{path}/elements/{e}");
         if el.len() != npe {
             return Err(bad(
-                ep,
+                Item::Element(e),
                 format!(
                     "element has {} nodes but element 0 has {npe}; mixed orders are not supported",
                     el.len()
@@ -54,7 +89,7 @@ pub fn try_inline(
         for (k, &n) in el.iter().enumerate() {
             if n >= nodes.len() {
                 return Err(bad(
-                    format!("{ep}/{k}"),
+                    Item::ElementNode(e, k),
                     format!("node index {n} out of range (mesh has {} nodes)", nodes.len()),
                 ));
             }
@@ -62,7 +97,7 @@ pub fn try_inline(
         let mut sorted = el.clone();
         sorted.sort_unstable();
         if sorted.windows(2).any(|w| w[0] == w[1]) {
-            return Err(bad(ep, "element repeats a node".into()));
+            return Err(bad(Item::Element(e), "element repeats a node".into()));
         }
         let (p, q, r) = (nodes[el[0]], nodes[el[1]], nodes[el[2]]);
         let area = signed_area(p, q, r);
@@ -72,13 +107,13 @@ pub fn try_inline(
             .fold(0.0, f64::max);
         if area.abs() <= MIN_SHAPE_RATIO * longest {
             return Err(bad(
-                ep,
+                Item::Element(e),
                 format!("degenerate element (area {area:.3e} against longest edge² {longest:.3e})"),
             ));
         }
         if area < 0.0 {
             return Err(bad(
-                ep,
+                Item::Element(e),
                 "inverted element: corners are clockwise (negative area); list them counter-clockwise".into(),
             ));
         }
@@ -92,7 +127,7 @@ pub fn try_inline(
                 let off = ((m[0] - mid[0]).powi(2) + (m[1] - mid[1]).powi(2)).sqrt();
                 let len = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
                 if off > 0.25 * len {
-                    return Err(bad(format!("{ep}/{}", 3 + k), format!("midside node is {off:.3e} from the edge midpoint (edge length {len:.3e}); the element map would fold")));
+                    return Err(bad(Item::ElementNode(e, 3 + k), format!("midside node is {off:.3e} from the edge midpoint (edge length {len:.3e}); the element map would fold")));
                 }
             }
         }
@@ -112,9 +147,8 @@ pub fn try_inline(
     }
     let mut sets = BTreeMap::new();
     for (name, edges) in edge_sets {
-        let sp = format!("{path}/edge_sets/{name}");
         if edges.is_empty() {
-            return Err(bad(sp, "edge set is empty".into()));
+            return Err(bad(Item::EdgeSet(name), "edge set is empty".into()));
         }
         let mut out = Vec::with_capacity(edges.len());
         for (k, &[a, b]) in edges.iter().enumerate() {
@@ -123,13 +157,13 @@ pub fn try_inline(
                 (Some(&edge), Some(1)) => out.push(edge),
                 (Some(_), _) => {
                     return Err(bad(
-                        format!("{sp}/{k}"),
+                        Item::Edge(name, k),
                         format!("edge [{a}, {b}] is interior (shared by two elements), not on the boundary"),
                     ))
                 }
                 (None, _) => {
                     return Err(bad(
-                        format!("{sp}/{k}"),
+                        Item::Edge(name, k),
                         format!("edge [{a}, {b}] is not an edge of any element"),
                     ))
                 }

@@ -48,6 +48,7 @@ pub fn solve_lcp_from(w: &Mat<f64>, q: &[f64], s: &SolverSettings, mut active: V
         }
         let wv: Vec<f64> = matvec(w, &lambda).iter().zip(q).map(|(a, b)| a + b).collect();
         let next: Vec<bool> = (0..m).map(|i| lambda[i] - c * wv[i] > 0.0).collect();
+        crate::progress::iteration(it, (0..m).map(|i| lambda[i].min(c * wv[i]).abs()).fold(0.0, f64::max));
         if next == active {
             return LcpResult {
                 lambda,

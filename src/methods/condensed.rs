@@ -22,6 +22,7 @@ pub fn prepare(stiffness: Arc<Stiffness>, cons: &ConstraintSet) -> Result<Prepar
     let chol = Cholesky::try_new(&stiffness.k, &cdofs)?;
     let t_factorization = t0.elapsed().as_secs_f64();
     crate::cancel::check("factorization")?;
+    crate::progress::stage("condensation");
     let t1 = Instant::now();
     let mut pos = std::collections::HashMap::with_capacity(cdofs.len());
     for (k, &d) in cdofs.iter().enumerate() {

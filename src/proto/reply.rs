@@ -29,6 +29,7 @@ pub struct SolveReply {
     /// Problem sizes.
     pub size: ProblemSize,
     /// Numerical health of the solve.
+    #[serde(default)]
     pub diagnostics: Diagnostics,
     /// Wall-clock seconds per stage.
     pub timings: Timings,
@@ -51,6 +52,11 @@ pub struct SolveReply {
     /// body held only by contact that nothing determines).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub notes: Vec<String>,
+    /// With `outputs` listing `vtu`: the VTK XML unstructured grid of every body
+    /// (point data `displacement`, `contact_pressure`; cell data `stress`,
+    /// `body`), base64-encoded; decode and save as `.vtu` for ParaView.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vtu: Option<String>,
 }
 
 /// A punch's rigid motion and the loads on it (prescribed or reactions).

@@ -109,6 +109,26 @@ pub enum MeshSpec {
     HalfDisk(HalfDiskSpec),
     /// Explicit nodes, triangles and named edge sets.
     Inline(InlineMeshSpec),
+    /// A Gmsh MSH 4.1 ASCII mesh: triangles (types 2, 9) make the body, the
+    /// line elements of each physical curve group the edge set of that name.
+    Gmsh(GmshMeshSpec),
+}
+
+/// A mesh made with Gmsh, as MSH 4.1 ASCII text (`msh`) or, for `contact solve
+/// FILE` only, a file path relative to the request file (`file`).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GmshMeshSpec {
+    /// The content of a `.msh` file (format 4.1, ASCII).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub msh: Option<String>,
+    /// Path of a `.msh` file next to the request; read by the command-line
+    /// tool, refused by the service (send the text in `msh`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
+    /// Physical surface groups that make up this body (default: every triangle in the file).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub surfaces: Vec<String>,
 }
 
 /// Local refinement toward a focus point: element size `h_min` within `extent`
@@ -478,4 +498,7 @@ pub enum OutputKind {
     Mesh,
     /// Element stresses (σxx, σyy, σxy) at element centroids.
     Stress,
+    /// The reply's `vtu`: every body's mesh with displacement, stress and
+    /// contact pressure as a VTK XML unstructured grid (ParaView), base64.
+    Vtu,
 }

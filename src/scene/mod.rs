@@ -60,6 +60,8 @@ pub struct Outputs {
     pub displacement: bool,
     pub mesh: bool,
     pub stress: bool,
+    /// The VTU file (needs all three of the above, computed for it).
+    pub vtu: bool,
 }
 
 #[derive(Debug, Clone)]

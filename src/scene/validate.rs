@@ -7,7 +7,7 @@ use super::*;
 use crate::error::{CoreError, InvalidKind};
 use crate::mesh::{
     generate::{graded_count, Grading},
-    quality,
+    gmsh, quality,
 };
 use crate::proto::{self, BodyRef, ElementKind, MeshSpec, ObstacleShape, OutputKind, SolveRequest};
 use crate::scene::{Psi, Punch};
@@ -74,8 +74,9 @@ fn order(e: ElementKind) -> Order {
     }
 }
 
-/// Nominal extent and node-count estimate of a body's mesh, before generation.
-fn mesh_extent_and_nodes(m: &MeshSpec) -> (f64, f64) {
+/// Nominal extent and node-count estimate of a body's mesh, before generation
+/// (`parsed`: the body's Gmsh file, read once in the first pass).
+fn mesh_extent_and_nodes(m: &MeshSpec, parsed: Option<&gmsh::Parsed>) -> (f64, f64) {
     let factor = |e: ElementKind| if e == ElementKind::T6 { 4.0 } else { 1.0 };
     match m {
         MeshSpec::Rectangle(r) => {
@@ -90,16 +91,8 @@ fn mesh_extent_and_nodes(m: &MeshSpec) -> (f64, f64) {
             let nr = graded_count(d.radius, g, d.size);
             (2.0 * d.radius, nt * nr * factor(d.element))
         }
-        MeshSpec::Inline(m) => {
-            let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
-            for p in &m.nodes {
-                for k in 0..2 {
-                    lo[k] = lo[k].min(p[k]);
-                    hi[k] = hi[k].max(p[k]);
-                }
-            }
-            ((hi[0] - lo[0]).max(hi[1] - lo[1]), m.nodes.len() as f64)
-        }
+        MeshSpec::Inline(m) => (crate::mesh::extent(&m.nodes), m.nodes.len() as f64),
+        MeshSpec::Gmsh(_) => parsed.map_or((0.0, 0.0), gmsh::Parsed::extent_and_nodes),
     }
 }
 
@@ -119,8 +112,13 @@ fn grading(g: Option<&proto::GradingSpec>, size: f64, scale: f64) -> Grading {
     }
 }
 
-fn edge_names(m: &MeshSpec) -> BTreeSet<String> {
+fn edge_names(m: &MeshSpec, parsed: Option<&gmsh::Parsed>) -> BTreeSet<String> {
     let names: &[&str] = match m {
+        MeshSpec::Gmsh(_) => {
+            return parsed
+                .map(|p| p.edge_sets.keys().cloned().collect())
+                .unwrap_or_default()
+        }
         MeshSpec::Rectangle(_) => &["bottom", "right", "top", "left"],
         MeshSpec::HalfDisk(_) => &["flat", "arc"],
         MeshSpec::Inline(i) => return i.edge_sets.keys().cloned().collect(),
@@ -164,6 +162,7 @@ impl Scene {
         let mut length: f64 = 0.0;
         let mut modulus: f64 = 0.0;
         let mut nodes_estimate = 0.0;
+        let mut parsed = Vec::with_capacity(req.bodies.len());
         for (i, b) in req.bodies.iter().enumerate() {
             let p = format!("/bodies/{i}/material");
             let e = positive(
@@ -175,7 +174,16 @@ impl Scene {
             poisson(b.material.poisson_ratio, &format!("{p}/poisson_ratio"))?;
             modulus = modulus.max(e);
             self::check_mesh_spec(&b.mesh, &format!("/bodies/{i}/mesh"))?;
-            let (ext, n) = mesh_extent_and_nodes(&b.mesh);
+            let file = match &b.mesh {
+                MeshSpec::Gmsh(g) => Some(gmsh::try_parse(
+                    g.msh.as_deref().unwrap_or_default(),
+                    &g.surfaces,
+                    &format!("/bodies/{i}/mesh/gmsh/msh"),
+                )?),
+                _ => None,
+            };
+            let (ext, n) = mesh_extent_and_nodes(&b.mesh, file.as_ref());
+            parsed.push(file);
             length = length.max(ext);
             nodes_estimate += n;
         }
@@ -240,8 +248,12 @@ impl Scene {
                         &format!("{bp}/mesh/inline"),
                     )?)
                 }
+                MeshSpec::Gmsh(_) => match &parsed[i] {
+                    Some(p) => MeshSource::Inline(p.try_mesh(length, &format!("{bp}/mesh/gmsh/msh"))?),
+                    None => unreachable!("every Gmsh body was parsed in the first pass"),
+                },
             };
-            let edges = edge_names(&b.mesh);
+            let edges = edge_names(&b.mesh, parsed[i].as_ref());
             let need_edges = |name: &str, path: String| -> Result<(), CoreError> {
                 if edges.contains(name) {
                     Ok(())
@@ -562,7 +574,10 @@ impl Scene {
             let cp = format!("/contacts/{k}");
             let body = resolve(&c.body, &names, &format!("{cp}/body"), "body")?;
             let has_edges = |b: usize, edges: &str, path: String| {
-                if edge_names(&req.bodies[b].mesh).iter().any(|e| e == edges) {
+                if edge_names(&req.bodies[b].mesh, parsed[b].as_ref())
+                    .iter()
+                    .any(|e| e == edges)
+                {
                     Ok(())
                 } else {
                     Err(invalid(
@@ -684,6 +699,7 @@ impl Scene {
                 displacement: req.outputs.contains(&OutputKind::Displacement),
                 mesh: req.outputs.contains(&OutputKind::Mesh),
                 stress: req.outputs.contains(&OutputKind::Stress),
+                vtu: req.outputs.contains(&OutputKind::Vtu),
             },
             client_id: req.client_id.clone(),
             notes,
@@ -763,6 +779,23 @@ fn check_mesh_spec(m: &MeshSpec, path: &str) -> Result<(), CoreError> {
             }
             if m.nodes.is_empty() {
                 return Err(invalid(K::Mesh, format!("{p}/nodes"), "no nodes"));
+            }
+        }
+        MeshSpec::Gmsh(g) => {
+            let p = format!("{path}/gmsh");
+            if g.file.is_some() {
+                return Err(invalid(
+                    K::Request,
+                    format!("{p}/file"),
+                    "a Gmsh file reference is read only by `contact solve FILE` (relative to the request file); send the file's text in `msh`",
+                ));
+            }
+            if g.msh.is_none() {
+                return Err(invalid(
+                    K::Request,
+                    p,
+                    "a Gmsh mesh needs `msh`: the MSH 4.1 ASCII text",
+                ));
             }
         }
     }

@@ -25,6 +25,8 @@ pub struct State {
     pub next_id: AtomicU64,
     pub workers: tokio::sync::Semaphore,
     pub cache: crate::cache::OperatorCache,
+    /// The session progress is published on (set once it is open).
+    pub publisher: std::sync::OnceLock<zenoh::Session>,
     stats: Mutex<Stats>,
 }
 
@@ -94,6 +96,7 @@ impl State {
             next_id: AtomicU64::new(1),
             workers,
             cache,
+            publisher: std::sync::OnceLock::new(),
             stats: Mutex::new(Stats::default()),
         }
     }

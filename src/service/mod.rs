@@ -1,7 +1,8 @@
 //! The zenoh shell: the only module that knows about zenoh and tokio.
 //!
 //! Key expressions: `contact/solve` (request JSON → reply JSON, or `reply_err`
-//! with `{version, code, message, path}`), `contact/health`, `contact/schema`.
+//! with `{version, code, message, path}`), `contact/health`, `contact/schema`;
+//! progress of each solve is published on `contact/progress/<key>` (`progress`).
 //! Solves run on a bounded pool of blocking workers; past the queue limit a
 //! request is answered `busy` at once.
 //!
@@ -17,6 +18,7 @@
 
 pub mod config;
 pub mod health;
+pub mod progress;
 pub mod router;
 pub mod worker;
 
@@ -52,6 +54,7 @@ pub async fn run(cfg: ServiceConfig) -> anyhow::Result<()> {
     let health_q = queryable(KEY_HEALTH).await?;
     let schema_q = queryable(KEY_SCHEMA).await?;
     let state = Arc::new(State::new(cfg.clone(), session.zid().to_string()));
+    let _ = state.publisher.set(session.clone());
     let instance_key = format!("{KEY_INSTANCES}/{}", state.instance);
     // Leaked once: the key lives as long as the process, like the constants.
     let own_solve_key: &'static str = Box::leak(format!("{instance_key}/solve").into_boxed_str());
@@ -72,7 +75,9 @@ pub async fn run(cfg: ServiceConfig) -> anyhow::Result<()> {
         workers = cfg.workers,
         queue_limit = cfg.queue_limit,
         max_solve_time_s = cfg.max_solve_time.as_secs_f64(),
-        "serving {KEY_SOLVE}, {KEY_HEALTH}, {KEY_SCHEMA}"
+        "contact {} serving {KEY_SOLVE}, {own_solve_key}, {KEY_HEALTH}, {KEY_SCHEMA}; publishing {}/<client_id|request_id> and liveliness {instance_key}",
+        env!("CARGO_PKG_VERSION"),
+        progress::KEY_PROGRESS
     );
     let mut term = tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate())?;
     loop {

@@ -83,6 +83,10 @@ async fn solve_on_worker(payload: Vec<u8>, state: &Arc<State>, id: &str) -> (Bod
     let _running = Counted::new(state, |s| &s.in_flight);
     let (st, rid) = (state.clone(), id.to_string());
     let joined = tokio::task::spawn_blocking(move || {
+        let _progress = st
+            .publisher
+            .get()
+            .map(|s| super::progress::install(s.clone(), super::progress::key_for(&payload, &rid), rid.clone()));
         let (result, panicked) = run_isolated(&rid, st.cfg.max_solve_time, || {
             let cache = (st.cfg.cache_bytes > 0).then_some(&st.cache);
             crate::pipeline::solve_bytes_cached(&payload, &st.cfg.limits, cache)

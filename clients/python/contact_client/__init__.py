@@ -16,6 +16,7 @@ from .client import (
     solve,
 )
 from . import scenes
+from .results import plot_pressure, save_vtu, to_numpy
 
 __version__ = "0.1.0"
 
@@ -29,4 +30,7 @@ __all__ = [
     "schema",
     "scenes",
     "solve",
+    "plot_pressure",
+    "save_vtu",
+    "to_numpy",
 ]

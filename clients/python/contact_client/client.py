@@ -41,7 +41,8 @@ from __future__ import annotations
 
 import json
 import time
-from typing import Any, Union
+import uuid
+from typing import Any, Callable, Union
 
 import zenoh
 
@@ -51,6 +52,8 @@ __all__ = [
     "KEY_SOLVE",
     "KEY_HEALTH",
     "KEY_SCHEMA",
+    "KEY_PROGRESS",
+    "STAGES",
     "Client",
     "ContactError",
     "TransportError",
@@ -64,6 +67,8 @@ DEFAULT_CONNECT = "tcp/127.0.0.1:7447"
 KEY_SOLVE = "contact/solve"
 KEY_HEALTH = "contact/health"
 KEY_SCHEMA = "contact/schema"
+#: Progress of a solve: ``contact/progress/<client_id>`` (see :meth:`Client.solve`).
+KEY_PROGRESS = "contact/progress"
 #: Liveliness tokens of the running instances, ``contact/instance/<zid>``.
 KEY_INSTANCES = "contact/instance/*"
 
@@ -213,14 +218,34 @@ class Client:
             raise TransportError("client is closed")
         return self._session
 
-    def solve(self, request: Request, timeout: float | None = None, retries: int = 0) -> dict:
+    def solve(self, request: Request, timeout: float | None = None, retries: int = 0,
+              progress: bool | Callable[[dict], Any] = False) -> dict:
         """Solve one request; returns the reply dict.
 
         Raises :class:`ContactError` for a structured error reply and
         :class:`TransportError` when no structured answer arrives. Up to
         ``retries`` more attempts follow a :class:`TransportError` or ``busy``
         (with ``spread=True``, on another instance).
+
+        ``progress=True`` shows a tqdm bar over the solve's stages (mesh,
+        assembly, factorization, condensation, contact_solve, post; needs
+        ``pip install 'contact-client[progress]'``); a callable instead receives
+        every progress message ``{stage, iteration?, residual?, elapsed,
+        request_id}``. The service publishes them on
+        ``contact/progress/<client_id>``: the request's ``client_id`` is used
+        when it is a plain key chunk (no ``/ * $ ? #``), else one is generated
+        (``progress-<uuid>``) and set in the request, so it comes back in the reply.
         """
+        if progress:
+            request, key = _with_progress_key(request)
+            sink = progress if callable(progress) else _ProgressBar()
+            sub = self.session.declare_subscriber(f"{KEY_PROGRESS}/{key}", lambda s: sink(_decode(s.payload)))
+            try:
+                return self.solve(request, timeout, retries)
+            finally:
+                sub.undeclare()
+                if isinstance(sink, _ProgressBar):
+                    sink.close()
         payload = encode_request(request)
         timeout = self.timeout if timeout is None else float(timeout)
         backoff = BUSY_BACKOFF_S
@@ -294,10 +319,68 @@ class Client:
         self.close()
 
 
-def solve(request: Request, connect: str = DEFAULT_CONNECT, timeout: float = 60.0) -> dict:
+def solve(request: Request, connect: str = DEFAULT_CONNECT, timeout: float = 60.0,
+          progress: bool | Callable[[dict], Any] = False) -> dict:
     """Solve one request on a session opened for this call. See :meth:`Client.solve`."""
     with Client(connect, timeout) as c:
-        return c.solve(request)
+        return c.solve(request, progress=progress)
+
+
+_UNSAFE_KEY_CHARS = set("/*$?#")
+
+
+def _plain_chunk(s: Any) -> bool:
+    """Whether ``s`` can be one chunk of a key expression (as the service checks it)."""
+    return (isinstance(s, str) and 0 < len(s.encode()) <= 128 and not _UNSAFE_KEY_CHARS & set(s)
+            and all(c.isprintable() for c in s))
+
+
+def _with_progress_key(request: Request) -> tuple[Request, str]:
+    """The request with a ``client_id`` usable as the progress key, and that key."""
+    obj = request if isinstance(request, dict) else json.loads(request)
+    if not isinstance(obj, dict):
+        raise ValueError("progress needs a JSON object request")
+    cid = obj.get("client_id")
+    if _plain_chunk(cid):
+        return request, cid
+    if cid is not None:
+        raise ValueError(f"client_id {cid!r} cannot be a zenoh key chunk (it has one of / * $ ? #): "
+                         "drop it or pick a plain one to see progress")
+    key = f"progress-{uuid.uuid4().hex}"
+    return {**obj, "client_id": key}, key
+
+
+def _decode(payload: zenoh.ZBytes) -> dict:
+    try:
+        value = json.loads(_payload_text(payload))
+    except json.JSONDecodeError:
+        value = None
+    return value if isinstance(value, dict) else {"stage": "?", "raw": _payload_text(payload)}
+
+
+#: The stages a solve reports, in order (factorization and condensation are skipped on a cache hit).
+STAGES = ("mesh", "assembly", "factorization", "condensation", "contact_solve", "post")
+
+
+class _ProgressBar:
+    """A tqdm bar with one step per stage; the postfix shows the contact iteration and residual."""
+
+    def __init__(self):
+        from tqdm.auto import tqdm  # optional dependency: pip install 'contact-client[progress]'
+
+        self.bar = tqdm(total=len(STAGES), unit="stage", desc="solve")
+
+    def __call__(self, msg: dict) -> None:
+        stage = msg.get("stage")
+        if stage in STAGES:
+            self.bar.update(max(0, STAGES.index(stage) - self.bar.n))  # stages before this one are done
+            self.bar.set_description(stage)
+        if msg.get("iteration") is not None:
+            self.bar.set_postfix(iteration=msg["iteration"], residual=f"{msg.get('residual', 0.0):.2e}")
+
+    def close(self) -> None:
+        self.bar.update(len(STAGES) - self.bar.n)
+        self.bar.close()
 
 
 def health(connect: str = DEFAULT_CONNECT, timeout: float = SMALL_QUERY_TIMEOUT) -> dict:

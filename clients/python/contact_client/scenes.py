@@ -17,6 +17,10 @@ from __future__ import annotations
 import math
 
 __all__ = [
+    "gmsh_mesh",
+    "roller_on_floor",
+    "block_on_polyline",
+    "block_held_by_contact",
     "footing_on_foundation",
     "pasternak_deflection",
     "two_cylinders",
@@ -74,8 +78,12 @@ def hertz_cylinder(
     method: str = "auto",
     client_id: str | None = None,
     outputs: list[str] | None = None,
+    mesh: dict | None = None,
 ) -> dict:
     """Request: a rigid circle of ``radius`` pressed ``depth`` into an elastic block.
+
+    ``mesh`` replaces the generated rectangle, e.g. ``gmsh_mesh(text, ["block"])``
+    with ``gmsh_meshes.hertz_block()``; it needs edge sets "top" and "bottom".
 
     The block is [-width/2, width/2] x [-height, 0] (top face at y = 0, fixed
     bottom), meshed uniformly at ``h_min`` within ``extent`` of the origin and
@@ -136,6 +144,8 @@ def hertz_cylinder(
         "contacts": [{"body": "block", "edges": "top", "obstacle": "cylinder"}],
         "method": method,
     }
+    if mesh is not None:
+        req["bodies"][0]["mesh"] = mesh
     if client_id is not None:
         req["client_id"] = client_id
     if outputs:
@@ -377,3 +387,119 @@ def pasternak_deflection(x: float, P: float, a: float, k: float, mu: float) -> f
     under it, w0 exp(-(|x| - a) / sqrt(mu/k)) outside."""
     w0 = P / (2.0 * (k * a + math.sqrt(k * mu)))
     return w0 if abs(x) <= a else w0 * math.exp(-(abs(x) - a) / math.sqrt(mu / k))
+
+
+def gmsh_mesh(msh: str, surfaces: list[str] | None = None) -> dict:
+    """A body's ``mesh`` from Gmsh MSH 4.1 ASCII text (e.g. ``open("part.msh").read()``).
+
+    Triangles (3- or 6-node) make the body, or only those of the physical surface groups
+    named in ``surfaces``; each physical curve group becomes the edge set of its name.
+    """
+    g: dict = {"msh": msh}
+    if surfaces:
+        g["surfaces"] = list(surfaces)
+    return {"gmsh": g}
+
+
+def roller_on_floor(
+    radius: float = 8.0,
+    approach: float = 0.05,
+    youngs_modulus: float = 200.0,
+    poisson_ratio: float = 0.3,
+    h_min: float = 0.01,
+    size: float = 0.5,
+    extent: float = 1.2,
+    element: str = "t3",
+    analysis: str = "plane_strain",
+) -> dict:
+    """An elastic roller on a rigid floor (proto/examples/signorini_roller_on_flat.json).
+
+    A half-disk of ``radius`` [length], arc down, touching the rigid line y = 0 at the
+    origin; its flat top face is clamped and moved down by ``approach`` [length].
+    Material ``youngs_modulus`` [force/length^2] and ``poisson_ratio``. The mesh is
+    ``h_min`` [length] within ``extent`` of the apex, graded by 1.1 up to ``size``.
+    Hertz (elastic cylinder on a rigid flat) with P = |resultant.fy|: ``hertz_reference``.
+    """
+    return {
+        "version": PROTOCOL_VERSION,
+        "description": f"elastic roller R={radius} pressed {approach} onto a rigid floor",
+        "analysis": analysis,
+        "bodies": [{
+            "name": "roller",
+            "material": {"youngs_modulus": youngs_modulus, "poisson_ratio": poisson_ratio},
+            "mesh": {"half_disk": {"center": [0.0, radius], "radius": radius, "size": size, "element": element,
+                                   "grading": {"h_min": h_min, "ratio": 1.1, "extent": extent}}},
+            "supports": [{"edges": "flat", "ux": 0.0, "uy": -approach}],
+        }],
+        "obstacles": [{"name": "floor", "shape": {"line": {"point": [0.0, 0.0], "normal": [0.0, 1.0]}}}],
+        "contacts": [{"body": "roller", "edges": "arc", "obstacle": "floor"}],
+    }
+
+
+def _block(width: float, height: float, size: float, element: str) -> dict:
+    """Rectangle [-width/2, width/2] x [0, height]; edge sets bottom, right, top, left."""
+    return {"rectangle": {"corner": [-0.5 * width, 0.0], "width": width, "height": height, "size": size,
+                          "element": element}}
+
+
+def block_on_polyline(
+    points: list[list[float]] | None = None,
+    push: float = 0.01,
+    width: float = 2.0,
+    height: float = 1.0,
+    youngs_modulus: float = 1000.0,
+    poisson_ratio: float = 0.25,
+    size: float = 0.05,
+    element: str = "t3",
+    analysis: str = "plane_stress",
+) -> dict:
+    """An elastic block ``width`` x ``height`` [length], bottom face on y = 0, resting on a
+    rigid polyline floor through ``points`` [[x, y], ...] given left to right (rigid below;
+    default the vee (-2, 0.2), (0, 0), (2, 0.2) of
+    proto/examples/signorini_inline_block_on_vee.json), its top clamped and moved down by
+    ``push`` [length]. Material in force/length^2; uniform mesh of ``size``.
+    """
+    points = points if points is not None else [[-2.0, 0.2], [0.0, 0.0], [2.0, 0.2]]
+    return {
+        "version": PROTOCOL_VERSION,
+        "description": f"elastic block {width} x {height} pushed {push} onto a rigid polyline floor",
+        "analysis": analysis,
+        "bodies": [{
+            "name": "block",
+            "material": {"youngs_modulus": youngs_modulus, "poisson_ratio": poisson_ratio},
+            "mesh": _block(width, height, size, element),
+            "supports": [{"edges": "top", "ux": 0.0, "uy": -push}],
+        }],
+        "obstacles": [{"name": "floor", "shape": {"polyline": {"points": points}}}],
+        "contacts": [{"body": "block", "edges": "bottom", "obstacle": "floor"}],
+    }
+
+
+def block_held_by_contact(
+    pressure: float = 1.0,
+    width: float = 2.0,
+    height: float = 1.0,
+    youngs_modulus: float = 1000.0,
+    poisson_ratio: float = 0.25,
+    size: float = 0.05,
+    element: str = "t3",
+) -> dict:
+    """A block ``width`` x ``height`` [length] with no support, held only by contact: a
+    uniform ``pressure`` [force/length^2] on its top presses it onto the rigid floor y = 0.
+    Its horizontal sliding is resisted by nothing (frictionless) and carries no load: the
+    reply says so in ``notes``. Exact answer: uniform contact pressure equal to ``pressure``.
+    """
+    return {
+        "version": PROTOCOL_VERSION,
+        "description": f"unsupported block {width} x {height} pressed by {pressure} onto a rigid floor",
+        "analysis": "plane_strain",
+        "bodies": [{
+            "name": "block",
+            "material": {"youngs_modulus": youngs_modulus, "poisson_ratio": poisson_ratio},
+            "mesh": _block(width, height, size, element),
+            "supports": [],
+            "tractions": [{"edges": "top", "pressure": pressure}],
+        }],
+        "obstacles": [{"name": "floor", "shape": {"line": {"point": [0.0, 0.0], "normal": [0.0, 1.0]}}}],
+        "contacts": [{"body": "block", "edges": "bottom", "obstacle": "floor"}],
+    }

@@ -1,0 +1,78 @@
+"""Results out: the VTU grid (read back with meshio), to_numpy and plot_pressure."""
+
+from __future__ import annotations
+
+import copy
+
+import pytest
+
+from contact_client import plot_pressure, save_vtu, scenes, to_numpy
+
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.fixture(scope="module")
+def hertz_vtu_reply(client, hertz_example):
+    req = copy.deepcopy(hertz_example)
+    req["outputs"] = ["vtu"]
+    return client.solve(req)
+
+
+def test_vtu_opens_with_meshio_and_holds_the_named_fields(hertz_vtu_reply, tmp_path):
+    meshio = pytest.importorskip("meshio")
+    r = hertz_vtu_reply
+    assert "bodies" not in r, "only what outputs lists comes back"
+    path = tmp_path / "hertz.vtu"
+    save_vtu(r, str(path))
+    m = meshio.read(path)
+    n = len(m.points)
+    assert m.point_data["displacement"].shape == (n, 3)
+    assert abs(m.points[:, 2]).max() == 0.0 and abs(m.point_data["displacement"][:, 2]).max() == 0.0
+    # The pressure field is the reply's, node by node: same maximum, zero off the candidates.
+    p = m.point_data["contact_pressure"]
+    pts = r["pairs"][0]["points"]
+    assert p.max() == max(q["pressure"] for q in pts)
+    assert (p != 0).sum() <= len(pts)
+    for q in pts[:: max(1, len(pts) // 20)]:
+        assert p[q["node"]] == q["pressure"]
+        assert tuple(m.points[q["node"], :2]) == (q["x"], q["y"])
+    stress = m.cell_data["stress"][0]
+    assert stress.shape == (len(m.cells[0].data), 3)
+    # Under the indenter the block is in compression: sigma_yy < 0 somewhere, of the order of p0.
+    assert stress[:, 1].min() < -0.5 * p.max()
+    assert set(m.cell_data["body"][0].ravel().tolist()) == {0}
+    # The top face sinks under the cylinder: the largest downward displacement is the indentation depth.
+    uy = m.point_data["displacement"][:, 1]
+    depth = 0.12
+    assert -uy.min() == pytest.approx(depth, rel=1e-6)
+
+
+def test_to_numpy_gives_the_pairs_forces_and_zones(hertz_reply):
+    np = pytest.importorskip("numpy")
+    (d,) = to_numpy(hertz_reply)
+    assert d["body"] == "block" and d["obstacle"] == "cylinder"
+    assert len(d["x"]) == len(d["pressure"]) == len(d["node"]) == hertz_reply["size"]["candidates"]
+    # The nodal forces against the outward normal add up to the pair's resultant.
+    fy = -(d["force"] * d["normal"][:, 1]).sum()
+    assert fy == pytest.approx(hertz_reply["pairs"][0]["resultant"]["fy"], rel=1e-9)
+    assert d["zones"].shape == (1, 2)
+    inside = (d["x"] >= d["zones"][0, 0]) & (d["x"] <= d["zones"][0, 1])
+    assert np.all(d["pressure"][~inside] <= 1e-9 * d["pressure"].max())
+
+
+def test_plot_pressure_draws_the_pressures_and_the_hertz_overlay(hertz_reply, hertz_example, tmp_path):
+    pytest.importorskip("matplotlib")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    ax = plot_pressure(hertz_reply, reference="hertz", request=hertz_example)
+    data, ref = ax.lines[1], ax.lines[-1]  # lines[0]: the p = 0 axis
+    assert max(data.get_ydata()) == max(p["pressure"] for p in hertz_reply["pairs"][0]["points"])
+    m = scenes.hertz_measure(hertz_reply)
+    a, p0 = scenes.hertz_reference(m["P"], 8.0, 200.0, 0.3)
+    assert max(ref.get_ydata()) == pytest.approx(p0, rel=1e-4)
+    out = tmp_path / "p.png"
+    ax.figure.savefig(out)
+    assert out.read_bytes()[:8] == PNG_MAGIC
+    with pytest.raises(ValueError):
+        plot_pressure(hertz_reply, reference="hertz")

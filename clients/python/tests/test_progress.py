@@ -1,0 +1,36 @@
+"""Progress of a long solve on contact/progress/<client_id>."""
+
+from __future__ import annotations
+
+import pytest
+
+from contact_client import scenes
+from contact_client.client import STAGES
+
+
+def test_a_large_solve_reports_its_stages_in_order(client):
+    # About 300k DOF: a solve of a few seconds, long enough to watch.
+    req = scenes.hertz_cylinder(h_min=0.004, extent=0.8)
+    seen: list[dict] = []
+    r = client.solve(req, progress=seen.append, timeout=120.0)
+    assert r["status"] == "solved" and r["size"]["dofs"] > 250_000
+    assert r["client_id"].startswith("progress-"), "the generated key comes back as the client id"
+    stages = [m["stage"] for m in seen]
+    order = [s for i, s in enumerate(stages) if i == 0 or stages[i - 1] != s]
+    # A first solve of this mesh misses the cache, so every stage runs.
+    assert order == list(STAGES), order
+    assert all(m["request_id"] == r["request_id"] for m in seen)
+    assert [m["elapsed"] for m in seen] == sorted(m["elapsed"] for m in seen)
+    iterations = [m for m in seen if "iteration" in m]
+    assert iterations and all(m["stage"] == "contact_solve" and m["residual"] >= 0.0 for m in iterations)
+
+
+def test_progress_bar_and_a_client_id_of_ones_own(client):
+    pytest.importorskip("tqdm")
+    req = scenes.hertz_cylinder(h_min=0.04, client_id="my-run-1")
+    seen: list[dict] = []
+    r = client.solve(req, progress=seen.append)
+    assert r["client_id"] == "my-run-1" and seen[0]["stage"] == "mesh"
+    assert client.solve(req, progress=True)["status"] == "solved"
+    with pytest.raises(ValueError):
+        client.solve(scenes.hertz_cylinder(h_min=0.04, client_id="a/b"), progress=True)

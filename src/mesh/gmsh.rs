@@ -1,0 +1,569 @@
+//! Gmsh MSH 4.1 ASCII text → a body mesh (no file I/O: the text comes in the request).
+//!
+//! What is read: `$MeshFormat` (4.1, ASCII only), `$PhysicalNames`, `$Entities`
+//! (which physical groups each entity belongs to), `$Nodes` and `$Elements`;
+//! other sections are skipped. The body is made of the 3-node (type 2) and
+//! 6-node (type 9) triangles of the surface entities, or only of those in the
+//! physical surface groups the request names. Line elements (type 1, and type 8
+//! of quadratic meshes) of every physical curve group become the edge set named
+//! after the group (a group without a name is named by its tag). Gmsh's 6-node
+//! triangle lists the corners, then the midsides of edges 0-1, 1-2, 2-0: our T6
+//! order, so connectivity is taken as it is. Triangles Gmsh wrote clockwise (a
+//! surface whose normal is −z) are renumbered counter-clockwise, which changes
+//! no geometry. The result goes through the same checks as an inline mesh
+//! (`quality::try_build`), whose errors then name the Gmsh element tag and entity.
+//!
+//! Binary MSH is refused with a hint: no maintained Rust crate reads MSH 4.1 (mshio
+//! has had no release since 2020) and a JSON request carries text anyway.
+//!
+//! Counts read from the file are never used to reserve memory: a hostile count
+//! fails on the missing data instead.
+
+use std::collections::{BTreeMap, HashMap};
+
+use super::{quality, signed_area, Mesh2d};
+use crate::error::{CoreError, InvalidKind};
+
+/// A parsed MSH file restricted to one body, in the file's units.
+#[derive(Debug, Clone)]
+pub struct Parsed {
+    pub nodes: Vec<[f64; 2]>,
+    /// Counter-clockwise triangles, 3 or 6 local node indices each.
+    pub elements: Vec<Vec<usize>>,
+    /// Physical curve group name → boundary edges as corner node pairs.
+    pub edge_sets: BTreeMap<String, Vec<[usize; 2]>>,
+    /// Gmsh (element tag, entity tag) of every element, for error messages.
+    element_tags: Vec<(u64, i64)>,
+    /// Gmsh line element tags of every edge set, in edge order.
+    edge_tags: BTreeMap<String, Vec<u64>>,
+}
+
+impl Parsed {
+    /// Largest side of the bounding box and the node count (for scales and limits).
+    pub fn extent_and_nodes(&self) -> (f64, f64) {
+        (super::extent(&self.nodes), self.nodes.len() as f64)
+    }
+
+    /// The checked mesh with coordinates divided by `length`; `path` is the
+    /// JSON pointer of the MSH text (errors point there and name the Gmsh tags).
+    pub fn try_mesh(&self, length: f64, path: &str) -> Result<Mesh2d, CoreError> {
+        let scaled: Vec<[f64; 2]> = self.nodes.iter().map(|p| [p[0] / length, p[1] / length]).collect();
+        let locate = |item: quality::Item| {
+            let context = match item {
+                quality::Item::Nodes | quality::Item::Elements => "Gmsh mesh: ".to_string(),
+                quality::Item::Element(e) | quality::Item::ElementNode(e, _) => {
+                    let (tag, entity) = self.element_tags[e];
+                    format!("Gmsh element {tag} (surface entity {entity}): ")
+                }
+                quality::Item::EdgeSet(name) => format!("Gmsh physical curve group '{name}': "),
+                quality::Item::Edge(name, k) => {
+                    let tag = self.edge_tags.get(name).and_then(|t| t.get(k)).copied().unwrap_or(0);
+                    format!("Gmsh physical curve group '{name}', line element {tag}: ")
+                }
+            };
+            (path.to_string(), context)
+        };
+        quality::try_build(&scaled, &self.elements, &self.edge_sets, &locate)
+    }
+}
+
+fn bad(path: &str, reason: impl Into<String>) -> CoreError {
+    CoreError::invalid(InvalidKind::Mesh, path, reason.into())
+}
+
+/// Gmsh's name of an element type, for messages.
+fn type_name(t: i64) -> &'static str {
+    match t {
+        1 => "2-node line",
+        2 => "3-node triangle",
+        3 => "4-node quadrangle",
+        4 => "4-node tetrahedron",
+        5 => "8-node hexahedron",
+        6 => "6-node prism",
+        7 => "5-node pyramid",
+        8 => "3-node line",
+        9 => "6-node triangle",
+        10 => "9-node quadrangle",
+        11 => "10-node tetrahedron",
+        15 => "1-node point",
+        16 => "8-node quadrangle",
+        20 => "9-node incomplete triangle",
+        21 => "10-node triangle",
+        26 => "4-node line",
+        _ => "element",
+    }
+}
+
+/// Nodes per element of the types whose blocks we may meet; None: unknown type.
+fn nodes_per_element(t: i64) -> Option<usize> {
+    Some(match t {
+        15 => 1,
+        1 => 2,
+        2 | 8 => 3,
+        3 | 4 | 26 => 4,
+        7 => 5,
+        6 | 9 => 6,
+        5 | 16 => 8,
+        10 | 20 => 9,
+        11 | 21 => 10,
+        _ => return None,
+    })
+}
+
+/// Whitespace-separated tokens of one section, with the section's name for errors.
+struct Tokens<'a> {
+    it: std::str::SplitAsciiWhitespace<'a>,
+    section: &'static str,
+    path: &'a str,
+}
+
+impl<'a> Tokens<'a> {
+    /// The tokens of the required section `$name` (`$Nodes`, `$Elements`) after its
+    /// header `numEntityBlocks numItems minTag maxTag`, and the number of blocks.
+    fn blocks(text: &'a str, name: &'static str, path: &'a str) -> Result<(Self, usize), CoreError> {
+        let body = section(text, name, path)?.ok_or_else(|| bad(path, format!("MSH file has no ${name} section")))?;
+        let mut t = Tokens {
+            it: body.split_ascii_whitespace(),
+            section: name,
+            path,
+        };
+        let blocks = t.count()?;
+        t.count()?;
+        t.int()?;
+        t.int()?;
+        Ok((t, blocks))
+    }
+    fn next_str(&mut self) -> Result<&'a str, CoreError> {
+        self.it
+            .next()
+            .ok_or_else(|| bad(self.path, format!("MSH section ${} ends early", self.section)))
+    }
+    fn int(&mut self) -> Result<i64, CoreError> {
+        let t = self.next_str()?;
+        t.parse().map_err(|_| {
+            bad(
+                self.path,
+                format!("MSH section ${}: expected an integer, got '{t}'", self.section),
+            )
+        })
+    }
+    fn count(&mut self) -> Result<usize, CoreError> {
+        let v = self.int()?;
+        usize::try_from(v).map_err(|_| bad(self.path, format!("MSH section ${}: negative count {v}", self.section)))
+    }
+    fn tag(&mut self) -> Result<u64, CoreError> {
+        let v = self.int()?;
+        u64::try_from(v).map_err(|_| bad(self.path, format!("MSH section ${}: negative tag {v}", self.section)))
+    }
+    fn real(&mut self) -> Result<f64, CoreError> {
+        let t = self.next_str()?;
+        match t.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(v),
+            _ => Err(bad(
+                self.path,
+                format!("MSH section ${}: expected a finite number, got '{t}'", self.section),
+            )),
+        }
+    }
+}
+
+/// The text between `$name` and `$Endname`, if the section is present.
+fn section<'a>(text: &'a str, name: &str, path: &str) -> Result<Option<&'a str>, CoreError> {
+    let open = format!("${name}");
+    let close = format!("$End{name}");
+    let mut start = None;
+    let mut offset = 0;
+    for line in text.split_inclusive('\n') {
+        let l = line.trim();
+        if start.is_none() && l == open {
+            start = Some(offset + line.len());
+        } else if let Some(s) = start {
+            if l == close {
+                return Ok(Some(&text[s..offset]));
+            }
+        }
+        offset += line.len();
+    }
+    match start {
+        Some(_) => Err(bad(path, format!("MSH section {open} has no {close}"))),
+        None => Ok(None),
+    }
+}
+
+/// Parses MSH 4.1 ASCII text; `surfaces` names the physical surface groups that
+/// make up the body (empty: every triangle). `path`: JSON pointer of the text.
+pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, CoreError> {
+    let format =
+        section(text, "MeshFormat", path)?.ok_or_else(|| bad(path, "not a Gmsh MSH file: no $MeshFormat section"))?;
+    let mut f = format.split_ascii_whitespace();
+    let (version, file_type) = (f.next().unwrap_or(""), f.next().unwrap_or(""));
+    if version != "4.1" {
+        return Err(bad(
+            path,
+            format!("MSH version '{version}' is not read; save the mesh as MSH 4.1 (gmsh: -format msh41, or option Mesh.MshFileVersion = 4.1)"),
+        ));
+    }
+    if file_type != "0" {
+        return Err(bad(
+            path,
+            "binary MSH is not read; save the mesh as ASCII (gmsh: option Mesh.Binary = 0, the default)",
+        ));
+    }
+
+    // Physical group (dim, tag) → name.
+    let mut names: HashMap<(i64, i64), String> = HashMap::new();
+    if let Some(s) = section(text, "PhysicalNames", path)? {
+        for line in s.lines().skip(1) {
+            let l = line.trim();
+            if l.is_empty() {
+                continue;
+            }
+            let mut parts = l.splitn(3, char::is_whitespace);
+            let dim = parts.next().and_then(|v| v.parse::<i64>().ok());
+            let tag = parts.next().and_then(|v| v.parse::<i64>().ok());
+            let name = parts.next().map(|v| v.trim().trim_matches('"').to_string());
+            match (dim, tag, name) {
+                (Some(d), Some(t), Some(n)) => {
+                    names.insert((d, t), n);
+                }
+                _ => return Err(bad(path, format!("MSH section $PhysicalNames: cannot read '{l}'"))),
+            }
+        }
+    }
+    let group_name = |dim: i64, tag: i64| names.get(&(dim, tag)).cloned().unwrap_or_else(|| tag.to_string());
+
+    // Entity (dim, tag) → its physical group tags.
+    let mut physicals: HashMap<(i64, i64), Vec<i64>> = HashMap::new();
+    if let Some(s) = section(text, "Entities", path)? {
+        let mut t = Tokens {
+            it: s.split_ascii_whitespace(),
+            section: "Entities",
+            path,
+        };
+        let counts = [t.count()?, t.count()?, t.count()?, t.count()?];
+        for (dim, &n) in counts.iter().enumerate() {
+            for _ in 0..n {
+                let tag = t.int()?;
+                // A point has its coordinates, the others their bounding box.
+                for _ in 0..if dim == 0 { 3 } else { 6 } {
+                    t.real()?;
+                }
+                let np = t.count()?;
+                let mut groups = Vec::new();
+                for _ in 0..np {
+                    groups.push(t.int()?);
+                }
+                if dim > 0 {
+                    let nb = t.count()?;
+                    for _ in 0..nb {
+                        t.int()?;
+                    }
+                }
+                physicals.insert((dim as i64, tag), groups);
+            }
+        }
+    }
+    for s in surfaces {
+        if !names.iter().any(|(&(d, _), n)| d == 2 && n == s) {
+            let mut have: Vec<&str> = names
+                .iter()
+                .filter(|((d, _), _)| *d == 2)
+                .map(|(_, n)| n.as_str())
+                .collect();
+            have.sort_unstable();
+            return Err(CoreError::invalid(
+                InvalidKind::Request,
+                path,
+                format!(
+                    "no physical surface group named '{s}' in the MSH file (it has: {})",
+                    if have.is_empty() {
+                        "none".to_string()
+                    } else {
+                        have.join(", ")
+                    }
+                ),
+            ));
+        }
+    }
+    let in_body = |entity: i64| {
+        surfaces.is_empty()
+            || physicals
+                .get(&(2, entity))
+                .is_some_and(|g| g.iter().any(|&p| surfaces.contains(&group_name(2, p))))
+    };
+
+    // Nodes in file order: tag → (x, y).
+    let (mut t, blocks) = Tokens::blocks(text, "Nodes", path)?;
+    let mut node_tags: Vec<u64> = Vec::new();
+    let mut coords: Vec<[f64; 3]> = Vec::new();
+    for _ in 0..blocks {
+        let dim = t.int()?;
+        t.int()?;
+        let parametric = t.int()? != 0;
+        let n = t.count()?;
+        for _ in 0..n {
+            node_tags.push(t.tag()?);
+        }
+        for _ in 0..n {
+            coords.push([t.real()?, t.real()?, t.real()?]);
+            if parametric {
+                for _ in 0..dim.clamp(0, 3) {
+                    t.real()?;
+                }
+            }
+        }
+    }
+    let mut index_of_tag: HashMap<u64, usize> = HashMap::new();
+    for (i, &tag) in node_tags.iter().enumerate() {
+        if index_of_tag.insert(tag, i).is_some() {
+            return Err(bad(path, format!("Gmsh node tag {tag} appears twice in $Nodes")));
+        }
+    }
+
+    // Elements: triangles of the body, lines of the physical curves.
+    let (mut t, blocks) = Tokens::blocks(text, "Elements", path)?;
+    let mut tris: Vec<(u64, i64, Vec<usize>)> = Vec::new();
+    let mut lines: BTreeMap<String, Vec<(u64, [usize; 2])>> = BTreeMap::new();
+    let node_of = |tag: u64, element: u64| {
+        index_of_tag.get(&tag).copied().ok_or_else(|| {
+            bad(
+                path,
+                format!("Gmsh element {element} refers to node {tag}, which $Nodes does not list"),
+            )
+        })
+    };
+    for _ in 0..blocks {
+        let dim = t.int()?;
+        let entity = t.int()?;
+        let etype = t.int()?;
+        let n = t.count()?;
+        let npe = nodes_per_element(etype).ok_or_else(|| {
+            bad(
+                path,
+                format!("Gmsh element type {etype} (entity {entity} of dimension {dim}) is not supported: a 2D body is made of 3-node (type 2) or 6-node (type 9) triangles"),
+            )
+        })?;
+        let unsupported = |what: &str| {
+            bad(
+                path,
+                format!(
+                    "Gmsh {} elements (type {etype}) on {what} entity {entity} are not supported: a 2D body is made of 3-node (type 2) or 6-node (type 9) triangles, its edge sets of 2-node (type 1) or 3-node (type 8) lines",
+                    type_name(etype)
+                ),
+            )
+        };
+        let curve_groups: Vec<String> = match dim {
+            1 => physicals
+                .get(&(1, entity))
+                .map(|g| g.iter().map(|&p| group_name(1, p)).collect())
+                .unwrap_or_default(),
+            _ => Vec::new(),
+        };
+        match (dim, etype) {
+            (0, _) => {}
+            (1, 1 | 8) => {}
+            (1, _) if curve_groups.is_empty() => {}
+            (1, _) => return Err(unsupported("curve")),
+            (2, 2 | 9) => {}
+            (2, _) if !in_body(entity) => {}
+            (2, _) => return Err(unsupported("surface")),
+            (3, _) => return Err(unsupported("volume")),
+            _ => {
+                return Err(bad(
+                    path,
+                    format!("Gmsh element block of dimension {dim} (entity {entity})"),
+                ))
+            }
+        }
+        for _ in 0..n {
+            let tag = t.tag()?;
+            let mut conn = Vec::with_capacity(npe);
+            for _ in 0..npe {
+                conn.push(t.tag()?);
+            }
+            if dim == 2 && in_body(entity) {
+                let idx = conn.iter().map(|&c| node_of(c, tag)).collect::<Result<Vec<_>, _>>()?;
+                tris.push((tag, entity, idx));
+            } else if dim == 1 {
+                for g in &curve_groups {
+                    let ends = [node_of(conn[0], tag)?, node_of(conn[1], tag)?];
+                    lines.entry(g.clone()).or_default().push((tag, ends));
+                }
+            }
+        }
+    }
+    if tris.is_empty() {
+        return Err(bad(
+            path,
+            if surfaces.is_empty() {
+                "the MSH file has no triangles (types 2 or 9): mesh a surface (gmsh: generate(2))".to_string()
+            } else {
+                format!("the physical surface groups {surfaces:?} hold no triangles")
+            },
+        ));
+    }
+
+    // Keep the nodes the triangles use, in file order.
+    let mut used = vec![false; node_tags.len()];
+    for (_, _, c) in &tris {
+        for &n in c {
+            used[n] = true;
+        }
+    }
+    let mut local = vec![usize::MAX; node_tags.len()];
+    let mut nodes = Vec::new();
+    for (i, c) in coords.iter().enumerate().filter(|(i, _)| used[*i]) {
+        local[i] = nodes.len();
+        nodes.push([c[0], c[1]]);
+    }
+    let size = super::extent(&nodes);
+    for (i, c) in coords.iter().enumerate().filter(|(i, _)| used[*i]) {
+        // z is written with ~16 digits: anything beyond round-off of the size is a 3D node.
+        if c[2].abs() > 1e-9 * size {
+            return Err(bad(
+                path,
+                format!(
+                    "Gmsh node {} has z = {}: a 2D body lies in the plane z = 0",
+                    node_tags[i], c[2]
+                ),
+            ));
+        }
+    }
+    let mut elements = Vec::with_capacity(tris.len());
+    let mut element_tags = Vec::with_capacity(tris.len());
+    for (tag, entity, c) in tris {
+        let mut e: Vec<usize> = c.iter().map(|&n| local[n]).collect();
+        if signed_area(nodes[e[0]], nodes[e[1]], nodes[e[2]]) < 0.0 {
+            // Clockwise: swap corners 1 and 2; midsides (01, 12, 20) become (02, 21, 10).
+            e.swap(1, 2);
+            if e.len() == 6 {
+                e.swap(3, 5);
+            }
+        }
+        elements.push(e);
+        element_tags.push((tag, entity));
+    }
+    let mut edge_sets = BTreeMap::new();
+    let mut edge_tags = BTreeMap::new();
+    for (name, ls) in lines {
+        let mut edges = Vec::with_capacity(ls.len());
+        let mut tags = Vec::with_capacity(ls.len());
+        for (tag, [a, b]) in ls {
+            if local[a] == usize::MAX || local[b] == usize::MAX {
+                return Err(bad(
+                    path,
+                    format!("Gmsh physical curve group '{name}', line element {tag}: its nodes are not nodes of the body's triangles"),
+                ));
+            }
+            edges.push([local[a], local[b]]);
+            tags.push(tag);
+        }
+        edge_sets.insert(name.clone(), edges);
+        edge_tags.insert(name, tags);
+    }
+    Ok(Parsed {
+        nodes,
+        elements,
+        edge_sets,
+        element_tags,
+        edge_tags,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Unit square of two triangles, bottom edge a physical curve "bottom",
+    /// the surface the physical group "plate". `tri` replaces the triangle block.
+    fn square(tri: &str) -> String {
+        format!(
+            "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n1 1 \"bottom\"\n2 2 \"plate\"\n$EndPhysicalNames\n\
+$Entities\n0 1 1 0\n1 0 0 0 1 0 0 1 1 0\n1 0 0 0 1 1 0 1 2 0\n$EndEntities\n\
+$Nodes\n1 4 1 4\n2 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n$EndNodes\n\
+$Elements\n2 3 1 3\n1 1 1 1\n1 1 2\n{tri}$EndElements\n"
+        )
+    }
+
+    #[test]
+    fn a_square_reads_with_its_named_edge_set_oriented_body_on_the_left() {
+        let p = try_parse(&square("2 1 2 2\n2 1 2 3\n3 1 3 4\n"), &[], "/m").unwrap();
+        assert_eq!(p.nodes.len(), 4);
+        assert_eq!(p.elements, vec![vec![0, 1, 2], vec![0, 2, 3]]);
+        let m = p.try_mesh(1.0, "/m").unwrap();
+        let e = m.edge_sets["bottom"][0];
+        // Outward normal of a→b is (dy, −dx): the bottom edge must point down.
+        let (a, b) = (m.nodes[e.a], m.nodes[e.b]);
+        assert_eq!((b[1] - a[1], -(b[0] - a[0])), (0.0, -1.0));
+    }
+
+    #[test]
+    fn clockwise_triangles_are_renumbered_with_the_same_area() {
+        let p = try_parse(&square("2 1 2 2\n2 1 3 2\n3 1 4 3\n"), &[], "/m").unwrap();
+        let m = p.try_mesh(1.0, "/m").unwrap();
+        let area: f64 = (0..m.n_elems())
+            .map(|e| {
+                let c = m.elem(e);
+                signed_area(m.nodes[c[0]], m.nodes[c[1]], m.nodes[c[2]])
+            })
+            .sum();
+        assert!((area - 1.0).abs() < 1e-15, "{area}");
+    }
+
+    #[test]
+    fn quads_are_refused_naming_the_type_and_entity() {
+        let e = try_parse(&square("2 1 3 1\n2 1 2 3 4\n"), &[], "/m").unwrap_err();
+        let msg = e.to_string();
+        assert!(
+            msg.contains("type 3") && msg.contains("entity 1") && msg.contains("quadrangle"),
+            "{msg}"
+        );
+        assert_eq!(e.path(), "/m");
+    }
+
+    #[test]
+    fn binary_and_old_versions_are_refused_with_the_option_to_set() {
+        let bin = square("2 1 2 2\n2 1 2 3\n3 1 3 4\n").replace("4.1 0 8", "4.1 1 8");
+        assert!(try_parse(&bin, &[], "/m")
+            .unwrap_err()
+            .to_string()
+            .contains("Mesh.Binary"));
+        let old = square("2 1 2 2\n2 1 2 3\n3 1 3 4\n").replace("4.1 0 8", "2.2 0 8");
+        assert!(try_parse(&old, &[], "/m").unwrap_err().to_string().contains("4.1"));
+    }
+
+    #[test]
+    fn a_node_off_the_plane_is_refused() {
+        let text = square("2 1 2 2\n2 1 2 3\n3 1 3 4\n").replace("1 1 0\n0 1 0", "1 1 0.5\n0 1 0");
+        let msg = try_parse(&text, &[], "/m").unwrap_err().to_string();
+        assert!(msg.contains("node 3") && msg.contains("z = 0.5"), "{msg}");
+    }
+
+    #[test]
+    fn a_degenerate_triangle_names_its_gmsh_tag() {
+        // Element 3 repeats the collinear nodes 1, 2 and a node on their line.
+        let text = square("2 1 2 2\n2 1 2 3\n3 1 3 4\n").replace("0 1 0\n$EndNodes", "0.5 0 0\n$EndNodes");
+        let text = text.replace("3 1 3 4\n", "7 1 2 4\n");
+        let msg = try_parse(&text, &[], "/m")
+            .unwrap()
+            .try_mesh(1.0, "/m")
+            .unwrap_err()
+            .to_string();
+        assert!(msg.contains("Gmsh element 7"), "{msg}");
+    }
+
+    #[test]
+    fn an_unknown_surface_group_lists_the_known_ones() {
+        let msg = try_parse(&square("2 1 2 2\n2 1 2 3\n3 1 3 4\n"), &["body".into()], "/m")
+            .unwrap_err()
+            .to_string();
+        assert!(msg.contains("'body'") && msg.contains("plate"), "{msg}");
+        assert!(try_parse(&square("2 1 2 2\n2 1 2 3\n3 1 3 4\n"), &["plate".into()], "/m").is_ok());
+    }
+
+    #[test]
+    fn hostile_counts_fail_without_allocating() {
+        let text = square("2 1 2 2\n2 1 2 3\n3 1 3 4\n").replace("2 1 0 4\n", "2 1 0 4000000000000000000\n");
+        assert!(try_parse(&text, &[], "/m").is_err());
+    }
+}
