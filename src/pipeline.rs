@@ -132,6 +132,7 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
     let t = Instant::now();
     crate::progress::stage("assembly");
     let dofs = fem::assembly::dof_map(scene, &meshes)?;
+    check_search_work(scene, &meshes)?;
     let cons = contact::build(scene, &meshes, &dofs);
     for (p, pair) in scene.pairs.iter().enumerate() {
         if !cons.candidates.iter().any(|c| c.pair == p) {
@@ -156,7 +157,7 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
                 "load-controlled punches, bodies held only by contact and foundations are solved on the condensed formulation only",
             ));
         }
-        return solve_full(scene, &meshes, dofs, cons, timings, t, t_start);
+        return solve_full(scene, &meshes, dofs, cons, &free, timings, t, t_start);
     }
     if scene.method == MethodName::Auto
         && free.motions.is_empty()
@@ -164,7 +165,7 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
         && foundations.is_empty()
         && full_is_cheaper(dofs.n_free, cons.len())
     {
-        return solve_full(scene, &meshes, dofs, cons, timings, t, t_start);
+        return solve_full(scene, &meshes, dofs, cons, &free, timings, t, t_start);
     }
     // The condensed operator is dense in the candidates: bounded by the limit.
     if cons.len() > limits.max_candidates {
@@ -275,11 +276,13 @@ fn full_is_cheaper(n_free: usize, m: usize) -> bool {
 const FULL_IPM_MAX_DOFS: usize = 200_000;
 
 /// Full-system exact methods: no condensation, no cache (they are the comparison).
+#[allow(clippy::too_many_arguments)]
 fn solve_full(
     scene: &Scene,
     meshes: &[Mesh2d],
     dofs: fem::DofMap,
     cons: contact::ConstraintSet,
+    free: &FreeMotions,
     mut timings: Timings,
     t: Instant,
     t_start: Instant,
@@ -326,7 +329,8 @@ fn solve_full(
         cons: &cons,
         k: &stiffness.k,
         f: &f,
-        free: None,
+        // No free motion reaches here; its notes (undetermined modes) still do.
+        free: Some(free),
         pivot_ratio: None,
         foundations: None,
     };
@@ -368,6 +372,9 @@ fn finish(
             }
         }
         certificate.equilibrium = certificate.equilibrium.max(worst);
+    }
+    if let Some(p) = st.free {
+        certificate.equilibrium = certificate.equilibrium.max(p.unbalanced(&sol.lambda));
     }
     let punches = free
         .map(|p| punch_results(scene, st.cons, p, &beta, &sol.lambda))
@@ -618,4 +625,41 @@ fn foundation_results(
             }
         })
         .collect()
+}
+
+/// Ray casts a two-body pair may cost (each slave point against each master
+/// edge, about 20 flops): a request is refused before the search rather than
+/// tying a worker up for minutes on a pair of huge edge sets.
+const MAX_SEARCH_CASTS: f64 = 4e8;
+
+fn check_search_work(scene: &Scene, meshes: &[Mesh2d]) -> Result<(), CoreError> {
+    for pair in &scene.pairs {
+        let crate::scene::Target::Body {
+            body,
+            edges,
+            discretization,
+        } = &pair.target
+        else {
+            continue;
+        };
+        let slave = meshes[pair.body].edge_sets.get(&pair.edges).map_or(0, |e| e.len()) as f64;
+        let master = meshes[*body].edge_sets.get(edges).map_or(0, |e| e.len()) as f64;
+        // Mortar: 4 Gauss points on each of about two sub-segments per slave edge.
+        let points = match discretization {
+            proto::Discretization::Mortar => 8.0 * slave,
+            proto::Discretization::NodeToSegment => slave + 1.0,
+        };
+        if points * master > MAX_SEARCH_CASTS {
+            return Err(CoreError::TooLarge {
+                path: format!("{}/edges", pair.path),
+                reason: format!(
+                    "the contact search of this two-body pair would cast {:.1e} rays ({} slave edges against {} master edges); this service accepts at most {MAX_SEARCH_CASTS:.0e}: restrict the edge sets to the faces that can touch",
+                    points * master,
+                    slave,
+                    master
+                ),
+            });
+        }
+    }
+    Ok(())
 }

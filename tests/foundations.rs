@@ -230,3 +230,27 @@ fn exact_methods_agree_on_a_foundation() {
     req["bodies"][0]["tractions"] = json!([{ "edges": "top", "traction": [0.0, -1.0] }]);
     assert_exact_methods_agree(&req, 1e-7);
 }
+
+/// A vanishing shear layer is Winkler: the layer's cells stop at 1e-4 of its
+/// length instead of resolving a decay length of 1e-150 (which once meant an
+/// unbounded cell count: a request could exhaust the service's memory).
+#[test]
+fn a_vanishing_shear_layer_is_winkler_and_stays_small() {
+    let winkler = solved(&example("foundation_winkler_footing.json"));
+    let mut req = example("foundation_winkler_footing.json");
+    req["foundations"][0]["model"] = json!({ "pasternak": { "stiffness": 100.0, "shear": 1e-300 } });
+    let r = solved(&req);
+    assert!(
+        r.foundations[0].x.len() < 30_000,
+        "{} layer nodes",
+        r.foundations[0].x.len()
+    );
+    for (p, q) in winkler.pairs[0].points.iter().zip(&r.pairs[0].points) {
+        assert!(
+            (p.pressure - q.pressure).abs() < 1e-9,
+            "{} vs {}",
+            p.pressure,
+            q.pressure
+        );
+    }
+}

@@ -55,10 +55,16 @@ pub struct Term {
 
 /// Splits nodal terms into the free-DOF row and the prescribed part, which
 /// moves to the right-hand side: returns (row, s − Σ coef · ū).
-/// Whether a row with no free DOF still constrains something: its node may be
-/// held by a virtual support of a body whose rigid modes are free (they move it).
+/// Whether a row with no free DOF still constrains something: its node is held
+/// by a virtual support of a body whose rigid modes are free (they move it). A
+/// node held by real supports does not move at all: its row is pruned.
 pub fn moves_rigidly(terms: &[Term], dofs: &DofMap) -> bool {
-    terms.iter().any(|t| dofs.rigid.iter().any(|r| r.body == t.body))
+    terms.iter().any(|t| {
+        let (x, y) = (dofs.dof(t.body, t.node, 0), dofs.dof(t.body, t.node, 1));
+        dofs.rigid
+            .iter()
+            .any(|r| r.body == t.body && (r.virtual_dofs.contains(&x) || r.virtual_dofs.contains(&y)))
+    })
 }
 
 /// Nodal terms, free-DOF row and right-hand side of a row.

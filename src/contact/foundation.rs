@@ -353,7 +353,10 @@ fn log_double_integral(p: [f64; 2], q: [f64; 2]) -> f64 {
 /// √(μ/k) is resolved (cells no longer than a fifth of it).
 fn layer(x_min: f64, x_max: f64, panels: &[[f64; 2]], centres: &[f64], k: f64, mu: f64) -> LineKind {
     let decay = if mu > 0.0 { (mu / k).sqrt() } else { f64::INFINITY };
-    let cap = (0.2 * decay).min(0.05 * (x_max - x_min));
+    // Cells resolve the decay length, but never finer than 1e-4 of the layer:
+    // a shear layer thinner than that acts as Winkler springs anyway, and an
+    // unbounded cell count would let one request exhaust the memory.
+    let cap = (0.2 * decay).min(0.05 * (x_max - x_min)).max(1e-4 * (x_max - x_min));
     // (cell, node x, row index or none), in order along x.
     let mut cells: Vec<([f64; 2], f64, Option<usize>)> = Vec::new();
     let fill = |from: f64, to: f64, h0: f64, grow_right: bool, cells: &mut Vec<([f64; 2], f64, Option<usize>)>| {

@@ -44,6 +44,10 @@ pub struct FreeMotions {
     pub undetermined: Vec<Vec<f64>>,
     /// The same, said in words, for rigid motions of bodies.
     pub notes: Vec<String>,
+    /// Rigid motions of bodies treated as unresisted (held at 0 by the virtual
+    /// supports): their columns of C and each candidate's motion with them. A
+    /// solution must put no net generalized force on them (`unbalanced`).
+    pub unresisted: Vec<(Vec<f64>, Vec<f64>)>,
 }
 
 impl FreeMotions {
@@ -63,6 +67,24 @@ impl FreeMotions {
         (0..self.v.nrows())
             .map(|i| (0..gamma.len()).map(|j| self.v[(i, j)] * gamma[j]).sum())
             .collect()
+    }
+
+    /// The largest net contact force on an unresisted motion, relative to the
+    /// contact forces acting along it: what the virtual supports would have to
+    /// carry (0 at a true solution; joins the certificate's equilibrium).
+    pub fn unbalanced(&self, lambda: &[f64]) -> f64 {
+        self.unresisted
+            .iter()
+            .map(|(col, reach)| {
+                let net: f64 = col.iter().zip(lambda).map(|(c, l)| c * l).sum();
+                let scale: f64 = reach.iter().zip(lambda).map(|(r, l)| r * l.abs()).sum();
+                if net == 0.0 {
+                    0.0
+                } else {
+                    net.abs() / scale.max(f64::MIN_POSITIVE)
+                }
+            })
+            .fold(0.0, f64::max)
     }
 
     /// Whether motion `k` is fully determined by contact.
@@ -97,6 +119,7 @@ impl FreeMotions {
             .map(|j| (0..m).map(|i| c_punch[(i, j)]).collect())
             .collect();
         let mut notes = Vec::new();
+        let mut unresisted = Vec::new();
         for (set, rm) in dofs.rigid.iter().enumerate() {
             let resisted = body_directions(scene, cons, dofs, rm, &meshes[rm.body], external)?;
             for d in resisted {
@@ -106,7 +129,10 @@ impl FreeMotions {
                         load_scale.push(scale);
                         cols.push(col);
                     }
-                    Direction::Free { note } => notes.push(note),
+                    Direction::Free { col, reach, note } => {
+                        unresisted.push((col, reach));
+                        notes.push(note);
+                    }
                 }
             }
         }
@@ -209,6 +235,7 @@ impl FreeMotions {
             rhs,
             undetermined,
             notes,
+            unresisted,
         };
         fm.check_compatibility(scene, dofs)?;
         Ok(fm)
@@ -378,6 +405,8 @@ enum Direction {
         scale: f64,
     },
     Free {
+        col: Vec<f64>,
+        reach: Vec<f64>,
         note: String,
     },
 }
@@ -469,7 +498,26 @@ fn body_directions(
                 ),
             ));
         }
+        // What contact does on this motion after all, per candidate, and how far
+        // each candidate moves with it: checked against λ after the solve.
+        let col: Vec<f64> = (0..m).map(|i| (0..r).map(|k| c[(i, k)] * coef[k]).sum()).collect();
+        let reach: Vec<f64> = cons
+            .candidates
+            .iter()
+            .map(|cand| {
+                cand.terms
+                    .iter()
+                    .filter(|t| t.body == rm.body)
+                    .map(|t| {
+                        let d = rm.at_dir(dir, mesh.nodes[t.node]);
+                        d[0].hypot(d[1])
+                    })
+                    .fold(0.0, f64::max)
+            })
+            .collect();
         out.push(Direction::Free {
+            col,
+            reach,
             note: format!(
                 "the {words} of body '{}' is not determined: contact does not resist it and no load works on it; the displacements are reported with it at 0, any amount of it is also a solution",
                 body.name
