@@ -140,13 +140,18 @@ pub fn hertz_request(h_min: f64, element: &str, method: &str) -> serde_json::Val
     })
 }
 
+/// Hertz line contact (VERIFICATION.md §1): half-width a and peak p0 for the
+/// load P per unit thickness, the effective radius and the effective modulus.
+pub fn hertz(p: f64, radius: f64, e_star: f64) -> (f64, f64) {
+    let a = (4.0 * p * radius / (std::f64::consts::PI * e_star)).sqrt();
+    (a, 2.0 * p / (std::f64::consts::PI * a))
+}
+
 /// Errors of a Hertz reply against the closed form with the reply's own load:
 /// (half-width, peak pressure, relative L2 of the pressure along the contact line).
 pub fn hertz_errors(r: &SolveReply, radius: f64, e_star: f64) -> (f64, f64, f64) {
     let pair = &r.pairs[0];
-    let p = -r.resultant.fy;
-    let a = (4.0 * p * radius / (std::f64::consts::PI * e_star)).sqrt();
-    let p0 = 2.0 * p / (std::f64::consts::PI * a);
+    let (a, p0) = hertz(-r.resultant.fy, radius, e_star);
     let a_fe = pair.zones.first().map(|z| 0.5 * (z[1] - z[0])).unwrap_or(0.0);
     let p_fe = pair.points.iter().map(|q| q.pressure).fold(0.0, f64::max);
     let (mut num, mut den) = (0.0, 0.0);

@@ -15,7 +15,7 @@ use std::time::Instant;
 
 use serde_json::{json, Value};
 
-use crate::bench::{hertz_errors, hertz_request};
+use crate::bench::{hertz, hertz_errors, hertz_request};
 use crate::proto::{ErrorReply, SolveReply, SolveStatus};
 use crate::scene::Limits;
 
@@ -196,11 +196,10 @@ pub fn oscillation(r: &SolveReply) -> f64 {
         .fold(0.0, f64::max)
 }
 
-fn two_body_hertz_error(r: &SolveReply, r1: f64, r2: f64, es: f64) -> f64 {
-    let p = r.pairs[0].resultant.fy.abs();
-    let r_eff = 1.0 / (1.0 / r1 + 1.0 / r2);
-    let a = (4.0 * p * r_eff / (std::f64::consts::PI * es)).sqrt();
-    let p0 = 2.0 * p / (std::f64::consts::PI * a);
+/// Peak pressure of pair 0 against Hertz with the reply's load, the effective
+/// radius and modulus.
+fn hertz_peak_error(r: &SolveReply, r_eff: f64, e_star: f64) -> f64 {
+    let (_, p0) = hertz(r.pairs[0].resultant.fy.abs(), r_eff, e_star);
     let peak = r.pairs[0].points.iter().map(|q| q.pressure).fold(0.0, f64::max);
     peak / p0 - 1.0
 }
@@ -216,7 +215,7 @@ pub fn two_body_ratio(ratio: f64) -> Row {
     let es = 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2);
     let err = r
         .as_ref()
-        .map(|r| two_body_hertz_error(r, 8.0, 12.0, es))
+        .map(|r| hertz_peak_error(r, 1.0 / (1.0 / 8.0 + 1.0 / 12.0), es))
         .unwrap_or(f64::NAN);
     row("two_cylinders", "stiffness_ratio", ratio, &r, t, err, "Hertz p0")
 }
@@ -236,15 +235,7 @@ pub fn foundation_ratio(ratio: f64) -> Row {
     req["bodies"][0]["tractions"][0]["traction"] = json!([0.0, -p / 16.0]);
     let (r, t) = solve(&req, &Limits::default());
     let es = 1.0 / ((1.0 - nu * nu) / eb + (1.0 - nu * nu) / ef);
-    let err = r
-        .as_ref()
-        .map(|r| {
-            let p = r.pairs[0].resultant.fy.abs();
-            let a = (4.0 * p * 8.0 / (std::f64::consts::PI * es)).sqrt();
-            let peak = r.pairs[0].points.iter().map(|q| q.pressure).fold(0.0, f64::max);
-            peak / (2.0 * p / (std::f64::consts::PI * a)) - 1.0
-        })
-        .unwrap_or(f64::NAN);
+    let err = r.as_ref().map(|r| hertz_peak_error(r, 8.0, es)).unwrap_or(f64::NAN);
     row("roller_on_half_plane", "stiffness_ratio", ratio, &r, t, err, "Hertz p0")
 }
 
@@ -337,8 +328,38 @@ pub fn penalty(c: f64, exact: &SolveReply, h_min: f64) -> Row {
 /// `n` contact candidates: a strip n elements long and 2 deep in uniform
 /// compression, condensed (refused past the candidate limit) or `full`.
 pub fn candidates(n: usize, full: bool) -> Row {
+    let req = strip_request(n, full);
+    let limits = if full {
+        Limits {
+            max_candidates: usize::MAX,
+            ..Limits::default()
+        }
+    } else {
+        Limits::default()
+    };
+    let (r, t) = solve(&req, &limits);
+    let err = r
+        .as_ref()
+        .map(|r| {
+            r.pairs[0]
+                .points
+                .iter()
+                .map(|p| (p.pressure - STRIP_PRESSURE).abs() / STRIP_PRESSURE)
+                .fold(0.0, f64::max)
+        })
+        .unwrap_or(f64::NAN);
+    let scene = if full { "strip_full" } else { "strip" };
+    row(scene, "candidates", n as f64, &r, t, err, "exact uniform p")
+}
+
+/// Exact contact pressure of `strip_request`: E / (1 − ν²) · 1e-3.
+pub const STRIP_PRESSURE: f64 = 200.0 / (1.0 - 0.09) * 1e-3;
+
+/// A strip n elements long and 2 deep, on rollers, pressed 1e-3 of its depth
+/// by a rigid flat: n + 1 candidates in uniform compression.
+pub fn strip_request(n: usize, full: bool) -> Value {
     let h = 1.0 / n as f64;
-    let req = json!({
+    json!({
         "version": "1",
         "bodies": [{
             "name": "strip",
@@ -349,29 +370,7 @@ pub fn candidates(n: usize, full: bool) -> Row {
         "obstacles": [{ "name": "flat", "shape": { "line": { "point": [0.0, 2.0 * h * (1.0 - 1e-3)], "normal": [0.0, -1.0] } } }],
         "contacts": [{ "body": "strip", "edges": "top", "obstacle": "flat" }],
         "settings": { "formulation": if full { "full" } else { "condensed" } }
-    });
-    let limits = if full {
-        Limits {
-            max_candidates: usize::MAX,
-            ..Limits::default()
-        }
-    } else {
-        Limits::default()
-    };
-    let (r, t) = solve(&req, &limits);
-    let exact = 200.0 / (1.0 - 0.09) * 1e-3;
-    let err = r
-        .as_ref()
-        .map(|r| {
-            r.pairs[0]
-                .points
-                .iter()
-                .map(|p| (p.pressure - exact).abs() / exact)
-                .fold(0.0, f64::max)
-        })
-        .unwrap_or(f64::NAN);
-    let scene = if full { "strip_full" } else { "strip" };
-    row(scene, "candidates", n as f64, &r, t, err, "exact uniform p")
+    })
 }
 
 /// The whole suite (`quick`: coarser meshes and fewer points per axis).

@@ -240,8 +240,10 @@ fn a_vanishing_shear_layer_is_winkler_and_stays_small() {
     let mut req = example("foundation_winkler_footing.json");
     req["foundations"][0]["model"] = json!({ "pasternak": { "stiffness": 100.0, "shear": 1e-300 } });
     let r = solved(&req);
+    // Cells of at least 1e-4 of the 10-long layer: at most 10 000 besides the
+    // footing's 41 panels (measured 8043 nodes).
     assert!(
-        r.foundations[0].x.len() < 30_000,
+        r.foundations[0].x.len() <= 10_041,
         "{} layer nodes",
         r.foundations[0].x.len()
     );

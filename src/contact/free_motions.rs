@@ -69,10 +69,28 @@ impl FreeMotions {
             .collect()
     }
 
+    /// Relative residual of the free motions' equilibrium for the contact
+    /// forces λ, for the certificate: (CV)ᵀλ = −VᵀP on the motions solved for,
+    /// and no net force on the motions treated as unresisted (`unbalanced`).
+    pub fn equilibrium(&self, lambda: &[f64]) -> f64 {
+        let mut worst = self.unbalanced(lambda);
+        for j in 0..self.c.ncols() {
+            let (mut ct, mut scale) = (0.0, self.rhs[j].abs());
+            for (i, l) in lambda.iter().enumerate() {
+                ct += self.c[(i, j)] * l;
+                scale = scale.max((self.c[(i, j)] * l).abs());
+            }
+            if scale > 0.0 {
+                worst = worst.max((ct - self.rhs[j]).abs() / scale);
+            }
+        }
+        worst
+    }
+
     /// The largest net contact force on an unresisted motion, relative to the
     /// contact forces acting along it: what the virtual supports would have to
-    /// carry (0 at a true solution; joins the certificate's equilibrium).
-    pub fn unbalanced(&self, lambda: &[f64]) -> f64 {
+    /// carry (0 at a true solution).
+    fn unbalanced(&self, lambda: &[f64]) -> f64 {
         self.unresisted
             .iter()
             .map(|(col, reach)| {

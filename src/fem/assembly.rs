@@ -278,11 +278,12 @@ pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Re
     })
 }
 
-/// Right-hand side f_f − K_fd u_d from tractions, pressures, body forces and
-/// prescribed displacements.
-pub fn assemble_loads(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap, stiffness: &Stiffness) -> Vec<f64> {
+/// Right-hand side f_f − K_fd u_d from the external loads on every global DOF
+/// (`external_loads`, computed once per solve: the rigid modes need them too)
+/// and the prescribed displacements.
+pub fn assemble_loads(external: &[f64], dofs: &DofMap, stiffness: &Stiffness) -> Vec<f64> {
     let mut f = vec![0.0; dofs.n_free];
-    for (d, v) in external_loads(scene, meshes, dofs).into_iter().enumerate() {
+    for (d, &v) in external.iter().enumerate() {
         if dofs.free[d] != FIXED {
             f[dofs.free[d]] += v;
         }
@@ -355,7 +356,7 @@ pub fn external_loads(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Vec<f6
 /// Stiffness and loads together (no cache).
 pub fn assemble(scene: &Scene, meshes: &[Mesh2d], dofs: DofMap) -> Result<Assembled, CoreError> {
     let stiffness = assemble_stiffness(scene, meshes, &dofs)?;
-    let f = assemble_loads(scene, meshes, &dofs, &stiffness);
+    let f = assemble_loads(&external_loads(scene, meshes, &dofs), &dofs, &stiffness);
     Ok(Assembled {
         dofs,
         stiffness: std::sync::Arc::new(stiffness),

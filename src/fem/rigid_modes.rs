@@ -28,9 +28,7 @@ pub struct RigidModes {
 impl RigidModes {
     /// Displacement of point x under unit amplitude of mode k.
     pub fn at(&self, k: usize, x: [f64; 2]) -> [f64; 2] {
-        let b = self.basis[k];
-        let (dx, dy) = (x[0] - self.center[0], x[1] - self.center[1]);
-        [b[0] - b[2] * dy, b[1] + b[2] * dx]
+        self.at_dir(self.basis[k], x)
     }
 
     /// Displacement of point x under the rigid motion `dir` = (ux, uy, rotation about the centre).

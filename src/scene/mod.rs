@@ -235,15 +235,6 @@ pub enum Target {
     },
 }
 
-impl Pair {
-    pub fn obstacle(&self) -> Option<usize> {
-        match self.target {
-            Target::Obstacle(o) => Some(o),
-            _ => None,
-        }
-    }
-}
-
 /// A tensionless foundation (nondimensional).
 #[derive(Debug, Clone)]
 pub struct Foundation {

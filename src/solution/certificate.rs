@@ -1,7 +1,7 @@
 //! KKT certificate of a discrete solution (u, λ) of
 //! min ½uᵀKu − fᵀu s.t. Bu ≤ g, all relative and dimensionless:
 //!
-//! - primal: max(0, max_i (Bu − g)_i) / D, D = ‖u‖∞ (displacement scale);
+//! - primal: max(0, max_i (Bu − g)_i) / D, D = max(‖u‖∞, ‖shift‖∞) (displacement scale);
 //! - dual: max(0, max_i −λ_i) / ‖λ‖∞;
 //! - complementarity: max_i |λ_i (g − Bu)_i| / (‖λ‖∞ D);
 //! - equilibrium: ‖K u − f + Bᵀλ‖∞ / max(‖f‖∞, ‖Ku‖∞, ‖Bᵀλ‖∞).
@@ -40,7 +40,10 @@ pub fn certify(
         .map(|i| cons.candidates[i].g - bu[i] + shift.map_or(0.0, |s| s[i]))
         .collect();
     let d = {
-        let du = inf_norm(u);
+        // The rows also move with the free rigid motions (a body held only by
+        // contact may move mostly rigidly, u being only its deformation): the
+        // displacement scale is the larger of the two.
+        let du = inf_norm(u).max(shift.map_or(0.0, inf_norm));
         if du > 0.0 {
             du
         } else {
