@@ -20,7 +20,10 @@ fn config() -> ProptestConfig {
         // The same cases on every run (CI must not flake); PROPTEST_RNG_SEED or
         // PROPTEST_CASES explore further by hand.
         rng_seed: proptest::test_runner::RngSeed::Fixed(
-            std::env::var("PROPTEST_RNG_SEED").ok().and_then(|v| v.parse().ok()).unwrap_or(20261122),
+            std::env::var("PROPTEST_RNG_SEED")
+                .ok()
+                .and_then(|v| v.parse().ok())
+                .unwrap_or(20261122),
         ),
         ..ProptestConfig::default()
     }
