@@ -21,6 +21,7 @@ pub mod bench;
 pub mod cache;
 pub mod cancel;
 pub mod contact;
+pub mod convergence;
 pub mod error;
 pub mod fem;
 pub mod linalg;

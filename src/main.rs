@@ -109,6 +109,11 @@ enum Cmd {
         /// CSV to --csv, default bench_out/stability.csv).
         #[arg(long)]
         stability: bool,
+        /// Convergence under refinement against Hertz instead (elastic disk on a
+        /// rigid flat and rigid cylinder into a block, six levels, T3 and T6;
+        /// CSV to --csv, default bench_out/convergence.csv).
+        #[arg(long, conflicts_with = "stability")]
+        convergence: bool,
     },
     /// Write the JSON Schemas of the protocol.
     Schema {
@@ -208,8 +213,21 @@ fn run() -> anyhow::Result<ExitCode> {
             csv,
             repeat,
             stability,
+            convergence,
         } => {
-            let (header, lines) = if stability {
+            let (header, lines) = if convergence {
+                println!("{}", contact::convergence::Row::table_header());
+                let rows = contact::convergence::run(quick, |r| println!("{}", r.table_line()));
+                println!(
+                    "model floor of disk_on_flat (finite disk against the half-plane formula): about {:.1} % in L2, {:.2} % in the moment half-width",
+                    100.0 * contact::convergence::DISK_FLOOR_L2,
+                    100.0 * contact::convergence::DISK_FLOOR_MOMENT
+                );
+                (
+                    contact::convergence::Row::HEADER,
+                    rows.iter().map(|r| r.csv()).collect::<Vec<_>>(),
+                )
+            } else if stability {
                 println!("{}", contact::stability::Row::table_header());
                 let rows = contact::stability::run(quick, |r| println!("{}", r.table_line()));
                 let unclear = rows.iter().filter(|r| !r.is_clear()).count();
@@ -226,10 +244,10 @@ fn run() -> anyhow::Result<ExitCode> {
                 let rows = contact::bench::run(quick, repeat, |r| println!("{}", r.table_line()));
                 (contact::bench::Row::HEADER, rows.iter().map(|r| r.csv()).collect())
             };
-            let csv = if stability && csv == Path::new(DEFAULT_BENCH_CSV) {
-                PathBuf::from("bench_out/stability.csv")
-            } else {
-                csv
+            let csv = match (stability, convergence) {
+                (true, _) if csv == Path::new(DEFAULT_BENCH_CSV) => PathBuf::from("bench_out/stability.csv"),
+                (_, true) if csv == Path::new(DEFAULT_BENCH_CSV) => PathBuf::from("bench_out/convergence.csv"),
+                _ => csv,
             };
             if let Some(dir) = csv.parent() {
                 std::fs::create_dir_all(dir)?;

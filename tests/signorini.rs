@@ -22,9 +22,13 @@ fn hertz_rigid_cylinder_on_block_t3_t6() {
         // Mirror symmetry of the scene: no net tangential force, no moment.
         assert!(r.resultant.fx.abs() < 1e-9 * p, "fx {}", r.resultant.fx);
         assert!(r.resultant.m.abs() < 1e-9 * p * a, "m {}", r.resultant.m);
-        // Equilibrium of the nodal forces with the resultant.
+        // Equilibrium of the nodal forces with the resultant. A T6 row against
+        // the circle is integrated over its edges, where the obstacle's normal
+        // turns by h/R: its force acts along the mean of those normals, whose
+        // length is 1 − O((h/R)²) (≈ 1e-6 for h = 0.02, R = 8) while the
+        // reported normal is the unit one.
         let sum: f64 = r.pairs[0].points.iter().map(|q| q.force * -q.normal[1]).sum();
-        assert!((sum - r.resultant.fy).abs() < 1e-12 * p);
+        assert!((sum - r.resultant.fy).abs() < 1e-5 * p, "{sum} vs {}", r.resultant.fy);
     }
 }
 
@@ -343,4 +347,55 @@ fn an_unrelated_body_changes_nothing() {
             q.pressure
         );
     }
+}
+
+/// An elastic cylinder (R = 1, E = 1, ν = 0.3, plane strain) pressed 0.0075 R
+/// onto a rigid flat: the body's normals are not the obstacle's, so the rows
+/// must linearize the distance to the obstacle. The moment half-width
+/// 2·sqrt(∫p x²/∫p) then matches Hertz's a within 0.5 % at h_min = a/30
+/// (measured −0.2 %; the finite disk's own departure from the half-plane
+/// formula is about 0.15 %), and the peak within 1 % (measured +0.3 %). The
+/// body-normal rows stall at −1.1 % on the same mesh (and stay there under
+/// refinement: measured −1.06 % at four times finer).
+#[test]
+fn elastic_cylinder_on_rigid_flat_matches_hertz() {
+    let req = |gap: &str| {
+        json!({
+            "version": "1",
+            "bodies": [{
+                "name": "disk",
+                "material": {"youngs_modulus": 1.0, "poisson_ratio": 0.3},
+                "mesh": {"half_disk": {"center": [0.0, 1.0], "radius": 1.0, "size": 0.125,
+                         "grading": {"h_min": 0.0022, "extent": 0.105}}},
+                "supports": [{"edges": "flat", "ux": 0.0, "uy": -0.0075}]
+            }],
+            "obstacles": [{"name": "floor", "shape": {"line": {"point": [0.0, 0.0], "normal": [0.0, 1.0]}}}],
+            "contacts": [{"body": "disk", "edges": "arc", "obstacle": "floor"}],
+            "settings": {"gap": gap}
+        })
+    };
+    let moment_half_width = |r: &contact::proto::SolveReply| {
+        let (mut m0, mut m2) = (0.0, 0.0);
+        for q in &r.pairs[0].points {
+            m0 += q.weight * q.pressure;
+            m2 += q.weight * q.pressure * q.x * q.x;
+        }
+        2.0 * (m2 / m0).sqrt()
+    };
+    let r = solved(&req("signed_distance"));
+    assert_kkt(&r, 1e-8);
+    let p = r.resultant.fy;
+    let (a, p0) = hertz(p, 1.0, 1.0, 0.3);
+    let err = moment_half_width(&r) / a - 1.0;
+    assert!(err.abs() < 5e-3, "moment half-width off by {err:e}");
+    assert!((peak_pressure(&r) / p0 - 1.0).abs() < 1e-2);
+    // Every row points straight into the flat floor.
+    assert!(r.pairs[0].points.iter().all(|q| q.normal == [0.0, -1.0]));
+    let b = solved(&req("body_normal"));
+    let (ab, _) = hertz(b.resultant.fy, 1.0, 1.0, 0.3);
+    let err_b = moment_half_width(&b) / ab - 1.0;
+    assert!(
+        err_b < -8e-3,
+        "the body-normal rows were expected to stall near −1 %: {err_b:e}"
+    );
 }

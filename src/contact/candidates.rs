@@ -1,12 +1,14 @@
 //! Contact candidates: one row of B u ≤ g per candidate node.
 //!
-//! Against a rigid obstacle (one row per boundary node of the pair)
+//! Each pair's target (rigid obstacle: `gap`; another body: `two_body`) says
+//! what a surface point sees, and `rows` turns that into nodal or mortar rows
+//! Σ c_k · u_k ≤ g. On the free DOFs a row reads
 //!
 //! ```text
-//! n_i · u_i ≤ s_i − n_i · ū_i     (ū: prescribed part of the displacement)
+//! Σ c_k · u_k ≤ g − Σ c_k · ū_k     (ū: prescribed part of the displacement)
 //! ```
 //!
-//! on the free DOFs; against another body, the rows of `two_body`. Every row is
+//! Every row is
 //! first written as nodal terms Σ c_k · u_k over the nodes it touches (fixed
 //! components included), from which the free-DOF row, the prescribed part of
 //! the gap, the rigid-mode coefficients and the nodal contact forces all follow.
@@ -14,11 +16,12 @@
 //! `prune_gap_ratio` of the body size) are dropped and counted.
 
 use super::foundation::{self, FoundationRow};
-use super::gap::gap_along_normal;
-use super::two_body::{self, Surface};
+use super::gap::{closest, gap_along_normal};
+use super::rows::{self, punch_coefficients, Rows, Seen, Surface};
+use super::two_body;
 use crate::fem::assembly::{DofMap, FIXED};
-use crate::mesh::{boundary::boundary_nodes, Mesh2d};
-use crate::proto::Discretization;
+use crate::mesh::{Mesh2d, Order};
+use crate::proto::{Discretization, GapMeasure};
 use crate::scene::{Scene, Target};
 
 #[derive(Debug, Clone)]
@@ -179,6 +182,7 @@ impl ConstraintSet {
 
 pub fn build(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> ConstraintSet {
     let mut set = ConstraintSet::default();
+    let signed = scene.settings.gap == GapMeasure::SignedDistance;
     for (p, pair) in scene.pairs.iter().enumerate() {
         // Relative to the pair's own bodies, not to the scene's length scale, so
         // that an unrelated body elsewhere changes nothing.
@@ -187,9 +191,44 @@ pub fn build(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> ConstraintSet {
                 Target::Obstacle(_) | Target::Foundation(_) => meshes[pair.body].size(),
                 Target::Body { body, .. } => meshes[pair.body].size().max(meshes[*body].size()),
             };
-        let pruned = match &pair.target {
-            Target::Obstacle(o) => against_obstacle(scene, p, *o, meshes, dofs, limit, &mut set.candidates),
-            Target::Foundation(f) => foundation::rows(scene, p, *f, meshes, dofs, &mut set.candidates),
+        let slave = Surface {
+            body: pair.body,
+            mesh: &meshes[pair.body],
+            edges: &meshes[pair.body].edge_sets[&pair.edges],
+        };
+        let rows = match &pair.target {
+            Target::Foundation(f) => {
+                set.pruned
+                    .push(foundation::rows(scene, p, *f, meshes, dofs, &mut set.candidates));
+                continue;
+            }
+            Target::Obstacle(o) => {
+                let obstacle = &scene.obstacles[*o];
+                let see = |x: [f64; 2], n_body: [f64; 2]| -> Option<Seen> {
+                    let (gap, dir, y) = if signed {
+                        let c = closest(&obstacle.shape, x)?;
+                        (c.distance, [-c.normal[0], -c.normal[1]], c.point)
+                    } else {
+                        (gap_along_normal(&obstacle.shape, x, n_body)?, n_body, x)
+                    };
+                    Some(Seen {
+                        gap,
+                        dir,
+                        other: Vec::new(),
+                        punch: obstacle
+                            .punch
+                            .as_ref()
+                            .map(|pu| punch_coefficients(y, pu.reference, dir)),
+                    })
+                };
+                if signed && slave.mesh.order == Order::T6 {
+                    // Gauss points on each half of an edge: the obstacle's
+                    // normal turns along the quadratic edge.
+                    rows::mortar(&slave, &see, limit, &|_| vec![0.0, 0.5, 1.0])
+                } else {
+                    rows::nodal(&slave, &see, limit)
+                }
+            }
             Target::Body {
                 body,
                 edges,
@@ -200,87 +239,83 @@ pub fn build(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> ConstraintSet {
                     mesh: &meshes[*body],
                     edges: &meshes[*body].edge_sets[edges],
                 };
-                let slave = Surface {
-                    body: pair.body,
-                    mesh: &meshes[pair.body],
-                    edges: &meshes[pair.body].edge_sets[&pair.edges],
-                };
-                let rows = match discretization {
-                    Discretization::NodeToSegment => two_body::node_to_segment(&slave, &master, limit),
-                    Discretization::Mortar => two_body::mortar(&slave, &master, limit),
-                };
-                let mut pruned = rows.pruned;
-                for r in rows.rows {
-                    let (row, g) = free_row(&r.terms, dofs, r.gap);
-                    if row.is_empty() && !moves_rigidly(&r.terms, dofs) {
-                        pruned += 1;
-                        continue;
+                let projection = two_body::Projection::new(&master);
+                let see = |x: [f64; 2], n: [f64; 2]| {
+                    if signed {
+                        projection.see(x, n, limit)
+                    } else {
+                        two_body::along_normal(&master, x, n, limit)
                     }
-                    set.candidates.push(Candidate {
-                        pair: p,
-                        body: pair.body,
-                        node: r.node,
-                        x: meshes[pair.body].nodes[r.node],
-                        normal: r.normal,
-                        weight: r.weight,
-                        terms: r.terms,
-                        row,
-                        g,
-                        punch: None,
-                        foundation: None,
-                    });
+                };
+                match discretization {
+                    Discretization::NodeToSegment => rows::nodal(&slave, &see, limit),
+                    Discretization::Mortar => rows::mortar(&slave, &see, limit, &two_body::mortar_breaks(&master)),
                 }
-                pruned
             }
         };
-        set.pruned.push(pruned);
+        let obstacle = match pair.target {
+            Target::Obstacle(o) => Some(o),
+            _ => None,
+        };
+        set.pruned.push(push_rows(
+            p,
+            pair.body,
+            obstacle,
+            rows,
+            scene,
+            meshes,
+            dofs,
+            &mut set.candidates,
+        ));
     }
     set
 }
 
-/// Node-to-rigid-obstacle rows of pair `p`; returns the number pruned.
-fn against_obstacle(
-    scene: &Scene,
+/// Turns rows into candidates on the free DOFs; returns how many were pruned
+/// (rows' own prunes, and rows whose nodes cannot move).
+#[allow(clippy::too_many_arguments)]
+fn push_rows(
     p: usize,
-    obstacle: usize,
+    body: usize,
+    obstacle: Option<usize>,
+    rows: Rows,
+    scene: &Scene,
     meshes: &[Mesh2d],
     dofs: &DofMap,
-    limit: f64,
     out: &mut Vec<Candidate>,
 ) -> usize {
-    let pair = &scene.pairs[p];
-    let mesh = &meshes[pair.body];
-    let shape = &scene.obstacles[obstacle].shape;
-    let mut pruned = 0;
-    for bn in boundary_nodes(mesh, &mesh.edge_sets[&pair.edges]) {
-        let x = mesh.nodes[bn.node];
-        let row =
-            gap_along_normal(shape, x, bn.normal).and_then(|s| node_row(pair.body, bn.node, bn.normal, s, limit, dofs));
-        let Some((terms, row, mut g)) = row else {
+    let mut pruned = rows.pruned;
+    for r in rows.rows {
+        let (row, mut g) = free_row(&r.terms, dofs, r.gap);
+        if row.is_empty() && !moves_rigidly(&r.terms, dofs) {
             pruned += 1;
             continue;
-        };
-        let punch = scene.obstacles[obstacle].punch.as_ref().map(|pu| {
-            let (dx, dy) = (x[0] - pu.reference[0], x[1] - pu.reference[1]);
-            let c = [bn.normal[0], bn.normal[1], dx * bn.normal[1] - dy * bn.normal[0]];
-            for (k, ctl) in pu.controls.iter().enumerate() {
-                if let crate::proto::Control::Displacement(v) = ctl {
-                    g += c[k] * v;
+        }
+        // A prescribed punch motion moves the obstacle: it opens the gap by c · β.
+        let punch = match (obstacle, r.punch) {
+            (Some(o), Some(c)) => {
+                if let Some(pu) = &scene.obstacles[o].punch {
+                    for (k, ctl) in pu.controls.iter().enumerate() {
+                        if let crate::proto::Control::Displacement(v) = ctl {
+                            g += c[k] * v;
+                        }
+                    }
                 }
+                Some((o, c))
             }
-            (obstacle, c)
-        });
+            _ => None,
+        };
         out.push(Candidate {
-            punch,
             pair: p,
-            body: pair.body,
-            node: bn.node,
-            x,
-            normal: bn.normal,
-            weight: bn.weight,
-            terms,
+            body,
+            node: r.node,
+            x: meshes[body].nodes[r.node],
+            normal: r.normal,
+            weight: r.weight,
+            terms: r.terms,
             row,
             g,
+            punch,
             foundation: None,
         });
     }

@@ -8,6 +8,10 @@
 //! n · u − (−n_y) w ≤ s,   s = (y0 − y) / n_y  (the gap along n)
 //! ```
 //!
+//! with n = (0, −1) and s = y − y0 under the default signed distance (the
+//! height above the flat foundation surface: exact), n the body's outward
+//! normal under `settings.gap = body_normal`.
+//!
 //! The foundation carries the row's force λ projected on the vertical,
 //! (−n_y) λ, spread over the row's panel (its node's share of the edge set,
 //! projected on x: the panels tile the body's footprint), so its deflection is
@@ -33,6 +37,7 @@ use super::candidates::{node_row, Candidate};
 use crate::error::{CoreError, InvalidKind};
 use crate::fem::DofMap;
 use crate::mesh::{boundary::boundary_nodes, Edge, Mesh2d};
+use crate::proto::GapMeasure;
 use crate::scene::{FoundationModel, Scene};
 
 /// A candidate row's link to its foundation.
@@ -97,7 +102,14 @@ pub fn rows(scene: &Scene, p: usize, f: usize, meshes: &[Mesh2d], dofs: &DofMap,
             pruned += 1;
             continue;
         }
-        let Some((terms, row, g)) = node_row(pair.body, bn.node, n, (fnd.y - x[1]) / n[1], limit, dofs) else {
+        // The foundation's surface is horizontal: its signed distance is the
+        // height above it and the row is vertical (exact); the body-normal
+        // form measures the gap along n instead.
+        let (n, s) = match scene.settings.gap {
+            GapMeasure::SignedDistance => ([0.0, -1.0], x[1] - fnd.y),
+            GapMeasure::BodyNormal => (n, (fnd.y - x[1]) / n[1]),
+        };
+        let Some((terms, row, g)) = node_row(pair.body, bn.node, n, s, limit, dofs) else {
             pruned += 1;
             continue;
         };

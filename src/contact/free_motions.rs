@@ -23,6 +23,11 @@ use crate::scene::Scene;
 
 pub const COMPONENT: [&str; 3] = ["horizontal", "vertical", "rotation"];
 
+/// Relative Gram eigenvalue below which a combination of free motions moves no
+/// candidate: a lever of 1e-6 of the motion, far above round-off (ε‖G‖) and far
+/// below any real lever (a circular punch's horizontal shift has n_x ≈ x/R).
+const NULL_COMBINATION: f64 = 1e-12;
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Motion {
     /// Component (0: horizontal, 1: vertical, 2: rotation) of a punch.
@@ -194,17 +199,24 @@ impl FreeMotions {
             (Vec::new(), Mat::zeros(0, 0))
         };
         let top = vals.last().copied().unwrap_or(0.0);
-        let null: Vec<usize> = (0..l).filter(|&e| vals[e] <= 1e-16 * top).collect();
+        // The Gram of unit columns is computed to about ε ‖G‖, so an exact null
+        // combination shows up as an eigenvalue of a few 1e-16, not 0: a
+        // circular punch's rotation about its own centre is a horizontal shift
+        // plus a rotation about its reference point, and the rows' radial
+        // directions make those two columns parallel.
+        let null: Vec<usize> = (0..l).filter(|&e| vals[e] <= NULL_COMBINATION * top).collect();
         let v = if null.is_empty() {
             Mat::<f64>::from_fn(n, l, |i, j| if i == live[j] { 1.0 } else { 0.0 })
         } else {
             for &e in &null {
+                // The eigenvector is accurate to about ε / (eigenvalue gap):
+                // components at that level are round-off, not part of the motion.
+                let biggest = (0..l).map(|a| vecs[(a, e)].abs()).fold(0.0, f64::max);
                 let dir: Vec<f64> = (0..n)
-                    .map(|i| {
-                        live.iter()
-                            .position(|&k| k == i)
-                            .map_or(0.0, |a| vecs[(a, e)] / norms[i])
-                    })
+                    .map(|i| live.iter().position(|&k| k == i).map_or(0.0, |a| vecs[(a, e)]))
+                    .map(|v| if v.abs() <= 1e-9 * biggest { 0.0 } else { v })
+                    .enumerate()
+                    .map(|(i, v)| if v == 0.0 { 0.0 } else { v / norms[i] })
                     .collect();
                 let work: f64 = (0..n).map(|i| dir[i] * motions[i].1).sum();
                 let scale: f64 = (0..n).map(|i| (dir[i] * load_scale[i]).abs()).sum();

@@ -6,6 +6,7 @@ pub mod foundation;
 pub mod free_motions;
 pub mod gap;
 pub mod rigid;
+pub mod rows;
 pub mod two_body;
 
 pub use candidates::{build, Candidate, ConstraintSet, Term};

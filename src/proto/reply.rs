@@ -178,17 +178,23 @@ pub struct ContactPoint {
     /// Undeformed position.
     pub x: f64,
     pub y: f64,
-    /// Gap after deformation, along the body's outward normal (≥ 0; 0 in contact).
+    /// Gap after deformation, along the row's direction `normal` (≥ 0; 0 in
+    /// contact): the distance to the obstacle or other body (`settings.gap`).
     pub gap: f64,
     /// Contact pressure, positive in compression (= −r_n) [force/length²].
     pub pressure: f64,
     /// Nodal contact force (per unit thickness) = pressure × tributary length.
     pub force: f64,
-    /// Tributary length ∫ N_i ds of the node on the contact edges.
+    /// Tributary length of the row: ∫ N_i ds of the node on the contact edges,
+    /// or ∫ Φ_i ds of its multiplier (mortar rows: two bodies, T6 against rigid
+    /// obstacles) over the part that sees the target.
     pub weight: f64,
     /// Node index in the body's mesh.
     pub node: usize,
-    /// Outward unit normal of the body at the node.
+    /// Unit direction of the row and of the contact force on the other side:
+    /// the obstacle's (or other body's) inward normal at the point facing the
+    /// node with `settings.gap = signed_distance`, the body's outward normal at
+    /// the node with `body_normal` (mean over the support for mortar rows).
     pub normal: [f64; 2],
 }
 

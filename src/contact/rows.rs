@@ -1,0 +1,280 @@
+//! From "what a point of the contact surface sees" to rows of B u ≤ g.
+//!
+//! Every contact target (rigid obstacle, another body) answers one question
+//! for a point x of the pair's own surface (the slave side): `Seen`, the gap
+//! g(x) and the row direction n(x) of the linearized condition
+//!
+//! ```text
+//! n · u(x) − n · u_t(y) − c · β ≤ g,
+//! ```
+//!
+//! with u_t(y) the target's displacement at the point y facing x (nodal
+//! weights of the other body's nodes) and c · β a punch's rigid motion. The
+//! rows are then
+//!
+//! - **nodal**: one row per surface node, at the node, with its tributary
+//!   length w_i = ∫ N_i ds as weight (pressure p_i = λ_i / w_i);
+//! - **mortar**: row i is ∫ Φ_i (·) ds / ∫ Φ_i ds over the part of the surface
+//!   that sees the target, Φ_i the multiplier functions: the linear hats on T3
+//!   edges, and on T6 edges the linear functions of the two corners (a
+//!   lower-order multiplier space: quadratic nodal multipliers let the pressure
+//!   alternate between corner and midside nodes, measured 2.5–3 % of p0 on the
+//!   Hertz scenes). Its multiplier is the force λ_i = p_i w_i of the pressure
+//!   field Σ p_i Φ_i; since Σ Φ_i = 1 a uniform pressure is transmitted exactly.
+
+use std::collections::HashMap;
+
+use super::candidates::Term;
+use crate::mesh::{boundary::boundary_nodes, Edge, Mesh2d};
+
+/// An edge set of one body.
+pub struct Surface<'a> {
+    pub body: usize,
+    pub mesh: &'a Mesh2d,
+    pub edges: &'a [Edge],
+}
+
+/// What a surface point sees of its target.
+#[derive(Debug, Clone)]
+pub struct Seen {
+    pub gap: f64,
+    /// Unit row direction n (from the surface toward the target).
+    pub dir: [f64; 2],
+    /// (body, node, N_k(y)): the target's nodes whose motion at y closes the gap.
+    pub other: Vec<(usize, usize, f64)>,
+    /// A rigid punch's motion coefficients c (β = α1, α2, θ).
+    pub punch: Option<[f64; 3]>,
+}
+
+/// Answers `Seen` for a point x with the surface's outward normal there, or
+/// None when the point cannot meet the target (pruned).
+pub type See<'a> = dyn Fn([f64; 2], [f64; 2]) -> Option<Seen> + 'a;
+
+/// A surface node's row before the DOF map: Σ terms · u − punch · β ≤ gap.
+pub struct Row {
+    pub node: usize,
+    /// The row's direction (weighted mean over a mortar row's support).
+    pub normal: [f64; 2],
+    /// Tributary length: ∫ N_i ds (nodal) or ∫ Φ_i ds over the part that sees the target.
+    pub weight: f64,
+    pub terms: Vec<Term>,
+    pub gap: f64,
+    pub punch: Option<[f64; 3]>,
+}
+
+pub struct Rows {
+    pub rows: Vec<Row>,
+    pub pruned: usize,
+}
+
+/// The rigid motion coefficients c of a punch point y for the row direction n:
+/// the punch moves y by (α1 − θ (y_y − r_y), α2 + θ (y_x − r_x)), which closes
+/// the gap by −n · that motion.
+pub fn punch_coefficients(y: [f64; 2], reference: [f64; 2], n: [f64; 2]) -> [f64; 3] {
+    let (dx, dy) = (y[0] - reference[0], y[1] - reference[1]);
+    [n[0], n[1], dx * n[1] - dy * n[0]]
+}
+
+/// Adds c · v to the coefficient of `node` of `body` in `terms`.
+pub fn add(terms: &mut Vec<Term>, body: usize, node: usize, v: [f64; 2], c: f64) {
+    let coef = [c * v[0], c * v[1]];
+    match terms.iter_mut().find(|t| t.body == body && t.node == node) {
+        Some(t) => {
+            t.coef[0] += coef[0];
+            t.coef[1] += coef[1];
+        }
+        None => terms.push(Term { body, node, coef }),
+    }
+}
+
+fn add_other(terms: &mut Vec<Term>, seen: &Seen, scale: f64) {
+    for &(body, node, m) in &seen.other {
+        if m != 0.0 {
+            add(terms, body, node, seen.dir, -scale * m);
+        }
+    }
+}
+
+/// One row per surface node (node-to-target).
+pub fn nodal(surface: &Surface, see: &See, limit: f64) -> Rows {
+    let mut out = Rows {
+        rows: Vec::new(),
+        pruned: 0,
+    };
+    for bn in boundary_nodes(surface.mesh, surface.edges) {
+        let x = surface.mesh.nodes[bn.node];
+        let Some(seen) = see(x, bn.normal).filter(|s| s.gap <= limit) else {
+            out.pruned += 1;
+            continue;
+        };
+        let mut terms = vec![Term {
+            body: surface.body,
+            node: bn.node,
+            coef: seen.dir,
+        }];
+        add_other(&mut terms, &seen, 1.0);
+        out.rows.push(Row {
+            node: bn.node,
+            normal: seen.dir,
+            weight: bn.weight,
+            terms,
+            gap: seen.gap,
+            punch: seen.punch,
+        });
+    }
+    out
+}
+
+/// Shape functions and their derivatives on an edge, ξ ∈ [0, 1], nodes in
+/// edge order a, (mid), b.
+pub fn shape01(n_nodes: usize, xi: f64) -> ([f64; 3], [f64; 3]) {
+    if n_nodes == 2 {
+        ([1.0 - xi, xi, 0.0], [-1.0, 1.0, 0.0])
+    } else {
+        (
+            [
+                (1.0 - xi) * (1.0 - 2.0 * xi),
+                4.0 * xi * (1.0 - xi),
+                xi * (2.0 * xi - 1.0),
+            ],
+            [4.0 * xi - 3.0, 4.0 - 8.0 * xi, 4.0 * xi - 1.0],
+        )
+    }
+}
+
+/// Multiplier functions on an edge: the corners' linear functions (zero at a
+/// T6 midside, see the module doc).
+fn mult01(n_nodes: usize, xi: f64) -> [f64; 3] {
+    if n_nodes == 2 {
+        [1.0 - xi, xi, 0.0]
+    } else {
+        [1.0 - xi, 0.0, xi]
+    }
+}
+
+/// Point and tangent of an edge at ξ.
+pub fn edge_point(pts: &[[f64; 2]], xi: f64) -> ([f64; 2], [f64; 2]) {
+    let (n, dn) = shape01(pts.len(), xi);
+    let mut x = [0.0; 2];
+    let mut t = [0.0; 2];
+    for (k, p) in pts.iter().enumerate() {
+        for c in 0..2 {
+            x[c] += n[k] * p[c];
+            t[c] += dn[k] * p[c];
+        }
+    }
+    (x, t)
+}
+
+/// 4-point Gauss–Legendre on [−1, 1] (exact to degree 7).
+const GAUSS4: [[f64; 2]; 4] = [
+    [-0.861_136_311_594_052_6, 0.347_854_845_137_453_85],
+    [-0.339_981_043_584_856_26, 0.652_145_154_862_546_2],
+    [0.339_981_043_584_856_26, 0.652_145_154_862_546_2],
+    [0.861_136_311_594_052_6, 0.347_854_845_137_453_85],
+];
+
+#[derive(Default)]
+struct Acc {
+    weight: f64,
+    gap: f64,
+    normal: [f64; 2],
+    terms: Vec<Term>,
+    punch: Option<[f64; 3]>,
+}
+
+/// Mortar rows: each edge is integrated by 4-point Gauss on the sub-intervals
+/// between `breaks(edge)` (sorted, from 0 to 1), where the caller puts the
+/// kinks of what the points see (the projections of the other body's nodes), so
+/// that the products are integrated exactly on straight edges.
+pub fn mortar(surface: &Surface, see: &See, limit: f64, breaks: &dyn Fn(&[[f64; 2]]) -> Vec<f64>) -> Rows {
+    let mut order: Vec<usize> = Vec::new();
+    let mut acc: HashMap<usize, Acc> = HashMap::new();
+    for e in surface.edges {
+        let nodes: Vec<usize> = e.nodes().collect();
+        let pts: Vec<[f64; 2]> = nodes.iter().map(|&i| surface.mesh.nodes[i]).collect();
+        for w in breaks(&pts).windows(2) {
+            let (x0, x1) = (w[0], w[1]);
+            for g in &GAUSS4 {
+                let xi = x0 + 0.5 * (g[0] + 1.0) * (x1 - x0);
+                let (x, tan) = edge_point(&pts, xi);
+                let jac = (tan[0] * tan[0] + tan[1] * tan[1]).sqrt();
+                let n = [tan[1] / jac, -tan[0] / jac];
+                let Some(seen) = see(x, n).filter(|s| s.gap <= limit) else {
+                    continue;
+                };
+                let omega = 0.5 * g[1] * (x1 - x0) * jac;
+                let (sn, _) = shape01(nodes.len(), xi);
+                let phi = mult01(nodes.len(), xi);
+                for (i, &node) in nodes.iter().enumerate() {
+                    let wi = omega * phi[i];
+                    if wi == 0.0 {
+                        continue;
+                    }
+                    let a = acc.entry(node).or_insert_with(|| {
+                        order.push(node);
+                        Acc::default()
+                    });
+                    a.weight += wi;
+                    a.gap += wi * seen.gap;
+                    a.normal[0] += wi * seen.dir[0];
+                    a.normal[1] += wi * seen.dir[1];
+                    if let Some(c) = seen.punch {
+                        let p = a.punch.get_or_insert([0.0; 3]);
+                        for k in 0..3 {
+                            p[k] += wi * c[k];
+                        }
+                    }
+                    for (j, &nj) in nodes.iter().enumerate() {
+                        if sn[j] != 0.0 {
+                            add(&mut a.terms, surface.body, nj, seen.dir, wi * sn[j]);
+                        }
+                    }
+                    add_other(&mut a.terms, &seen, wi);
+                }
+            }
+        }
+    }
+    let full: HashMap<usize, f64> = boundary_nodes(surface.mesh, surface.edges)
+        .into_iter()
+        .map(|b| (b.node, b.weight))
+        .collect();
+    // Midside nodes carry no multiplier: they are not candidates.
+    let corners = full.len() - surface.edges.iter().filter(|e| e.mid.is_some()).count();
+    let mut out = Rows {
+        rows: Vec::new(),
+        pruned: corners - order.len(),
+    };
+    for node in order {
+        let a = acc.remove(&node).expect("accumulated");
+        // A node whose multiplier barely overlaps the target has no
+        // well-defined pressure.
+        if a.weight <= 1e-9 * full[&node] {
+            out.pruned += 1;
+            continue;
+        }
+        let gap = a.gap / a.weight;
+        if gap > limit {
+            out.pruned += 1;
+            continue;
+        }
+        let nl = (a.normal[0] * a.normal[0] + a.normal[1] * a.normal[1]).sqrt();
+        let inv = 1.0 / a.weight;
+        out.rows.push(Row {
+            node,
+            normal: [a.normal[0] / nl, a.normal[1] / nl],
+            weight: a.weight,
+            terms: a
+                .terms
+                .into_iter()
+                .map(|t| Term {
+                    coef: [t.coef[0] * inv, t.coef[1] * inv],
+                    ..t
+                })
+                .collect(),
+            gap,
+            punch: a.punch.map(|p| [p[0] * inv, p[1] * inv, p[2] * inv]),
+        });
+    }
+    out
+}
