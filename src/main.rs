@@ -71,6 +71,9 @@ enum Cmd {
         /// Largest accepted number of contact candidates.
         #[arg(long)]
         max_candidates: Option<usize>,
+        /// Longest accepted `load_factors` list (each factor is a full solve).
+        #[arg(long)]
+        max_load_steps: Option<usize>,
         /// Largest accepted request payload in bytes.
         #[arg(long, default_value_t = 64 << 20)]
         max_request_bytes: usize,
@@ -123,6 +126,26 @@ enum Cmd {
     },
 }
 
+/// `contact solve` exit codes: 0 solved (every load step), 1 the request was
+/// refused (an error reply), 2 the command itself failed (usage, files), 3 an
+/// answer that is not `solved` (max_iterations, numerical_error): its numbers
+/// must not be used as if they were.
+const EXIT_REFUSED: u8 = 1;
+const EXIT_NOT_SOLVED: u8 = 3;
+
+fn exit_code(reply: &contact::proto::SolveReply) -> ExitCode {
+    use contact::proto::SolveStatus::Solved;
+    let steps_solved = reply
+        .steps
+        .as_ref()
+        .is_none_or(|s| s.iter().all(|st| st.status == Solved));
+    if reply.status == Solved && steps_solved {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(EXIT_NOT_SOLVED)
+    }
+}
+
 fn main() -> ExitCode {
     match run() {
         Ok(code) => code,
@@ -153,9 +176,9 @@ fn run() -> anyhow::Result<ExitCode> {
             let (text, code) = match cli_files::solve(&file, &bytes, vtu.is_some()) {
                 Ok(reply) => {
                     cli_files::write_outputs(&reply, vtu.as_deref(), points_csv.as_deref())?;
-                    (out(&reply.shown), ExitCode::SUCCESS)
+                    (out(&reply.shown), exit_code(&reply.shown))
                 }
-                Err(err) => (out(&err), ExitCode::from(1)),
+                Err(err) => (out(&err), ExitCode::from(EXIT_REFUSED)),
             };
             // A closed pipe (e.g. `| head`) is the reader's choice, not an error of ours.
             let _ = writeln!(std::io::stdout().lock(), "{text}");
@@ -169,6 +192,7 @@ fn run() -> anyhow::Result<ExitCode> {
             queue_limit,
             max_dofs,
             max_candidates,
+            max_load_steps,
             max_request_bytes,
             max_solve_s,
             cache_mb,
@@ -193,6 +217,9 @@ fn run() -> anyhow::Result<ExitCode> {
             }
             if let Some(m) = max_candidates {
                 cfg.limits.max_candidates = m;
+            }
+            if let Some(m) = max_load_steps {
+                cfg.limits.max_load_steps = m;
             }
             let rt = tokio::runtime::Builder::new_multi_thread().enable_all().build()?;
             rt.block_on(contact::service::run(cfg))?;

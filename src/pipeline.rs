@@ -103,6 +103,10 @@ pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
         t.total += s.total;
     }
     let mut last = replies.pop().expect("at least one factor");
+    // The reply is only as good as its worst step.
+    if let Some(bad) = steps.iter().find(|st| st.status != SolveStatus::Solved) {
+        last.status = bad.status;
+    }
     last.timings = t;
     last.cache = if local.is_empty() { first_cache } else { CacheState::Off };
     last.steps = Some(steps);

@@ -155,3 +155,71 @@ fn too_many_candidates_are_refused() {
     assert_eq!(e.code, ErrorCode::TooLarge);
     assert_eq!(e.path, "/contacts");
 }
+
+/// The inline block on the vee with one more node: node 15 at (0, 0.5), where
+/// node 7 already is, used by no element (it made K singular: the reply was a
+/// `linear_algebra` error with no path).
+#[test]
+fn unused_and_coinciding_nodes_are_named() {
+    let mut req = base();
+    req["bodies"][0]["mesh"]["inline"]["nodes"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!([0.0, 0.5]));
+    expect(&req, ErrorCode::InvalidMesh, "/bodies/0/mesh/inline/nodes/15");
+    let e = solve(&req).unwrap_err();
+    assert!(
+        e.message.contains("used by no element") && e.message.contains("node 7"),
+        "{}",
+        e.message
+    );
+    // Used by an element instead of node 7: the mesh is split along a crack.
+    let elements = req["bodies"][0]["mesh"]["inline"]["elements"].as_array_mut().unwrap();
+    for el in elements.iter_mut().skip(8) {
+        for n in el.as_array_mut().unwrap() {
+            if n == 7 {
+                *n = json!(15);
+            }
+        }
+    }
+    let e = solve(&req).unwrap_err();
+    assert_eq!(e.path, "/bodies/0/mesh/inline/nodes/15", "{e:?}");
+    assert!(e.message.contains("nodes 7 and 15 coincide"), "{}", e.message);
+}
+
+/// Two separate squares in one body: refused, naming a node of the second piece.
+#[test]
+fn a_mesh_in_pieces_is_refused() {
+    let mut req = base();
+    let mesh = &mut req["bodies"][0]["mesh"]["inline"];
+    let nodes = mesh["nodes"].as_array_mut().unwrap();
+    let k = nodes.len();
+    nodes.extend([json!([5.0, 0.0]), json!([6.0, 0.0]), json!([6.0, 1.0])]);
+    mesh["elements"].as_array_mut().unwrap().push(json!([k, k + 1, k + 2]));
+    expect(
+        &req,
+        ErrorCode::InvalidMesh,
+        &format!("/bodies/0/mesh/inline/nodes/{k}"),
+    );
+}
+
+#[test]
+fn an_edge_to_a_missing_node_says_the_node_does_not_exist() {
+    let mut req = base();
+    req["bodies"][0]["mesh"]["inline"]["edge_sets"]["bottom"][0] = json!([0, 99]);
+    let e = solve(&req).unwrap_err();
+    assert_eq!(e.path, "/bodies/0/mesh/inline/edge_sets/bottom/0");
+    assert!(e.message.contains("node 99 does not exist"), "{}", e.message);
+}
+
+/// A load factor of 1.7e308 was answered `solved` with null pressures: the
+/// scaled loads overflow, so it is refused at its path; non-finite factors
+/// cannot be written in JSON, and too many steps are `too_large`.
+#[test]
+fn load_factors_are_bounded() {
+    let mut req = base();
+    req["load_factors"] = json!([1.0, 1.7e308]);
+    expect(&req, ErrorCode::InvalidRequest, "/load_factors/1");
+    req["load_factors"] = json!(vec![0.5; contact::scene::Limits::default().max_load_steps + 1]);
+    expect(&req, ErrorCode::TooLarge, "/load_factors");
+}

@@ -164,6 +164,8 @@ fn limits_are_reported_and_enforced() {
         "200000",
         "--max-candidates",
         "300",
+        "--max-load-steps",
+        "7",
         "--max-solve-s",
         "30",
     ]);
@@ -171,7 +173,7 @@ fn limits_are_reported_and_enforced() {
     assert_eq!(
         h["limits"],
         json!({"queue_limit": 1, "max_request_bytes": 200000, "max_dofs": 200000, "max_candidates": 300,
-               "max_solve_time_s": 30.0, "cache_limit_bytes": 2048u64 << 20})
+               "max_load_steps": 7, "max_solve_time_s": 30.0, "cache_limit_bytes": 2048u64 << 20})
     );
     assert_eq!(h["workers"], 1);
 

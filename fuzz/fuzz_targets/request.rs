@@ -11,6 +11,7 @@ fuzz_target!(|data: &[u8]| {
     let limits = contact::Limits {
         max_dofs: 20_000,
         max_candidates: 400,
+        max_load_steps: 10,
     };
     let start = Instant::now();
     let _deadline = contact::cancel::Deadline::install(Duration::from_millis(250));

@@ -50,7 +50,7 @@ impl Parsed {
         let scaled: Vec<[f64; 2]> = self.nodes.iter().map(|p| [p[0] / length, p[1] / length]).collect();
         let locate = |item: quality::Item| {
             let context = match item {
-                quality::Item::Nodes | quality::Item::Elements => "Gmsh mesh: ".to_string(),
+                quality::Item::Nodes | quality::Item::Elements | quality::Item::Node(_) => "Gmsh mesh: ".to_string(),
                 quality::Item::Element(e) | quality::Item::ElementNode(e, _) => {
                     let (tag, entity) = self.element_tags[e];
                     format!("Gmsh element {tag} (surface entity {entity}): ")

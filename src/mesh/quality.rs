@@ -15,6 +15,8 @@ const MIN_SHAPE_RATIO: f64 = 1e-8;
 #[derive(Debug, Clone, Copy)]
 pub enum Item<'a> {
     Nodes,
+    /// Node k.
+    Node(usize),
     Elements,
     Element(usize),
     /// Local node `k` of element `e`.
@@ -34,6 +36,7 @@ pub fn try_inline(
     let locate = |item: Item| {
         let p = match item {
             Item::Nodes => format!("{path}/nodes"),
+            Item::Node(k) => format!("{path}/nodes/{k}"),
             Item::Elements => format!("{path}/elements"),
             Item::Element(e) => format!("{path}/elements/{e}"),
             Item::ElementNode(e, k) => format!("{path}/elements/{e}/{k}"),
@@ -133,6 +136,7 @@ pub fn try_build(
         }
         elems.extend_from_slice(el);
     }
+    check_nodes(nodes, elements, &bad)?;
     // Edge (oriented as in its element, with its midside node) by corner pair; count uses.
     let mut owner: HashMap<(usize, usize), Edge> = HashMap::new();
     let mut uses: HashMap<(usize, usize), usize> = HashMap::new();
@@ -152,6 +156,12 @@ pub fn try_build(
         }
         let mut out = Vec::with_capacity(edges.len());
         for (k, &[a, b]) in edges.iter().enumerate() {
+            if let Some(&n) = [a, b].iter().find(|&&n| n >= nodes.len()) {
+                return Err(bad(
+                    Item::Edge(name, k),
+                    format!("node {n} does not exist (the mesh has {} nodes)", nodes.len()),
+                ));
+            }
             let key = (a.min(b), a.max(b));
             match (owner.get(&key), uses.get(&key)) {
                 (Some(&edge), Some(1)) => out.push(edge),
@@ -177,4 +187,85 @@ pub fn try_build(
         elems,
         edge_sets: sets,
     })
+}
+
+/// Nodes that coincide to this fraction of the mesh's extent are one point
+/// (coordinates typed by hand or exported at 1e-12 relative agree to it).
+const COINCIDE: f64 = 1e-12;
+
+/// Every node is used, no two nodes coincide, and the elements form one
+/// connected piece: an unused node makes K singular, coinciding nodes split
+/// the body along a crack it does not have, and separate pieces are separate
+/// bodies (each needs its own supports or contact).
+fn check_nodes(
+    nodes: &[[f64; 2]],
+    elements: &[Vec<usize>],
+    bad: &dyn Fn(Item, String) -> CoreError,
+) -> Result<(), CoreError> {
+    let mut used = vec![false; nodes.len()];
+    for el in elements {
+        for &n in el {
+            used[n] = true;
+        }
+    }
+    // Coinciding nodes: sweep in x order, comparing within the tolerance.
+    let tol = COINCIDE * super::extent(nodes);
+    let mut order: Vec<usize> = (0..nodes.len()).collect();
+    order.sort_by(|&a, &b| nodes[a][0].total_cmp(&nodes[b][0]).then(a.cmp(&b)));
+    for (k, &i) in order.iter().enumerate() {
+        for &j in &order[k + 1..] {
+            if nodes[j][0] - nodes[i][0] > tol {
+                break;
+            }
+            if (nodes[j][1] - nodes[i][1]).abs() <= tol {
+                let (first, second) = (i.min(j), i.max(j));
+                let unused = [first, second].into_iter().find(|&n| !used[n]);
+                return Err(match unused {
+                    Some(n) => bad(
+                        Item::Node(n),
+                        format!(
+                            "node {n} is used by no element (it coincides with node {})",
+                            if n == first { second } else { first }
+                        ),
+                    ),
+                    None => bad(
+                        Item::Node(second),
+                        format!(
+                            "nodes {first} and {second} coincide: the mesh is split there (merge them into one node)"
+                        ),
+                    ),
+                });
+            }
+        }
+    }
+    if let Some(n) = used.iter().position(|u| !u) {
+        return Err(bad(Item::Node(n), format!("node {n} is used by no element")));
+    }
+    // Connected pieces: union-find over the elements' nodes.
+    let mut parent: Vec<usize> = (0..nodes.len()).collect();
+    fn root(parent: &mut [usize], mut a: usize) -> usize {
+        while parent[a] != a {
+            parent[a] = parent[parent[a]];
+            a = parent[a];
+        }
+        a
+    }
+    for el in elements {
+        for w in el.windows(2) {
+            let (a, b) = (root(&mut parent, w[0]), root(&mut parent, w[1]));
+            if a != b {
+                parent[a.max(b)] = a.min(b);
+            }
+        }
+    }
+    let first = root(&mut parent, 0);
+    if let Some(n) = (1..nodes.len()).find(|&n| root(&mut parent, n) != first) {
+        return Err(bad(
+            Item::Node(n),
+            format!(
+                "the mesh falls apart: node {n} belongs to a piece not connected to node 0; give each piece its own body (with its own supports or contact)"
+            ),
+        ));
+    }
+    Ok(())
 }

@@ -21,6 +21,9 @@ pub struct Limits {
     /// operator is dense: about 56·m² bytes (W, the trailing factor and Bᵀ), so
     /// 4000 candidates take about 0.9 GB.
     pub max_candidates: usize,
+    /// Longest `load_factors` list: each factor is a full contact solve and,
+    /// with `outputs`, a full set of fields in the reply.
+    pub max_load_steps: usize,
 }
 
 impl Default for Limits {
@@ -28,8 +31,43 @@ impl Default for Limits {
         Self {
             max_dofs: 2_500_000,
             max_candidates: 4_000,
+            max_load_steps: 100,
         }
     }
+}
+
+/// Largest |factor| × (largest nondimensional load or prescribed motion): the
+/// solve forms products of loads (W λ · λ, energies), which must stay finite,
+/// and a strain of 1e150 is meaningless long before.
+const MAX_SCALED_LOAD: f64 = 1e150;
+
+/// `load_factors`: a bounded list of finite factors whose scaled loads stay
+/// representable. `size`: the largest nondimensional load or prescribed motion.
+fn check_load_factors(factors: &[f64], size: f64, limits: &Limits) -> Result<(), CoreError> {
+    if factors.len() > limits.max_load_steps {
+        return Err(CoreError::TooLarge {
+            path: "/load_factors".into(),
+            reason: format!(
+                "{} load factors; this service solves at most {} load steps per request (split the list)",
+                factors.len(),
+                limits.max_load_steps
+            ),
+        });
+    }
+    for (k, &f) in factors.iter().enumerate() {
+        let path = format!("/load_factors/{k}");
+        finite(f, &path, InvalidKind::Request)?;
+        if f.abs() * size > MAX_SCALED_LOAD {
+            return Err(invalid(
+                InvalidKind::Request,
+                path,
+                format!(
+                    "load factor {f:e} scales the loads beyond what the solve can represent (|factor| × load must stay below {MAX_SCALED_LOAD:e} in units of E·L)"
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 fn invalid(kind: InvalidKind, path: impl Into<String>, reason: impl Into<String>) -> CoreError {
@@ -685,6 +723,19 @@ impl Scene {
             K::Request,
             "prune_gap_ratio",
         )?;
+
+        let load_size = bodies
+            .iter()
+            .flat_map(|b| {
+                let supports = b.supports.iter().flat_map(|s| [s.ux, s.uy]).flatten();
+                let tractions = b.tractions.iter().flat_map(|t| match t {
+                    Traction::Vector { t, .. } => vec![t[0], t[1]],
+                    Traction::Pressure { p, .. } => vec![*p],
+                });
+                supports.chain(tractions).chain(b.body_force).collect::<Vec<f64>>()
+            })
+            .fold(0.0f64, |a, v| a.max(v.abs()));
+        check_load_factors(&req.load_factors, load_size, limits)?;
 
         Ok(Scene {
             analysis: req.analysis,

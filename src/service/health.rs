@@ -79,6 +79,7 @@ pub struct LimitsReport {
     pub max_request_bytes: usize,
     pub max_dofs: usize,
     pub max_candidates: usize,
+    pub max_load_steps: usize,
     pub max_solve_time_s: f64,
     pub cache_limit_bytes: usize,
 }
@@ -147,6 +148,7 @@ impl State {
                 max_request_bytes: cfg.max_request_bytes,
                 max_dofs: cfg.limits.max_dofs,
                 max_candidates: cfg.limits.max_candidates,
+                max_load_steps: cfg.limits.max_load_steps,
                 max_solve_time_s: cfg.max_solve_time.as_secs_f64(),
                 cache_limit_bytes: cfg.cache_bytes,
             },

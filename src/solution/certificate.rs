@@ -80,7 +80,10 @@ impl Certificate {
             .max(self.complementarity)
             .max(self.equilibrium)
     }
+    /// Every entry finite (`worst` alone would hide a NaN: f64::max ignores it).
     pub fn is_finite(&self) -> bool {
-        self.worst().is_finite()
+        [self.primal, self.dual, self.complementarity, self.equilibrium]
+            .iter()
+            .all(|v| v.is_finite())
     }
 }
