@@ -20,7 +20,7 @@ use crate::proto::{
     SolveStatus, Timings,
 };
 use crate::scene::{parse::parse_request, Limits, MeshSource, Scene};
-use crate::solution::{certificate::certify, post};
+use crate::solution::{certificate::certify, post, validity};
 
 /// Bytes in, reply or structured error out: what the service and the CLI call.
 pub fn solve_bytes(bytes: &[u8], limits: &Limits) -> Result<SolveReply, ErrorReply> {
@@ -402,7 +402,25 @@ fn finish(
     } else {
         SolveStatus::Solved
     };
-    let bodies = body_outputs(scene, st.meshes, st.dofs, &sol.u, free.map(|p| (p, beta.as_slice())));
+    let disp = nodal_displacements(st.meshes, st.dofs, &sol.u, free.map(|p| (p, beta.as_slice())));
+    let punch_rotations: Vec<(usize, f64)> = match st.free {
+        Some(fm) => (0..scene.obstacles.len())
+            .filter(|&o| scene.obstacles[o].punch.is_some())
+            .map(|o| (o, free_motions::punch_motion(scene, fm, &beta, o)[2]))
+            .collect(),
+        None => Vec::new(),
+    };
+    let zones: Vec<Vec<[f64; 2]>> = pairs
+        .iter()
+        .map(|pr| {
+            pr.zones
+                .iter()
+                .map(|z| [z[0] / scene.scales.length, z[1] / scene.scales.length])
+                .collect()
+        })
+        .collect();
+    let warnings = validity::check(scene, st.meshes, &disp, st.cons, &punch_rotations, &zones);
+    let bodies = body_outputs(scene, st.meshes, &disp);
     timings.post = t.elapsed().as_secs_f64();
     timings.total = t_start.elapsed().as_secs_f64();
     let mut reply = SolveReply {
@@ -431,6 +449,7 @@ fn finish(
         bodies,
         foundations,
         notes,
+        warnings,
         vtu: None,
     };
     crate::output::attach_vtu(&mut reply, scene.outputs);
@@ -494,23 +513,15 @@ fn punch_results(
     out
 }
 
-/// Optional per-body fields, only when the request lists them.
-/// `free`: the free motions and their amplitudes β, whose body modes add R β
-/// to the displacement of bodies held by contact.
-fn body_outputs(
-    scene: &Scene,
+/// Nodal displacements of every body (nondimensional): the solved free DOFs,
+/// the prescribed ones, and the rigid motions of bodies held by contact
+/// (`free`: the free motions and their amplitudes β, whose body modes add R β).
+fn nodal_displacements(
     meshes: &[Mesh2d],
     dofs: &fem::DofMap,
     u: &[f64],
     free: Option<(&FreeMotions, &[f64])>,
-) -> Option<Vec<BodyOutput>> {
-    let o = scene.outputs;
-    if !(o.displacement || o.mesh || o.stress || o.vtu) {
-        return None;
-    }
-    // The VTU file needs every field; `output::attach_vtu` drops those not asked for.
-    let (o_mesh, o_displacement, o_stress) = (o.mesh || o.vtu, o.displacement || o.vtu, o.stress || o.vtu);
-    let sc = scene.scales;
+) -> Vec<Vec<[f64; 2]>> {
     let rigid = |b: usize, x: [f64; 2]| {
         let mut r = [0.0; 2];
         if let Some((fm, beta)) = free {
@@ -531,42 +542,52 @@ fn body_outputs(
         fem::assembly::FIXED => dofs.prescribed[d],
         k => u[k],
     };
+    meshes
+        .iter()
+        .enumerate()
+        .map(|(b, mesh)| {
+            (0..mesh.nodes.len())
+                .map(|n| {
+                    let r = rigid(b, mesh.nodes[n]);
+                    [value(dofs.dof(b, n, 0)) + r[0], value(dofs.dof(b, n, 1)) + r[1]]
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Optional per-body fields, only when the request lists them.
+fn body_outputs(scene: &Scene, meshes: &[Mesh2d], disp: &[Vec<[f64; 2]>]) -> Option<Vec<BodyOutput>> {
+    let o = scene.outputs;
+    if !(o.displacement || o.mesh || o.stress || o.vtu) {
+        return None;
+    }
+    // The VTU file needs every field; `output::attach_vtu` drops those not asked for.
+    let (o_mesh, o_displacement, o_stress) = (o.mesh || o.vtu, o.displacement || o.vtu, o.stress || o.vtu);
+    let sc = scene.scales;
     Some(
         scene
             .bodies
             .iter()
             .zip(meshes)
-            .enumerate()
-            .map(|(b, (body, mesh))| {
-                let disp = |node: usize| {
-                    let r = rigid(b, mesh.nodes[node]);
-                    [value(dofs.dof(b, node, 0)) + r[0], value(dofs.dof(b, node, 1)) + r[1]]
-                };
-                BodyOutput {
-                    name: body.name.clone(),
-                    nodes: o_mesh.then(|| mesh.nodes.iter().map(|p| [sc.length(p[0]), sc.length(p[1])]).collect()),
-                    elements: o_mesh.then(|| (0..mesh.n_elems()).map(|e| mesh.elem(e).to_vec()).collect()),
-                    displacement: o_displacement.then(|| {
-                        (0..mesh.nodes.len())
-                            .map(|n| {
-                                let d = disp(n);
-                                [sc.length(d[0]), sc.length(d[1])]
-                            })
-                            .collect()
-                    }),
-                    stress: o_stress.then(|| {
-                        let dm = d_matrix(body.youngs_modulus, body.poisson_ratio, scene.analysis);
-                        (0..mesh.n_elems())
-                            .map(|e| {
-                                let conn = mesh.elem(e);
-                                let x: Vec<[f64; 2]> = conn.iter().map(|&n| mesh.nodes[n]).collect();
-                                let ue: Vec<f64> = conn.iter().flat_map(|&n| disp(n)).collect();
-                                let s = element::centroid_stress(mesh.order, &x, &dm, &ue);
-                                [sc.stress(s[0]), sc.stress(s[1]), sc.stress(s[2])]
-                            })
-                            .collect()
-                    }),
-                }
+            .zip(disp)
+            .map(|((body, mesh), disp)| BodyOutput {
+                name: body.name.clone(),
+                nodes: o_mesh.then(|| mesh.nodes.iter().map(|p| [sc.length(p[0]), sc.length(p[1])]).collect()),
+                elements: o_mesh.then(|| (0..mesh.n_elems()).map(|e| mesh.elem(e).to_vec()).collect()),
+                displacement: o_displacement.then(|| disp.iter().map(|d| [sc.length(d[0]), sc.length(d[1])]).collect()),
+                stress: o_stress.then(|| {
+                    let dm = d_matrix(body.youngs_modulus, body.poisson_ratio, scene.analysis);
+                    (0..mesh.n_elems())
+                        .map(|e| {
+                            let conn = mesh.elem(e);
+                            let x: Vec<[f64; 2]> = conn.iter().map(|&n| mesh.nodes[n]).collect();
+                            let ue: Vec<f64> = conn.iter().flat_map(|&n| disp[n]).collect();
+                            let s = element::centroid_stress(mesh.order, &x, &dm, &ue);
+                            [sc.stress(s[0]), sc.stress(s[1]), sc.stress(s[2])]
+                        })
+                        .collect()
+                }),
             })
             .collect(),
     )

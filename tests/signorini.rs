@@ -399,3 +399,29 @@ fn elastic_cylinder_on_rigid_flat_matches_hertz() {
         "the body-normal rows were expected to stall near −1 %: {err_b:e}"
     );
 }
+
+/// The model is small strain with linearized gaps: a rigid cylinder R = 8
+/// pushed 3 deep into the block is still solved (the linear model has an
+/// answer) but the reply says which assumptions fail, with values and limits;
+/// the example's 0.12 indentation (a/R ≈ 0.085, largest strain 3.2 %, local
+/// rotation 0.08 rad) raises none.
+#[test]
+fn violated_assumptions_are_reported() {
+    let ok = solved(&example("signorini_hertz_cylinder.json"));
+    assert!(ok.warnings.is_empty(), "{:?}", ok.warnings);
+    let mut req = example("signorini_hertz_cylinder.json");
+    req["obstacles"][0]["shape"]["circle"]["center"][1] = json!(5.0);
+    let r = solved(&req);
+    let codes: Vec<&str> = r.warnings.iter().map(|w| w.code.as_str()).collect();
+    for code in ["large_strain", "large_contact_zone"] {
+        assert!(codes.contains(&code), "{code} missing from {:?}", r.warnings);
+    }
+    for w in &r.warnings {
+        assert!(w.value > w.limit, "{w:?}");
+    }
+    let zone = r.warnings.iter().find(|w| w.code == "large_contact_zone").unwrap();
+    assert_eq!(zone.location, "/contacts/0");
+    // The half-width over the radius, as the reply's own zone says.
+    let z = r.pairs[0].zones[0];
+    assert!((zone.value - 0.5 * (z[1] - z[0]) / 8.0).abs() < 1e-12);
+}

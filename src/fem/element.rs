@@ -181,17 +181,25 @@ pub fn body_load(order: Order, x: &[[f64; 2]], b: [f64; 2], fe: &mut [f64; 12]) 
     }
 }
 
-/// Centroid stress σ = D B u_e (xx, yy, xy).
-pub fn centroid_stress(order: Order, x: &[[f64; 2]], d: &[[f64; 3]; 3], ue: &[f64]) -> [f64; 3] {
+/// Displacement gradient at the centroid: [∂u_x/∂x, ∂u_x/∂y, ∂u_y/∂x, ∂u_y/∂y].
+pub fn centroid_gradient(order: Order, x: &[[f64; 2]], ue: &[f64]) -> [f64; 4] {
     let k = order_len(order);
     let (mut n, mut dx, mut dy) = ([0.0; 6], [0.0; 6], [0.0; 6]);
     gradients(order, x, 1.0 / 3.0, 1.0 / 3.0, &mut n, &mut dx, &mut dy);
-    let mut eps = [0.0; 3];
+    let mut g = [0.0; 4];
     for i in 0..k {
-        eps[0] += dx[i] * ue[2 * i];
-        eps[1] += dy[i] * ue[2 * i + 1];
-        eps[2] += dy[i] * ue[2 * i] + dx[i] * ue[2 * i + 1];
+        g[0] += dx[i] * ue[2 * i];
+        g[1] += dy[i] * ue[2 * i];
+        g[2] += dx[i] * ue[2 * i + 1];
+        g[3] += dy[i] * ue[2 * i + 1];
     }
+    g
+}
+
+/// Centroid stress σ = D B u_e (xx, yy, xy).
+pub fn centroid_stress(order: Order, x: &[[f64; 2]], d: &[[f64; 3]; 3], ue: &[f64]) -> [f64; 3] {
+    let g = centroid_gradient(order, x, ue);
+    let eps = [g[0], g[3], g[1] + g[2]];
     [
         d[0][0] * eps[0] + d[0][1] * eps[1] + d[0][2] * eps[2],
         d[1][0] * eps[0] + d[1][1] * eps[1] + d[1][2] * eps[2],

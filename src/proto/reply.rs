@@ -52,11 +52,36 @@ pub struct SolveReply {
     /// body held only by contact that nothing determines).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub notes: Vec<String>,
+    /// Assumptions of the model (small strain, small rotation, linearized
+    /// gaps) that this solution violates: its numbers answer the linear model,
+    /// which is then not a model of the physical scene. Limits: strain 5e-2,
+    /// rotation 0.15 rad, displacement 5e-2 of the body's size, contact
+    /// half-width 0.3 of a curved obstacle's radius, contact displacement 5e-2
+    /// of that radius.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<Warning>,
     /// With `outputs` listing `vtu`: the VTK XML unstructured grid of every body
     /// (point data `displacement`, `contact_pressure`; cell data `stress`,
     /// `body`), base64-encoded; decode and save as `.vtu` for ParaView.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub vtu: Option<String>,
+}
+
+/// A violated assumption of the model, with the measured value and the limit
+/// (both dimensionless).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Warning {
+    /// `large_strain` (largest principal strain), `large_rotation` (largest
+    /// material or punch rotation, radian), `large_displacement` (largest
+    /// displacement over the body's size), `large_contact_zone` (contact
+    /// half-width over the obstacle's radius), `gap_linearization` (largest
+    /// displacement of a contact point over the obstacle's radius).
+    pub code: String,
+    pub value: f64,
+    pub limit: f64,
+    /// JSON pointer of the body, obstacle or contact pair concerned.
+    pub location: String,
 }
 
 /// A punch's rigid motion and the loads on it (prescribed or reactions).

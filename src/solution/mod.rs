@@ -2,3 +2,4 @@
 
 pub mod certificate;
 pub mod post;
+pub mod validity;

@@ -56,6 +56,7 @@ __all__ = [
     "STAGES",
     "Client",
     "ContactError",
+    "NotSolved",
     "TransportError",
     "make_config",
     "solve",
@@ -103,6 +104,50 @@ class ContactError(Exception):
 
 class TransportError(Exception):
     """No structured answer: session failure, zenoh timeout, no reply, or a payload that is not the service's JSON."""
+
+
+class NotSolved(ContactError):
+    """The service answered, but the solve did not certify (``status`` is not
+    ``"solved"``: ``max_iterations`` or ``numerical_error``). ``code`` is the
+    status and ``reply`` the whole solve reply: its numbers must not be used as
+    an answer. Pass ``check=False`` to get such replies back instead."""
+
+    def __init__(self, reply: dict):
+        status = str(reply.get("status"))
+        cert = reply.get("certificate", {})
+        super().__init__(status, f"the solve ended '{status}' (method {reply.get('method')}, "
+                         f"{reply.get('iterations')} iterations, certificate {cert}); its pressures are not an answer",
+                         reply=reply)
+
+
+#: Default time a solve may take, seconds: the service's own default limit
+#: (``--max-solve-s 300``), so that neither side gives up before the other.
+DEFAULT_TIMEOUT_S = 300.0
+
+#: Attempts after the first on ``busy`` or a lost instance (a solve is a pure
+#: function of the request: repeating it is safe).
+DEFAULT_RETRIES = 2
+
+#: What the client keeps of its timeout for transport: the request's
+#: ``time_limit`` is the timeout less this fraction and ``TIME_LIMIT_MARGIN_S``,
+#: so the service stops the solve (and answers ``timeout``) before the client
+#: stops waiting, instead of solving on for nobody.
+TIME_LIMIT_MARGIN = 0.1
+TIME_LIMIT_MARGIN_S = 0.5
+
+
+def _with_time_limit(request: Request, timeout: float) -> Request:
+    """A dict request with ``time_limit`` no later than the client's timeout
+    allows (a smaller one of the request's own is kept); others unchanged."""
+    if not isinstance(request, dict):
+        return request
+    limit = timeout * (1.0 - TIME_LIMIT_MARGIN) - TIME_LIMIT_MARGIN_S
+    if limit < 1.0:
+        return request
+    own = request.get("time_limit")
+    if isinstance(own, (int, float)) and not isinstance(own, bool) and own <= limit:
+        return request
+    return {**request, "time_limit": limit}
 
 
 def make_config(connect: str = DEFAULT_CONNECT) -> zenoh.Config:
@@ -203,7 +248,7 @@ class Client:
             reply = c.solve(request)
     """
 
-    def __init__(self, connect: str = DEFAULT_CONNECT, timeout: float = 60.0, spread: bool = False):
+    def __init__(self, connect: str = DEFAULT_CONNECT, timeout: float = DEFAULT_TIMEOUT_S, spread: bool = False):
         self.connect = connect
         self.timeout = float(timeout)
         self.spread = spread
@@ -218,14 +263,21 @@ class Client:
             raise TransportError("client is closed")
         return self._session
 
-    def solve(self, request: Request, timeout: float | None = None, retries: int = 0,
-              progress: bool | Callable[[dict], Any] = False) -> dict:
+    def solve(self, request: Request, timeout: float | None = None, retries: int = DEFAULT_RETRIES,
+              progress: bool | Callable[[dict], Any] = False, check: bool = True) -> dict:
         """Solve one request; returns the reply dict.
 
-        Raises :class:`ContactError` for a structured error reply and
-        :class:`TransportError` when no structured answer arrives. Up to
-        ``retries`` more attempts follow a :class:`TransportError` or ``busy``
-        (with ``spread=True``, on another instance).
+        Raises :class:`ContactError` for a structured error reply,
+        :class:`NotSolved` (a ContactError) when the reply's status is not
+        ``solved`` (unless ``check=False``), and :class:`TransportError` when no
+        structured answer arrives. Up to ``retries`` more attempts (default 2,
+        with backoff) follow a :class:`TransportError` or ``busy`` (with
+        ``spread=True``, on another instance).
+
+        ``timeout`` (default: the client's, 300 s like the service's own solve
+        limit) also becomes the request's ``time_limit`` (less 10 % and 0.5 s
+        for transport) when the request is a dict without a smaller one, so
+        that the service stops a solve the client will no longer wait for.
 
         ``progress=True`` shows a tqdm bar over the solve's stages (mesh,
         assembly, factorization, condensation, contact_solve, post; needs
@@ -241,24 +293,29 @@ class Client:
             sink = progress if callable(progress) else _ProgressBar()
             sub = self.session.declare_subscriber(f"{KEY_PROGRESS}/{key}", lambda s: sink(_decode(s.payload)))
             try:
-                return self.solve(request, timeout, retries)
+                return self.solve(request, timeout, retries, check=check)
             finally:
                 sub.undeclare()
                 if isinstance(sink, _ProgressBar):
                     sink.close()
-        payload = encode_request(request)
         timeout = self.timeout if timeout is None else float(timeout)
+        payload = encode_request(_with_time_limit(request, timeout))
         backoff = BUSY_BACKOFF_S
         for attempt in range(retries + 1):
             key = self._solve_key()
             try:
-                return _query(self.session, key, payload, timeout)
+                reply = _query(self.session, key, payload, timeout)
+                if check and reply.get("status", "solved") != "solved":
+                    raise NotSolved(reply)
+                return reply
             except TransportError:
                 self._forget(key)
                 if attempt == retries:
                     raise
+                time.sleep(backoff)
+                backoff *= 2
             except ContactError as e:
-                if e.code != "busy" or attempt == retries:
+                if isinstance(e, NotSolved) or e.code != "busy" or attempt == retries:
                     raise
                 time.sleep(backoff)
                 backoff *= 2
@@ -319,11 +376,12 @@ class Client:
         self.close()
 
 
-def solve(request: Request, connect: str = DEFAULT_CONNECT, timeout: float = 60.0,
-          progress: bool | Callable[[dict], Any] = False) -> dict:
+def solve(request: Request, connect: str = DEFAULT_CONNECT, timeout: float = DEFAULT_TIMEOUT_S,
+          progress: bool | Callable[[dict], Any] = False, retries: int = DEFAULT_RETRIES,
+          check: bool = True) -> dict:
     """Solve one request on a session opened for this call. See :meth:`Client.solve`."""
     with Client(connect, timeout) as c:
-        return c.solve(request, progress=progress)
+        return c.solve(request, progress=progress, retries=retries, check=check)
 
 
 _UNSAFE_KEY_CHARS = set("/*$?#")

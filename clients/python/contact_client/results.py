@@ -65,9 +65,14 @@ def plot_pressure(result: dict, ax=None, reference: str | Callable[[float], floa
     callable p(x) in the reply's units, drawn as given. No overlay is guessed: without
     ``reference`` only the solver's pressures are drawn.
     """
+    import warnings
+
     import matplotlib.pyplot as plt
     import numpy as np
 
+    if result.get("status", "solved") != "solved":
+        warnings.warn(f"plotting a reply whose status is {result.get('status')!r}: its pressures are not an answer",
+                      stacklevel=2)
     if ax is None:
         _, ax = plt.subplots(figsize=(6.4, 4.0))
     ax.axhline(0.0, color="0.6", lw=0.5)

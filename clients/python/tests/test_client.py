@@ -162,3 +162,39 @@ def test_closed_client_refuses(service):
     c.close()
     with pytest.raises(TransportError):
         c.health()
+
+
+def _uncertifiable(req: dict) -> dict:
+    # A tolerance below round-off: no certificate can meet it, so the service
+    # answers numerical_error (deterministically) with the numbers attached.
+    return {**req, "settings": {"tolerance": 1e-30}}
+
+
+def test_a_reply_that_is_not_solved_raises(client):
+    from contact_client import NotSolved
+    with pytest.raises(NotSolved) as ei:
+        client.solve(_uncertifiable(square_block()))
+    assert ei.value.code == "numerical_error"
+    assert ei.value.reply["status"] == "numerical_error" and ei.value.reply["pairs"]
+    # check=False hands the reply back for inspection.
+    assert client.solve(_uncertifiable(square_block()), check=False)["status"] == "numerical_error"
+
+
+def test_cli_exit_code_says_not_solved(contact_bin, tmp_path):
+    import subprocess
+    path = tmp_path / "strict.json"
+    path.write_text(json.dumps(_uncertifiable(square_block())))
+    cp = subprocess.run([str(contact_bin), "solve", str(path)], capture_output=True, timeout=120)
+    assert cp.returncode == 3, cp.stderr
+    assert json.loads(cp.stdout)["status"] == "numerical_error"
+
+
+def test_the_timeout_becomes_the_time_limit():
+    from contact_client.client import _with_time_limit
+    # 60 s of waiting: the service is told to stop by 60·0.9 − 0.5 s.
+    assert _with_time_limit({"version": "1"}, 60.0)["time_limit"] == pytest.approx(53.5)
+    # A smaller limit of the request's own is kept; strings go verbatim.
+    assert _with_time_limit({"time_limit": 5.0}, 60.0)["time_limit"] == 5.0
+    assert _with_time_limit('{"version": "1"}', 60.0) == '{"version": "1"}'
+    # Below a second there is nothing sensible to ask for.
+    assert "time_limit" not in _with_time_limit({"version": "1"}, 1.0)
