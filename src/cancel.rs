@@ -63,15 +63,20 @@ impl Drop for Deadline {
 
 /// The request's own `time_limit` (seconds, at `path`), installed when given.
 pub fn request_limit(seconds: Option<f64>, path: &str) -> Result<Option<Deadline>, CoreError> {
-    let Some(s) = seconds else { return Ok(None) };
-    if !(s.is_finite() && s > 0.0) {
-        return Err(CoreError::invalid(
+    validate_time_limit(seconds, path)?;
+    Ok(seconds.map(|s| Deadline::install(Duration::from_secs_f64(s.min(1e9)))))
+}
+
+/// A request's `time_limit`, if any, is a positive finite number of seconds.
+pub fn validate_time_limit(seconds: Option<f64>, path: &str) -> Result<(), CoreError> {
+    match seconds {
+        Some(s) if !(s.is_finite() && s > 0.0) => Err(CoreError::invalid(
             InvalidKind::Request,
             path,
             format!("time_limit must be a positive number of seconds, got {s}"),
-        ));
+        )),
+        _ => Ok(()),
     }
-    Ok(Some(Deadline::install(Duration::from_secs_f64(s.min(1e9)))))
 }
 
 /// Whether this thread's deadline has passed (false without one).

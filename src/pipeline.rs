@@ -42,6 +42,18 @@ pub fn solve_bytes_cached(
     run().map_err(|e| ErrorReply::from(&e).with_client_id_of(bytes))
 }
 
+/// The checks of `solve_bytes` that come before any numerics: parse, the time
+/// limit, validation (with its size estimates). Cheap and bounded by the
+/// payload, so the service runs it on arrival and only valid work queues.
+pub fn check_bytes(bytes: &[u8], limits: &Limits) -> Result<(), ErrorReply> {
+    let run = || -> Result<(), CoreError> {
+        let req = parse_request(bytes)?;
+        crate::cancel::validate_time_limit(req.time_limit, "/time_limit")?;
+        Scene::try_new(&req, limits).map(|_| ())
+    };
+    run().map_err(|e| ErrorReply::from(&e).with_client_id_of(bytes))
+}
+
 pub fn build_meshes(scene: &Scene) -> Vec<Mesh2d> {
     scene
         .bodies

