@@ -20,11 +20,12 @@ pub fn parse_request(bytes: &[u8]) -> Result<SolveRequest, CoreError> {
             serde_json::Value::Bool(_) => "a boolean",
             _ => "null",
         };
-        return Err(CoreError::Malformed {
-            message: format!(
-                "the request must be a JSON object {{\"version\": \"1\", \"bodies\": [...], ...}}, got {kind}"
-            ),
-        });
+        // Valid JSON of the wrong shape: an invalid request, not a malformed one.
+        return Err(CoreError::invalid(
+            InvalidKind::Request,
+            "",
+            format!("the request must be a JSON object {{\"version\": \"1\", \"bodies\": [...], ...}}, got {kind}"),
+        ));
     }
     let req: SolveRequest = serde_path_to_error::deserialize(value).map_err(|e| {
         let path = pointer(e.path());
@@ -103,7 +104,14 @@ mod tests {
 
     #[test]
     fn a_payload_that_is_not_an_object_is_said_so() {
-        assert!(message("[1, 2]").contains("must be a JSON object"));
-        assert!(message("42").contains("got a number"));
+        for (text, kind) in [("[1, 2]", "got an array"), ("42", "got a number")] {
+            let e = crate::proto::ErrorReply::from(&parse_request(text.as_bytes()).unwrap_err());
+            assert_eq!(e.code, crate::proto::ErrorCode::InvalidRequest);
+            assert!(
+                e.message.contains("must be a JSON object") && e.message.contains(kind),
+                "{}",
+                e.message
+            );
+        }
     }
 }
