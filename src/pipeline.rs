@@ -173,12 +173,20 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
                 "load-controlled punches, bodies held only by contact and foundations are solved on the condensed formulation only",
             ));
         }
+        if !cons.rows_are_nodal() {
+            return Err(CoreError::invalid(
+                InvalidKind::Request,
+                "/settings/formulation",
+                "the full formulation needs nodal contact rows (one node per row, as T3 and discretization 'nodal' give); mortar rows (the T6 default) and two-body rows are solved on the condensed formulation only",
+            ));
+        }
         return solve_full(scene, &meshes, dofs, cons, &free, &external, timings, t, t_start);
     }
     if scene.method == MethodName::Auto
         && free.motions.is_empty()
         && dofs.rigid.is_empty()
         && foundations.is_empty()
+        && cons.rows_are_nodal()
         && full_is_cheaper(dofs.n_free, cons.len())
     {
         return solve_full(scene, &meshes, dofs, cons, &free, &external, timings, t, t_start);
@@ -396,6 +404,7 @@ fn finish(
         }
     }
     notes.extend(st.free.map(|p| p.notes.clone()).unwrap_or_default());
+    notes.extend(sol.fallback.clone());
     let foundations = st
         .foundations
         .map(|(f, _)| foundation_results(scene, st.cons, f, &sol.lambda))

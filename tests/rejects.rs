@@ -223,3 +223,20 @@ fn load_factors_are_bounded() {
     req["load_factors"] = json!(vec![0.5; contact::scene::Limits::default().max_load_steps + 1]);
     expect(&req, ErrorCode::TooLarge, "/load_factors");
 }
+
+/// The full formulation turns each contact row into one rotated nodal
+/// coordinate; T6 rows against an obstacle are mortar rows over three nodes,
+/// so a full-formulation request on them is refused at the setting (it once
+/// reached an internal assertion), while `auto` stays on the condensed path.
+#[test]
+fn full_formulation_needs_nodal_rows() {
+    let mut req = example("signorini_hertz_cylinder.json");
+    req["bodies"][0]["mesh"]["rectangle"]["element"] = json!("t6");
+    req["method"] = json!("active_set");
+    req["settings"] = json!({"formulation": "full"});
+    expect(&req, ErrorCode::InvalidRequest, "/settings/formulation");
+    req["method"] = json!("auto");
+    req["settings"] = json!({});
+    let r = solved(&req);
+    assert_kkt(&r, 1e-8);
+}

@@ -425,3 +425,55 @@ fn violated_assumptions_are_reported() {
     let z = r.pairs[0].zones[0];
     assert!((zone.value - 0.5 * (z[1] - z[0]) / 8.0).abs() < 1e-12);
 }
+
+/// A half-disk whose only horizontal restraint is the contact (u_x free on its
+/// flat face) is a mixed LCP with a free sideways motion. With body-normal
+/// rows the condensed active set cycles on it (200 iterations, max_iterations);
+/// `auto` must then hand over to the interior point method, say so, and give
+/// the exact answer: the same pressures as interior_point asked for directly,
+/// compression only, and a contact resultant equal to the load it carries.
+#[test]
+fn auto_falls_back_when_the_active_set_does_not_converge() {
+    let req = |method: &str| {
+        json!({
+            "version": "1",
+            "bodies": [{
+                "name": "disk",
+                "material": {"youngs_modulus": 1.0, "poisson_ratio": 0.3},
+                "mesh": {"half_disk": {"center": [0.0, 1.0], "radius": 1.0, "size": 0.125, "element": "t3",
+                         "facing": "down", "grading": {"h_min": 0.0044, "extent": 0.105}}},
+                "supports": [{"edges": "flat", "uy": -0.0075}]
+            }],
+            "obstacles": [{"name": "plane", "shape": {"line": {"point": [0.0, 0.0], "normal": [0.0, 1.0]}}}],
+            "contacts": [{"body": "disk", "edges": "arc", "obstacle": "plane"}],
+            "settings": {"gap": "body_normal"},
+            "method": method
+        })
+    };
+    let auto = solved(&req("auto"));
+    assert_kkt(&auto, 1e-8);
+    assert_eq!(auto.method, "interior_point");
+    assert!(
+        auto.notes
+            .iter()
+            .any(|n| n.contains("did not converge") && n.contains("interior point")),
+        "the fallback is not announced: {:?}",
+        auto.notes
+    );
+    let ipm = solved(&req("interior_point"));
+    let p0 = peak_pressure(&ipm);
+    assert!(p0 > 0.0);
+    for (a, b) in auto.pairs[0].points.iter().zip(&ipm.pairs[0].points) {
+        assert!(a.pressure >= 0.0, "tension at x = {}", a.x);
+        assert!(
+            (a.pressure - b.pressure).abs() < 1e-8 * p0,
+            "x = {}: {} vs {}",
+            a.x,
+            a.pressure,
+            b.pressure
+        );
+    }
+    // The disk is pushed down: the floor pushes it up, with no net sideways force.
+    assert!(auto.resultant.fy > 0.0);
+    assert!(auto.resultant.fx.abs() < 1e-8 * auto.resultant.fy);
+}

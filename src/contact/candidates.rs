@@ -136,6 +136,20 @@ impl ConstraintSet {
         }
         out
     }
+    /// Whether every row acts on one node along a unit direction and no two rows
+    /// share a DOF: what the full-system active set needs to turn each row into
+    /// one rotated coordinate. Mortar rows (T6) and two-body rows are not.
+    pub fn rows_are_nodal(&self) -> bool {
+        let mut seen = std::collections::HashSet::new();
+        self.candidates.iter().all(|c| {
+            let unit = match *c.row.as_slice() {
+                [(_, v)] => v != 0.0,
+                [(a, nx), (b, ny)] => a != b && ((nx * nx + ny * ny) - 1.0).abs() < 1e-12,
+                _ => false,
+            };
+            unit && c.terms.len() == 1 && c.row.iter().all(|&(d, _)| seen.insert(d))
+        })
+    }
     /// B x for x on the free DOFs.
     pub fn apply(&self, x: &[f64]) -> Vec<f64> {
         self.candidates

@@ -108,6 +108,7 @@ pub fn solve_condensed_mixed(
         method: name,
         exact,
         t_contact: t.elapsed().as_secs_f64(),
+        fallback: None,
     })
 }
 

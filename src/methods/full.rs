@@ -53,7 +53,7 @@ fn rotate(k: &SparseColMat<usize, f64>, cons: &ConstraintSet) -> Rotated {
                 coord.push((dx, 1.0));
             }
             [(d, cf)] => coord.push((d, cf)),
-            _ => unreachable!("a candidate row has one or two free DOFs"),
+            _ => unreachable!("ConstraintSet::rows_are_nodal admits only rows of one node"),
         }
     }
     let sym = k.symbolic();
@@ -217,6 +217,7 @@ fn solution(run: ActiveSetRun, name: &'static str, t: std::time::Instant, extra_
         method: name,
         exact: true,
         t_contact: t.elapsed().as_secs_f64(),
+        fallback: None,
     }
 }
 

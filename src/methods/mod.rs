@@ -80,11 +80,35 @@ pub struct Solution {
     pub t_contact: f64,
     /// Iterative-refinement steps the solves with K needed.
     pub refinements: usize,
+    /// Why another method ran instead of the first choice of `auto`.
+    pub fallback: Option<String>,
 }
 
 /// Runs the requested method (`auto` → condensed active set, the fastest exact
 /// method measured so far; see `contact bench`).
 pub fn solve(problem: &Problem, method: MethodName) -> Result<Solution, CoreError> {
+    let first = solve_with(problem, method)?;
+    if method != MethodName::Auto || first.converged || crate::cancel::expired() {
+        return Ok(first);
+    }
+    // `auto` must not fail where another exact method succeeds: the active set
+    // can cycle on a mixed LCP whose free motions are weakly resisted (a
+    // half-disk held sideways only by contact with body-normal rows: 200
+    // iterations, max_iterations; interior point: 15).
+    let mut second = solve_with(problem, MethodName::InteriorPoint)?;
+    if !second.converged {
+        return Ok(first);
+    }
+    second.fallback = Some(format!(
+        "auto: the active set did not converge ({} iterations); the interior point method ran instead",
+        first.iterations
+    ));
+    second.iterations += first.iterations;
+    second.t_contact += first.t_contact;
+    Ok(second)
+}
+
+fn solve_with(problem: &Problem, method: MethodName) -> Result<Solution, CoreError> {
     let weights: Vec<f64> = problem.cons.candidates.iter().map(|c| c.weight).collect();
     let d = penalty::springs(&weights, problem.zeta);
     let run = |name: &'static str, exact: bool, lcp: &dyn Fn(&faer::Mat<f64>, &[f64]) -> LcpResult| {
