@@ -54,7 +54,16 @@ pub fn check_bytes(bytes: &[u8], limits: &Limits) -> Result<(), ErrorReply> {
     run().map_err(|e| ErrorReply::from(&e).with_client_id_of(bytes))
 }
 
+/// The bodies' meshes in nondimensional coordinates: generated in the
+/// request's units, then scaled.
 pub fn build_meshes(scene: &Scene) -> Vec<Mesh2d> {
+    let length = scene.scales.length;
+    let scaled = |mut m: Mesh2d| {
+        for p in m.nodes.iter_mut() {
+            *p = [p[0] / length, p[1] / length];
+        }
+        m
+    };
     scene
         .bodies
         .iter()
@@ -66,15 +75,16 @@ pub fn build_meshes(scene: &Scene) -> Vec<Mesh2d> {
                 size,
                 grading,
                 order,
-            } => generate::rectangle(*corner, *width, *height, *size, *grading, *order),
-            MeshSource::HalfDisk {
+            } => scaled(generate::rectangle(*corner, *width, *height, *size, *grading, *order)),
+            MeshSource::Disk {
                 center,
                 radius,
                 down,
+                part,
                 size,
                 grading,
                 order,
-            } => generate::half_disk(*center, *radius, *down, *size, *grading, *order),
+            } => scaled(generate::disk(*center, *radius, *down, *part, *size, *grading, *order)),
             MeshSource::Inline(m) => m.clone(),
         })
         .collect()

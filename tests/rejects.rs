@@ -139,7 +139,44 @@ fn too_large_is_refused_before_meshing() {
     let mut r = example("signorini_hertz_cylinder.json");
     r["bodies"][0]["mesh"]["rectangle"]["grading"]["h_min"] = json!(1e-5);
     r["bodies"][0]["mesh"]["rectangle"]["grading"]["extent"] = json!(20.0);
-    expect(&r, ErrorCode::TooLarge, "/bodies");
+    expect(&r, ErrorCode::TooLarge, "/bodies/0/mesh/rectangle/grading/h_min");
+}
+
+/// `too_large` names the field to change and the smallest value accepted: that
+/// value is accepted and meshes within 10 % of the limit (the estimate is
+/// within ±7 % of the real count), and a value 10 % finer is refused again.
+#[test]
+fn too_large_names_the_field_and_an_accepted_value() {
+    let limits = contact::scene::Limits {
+        max_dofs: 20_000,
+        ..Default::default()
+    };
+    let run = |req: &Value| contact::solve_bytes(serde_json::to_string(req).unwrap().as_bytes(), &limits);
+    for (example_name, kind) in [
+        ("signorini_hertz_cylinder.json", "rectangle"),
+        ("signorini_roller_on_flat.json", "half_disk"),
+    ] {
+        let req = example(example_name);
+        let e = run(&req).expect_err("the example is above 20,000 DOF");
+        assert_eq!(e.code, ErrorCode::TooLarge);
+        assert_eq!(e.path, format!("/bodies/0/mesh/{kind}/grading/h_min"), "{}", e.message);
+        let value: f64 = e
+            .message
+            .split("grading/h_min ")
+            .nth(1)
+            .and_then(|rest| rest.split(' ').next())
+            .and_then(|v| v.parse().ok())
+            .unwrap_or_else(|| panic!("no value in: {}", e.message));
+        let with = |h_min: f64| {
+            let mut r = req.clone();
+            r["bodies"][0]["mesh"][kind]["grading"]["h_min"] = json!(h_min);
+            r
+        };
+        let reply = run(&with(value)).unwrap_or_else(|e| panic!("{example_name}: {value} refused: {e:?}"));
+        assert!(reply.size.dofs as f64 <= 1.1 * 20_000.0, "{} DOF", reply.size.dofs);
+        let again = run(&with(value / 1.1)).expect_err("10 % finer is above the limit");
+        assert_eq!(again.code, ErrorCode::TooLarge);
+    }
 }
 
 /// The dense condensed operator grows as m²: past the deployment's candidate

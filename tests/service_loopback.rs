@@ -189,7 +189,7 @@ fn limits_are_reported_and_enforced() {
     let r = query(&session, "contact/solve", &bytes(&fine));
     assert_eq!(
         (code(&r), r.1["path"].as_str().unwrap()),
-        ("too_large".into(), "/bodies")
+        ("too_large".into(), "/bodies/0/mesh/rectangle/size")
     );
     let roller = common::example("signorini_roller_on_flat.json");
     let r = query(&session, "contact/solve", &bytes(&roller));

@@ -8,9 +8,11 @@
 //!   the outward normal of edge a→b is (dy, −dx)/|ab|.
 
 pub mod boundary;
+pub mod estimate;
 pub mod generate;
 pub mod gmsh;
 pub mod quality;
+pub mod refine;
 
 use std::collections::BTreeMap;
 

@@ -107,6 +107,10 @@ pub enum MeshSpec {
     Rectangle(RectangleSpec),
     /// Half-disk; edge sets "flat" (the diameter) and "arc".
     HalfDisk(HalfDiskSpec),
+    /// The half of a half-disk on the +x side of its centre, for models
+    /// symmetric about the apex line; edge sets "flat", "arc" and "axis" (the
+    /// symmetry line x = center[0], to be held with ux = 0).
+    QuarterDisk(HalfDiskSpec),
     /// Explicit nodes, triangles and named edge sets.
     Inline(InlineMeshSpec),
     /// A Gmsh MSH 4.1 ASCII mesh: triangles (types 2, 9) make the body, the

@@ -7,6 +7,7 @@
 
 pub mod parse;
 pub mod scaling;
+mod size_limit;
 pub mod validate;
 
 pub use scaling::Scales;
@@ -78,6 +79,7 @@ pub struct Body {
 }
 
 /// How the body's mesh is obtained (generated lazily by the mesh stage).
+/// Generated meshes keep the request's units; `Inline` is nondimensional.
 #[derive(Debug, Clone)]
 pub enum MeshSource {
     Rectangle {
@@ -88,10 +90,11 @@ pub enum MeshSource {
         grading: Option<([f64; 2], Grading)>,
         order: Order,
     },
-    HalfDisk {
+    Disk {
         center: [f64; 2],
         radius: f64,
         down: bool,
+        part: crate::mesh::generate::DiskPart,
         size: f64,
         grading: Option<Grading>,
         order: Order,

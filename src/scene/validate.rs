@@ -5,10 +5,8 @@ use std::collections::BTreeSet;
 
 use super::*;
 use crate::error::{CoreError, InvalidKind};
-use crate::mesh::{
-    generate::{graded_count, Grading},
-    gmsh, quality,
-};
+use crate::mesh::generate::DiskPart;
+use crate::mesh::{generate::Grading, gmsh, quality};
 use crate::proto::{self, BodyRef, ElementKind, MeshSpec, ObstacleShape, OutputKind, SolveRequest};
 use crate::scene::{Psi, Punch};
 
@@ -112,28 +110,6 @@ fn order(e: ElementKind) -> Order {
     }
 }
 
-/// Nominal extent and node-count estimate of a body's mesh, before generation
-/// (`parsed`: the body's Gmsh file, read once in the first pass).
-fn mesh_extent_and_nodes(m: &MeshSpec, parsed: Option<&gmsh::Parsed>) -> (f64, f64) {
-    let factor = |e: ElementKind| if e == ElementKind::T6 { 4.0 } else { 1.0 };
-    match m {
-        MeshSpec::Rectangle(r) => {
-            let g = grading(r.grading.as_ref(), r.size, 1.0);
-            let nx = graded_count(r.width, g, r.size) * 2.0;
-            let ny = graded_count(r.height, g, r.size) * 2.0;
-            (r.width.max(r.height), nx * ny * factor(r.element))
-        }
-        MeshSpec::HalfDisk(d) => {
-            let g = grading(d.grading.as_ref(), d.size, 1.0);
-            let nt = graded_count(std::f64::consts::PI * d.radius, g, d.size) * 2.0;
-            let nr = graded_count(d.radius, g, d.size);
-            (2.0 * d.radius, nt * nr * factor(d.element))
-        }
-        MeshSpec::Inline(m) => (crate::mesh::extent(&m.nodes), m.nodes.len() as f64),
-        MeshSpec::Gmsh(_) => parsed.map_or((0.0, 0.0), gmsh::Parsed::extent_and_nodes),
-    }
-}
-
 /// Grading in units divided by `scale`; no grading is uniform at `size`.
 fn grading(g: Option<&proto::GradingSpec>, size: f64, scale: f64) -> Grading {
     match g {
@@ -159,6 +135,7 @@ fn edge_names(m: &MeshSpec, parsed: Option<&gmsh::Parsed>) -> BTreeSet<String> {
         }
         MeshSpec::Rectangle(_) => &["bottom", "right", "top", "left"],
         MeshSpec::HalfDisk(_) => &["flat", "arc"],
+        MeshSpec::QuarterDisk(_) => &["flat", "arc", "axis"],
         MeshSpec::Inline(i) => return i.edge_sets.keys().cloned().collect(),
     };
     names.iter().map(|s| s.to_string()).collect()
@@ -199,7 +176,7 @@ impl Scene {
         // First pass: raw numbers, to choose the scales.
         let mut length: f64 = 0.0;
         let mut modulus: f64 = 0.0;
-        let mut nodes_estimate = 0.0;
+        let mut nodes = Vec::with_capacity(req.bodies.len());
         let mut parsed = Vec::with_capacity(req.bodies.len());
         for (i, b) in req.bodies.iter().enumerate() {
             let p = format!("/bodies/{i}/material");
@@ -220,23 +197,20 @@ impl Scene {
                 )?),
                 _ => None,
             };
-            let (ext, n) = mesh_extent_and_nodes(&b.mesh, file.as_ref());
+            let (ext, n) = super::size_limit::extent_and_nodes(&b.mesh, file.as_ref());
             parsed.push(file);
             length = length.max(ext);
-            nodes_estimate += n;
+            nodes.push(n);
         }
         if !(length > 0.0 && length.is_finite()) {
             return Err(invalid(K::Mesh, "/bodies", "bodies have no extent"));
         }
-        if 2.0 * nodes_estimate > limits.max_dofs as f64 {
-            return Err(CoreError::TooLarge {
-                path: "/bodies".into(),
-                reason: format!(
-                    "about {:.0} degrees of freedom requested; this service accepts at most {}",
-                    2.0 * nodes_estimate,
-                    limits.max_dofs
-                ),
-            });
+        if 2.0 * nodes.iter().sum::<f64>() > limits.max_dofs as f64 {
+            let meshes: Vec<&MeshSpec> = req.bodies.iter().map(|b| &b.mesh).collect();
+            return Err(super::size_limit::too_large(&meshes, &nodes, limits.max_dofs));
+        }
+        for (i, b) in req.bodies.iter().enumerate() {
+            check_aspect(&b.mesh, &format!("/bodies/{i}/mesh"))?;
         }
         let scales = Scales { length, modulus };
         let l = |x: f64| x / length;
@@ -256,25 +230,32 @@ impl Scene {
             }
             names.push(name.clone());
             let mesh = match &b.mesh {
+                // In the request's units: a generated mesh depends on its own
+                // body's parameters only, not on the length scale that other
+                // bodies set (refinement is not continuous in round-off).
                 MeshSpec::Rectangle(r) => MeshSource::Rectangle {
-                    corner: lp(r.corner),
-                    width: l(r.width),
-                    height: l(r.height),
-                    size: l(r.size),
+                    corner: r.corner,
+                    width: r.width,
+                    height: r.height,
+                    size: r.size,
                     grading: r.grading.as_ref().map(|g| {
                         (
-                            lp(g.focus.unwrap_or([r.corner[0] + 0.5 * r.width, r.corner[1] + r.height])),
-                            grading(Some(g), r.size, length),
+                            g.focus.unwrap_or([r.corner[0] + 0.5 * r.width, r.corner[1] + r.height]),
+                            grading(Some(g), r.size, 1.0),
                         )
                     }),
                     order: order(r.element),
                 },
-                MeshSpec::HalfDisk(d) => MeshSource::HalfDisk {
-                    center: lp(d.center),
-                    radius: l(d.radius),
+                MeshSpec::HalfDisk(d) | MeshSpec::QuarterDisk(d) => MeshSource::Disk {
+                    center: d.center,
+                    radius: d.radius,
                     down: d.facing == proto::Facing::Down,
-                    size: l(d.size),
-                    grading: d.grading.as_ref().map(|g| grading(Some(g), d.size, length)),
+                    part: match &b.mesh {
+                        MeshSpec::QuarterDisk(_) => DiskPart::Quarter,
+                        _ => DiskPart::Half,
+                    },
+                    size: d.size,
+                    grading: d.grading.as_ref().map(|g| grading(Some(g), d.size, 1.0)),
                     order: order(d.element),
                 },
                 MeshSpec::Inline(m) => {
@@ -795,6 +776,29 @@ fn check_grading(g: &proto::GradingSpec, size: f64, path: &str) -> Result<(), Co
     Ok(())
 }
 
+/// Smallest side ratio of a generated rectangle: beyond it the sides are not
+/// distinct in double precision once scaled (the thin-strip tests run at
+/// 1/500). Checked after the size limit, which a thin rectangle of a sensible
+/// element size exceeds first.
+const MIN_ASPECT: f64 = 1e-6;
+
+fn check_aspect(m: &MeshSpec, path: &str) -> Result<(), CoreError> {
+    let MeshSpec::Rectangle(r) = m else { return Ok(()) };
+    let (thin, name) = if r.height < r.width {
+        (r.height, "height")
+    } else {
+        (r.width, "width")
+    };
+    if thin < MIN_ASPECT * r.width.max(r.height) {
+        return Err(invalid(
+            InvalidKind::Mesh,
+            format!("{path}/rectangle/{name}"),
+            format!("the rectangle is too thin to mesh: {name} {thin} is less than {MIN_ASPECT:e} of its other side"),
+        ));
+    }
+    Ok(())
+}
+
 fn check_mesh_spec(m: &MeshSpec, path: &str) -> Result<(), CoreError> {
     use InvalidKind as K;
     match m {
@@ -809,8 +813,13 @@ fn check_mesh_spec(m: &MeshSpec, path: &str) -> Result<(), CoreError> {
                 check_grading(g, r.size, &format!("{p}/grading"))?;
             }
         }
-        MeshSpec::HalfDisk(d) => {
-            let p = format!("{path}/half_disk");
+        MeshSpec::HalfDisk(d) | MeshSpec::QuarterDisk(d) => {
+            let kind = if matches!(m, MeshSpec::HalfDisk(_)) {
+                "half_disk"
+            } else {
+                "quarter_disk"
+            };
+            let p = format!("{path}/{kind}");
             finite(d.center[0], &format!("{p}/center/0"), K::Mesh)?;
             finite(d.center[1], &format!("{p}/center/1"), K::Mesh)?;
             positive(d.radius, &format!("{p}/radius"), K::Mesh, "radius")?;
