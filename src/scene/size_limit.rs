@@ -87,7 +87,12 @@ pub(super) fn too_large(meshes: &[&MeshSpec], nodes: &[f64], max_dofs: usize) ->
         format!("more degrees of freedom requested than can be counted; this service accepts at most {max_dofs}")
     };
     let largest = (0..meshes.len())
-        .filter(|&i| generated(meshes[i], Knob::Size, 1.0).is_some())
+        .filter(|&i| {
+            matches!(
+                meshes[i],
+                MeshSpec::Rectangle(_) | MeshSpec::HalfDisk(_) | MeshSpec::QuarterDisk(_)
+            )
+        })
         .max_by(|&a, &b| nodes[a].total_cmp(&nodes[b]));
     let Some(i) = largest else {
         return CoreError::TooLarge {

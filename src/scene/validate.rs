@@ -110,19 +110,13 @@ fn order(e: ElementKind) -> Order {
     }
 }
 
-/// Grading in units divided by `scale`; no grading is uniform at `size`.
-fn grading(g: Option<&proto::GradingSpec>, size: f64, scale: f64) -> Grading {
-    match g {
-        Some(g) => Grading {
-            h_min: g.h_min / scale,
-            ratio: g.ratio,
-            extent: g.extent / scale,
-        },
-        None => Grading {
-            h_min: size / scale,
-            ratio: 1.0,
-            extent: 0.0,
-        },
+/// The request's grading, in the request's units (generated meshes are made
+/// in them, see `MeshSource`).
+fn grading(g: &proto::GradingSpec) -> Grading {
+    Grading {
+        h_min: g.h_min,
+        ratio: g.ratio,
+        extent: g.extent,
     }
 }
 
@@ -241,7 +235,7 @@ impl Scene {
                     grading: r.grading.as_ref().map(|g| {
                         (
                             g.focus.unwrap_or([r.corner[0] + 0.5 * r.width, r.corner[1] + r.height]),
-                            grading(Some(g), r.size, 1.0),
+                            grading(g),
                         )
                     }),
                     order: order(r.element),
@@ -255,7 +249,7 @@ impl Scene {
                         _ => DiskPart::Half,
                     },
                     size: d.size,
-                    grading: d.grading.as_ref().map(|g| grading(Some(g), d.size, 1.0)),
+                    grading: d.grading.as_ref().map(grading),
                     order: order(d.element),
                 },
                 MeshSpec::Inline(m) => {
