@@ -235,9 +235,11 @@ pub fn build(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> ConstraintSet {
                             .map(|pu| punch_coefficients(y, pu.reference, dir)),
                     })
                 };
-                if signed && slave.mesh.order == Order::T6 {
-                    // Gauss points on each half of an edge: the obstacle's
-                    // normal turns along the quadratic edge.
+                if slave.mesh.order == Order::T6 {
+                    // Nodal rows on quadratic faces let the pressure alternate
+                    // between corners and midsides; the corners' dual mortar
+                    // rows do not (see `rows`). Gauss points on each half of an
+                    // edge: the normals turn along the quadratic edge.
                     rows::mortar(&slave, &see, limit, &|_| vec![0.0, 0.5, 1.0])
                 } else {
                     rows::nodal(&slave, &see, limit)

@@ -14,13 +14,19 @@
 //!
 //! - **nodal**: one row per surface node, at the node, with its tributary
 //!   length w_i = ∫ N_i ds as weight (pressure p_i = λ_i / w_i);
-//! - **mortar**: row i is ∫ Φ_i (·) ds / ∫ Φ_i ds over the part of the surface
-//!   that sees the target, Φ_i the multiplier functions: the linear hats on T3
-//!   edges, and on T6 edges the linear functions of the two corners (a
-//!   lower-order multiplier space: quadratic nodal multipliers let the pressure
-//!   alternate between corner and midside nodes, measured 2.5–3 % of p0 on the
-//!   Hertz scenes). Its multiplier is the force λ_i = p_i w_i of the pressure
-//!   field Σ p_i Φ_i; since Σ Φ_i = 1 a uniform pressure is transmitted exactly.
+//! - **mortar**: row i is ∫ Ψ_i (·) ds / ∫ Φ_i ds over the part of the surface
+//!   that sees the target. Φ_i are the linear hats of the multiplier nodes (the
+//!   nodes of T3 edges, the corners of T6 edges: quadratic nodal multipliers let
+//!   the pressure alternate between corner and midside nodes); Ψ_i are their
+//!   dual (biorthogonal) partners, ∫ Ψ_i Φ_j ds = δ_ij ∫ Φ_j ds, which on an
+//!   edge are 2 − 3ξ and 3ξ − 1 (Wohlmuth, SIAM J. Numer. Anal. 38, 2000).
+//!   Testing with Ψ makes the discrete pressure a local quantity: with the
+//!   standard Φ the pressure is an L2-type projection and rings next to the
+//!   zone edge, where it drops like a square root (measured on the elastic disk
+//!   on a flat, T6, 2h/a = 0.034: corner pressures alternating by ±4–8 % of p0
+//!   over the last five nodes; with Ψ the error is monotone and ≤ 1.2 %).
+//!   The multiplier is the force λ_i = p_i w_i with w_i = ∫ Φ_i ds; since
+//!   Σ Ψ_i = 1 a uniform pressure is still transmitted exactly.
 
 use std::collections::HashMap;
 
@@ -142,13 +148,14 @@ pub fn shape01(n_nodes: usize, xi: f64) -> ([f64; 3], [f64; 3]) {
     }
 }
 
-/// Multiplier functions on an edge: the corners' linear functions (zero at a
-/// T6 midside, see the module doc).
-fn mult01(n_nodes: usize, xi: f64) -> [f64; 3] {
+/// Multiplier functions on an edge, (Φ, Ψ): the linear hats of the end nodes
+/// (zero at a T6 midside) and their dual partners (see the module doc).
+fn mult01(n_nodes: usize, xi: f64) -> ([f64; 3], [f64; 3]) {
+    let (phi, psi) = ([1.0 - xi, xi], [2.0 - 3.0 * xi, 3.0 * xi - 1.0]);
     if n_nodes == 2 {
-        [1.0 - xi, xi, 0.0]
+        ([phi[0], phi[1], 0.0], [psi[0], psi[1], 0.0])
     } else {
-        [1.0 - xi, 0.0, xi]
+        ([phi[0], 0.0, phi[1]], [psi[0], 0.0, psi[1]])
     }
 }
 
@@ -174,13 +181,42 @@ const GAUSS4: [[f64; 2]; 4] = [
     [0.861_136_311_594_052_6, 0.347_854_845_137_453_85],
 ];
 
+/// A row tested with one family of functions: Σ ∫ f (·) ds.
+#[derive(Default)]
+struct Tested {
+    weight: f64,
+    gap: f64,
+    terms: Vec<Term>,
+    punch: Option<[f64; 3]>,
+}
+
+impl Tested {
+    fn add(&mut self, f: f64, seen: &Seen, body: usize, nodes: &[usize], sn: &[f64; 3]) {
+        self.weight += f;
+        self.gap += f * seen.gap;
+        if let Some(c) = seen.punch {
+            let p = self.punch.get_or_insert([0.0; 3]);
+            for k in 0..3 {
+                p[k] += f * c[k];
+            }
+        }
+        for (j, &nj) in nodes.iter().enumerate() {
+            if sn[j] != 0.0 {
+                add(&mut self.terms, body, nj, seen.dir, f * sn[j]);
+            }
+        }
+        add_other(&mut self.terms, seen, f);
+    }
+}
+
+/// A multiplier node's integrals: with Φ (its tributary length and normal) and
+/// the row tested with Ψ and with Φ.
 #[derive(Default)]
 struct Acc {
     weight: f64,
-    gap: f64,
     normal: [f64; 2],
-    terms: Vec<Term>,
-    punch: Option<[f64; 3]>,
+    dual: Tested,
+    standard: Tested,
 }
 
 /// Mortar rows: each edge is integrated by 4-point Gauss on the sub-intervals
@@ -205,9 +241,9 @@ pub fn mortar(surface: &Surface, see: &See, limit: f64, breaks: &dyn Fn(&[[f64; 
                 };
                 let omega = 0.5 * g[1] * (x1 - x0) * jac;
                 let (sn, _) = shape01(nodes.len(), xi);
-                let phi = mult01(nodes.len(), xi);
+                let (phi, psi) = mult01(nodes.len(), xi);
                 for (i, &node) in nodes.iter().enumerate() {
-                    let wi = omega * phi[i];
+                    let (wi, ti) = (omega * phi[i], omega * psi[i]);
                     if wi == 0.0 {
                         continue;
                     }
@@ -216,21 +252,10 @@ pub fn mortar(surface: &Surface, see: &See, limit: f64, breaks: &dyn Fn(&[[f64; 
                         Acc::default()
                     });
                     a.weight += wi;
-                    a.gap += wi * seen.gap;
                     a.normal[0] += wi * seen.dir[0];
                     a.normal[1] += wi * seen.dir[1];
-                    if let Some(c) = seen.punch {
-                        let p = a.punch.get_or_insert([0.0; 3]);
-                        for k in 0..3 {
-                            p[k] += wi * c[k];
-                        }
-                    }
-                    for (j, &nj) in nodes.iter().enumerate() {
-                        if sn[j] != 0.0 {
-                            add(&mut a.terms, surface.body, nj, seen.dir, wi * sn[j]);
-                        }
-                    }
-                    add_other(&mut a.terms, &seen, wi);
+                    a.dual.add(ti, &seen, surface.body, &nodes, &sn);
+                    a.standard.add(wi, &seen, surface.body, &nodes, &sn);
                 }
             }
         }
@@ -253,18 +278,27 @@ pub fn mortar(surface: &Surface, see: &See, limit: f64, breaks: &dyn Fn(&[[f64; 
             out.pruned += 1;
             continue;
         }
-        let gap = a.gap / a.weight;
+        // Ψ integrates to ∫ Φ over a whole support; where the target sees only
+        // part of it (an end of the target or of the pruned region) ∫ Ψ can
+        // vanish or turn negative, and the node keeps the standard row.
+        let t = if a.dual.weight >= 0.5 * a.weight {
+            a.dual
+        } else {
+            a.standard
+        };
+        let gap = t.gap / t.weight;
         if gap > limit {
             out.pruned += 1;
             continue;
         }
         let nl = (a.normal[0] * a.normal[0] + a.normal[1] * a.normal[1]).sqrt();
-        let inv = 1.0 / a.weight;
+        // Normalized by the tested weight, the multiplier is the row's force.
+        let inv = 1.0 / t.weight;
         out.rows.push(Row {
             node,
             normal: [a.normal[0] / nl, a.normal[1] / nl],
             weight: a.weight,
-            terms: a
+            terms: t
                 .terms
                 .into_iter()
                 .map(|t| Term {
@@ -273,7 +307,7 @@ pub fn mortar(surface: &Surface, see: &See, limit: f64, breaks: &dyn Fn(&[[f64; 
                 })
                 .collect(),
             gap,
-            punch: a.punch.map(|p| [p[0] * inv, p[1] * inv, p[2] * inv]),
+            punch: t.punch.map(|p| [p[0] * inv, p[1] * inv, p[2] * inv]),
         });
     }
     out
