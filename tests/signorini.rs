@@ -445,13 +445,16 @@ fn violated_assumptions_are_reported() {
 }
 
 /// A half-disk whose only horizontal restraint is the contact (u_x free on its
-/// flat face) is a mixed LCP with a free sideways motion. With body-normal
-/// rows the condensed active set cycles on it (200 iterations, max_iterations);
-/// `auto` must then hand over to the interior point method, say so, and give
-/// the exact answer: the same pressures as interior_point asked for directly,
+/// flat face) is a mixed LCP with a free sideways motion that every tilted
+/// body-normal row touches. The active set used to start from all those rows
+/// (gap = 0 on the whole arc, every force a tension), keep none of them and
+/// stop: max_iterations with every pressure negative (the interior point
+/// method solved it). Now it starts from the penetrating rows, completed to
+/// rows that carry the motion, and solves it itself: the same pressures as
+/// interior_point (to 1e-8 of the peak: both exact methods certify 1e-8),
 /// compression only, and a contact resultant equal to the load it carries.
 #[test]
-fn auto_falls_back_when_the_active_set_does_not_converge() {
+fn the_active_set_solves_a_body_held_sideways_by_contact() {
     let req = |method: &str| {
         json!({
             "version": "1",
@@ -468,20 +471,17 @@ fn auto_falls_back_when_the_active_set_does_not_converge() {
             "method": method
         })
     };
-    let auto = solved(&req("auto"));
-    assert_kkt(&auto, 1e-8);
-    assert_eq!(auto.method, "interior_point");
-    assert!(
-        auto.notes
-            .iter()
-            .any(|n| n.contains("did not converge") && n.contains("interior point")),
-        "the fallback is not announced: {:?}",
-        auto.notes
-    );
+    for method in ["active_set", "auto"] {
+        let r = solved(&req(method));
+        assert_kkt(&r, 1e-8);
+        assert_eq!(r.method, "active_set");
+        assert!(r.notes.iter().all(|n| !n.contains("did not converge")), "{:?}", r.notes);
+    }
+    let active = solved(&req("active_set"));
     let ipm = solved(&req("interior_point"));
     let p0 = peak_pressure(&ipm);
     assert!(p0 > 0.0);
-    for (a, b) in auto.pairs[0].points.iter().zip(&ipm.pairs[0].points) {
+    for (a, b) in active.pairs[0].points.iter().zip(&ipm.pairs[0].points) {
         assert!(a.pressure >= 0.0, "tension at x = {}", a.x);
         assert!(
             (a.pressure - b.pressure).abs() < 1e-8 * p0,
@@ -492,6 +492,6 @@ fn auto_falls_back_when_the_active_set_does_not_converge() {
         );
     }
     // The disk is pushed down: the floor pushes it up, with no net sideways force.
-    assert!(auto.resultant.fy > 0.0);
-    assert!(auto.resultant.fx.abs() < 1e-8 * auto.resultant.fy);
+    assert!(active.resultant.fy > 0.0);
+    assert!(active.resultant.fx.abs() < 1e-8 * active.resultant.fy);
 }

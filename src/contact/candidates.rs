@@ -165,6 +165,14 @@ impl ConstraintSet {
             }
         }
     }
+    /// Accumulates |B|ᵀ λ into y (λ ≥ 0 given).
+    pub fn apply_abs_transpose_into(&self, lambda: &[f64], y: &mut [f64]) {
+        for (c, &l) in self.candidates.iter().zip(lambda) {
+            for &(d, v) in &c.row {
+                y[d] += v.abs() * l;
+            }
+        }
+    }
     pub fn g(&self) -> Vec<f64> {
         self.candidates.iter().map(|c| c.g).collect()
     }

@@ -143,13 +143,67 @@ fn lawson_hanson(w: &Mat<f64>, q: &[f64], max_outer: usize) -> LcpResult {
 ///
 /// PDAS again: on the active set A, [W_AA C_A; C_Aᵀ 0][λ_A; β] = [−q_A; r], solved
 /// through the Schur complement C_Aᵀ W_AA⁻¹ C_A (size = number of free motions).
-/// Starts from every candidate under a punch (or penetrating), which for a flat
-/// punch is the answer and for a curved one shrinks in a few steps.
+/// Starts from the candidates that penetrate with the motions at rest, and
+/// every active set is completed to one that can carry the motions'
+/// equilibrium (`carrying`): without that, a set whose rows do not span the
+/// motions makes the saddle singular and the iteration stop. (Starting from
+/// every row the motions touch, as for a flat punch, failed where all rows
+/// touch a motion: a half-disk held sideways only by tilted body-normal rows
+/// solved gap = 0 on the whole arc, in tension everywhere, then found no row
+/// to keep: max_iterations after one step, every force negative.)
 pub fn solve_mlcp(w: &Mat<f64>, q: &[f64], c: &Mat<f64>, r: &[f64], s: &SolverSettings) -> (LcpResult, Vec<f64>) {
-    let start = (0..q.len())
-        .map(|i| q[i] < 0.0 || (0..c.ncols()).any(|j| c[(i, j)] != 0.0))
-        .collect();
+    let start = carrying((0..q.len()).map(|i| q[i] < 0.0).collect(), q, c);
     solve_mlcp_from(w, q, c, r, s, start)
+}
+
+/// The active set completed, if its rows of C do not span the motions, by the
+/// rows of smallest gap that add a direction: the nearest contacts are the
+/// ones that carry a motion's load first.
+fn carrying(mut active: Vec<bool>, gap: &[f64], c: &Mat<f64>) -> Vec<bool> {
+    let k = c.ncols();
+    if k == 0 {
+        return active;
+    }
+    let row = |i: usize| -> Vec<f64> { (0..k).map(|j| c[(i, j)]).collect() };
+    let scale = (0..gap.len())
+        .flat_map(|i| (0..k).map(move |j| (i, j)))
+        .fold(0.0f64, |a, (i, j)| a.max(c[(i, j)].abs()));
+    if scale == 0.0 {
+        return active;
+    }
+    // Orthonormal basis of the span of the active rows (Gram–Schmidt).
+    let mut basis: Vec<Vec<f64>> = Vec::new();
+    let adds = |v: Vec<f64>, basis: &mut Vec<Vec<f64>>| -> bool {
+        let mut v = v;
+        for b in basis.iter() {
+            let d: f64 = v.iter().zip(b).map(|(x, y)| x * y).sum();
+            v.iter_mut().zip(b).for_each(|(x, y)| *x -= d * y);
+        }
+        let n = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if n > 1e-8 * scale && basis.len() < k {
+            basis.push(v.into_iter().map(|x| x / n).collect());
+            true
+        } else {
+            false
+        }
+    };
+    for i in (0..gap.len()).filter(|&i| active[i]) {
+        adds(row(i), &mut basis);
+    }
+    if basis.len() == k {
+        return active;
+    }
+    let mut order: Vec<usize> = (0..gap.len()).filter(|&i| !active[i]).collect();
+    order.sort_by(|&a, &b| gap[a].total_cmp(&gap[b]));
+    for i in order {
+        if adds(row(i), &mut basis) {
+            active[i] = true;
+            if basis.len() == k {
+                break;
+            }
+        }
+    }
+    active
 }
 
 /// `solve_mlcp` from a given initial active set (warm start, crossover).
@@ -182,7 +236,7 @@ pub fn solve_mlcp_from(
         let gap: Vec<f64> = (0..m)
             .map(|i| wl[i] + q[i] + (0..k).map(|j| c[(i, j)] * beta[j]).sum::<f64>())
             .collect();
-        let next: Vec<bool> = (0..m).map(|i| lambda[i] - cpar * gap[i] > 0.0).collect();
+        let next = carrying((0..m).map(|i| lambda[i] - cpar * gap[i] > 0.0).collect(), &gap, c);
         if next == active {
             return (
                 LcpResult {
