@@ -25,6 +25,7 @@ pub enum CoreError {
         kind: InvalidKind,
         path: String,
         reason: String,
+        details: Option<Box<crate::proto::ErrorDetails>>,
     },
     /// Over a size limit.
     #[error("{reason} (at {path})")]
@@ -42,7 +43,16 @@ impl CoreError {
             kind,
             path: path.into(),
             reason: reason.into(),
+            details: None,
         }
+    }
+
+    /// The same refusal with its detail as data.
+    pub fn with_details(mut self, d: crate::proto::ErrorDetails) -> Self {
+        if let CoreError::Invalid { details, .. } = &mut self {
+            *details = Some(Box::new(d));
+        }
+        self
     }
 
     pub fn path(&self) -> &str {

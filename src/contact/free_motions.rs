@@ -18,7 +18,7 @@ use crate::error::{CoreError, InvalidKind};
 use crate::fem::{rigid_modes::RigidModes, DofMap};
 use crate::linalg::dense::sym_eigen_small;
 use crate::mesh::Mesh2d;
-use crate::proto::Control;
+use crate::proto::{Control, ErrorDetails, LoadBound};
 use crate::scene::Scene;
 
 pub const COMPONENT: [&str; 3] = ["horizontal", "vertical", "rotation"];
@@ -174,15 +174,23 @@ impl FreeMotions {
                 continue;
             }
             if motions[k].1.abs() > 1e-12 * load_scale[k] && motions[k].1 != 0.0 {
+                let (mo, load) = motions[k];
+                let bound = LoadBound {
+                    path: motion_path(scene, dofs, mo),
+                    value: load_value(scene, mo, load),
+                    min: Some(0.0),
+                    max: Some(0.0),
+                };
                 return Err(CoreError::invalid(
                     InvalidKind::IncompatibleLoads,
-                    motion_path(scene, dofs, motions[k].0),
+                    bound.path.clone(),
                     format!(
                         "no contact normal has a component along the {}, so contact cannot carry its load {}: it must be 0",
                         describe(k),
-                        load_words(scene, motions[k].0, motions[k].1)
+                        load_words(scene, mo, load)
                     ),
-                ));
+                )
+                .with_details(ErrorDetails { loads: vec![bound] }));
             }
             undetermined.push(unit(n, k));
         }
@@ -286,11 +294,19 @@ impl FreeMotions {
             let nz: Vec<usize> = (0..self.v.nrows()).filter(|&k| self.v[(k, j)] != 0.0).collect();
             (nz.len() == 1 && self.v[(nz[0], j)] == 1.0).then(|| nz[0])
         };
+        let mut bounds: Vec<(f64, LoadBound)> = Vec::new();
         let ranges: Vec<String> = bad
             .iter()
             .filter_map(|r| {
                 let k = original(r.component)?;
                 let (mo, load) = self.motions[k];
+                let b = LoadBound {
+                    path: motion_path(scene, dofs, mo),
+                    value: load_value(scene, mo, load),
+                    min: r.min.map(|v| load_value(scene, mo, v)),
+                    max: r.max.map(|v| load_value(scene, mo, v)),
+                };
+                bounds.push((outside(b.value, b.min, b.max), b));
                 let fmt =
                     |v: Option<f64>, inf: &str| v.map(|x| load_words(scene, mo, x)).unwrap_or_else(|| inf.to_string());
                 let what = match mo {
@@ -314,7 +330,11 @@ impl FreeMotions {
             })
             .collect();
         let first = original(bad[0].component).unwrap_or(0);
-        let (mo, _) = self.motions[first];
+        let path = bounds
+            .iter()
+            .max_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(_, b)| b.path.clone())
+            .unwrap_or_else(|| motion_path(scene, dofs, self.motions[first].0));
         let what: Vec<String> =
             self.motions
                 .iter()
@@ -325,9 +345,12 @@ impl FreeMotions {
                     }
                     acc
                 });
+        let details = ErrorDetails {
+            loads: bounds.into_iter().map(|(_, b)| b).collect(),
+        };
         Err(CoreError::invalid(
             InvalidKind::IncompatibleLoads,
-            motion_path(scene, dofs, mo),
+            path,
             if ranges.is_empty() {
                 format!(
                     "no non-negative contact pressure on the candidate zone balances the loads on {}",
@@ -340,7 +363,8 @@ impl FreeMotions {
                     ranges.join("; or ")
                 )
             },
-        ))
+        )
+        .with_details(details))
     }
 }
 
@@ -370,20 +394,40 @@ pub fn describe_motion(scene: &Scene, dofs: &DofMap, mo: Motion) -> String {
 }
 
 /// A load on a motion in the caller's units, with its kind.
-fn load_words(scene: &Scene, mo: Motion, v: f64) -> String {
+/// A load of a motion in the request's units (a force, a moment, or for a
+/// body's mixed rigid mode the nondimensional generalized load).
+fn load_value(scene: &Scene, mo: Motion, v: f64) -> f64 {
     let sc = scene.scales;
     match mo {
-        Motion::Punch { component: 2, .. } => format!("{:.6e}", sc.moment(v)),
-        Motion::Punch { .. } => format!("{:.6e}", sc.force(v)),
-        Motion::Body { dir: b, .. } => {
-            if b[2] == 0.0 {
-                format!("{:.6e}", sc.force(v))
-            } else if b[0] == 0.0 && b[1] == 0.0 {
-                format!("{:.6e} (moment about the body's centroid)", sc.moment(v))
-            } else {
-                format!("{v:.6e} (nondimensional generalized load)")
-            }
+        Motion::Punch { component: 2, .. } => sc.moment(v),
+        Motion::Punch { .. } => sc.force(v),
+        Motion::Body { dir: b, .. } if b[2] == 0.0 => sc.force(v),
+        Motion::Body { dir: b, .. } if b[0] == 0.0 && b[1] == 0.0 => sc.moment(v),
+        Motion::Body { .. } => v,
+    }
+}
+
+fn load_words(scene: &Scene, mo: Motion, v: f64) -> String {
+    let x = load_value(scene, mo, v);
+    match mo {
+        Motion::Body { dir: b, .. } if b[2] != 0.0 && b[0] == 0.0 && b[1] == 0.0 => {
+            format!("{x:.6e} (moment about the body's centroid)")
         }
+        Motion::Body { dir: b, .. } if b[2] != 0.0 => format!("{x:.6e} (nondimensional generalized load)"),
+        _ => format!("{x:.6e}"),
+    }
+}
+
+/// How far a value lies outside [min, max], relative to the nearer bound
+/// (0 inside): the measure by which the component most likely set wrong is
+/// chosen (a flat punch's |M| = 1.1 P a: 0.1 for M against 0.09 for P).
+fn outside(value: f64, min: Option<f64>, max: Option<f64>) -> f64 {
+    // Relative to the bound; a bound of 0 (a load that must vanish) by the value.
+    let rel = |d: f64, bound: f64| d / if bound != 0.0 { bound.abs() } else { value.abs() };
+    match (min, max) {
+        (Some(lo), _) if value < lo => rel(lo - value, lo),
+        (_, Some(hi)) if value > hi => rel(value - hi, hi),
+        _ => 0.0,
     }
 }
 

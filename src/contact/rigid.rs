@@ -43,8 +43,16 @@ fn lp(c: &Mat<f64>, rhs: &[f64], keep: &[usize], objective: Option<(usize, f64)>
         None => vec![0.0; m],
     };
     let p = CscMatrix::zeros((m, m));
+    // The ranges are reported to the user: Clarabel's default gap tolerance
+    // (1e-8, and 5e-5 when it settles for "almost solved") printed 9.999926 for
+    // a moment bound of exactly 10.
     let settings = DefaultSettingsBuilder::default()
         .verbose(false)
+        .tol_gap_abs(1e-13)
+        .tol_gap_rel(1e-13)
+        .tol_feas(1e-12)
+        .tol_ktratio(1e-10)
+        .max_iter(400)
         .build()
         .expect("static settings");
     let cones = [ZeroConeT(ne), NonnegativeConeT(m)];

@@ -42,12 +42,12 @@ pub enum ErrorCode {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ErrorReply {
-    pub version: String,
+    pub version: Box<str>,
     pub code: ErrorCode,
     pub message: String,
     /// JSON pointer into the request ("" for the whole request).
     pub path: String,
-    // Boxed strings and a u32 keep the error small: it is the `Err` of every solve.
+    // Boxed strings, a u32 and a boxed detail keep the error small: it is the `Err` of every solve.
     /// Echo of the request's `client_id`, when the payload was JSON with one.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub client_id: Option<Box<str>>,
@@ -57,18 +57,50 @@ pub struct ErrorReply {
     /// With `busy`: requests waiting for a worker when this one arrived (as in `contact/health`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub queue_depth: Option<u32>,
+    /// The refusal as data, where there is more to it than one path.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub details: Option<Box<ErrorDetails>>,
+}
+
+/// Machine-readable detail of a refusal.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ErrorDetails {
+    /// With `incompatible_loads`: every load component that no non-negative
+    /// contact pressure can balance with the other loads as given, and the
+    /// interval it would have to lie in. The reply's `path` is the one that is
+    /// furthest outside its interval, relative to the interval's nearer bound.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub loads: Vec<LoadBound>,
+}
+
+/// A load component outside its admissible interval, in the request's units.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LoadBound {
+    /// JSON pointer of the load in the request.
+    pub path: String,
+    /// The load as given.
+    pub value: f64,
+    /// Lower end of the admissible interval (absent: unbounded below).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min: Option<f64>,
+    /// Upper end (absent: unbounded above).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max: Option<f64>,
 }
 
 impl ErrorReply {
     pub fn new(code: ErrorCode, message: impl Into<String>, path: impl Into<String>) -> Self {
         Self {
-            version: super::PROTOCOL_VERSION.to_string(),
+            version: super::PROTOCOL_VERSION.into(),
             code,
             message: message.into(),
             path: path.into(),
             client_id: None,
             request_id: None,
             queue_depth: None,
+            details: None,
         }
     }
 
@@ -107,6 +139,10 @@ impl From<&crate::error::CoreError> for ErrorReply {
             CoreError::Invalid { reason, .. } | CoreError::TooLarge { reason, .. } => reason.clone(),
             other => other.to_string(),
         };
-        ErrorReply::new(code, message, e.path())
+        let mut reply = ErrorReply::new(code, message, e.path());
+        if let CoreError::Invalid { details, .. } = e {
+            reply.details = details.clone();
+        }
+        reply
     }
 }

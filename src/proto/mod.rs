@@ -9,7 +9,7 @@ pub mod reply;
 pub mod request;
 pub mod schema;
 
-pub use error::{ErrorCode, ErrorReply};
+pub use error::{ErrorCode, ErrorDetails, ErrorReply, LoadBound};
 pub use reply::*;
 pub use request::*;
 

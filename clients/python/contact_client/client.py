@@ -87,8 +87,10 @@ class ContactError(Exception):
     """A structured error reply of the service.
 
     Attributes: ``code`` (e.g. ``"invalid_material"``), ``message``, ``path``
-    (JSON pointer into the request, ``""`` for the whole request), ``version``
-    and ``reply`` (the whole decoded error JSON).
+    (JSON pointer into the request, ``""`` for the whole request), ``version``,
+    ``details`` (the refusal as data where there is more to it than a path, e.g.
+    ``{"loads": [{"path", "value", "min", "max"}]}`` with ``incompatible_loads``;
+    ``None`` otherwise) and ``reply`` (the whole decoded error JSON).
     """
 
     def __init__(self, code: str, message: str, path: str = "", *, version: str | None = None,
@@ -100,6 +102,7 @@ class ContactError(Exception):
         self.version = version
         self.reply = reply if reply is not None else {
             "version": version, "code": code, "message": message, "path": path}
+        self.details = self.reply.get("details")
 
 
 class TransportError(Exception):

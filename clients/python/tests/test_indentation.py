@@ -35,5 +35,9 @@ def test_moment_out_of_range_is_refused(client):
     with pytest.raises(ContactError) as err:
         client.solve(scenes.punch_on_block({"flat": {"half_width": 1.0}}, load=10.0, moment=20.0))
     assert err.value.code == "incompatible_loads"
-    assert err.value.path.startswith("/obstacles/0/punch/")
+    # M = 20 is twice its bound P·b = 10; P = 10 is half of the 20 that M needs.
+    assert err.value.path == "/obstacles/0/punch/rotation/load"
+    moment = next(b for b in err.value.details["loads"] if b["path"] == err.value.path)
+    assert moment["value"] == 20.0
+    assert abs(moment["min"] + 10.0) < 1e-7 and abs(moment["max"] - 10.0) < 1e-7
     assert client.health()["solves_served"] >= 1  # still up
