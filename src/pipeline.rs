@@ -276,6 +276,7 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
         f: &f,
         free: Some(&free),
         pivot_ratio: Some(op.pivot_ratio),
+        predicted: Some(op.chol.cost().predicted_secs()),
         foundations: Some((&foundations, compliance.as_ref())),
     };
     Ok(finish(scene, &stage, sol, timings, t_start, cache_state))
@@ -291,6 +292,8 @@ struct Stage<'a> {
     free: Option<&'a FreeMotions>,
     /// `Cholesky::pivot_ratio` of the factor (condensed path).
     pivot_ratio: Option<f64>,
+    /// `FactorCost::predicted_secs` of a factorization this solve ran.
+    predicted: Option<f64>,
     /// The foundations and their compliance D F D (None when there are none).
     foundations: Option<(&'a Foundations, Option<&'a faer::Mat<f64>>)>,
 }
@@ -367,6 +370,7 @@ fn solve_full(
         // No free motion reaches here; its notes (undetermined modes) still do.
         free: Some(free),
         pivot_ratio: None,
+        predicted: None,
         foundations: None,
     };
     Ok(finish(scene, &stage, sol, timings, t_start, CacheState::Off))
@@ -472,6 +476,7 @@ fn finish(
         diagnostics: proto::Diagnostics {
             condition_estimate: st.pivot_ratio,
             refinements: sol.refinements,
+            factorization_predicted: st.predicted,
         },
         timings,
         cache,

@@ -132,6 +132,7 @@ impl From<&crate::error::CoreError> for ErrorReply {
                 InvalidKind::IncompatibleLoads => ErrorCode::IncompatibleLoads,
             },
             CoreError::TooLarge { .. } => ErrorCode::TooLarge,
+            CoreError::Linalg(crate::linalg::LinalgError::Overrun { .. }) => ErrorCode::Timeout,
             CoreError::Linalg(_) => ErrorCode::LinearAlgebra,
             CoreError::Timeout { .. } => ErrorCode::Timeout,
         };
@@ -144,5 +145,30 @@ impl From<&crate::error::CoreError> for ErrorReply {
             reply.details = details.clone();
         }
         reply
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::linalg::{cholesky::FactorCost, LinalgError};
+
+    /// A factorization refused for want of time is a `timeout` (the user's
+    /// remedy is a longer limit or a coarser mesh), not a linear-algebra failure.
+    #[test]
+    fn a_predicted_overrun_is_a_timeout_with_the_prediction() {
+        let cost = FactorCost {
+            nnz: 494_000_000,
+            flops: 9.6e11,
+        };
+        let e = crate::error::CoreError::Linalg(LinalgError::Overrun { cost, left_s: 1.1 });
+        let r = ErrorReply::from(&e);
+        assert_eq!(r.code, ErrorCode::Timeout);
+        let predicted = format!("{:.1} s", cost.predicted_secs());
+        assert!(
+            r.message.contains(&predicted) && r.message.contains("1.1 s left"),
+            "{}",
+            r.message
+        );
     }
 }

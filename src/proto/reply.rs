@@ -315,4 +315,9 @@ pub struct Diagnostics {
     /// Iterative-refinement steps the solves with K needed to bring their
     /// residual below 1e-10 (relative); 0 on a well-conditioned K.
     pub refinements: usize,
+    /// Seconds the numeric factorization was predicted to take from its
+    /// symbolic analysis, before it ran (what a `time_limit` is judged against;
+    /// a factor from the cache gives its own; absent for the full formulation).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub factorization_predicted: Option<f64>,
 }
