@@ -118,14 +118,22 @@ def judge(expected: tuple[str, object], got: tuple[str, object], client_id: str)
 class Tally:
     counts: dict = field(default_factory=lambda: {"ok": 0, "wrong": 0, "lost": 0})
     latencies: list = field(default_factory=list)
+    #: Latencies of the refusals alone (invalid requests): answered on arrival,
+    #: they must not wait behind the solves.
+    refusal_latencies: list = field(default_factory=list)
     valid_identical: int = 0
     notes: list = field(default_factory=list)
     lock: threading.Lock = field(default_factory=threading.Lock)
 
-    def add(self, verdict: str, latency: float, name: str, expected_kind: str, detail: str) -> None:
+    def add(self, verdict: str, latency: float, name: str, expected: tuple[str, object], detail: str) -> None:
+        expected_kind = expected[0]
         with self.lock:
             self.counts[verdict] += 1
             self.latencies.append(latency)
+            # A `timeout` is valid work that queues and runs out of time; every
+            # other error of the mix is a refusal on arrival.
+            if expected_kind == "error" and expected[1] != "timeout":
+                self.refusal_latencies.append(latency)
             if verdict == "ok" and expected_kind == "ok":
                 self.valid_identical += 1
             if verdict != "ok" and len(self.notes) < 20:
@@ -161,7 +169,7 @@ def run(connect: str, clients: int = 16, requests: int = 50, timeout: float = 60
                 t0 = time.perf_counter()
                 got = outcome(c, with_client_id(payload, cid), timeout)
                 verdict = judge(reference[name], got, cid)
-                tally.add(verdict, time.perf_counter() - t0, name, reference[name][0], repr(got[1]))
+                tally.add(verdict, time.perf_counter() - t0, name, reference[name], repr(got[1]))
 
     threads = [threading.Thread(target=one_client, args=(k,), daemon=True) for k in range(clients)]
     t0 = time.perf_counter()
@@ -171,6 +179,7 @@ def run(connect: str, clients: int = 16, requests: int = 50, timeout: float = 60
         t.join(timeout=max(0.0, stop_at - time.monotonic()) + timeout + 5.0)
     wall = time.perf_counter() - t0
     lat = sorted(tally.latencies)
+    refusals = sorted(tally.refusal_latencies)
     sent = clients * requests
     answered = sum(tally.counts.values())
     return {
@@ -189,18 +198,23 @@ def run(connect: str, clients: int = 16, requests: int = 50, timeout: float = 60
         "throughput_per_s": answered / wall if wall > 0 else 0.0,
         "latency_s": {"p50": percentile(lat, 0.50), "p90": percentile(lat, 0.90),
                       "p99": percentile(lat, 0.99), "max": lat[-1] if lat else 0.0},
+        "refusal_latency_s": {"p50": percentile(refusals, 0.50), "p90": percentile(refusals, 0.90),
+                              "max": refusals[-1] if refusals else 0.0},
         "notes": tally.notes,
     }
 
 
 def report(r: dict) -> str:
     lat = r["latency_s"]
+    ref = r["refusal_latency_s"]
     lines = [
         f"clients x requests : {r['clients']} x {r['requests_per_client']} = {r['sent']}",
         f"wall time          : {r['wall_s']:.2f} s",
         f"throughput         : {r['throughput_per_s']:.1f} replies/s",
         f"latency            : p50 {lat['p50'] * 1e3:.1f} ms, p90 {lat['p90'] * 1e3:.1f} ms, "
         f"p99 {lat['p99'] * 1e3:.1f} ms, max {lat['max'] * 1e3:.1f} ms",
+        f"refusals (invalid) : p50 {ref['p50'] * 1e3:.1f} ms, p90 {ref['p90'] * 1e3:.1f} ms, "
+        f"max {ref['max'] * 1e3:.1f} ms",
         f"answered correctly : {r['ok']}",
         f"valid, identical to the sequential answer: {r['valid_identical']} of {r['valid_sent']}",
         f"lost               : {r['lost']}",

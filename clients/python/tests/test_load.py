@@ -14,6 +14,7 @@ def test_concurrent_mix_is_answered_like_sequential_requests(service):
     assert (r["lost"], r["wrong"]) == (0, 0), load_test.report(r)
     assert r["valid_identical"] == r["valid_sent"] > 0
     assert 0 < r["latency_s"]["p50"] <= r["latency_s"]["p99"] <= r["latency_s"]["max"]
+    assert 0 < r["refusal_latency_s"]["p50"] <= r["refusal_latency_s"]["max"]
 
 
 @pytest.mark.parametrize("endpoint", ["tcp/10.0.0.1:7447", "tcp/192.168.1.2:7447", "tcp/example.org:7447"])
