@@ -171,7 +171,7 @@ pub fn hertz_errors(r: &SolveReply, radius: f64, e_star: f64) -> (f64, f64, f64)
 /// Floor: faer's own symbolic + numeric Cholesky and one solve of K_ff, the
 /// better of faer's sequential and default (parallel) settings.
 fn floor_time(scene: &Scene) -> (f64, usize) {
-    let meshes = crate::pipeline::build_meshes(scene);
+    let meshes = crate::pipeline::build_meshes(scene).expect("the bench's scenes mesh");
     let dofs = crate::fem::assembly::dof_map(scene, &meshes).expect("benchmark scene is valid");
     let asm = crate::fem::assemble(scene, &meshes, dofs).expect("benchmark scene assembles");
     let k = &asm.stiffness.k;

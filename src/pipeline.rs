@@ -55,8 +55,10 @@ pub fn check_bytes(bytes: &[u8], limits: &Limits) -> Result<(), ErrorReply> {
 }
 
 /// The bodies' meshes in nondimensional coordinates: generated in the
-/// request's units, then scaled.
-pub fn build_meshes(scene: &Scene) -> Vec<Mesh2d> {
+/// request's units, then scaled. A generator that cannot mesh its region (a
+/// geometry its refinement does not handle) is an `invalid_mesh` at the body's
+/// mesh, not a panic.
+pub fn build_meshes(scene: &Scene) -> Result<Vec<Mesh2d>, CoreError> {
     let length = scene.scales.length;
     let scaled = |mut m: Mesh2d| {
         for p in m.nodes.iter_mut() {
@@ -67,25 +69,34 @@ pub fn build_meshes(scene: &Scene) -> Vec<Mesh2d> {
     scene
         .bodies
         .iter()
-        .map(|b| match &b.mesh {
-            MeshSource::Rectangle {
-                corner,
-                width,
-                height,
-                size,
-                grading,
-                order,
-            } => scaled(generate::rectangle(*corner, *width, *height, *size, *grading, *order)),
-            MeshSource::Disk {
-                center,
-                radius,
-                down,
-                part,
-                size,
-                grading,
-                order,
-            } => scaled(generate::disk(*center, *radius, *down, *part, *size, *grading, *order)),
-            MeshSource::Inline(m) => m.clone(),
+        .map(|b| {
+            let generated = match &b.mesh {
+                MeshSource::Rectangle {
+                    corner,
+                    width,
+                    height,
+                    size,
+                    grading,
+                    order,
+                } => generate::rectangle(*corner, *width, *height, *size, *grading, *order),
+                MeshSource::Disk {
+                    center,
+                    radius,
+                    down,
+                    part,
+                    size,
+                    grading,
+                    order,
+                } => generate::disk(*center, *radius, *down, *part, *size, *grading, *order),
+                MeshSource::Inline(m) => return Ok(m.clone()),
+            };
+            generated.map(scaled).map_err(|e| {
+                CoreError::invalid(
+                    crate::error::InvalidKind::Mesh,
+                    format!("{}/mesh", b.path),
+                    format!("the mesh generator could not mesh this body: {}", e.0),
+                )
+            })
         })
         .collect()
 }
@@ -141,7 +152,7 @@ fn solve_one(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
 
     let t = Instant::now();
     crate::progress::stage("mesh");
-    let meshes = build_meshes(scene);
+    let meshes = build_meshes(scene)?;
     timings.mesh = t.elapsed().as_secs_f64();
     crate::cancel::check("mesh")?;
     let n_dofs: usize = meshes.iter().map(|m| 2 * m.nodes.len()).sum();

@@ -244,7 +244,10 @@ mod tests {
                 let gr = g(h_min, ratio, extent);
                 for quarter in [false, true] {
                     let part = if quarter { DiskPart::Quarter } else { DiskPart::Half };
-                    let real = disk([0.0, 1.0], 1.0, true, part, size, Some(gr), order).nodes.len() as f64;
+                    let real = disk([0.0, 1.0], 1.0, true, part, size, Some(gr), order)
+                        .unwrap()
+                        .nodes
+                        .len() as f64;
                     let est = nodes(Shape::Disk { r: 1.0, quarter }, size, Some(([0.0, -1.0], gr)), t6);
                     rows.push(format!(
                         "disk q={quarter} t6={t6} {h_min} {ratio}: real {real} est {est:.0}"
@@ -252,7 +255,10 @@ mod tests {
                     worst = worst.max((est / real - 1.0).abs());
                 }
                 for (w, h, f) in [(2.0, 1.0, [1.0, 1.0]), (2.0, 1.0, [0.5, 1.0]), (1.0, 0.5, [0.5, 0.25])] {
-                    let real = rectangle([0.0, 0.0], w, h, size, Some((f, gr)), order).nodes.len() as f64;
+                    let real = rectangle([0.0, 0.0], w, h, size, Some((f, gr)), order)
+                        .unwrap()
+                        .nodes
+                        .len() as f64;
                     let est = nodes(Shape::Rectangle { w, h }, size, Some((f, gr)), t6);
                     rows.push(format!(
                         "rect {w}x{h} f={f:?} t6={t6} {h_min} {ratio}: real {real} est {est:.0}"
@@ -260,7 +266,7 @@ mod tests {
                     worst = worst.max((est / real - 1.0).abs());
                 }
             }
-            let real = rectangle([0.0, 0.0], 2.0, 1.0, 0.03, None, order).nodes.len() as f64;
+            let real = rectangle([0.0, 0.0], 2.0, 1.0, 0.03, None, order).unwrap().nodes.len() as f64;
             let est = nodes(Shape::Rectangle { w: 2.0, h: 1.0 }, 0.03, None, t6);
             assert_eq!(real, est, "a uniform rectangle is counted exactly");
         }

@@ -76,7 +76,7 @@ pub fn rectangle(
     size: f64,
     grading: Option<([f64; 2], Grading)>,
     order: Order,
-) -> Mesh2d {
+) -> Result<Mesh2d, refine::MeshFailure> {
     if let Some((focus, g)) = grading {
         // Meshed with its corner at the origin (full relative precision), then moved.
         // The subtraction rounds at the corner's magnitude; a focus meant on a
@@ -101,14 +101,14 @@ pub fn rectangle(
                 ratio: g.ratio,
                 extent: unit(g.extent / l),
             },
-        );
+        )?;
         for p in t.nodes.iter_mut() {
             *p = [p[0] * l, p[1] * l];
         }
         for p in t.nodes.iter_mut() {
             *p = [p[0] + corner[0], p[1] + corner[1]];
         }
-        return finish(t.nodes, t.elems, t.sets, order);
+        return Ok(finish(t.nodes, t.elems, t.sets, order));
     }
     // Uniform: a structured grid of nearly square cells, each cut in two along
     // the same diagonal (smallest angle 45° for square cells).
@@ -146,7 +146,7 @@ pub fn rectangle(
         "left".into(),
         (0..ny - 1).rev().map(|j| (id(0, j + 1), id(0, j))).collect(),
     );
-    finish(nodes, elems, sets, order)
+    Ok(finish(nodes, elems, sets, order))
 }
 
 /// Element size at distance `d` from the focus: `h_min` within `extent`, then
@@ -186,7 +186,7 @@ pub fn disk(
     size: f64,
     grading: Option<Grading>,
     order: Order,
-) -> Mesh2d {
+) -> Result<Mesh2d, refine::MeshFailure> {
     let g = grading.unwrap_or(Grading {
         h_min: size,
         ratio: 1.0,
@@ -200,7 +200,7 @@ pub fn disk(
             ratio: g.ratio,
             extent: unit(g.extent / radius),
         },
-    );
+    )?;
     if !down {
         // Mirror about the diameter; mirroring reverses orientation.
         for p in t.nodes.iter_mut() {
@@ -219,7 +219,7 @@ pub fn disk(
     for p in t.nodes.iter_mut() {
         *p = [center[0] + radius * p[0], center[1] + radius * p[1]];
     }
-    finish(t.nodes, t.elems, t.sets, order)
+    Ok(finish(t.nodes, t.elems, t.sets, order))
 }
 
 /// A parameter of a mesh in its body's own units, rounded to 12 significant
@@ -235,7 +235,7 @@ fn unit(x: f64) -> f64 {
 }
 
 /// The disk of `disk` with radius 1 and centre at the origin, arc below.
-fn unit_disk(part: DiskPart, size: f64, g: Grading) -> refine::Triangulated {
+fn unit_disk(part: DiskPart, size: f64, g: Grading) -> Result<refine::Triangulated, refine::MeshFailure> {
     let radius = 1.0;
     let center = [0.0, 0.0];
     let half_pi = 0.5 * std::f64::consts::PI;
@@ -288,18 +288,24 @@ fn unit_disk(part: DiskPart, size: f64, g: Grading) -> refine::Triangulated {
     };
     let region = [[center[0], center[1] - radius], [center[0] + radius, center[1]]];
     seeds.extend(refine::rings(apex, &|d| size_at(d, g, size), &clearance, size, region));
-    let mut t = refine::triangulate(&refine::Outline { points, sets }, &seeds, size, &snap);
+    let mut t = refine::triangulate(&refine::Outline { points, sets }, &seeds, size, &snap)?;
     if part == DiskPart::Half {
         t = refine::mirror(t, center[0], "axis", &|name: &str| name.to_string());
     }
-    t
+    Ok(t)
 }
 
 /// Rectangle [x0, x0+w] × [y0, y0+h] graded toward `focus` by constrained
 /// Delaunay refinement (edge sets bottom, right, top, left). A focus on a side
 /// is a node; a rectangle symmetric about the focus's x gets a mesh that is
 /// exactly symmetric too (its left half mirrored).
-fn rectangle_graded(w: f64, hgt: f64, size: f64, focus: [f64; 2], g: Grading) -> refine::Triangulated {
+fn rectangle_graded(
+    w: f64,
+    hgt: f64,
+    size: f64,
+    focus: [f64; 2],
+    g: Grading,
+) -> Result<refine::Triangulated, refine::MeshFailure> {
     let (x0, y0, x1, y1) = (0.0, 0.0, w, hgt);
     let h = |p: [f64; 2]| size_at(((p[0] - focus[0]).powi(2) + (p[1] - focus[1]).powi(2)).sqrt(), g, size);
     let tie = TIE * w.max(hgt);
@@ -369,14 +375,14 @@ fn rectangle_graded(w: f64, hgt: f64, size: f64, focus: [f64; 2], g: Grading) ->
         size,
         region,
     ));
-    let t = refine::triangulate(&refine::Outline { points, sets }, &seeds, size, &|_, p| p);
-    if symmetric {
+    let t = refine::triangulate(&refine::Outline { points, sets }, &seeds, size, &|_, p| p)?;
+    Ok(if symmetric {
         refine::mirror(t, focus[0], "axis", &|name: &str| {
             if name == "left" { "right" } else { name }.to_string()
         })
     } else {
         t
-    }
+    })
 }
 
 /// Orients triangles, upgrades to T6 if asked, and attaches the edge sets.
@@ -479,22 +485,22 @@ mod tests {
             let meshes = [
                 (
                     "half disk",
-                    disk([0.0, 1.0], 1.0, true, DiskPart::Half, 0.2, Some(g), Order::T3),
+                    disk([0.0, 1.0], 1.0, true, DiskPart::Half, 0.2, Some(g), Order::T3).unwrap(),
                     true,
                 ),
                 (
                     "quarter disk",
-                    disk([0.0, 1.0], 1.0, true, DiskPart::Quarter, 0.2, Some(g), Order::T3),
+                    disk([0.0, 1.0], 1.0, true, DiskPart::Quarter, 0.2, Some(g), Order::T3).unwrap(),
                     false,
                 ),
                 (
                     "rectangle",
-                    rectangle([-2.0, -1.0], 4.0, 1.0, 0.5, Some(([0.0, 0.0], g)), Order::T3),
+                    rectangle([-2.0, -1.0], 4.0, 1.0, 0.5, Some(([0.0, 0.0], g)), Order::T3).unwrap(),
                     true,
                 ),
                 (
                     "off-centre",
-                    rectangle([-2.0, -1.0], 4.0, 1.0, 0.5, Some(([0.7, 0.0], g)), Order::T3),
+                    rectangle([-2.0, -1.0], 4.0, 1.0, 0.5, Some(([0.7, 0.0], g)), Order::T3).unwrap(),
                     false,
                 ),
             ];

@@ -43,35 +43,41 @@ pub struct Triangulated {
 /// Meshes the region inside `outline` with triangles no larger than an
 /// equilateral one of side `size`. `snap(set, p)` moves a point inserted on a
 /// boundary segment of `set` onto the true boundary (identity for straight sides).
+/// Why a generator could not mesh its region (the parameters are validated
+/// before, so this names a geometry the refinement did not handle).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshFailure(pub String);
+
 pub fn triangulate(
     outline: &Outline,
     seeds: &[[f64; 2]],
     size: f64,
     snap: &dyn Fn(&str, [f64; 2]) -> [f64; 2],
-) -> Triangulated {
+) -> Result<Triangulated, MeshFailure> {
     let n = outline.points.len();
     debug_assert!(n >= 3 && outline.sets.len() == n);
     // spade's point location does not return on non-finite input; the
     // generators' parameters are validated finite and their sides distinct.
-    assert!(
-        outline
-            .points
-            .iter()
-            .chain(seeds)
-            .all(|p| p[0].is_finite() && p[1].is_finite()),
-        "mesh points are finite"
-    );
-    let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> = ConstrainedDelaunayTriangulation::new();
-    let handles: Vec<_> = outline
+    if !outline
         .points
         .iter()
-        .map(|p| cdt.insert(Point2::new(p[0], p[1])).expect("boundary points are finite"))
-        .collect();
+        .chain(seeds)
+        .all(|p| p[0].is_finite() && p[1].is_finite())
+    {
+        return Err(MeshFailure("a mesh point is not finite".into()));
+    }
+    let insert_failed = |e: spade::InsertionError| MeshFailure(format!("a point could not be inserted: {e:?}"));
+    let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> = ConstrainedDelaunayTriangulation::new();
+    let handles = outline
+        .points
+        .iter()
+        .map(|p| cdt.insert(Point2::new(p[0], p[1])).map_err(insert_failed))
+        .collect::<Result<Vec<_>, _>>()?;
     for i in 0..n {
         cdt.add_constraint(handles[i], handles[(i + 1) % n]);
     }
     for p in seeds {
-        cdt.insert(Point2::new(p[0], p[1])).expect("seed points are finite");
+        cdt.insert(Point2::new(p[0], p[1])).map_err(insert_failed)?;
     }
     let params = RefinementParameters::<f64>::new()
         .exclude_outer_faces(true)
@@ -112,12 +118,19 @@ pub fn triangulate(
         let mut cur = h.index();
         while cur != target {
             // The next point along this segment: on the chord p→q, ahead of cur.
-            let next = neighbours[&cur]
-                .iter()
+            let next = neighbours
+                .get(&cur)
+                .into_iter()
+                .flatten()
                 .copied()
                 .filter(|&v| v != prev)
                 .find(|&v| v == target || (!original.contains_key(&v) && on_segment(nodes[v], p, q)))
-                .expect("refinement keeps every boundary segment as a chain of constraint edges");
+                .ok_or_else(|| {
+                    MeshFailure(format!(
+                        "the boundary from ({}, {}) to ({}, {}) is not a chain of constraint edges after refinement",
+                        p[0], p[1], q[0], q[1]
+                    ))
+                })?;
             sets.entry(set.to_string()).or_default().push((cur, next));
             prev = cur;
             cur = next;
@@ -139,7 +152,7 @@ pub fn triangulate(
         debug_assert!(signed_area(nodes[v[0]], nodes[v[1]], nodes[v[2]]) > 0.0);
         elems.extend_from_slice(&v);
     }
-    compact(Triangulated { nodes, elems, sets })
+    Ok(compact(Triangulated { nodes, elems, sets }))
 }
 
 /// Interior points on rings about `focus`, spaced h(ρ) along and across the
