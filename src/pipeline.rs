@@ -435,7 +435,7 @@ fn finish(
         .map(|(f, _)| foundation_results(scene, st.cons, f, &sol.lambda))
         .unwrap_or_default();
     let (pairs, resultant, n_active) = post::pairs(scene, st.meshes, st.cons, &sol.lambda, &sol.in_contact, &gaps);
-    let status = if !certificate.is_finite() {
+    let status = if !certificate.is_finite() || (!sol.converged && sol.breakdown) {
         SolveStatus::NumericalError
     } else if !sol.converged {
         SolveStatus::MaxIterations

@@ -29,6 +29,7 @@ pub fn solve_lcp_from(w: &Mat<f64>, q: &[f64], s: &SolverSettings, mut active: V
             lambda: vec![],
             iterations: 0,
             converged: true,
+            breakdown: false,
         };
     }
     let diag_mean = (0..m).map(|i| w[(i, i)]).sum::<f64>() / m as f64;
@@ -54,6 +55,7 @@ pub fn solve_lcp_from(w: &Mat<f64>, q: &[f64], s: &SolverSettings, mut active: V
                 lambda,
                 iterations: it,
                 converged: true,
+                breakdown: false,
             };
         }
         if seen.contains(&next) {
@@ -85,6 +87,7 @@ fn lawson_hanson(w: &Mat<f64>, q: &[f64], max_outer: usize) -> LcpResult {
                 lambda,
                 iterations,
                 converged: true,
+                breakdown: false,
             };
         };
         if iterations >= max_outer * m.max(1) || crate::cancel::expired() {
@@ -92,6 +95,7 @@ fn lawson_hanson(w: &Mat<f64>, q: &[f64], max_outer: usize) -> LcpResult {
                 lambda,
                 iterations,
                 converged: false,
+                breakdown: false,
             };
         }
         passive[j] = true;
@@ -104,6 +108,7 @@ fn lawson_hanson(w: &Mat<f64>, q: &[f64], max_outer: usize) -> LcpResult {
                     lambda,
                     iterations,
                     converged: false,
+                    breakdown: false,
                 };
             };
             if z.iter().all(|&v| v > 0.0) {
@@ -243,6 +248,7 @@ pub fn solve_mlcp_from(
                     lambda,
                     iterations: it,
                     converged: true,
+                    breakdown: false,
                 },
                 beta,
             );
@@ -258,6 +264,7 @@ pub fn solve_mlcp_from(
             lambda,
             iterations: s.max_iterations,
             converged: false,
+            breakdown: false,
         },
         beta,
     )

@@ -40,6 +40,7 @@ pub fn solve_barrier_mixed(
                 lambda,
                 iterations,
                 converged: false,
+                breakdown: false,
             },
             beta,
         )
@@ -140,6 +141,7 @@ pub fn solve_barrier_mixed(
                     lambda,
                     iterations,
                     converged: true,
+                    breakdown: false,
                 },
                 beta,
             );

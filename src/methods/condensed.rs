@@ -112,6 +112,7 @@ pub fn solve_condensed_mixed(
         in_contact,
         iterations: res.iterations,
         converged: res.converged,
+        breakdown: res.breakdown,
         method: name,
         exact,
         t_contact: t.elapsed().as_secs_f64(),

@@ -214,6 +214,7 @@ fn solution(run: ActiveSetRun, name: &'static str, t: std::time::Instant, extra_
         in_contact,
         iterations: run.iterations + extra_iterations,
         converged: run.converged,
+        breakdown: false,
         method: name,
         exact: true,
         t_contact: t.elapsed().as_secs_f64(),

@@ -29,6 +29,7 @@ pub fn solve_lcp(w: &Mat<f64>, q: &[f64], s: &SolverSettings) -> LcpResult {
             lambda: vec![],
             iterations: 0,
             converged: true,
+            breakdown: false,
         };
     }
     let dmax = (0..m).map(|i| w[(i, i)]).fold(0.0f64, f64::max);
@@ -38,6 +39,7 @@ pub fn solve_lcp(w: &Mat<f64>, q: &[f64], s: &SolverSettings) -> LcpResult {
             lambda: vec![0.0; m],
             iterations: 0,
             converged: true,
+            breakdown: false,
         };
     }
     let sigma = qmax / dmax;
@@ -53,6 +55,7 @@ pub fn solve_lcp(w: &Mat<f64>, q: &[f64], s: &SolverSettings) -> LcpResult {
             lambda: vec![0.0; m],
             iterations: 0,
             converged: false,
+            breakdown: true,
         };
     };
     solver.solve();
@@ -66,6 +69,7 @@ pub fn solve_lcp(w: &Mat<f64>, q: &[f64], s: &SolverSettings) -> LcpResult {
                 lambda: polished,
                 iterations: iterations + 1,
                 converged,
+                breakdown: false,
             };
         }
         // The estimate missed a borderline candidate: let the active-set
@@ -79,7 +83,17 @@ pub fn solve_lcp(w: &Mat<f64>, q: &[f64], s: &SolverSettings) -> LcpResult {
         lambda,
         iterations,
         converged,
+        breakdown: breakdown(sol.status),
     }
+}
+
+/// Whether Clarabel stopped on a numerical breakdown rather than its
+/// iteration or time cap (see `LcpResult::breakdown`).
+fn breakdown(status: SolverStatus) -> bool {
+    !matches!(
+        status,
+        SolverStatus::Solved | SolverStatus::AlmostSolved | SolverStatus::MaxIterations | SolverStatus::MaxTime
+    )
 }
 
 /// Candidates whose force outweighs their gap (in the units of W's diagonal).
@@ -146,6 +160,7 @@ pub fn solve_mlcp(w: &Mat<f64>, q: &[f64], c: &Mat<f64>, r: &[f64], s: &SolverSe
                 lambda: vec![0.0; m],
                 iterations: 0,
                 converged: false,
+                breakdown: false,
             },
             vec![0.0; k],
         )
@@ -158,6 +173,7 @@ pub fn solve_mlcp(w: &Mat<f64>, q: &[f64], c: &Mat<f64>, r: &[f64], s: &SolverSe
     if !matches!(sol.status, SolverStatus::Solved | SolverStatus::AlmostSolved) {
         let mut f = failed();
         f.0.iterations = sol.iterations as usize;
+        f.0.breakdown = breakdown(sol.status);
         return f;
     }
     let lambda: Vec<f64> = sol.x.iter().map(|v| (v * sigma).max(0.0)).collect();
@@ -198,4 +214,29 @@ fn clarabel_settings(s: &SolverSettings) -> clarabel::solver::DefaultSettings<f6
         .tol_feas(tol)
         .build()
         .expect("static clarabel settings are valid")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Clarabel's statuses keep their meaning: its caps are caps
+    /// (max_iterations; the deadline is answered by the pipeline as timeout),
+    /// everything else that is not a solution is a numerical breakdown (the
+    /// LCP of a positive definite W always has one).
+    #[test]
+    fn clarabel_statuses_map_to_their_meaning() {
+        for s in [SolverStatus::MaxIterations, SolverStatus::MaxTime, SolverStatus::Solved] {
+            assert!(!breakdown(s), "{s:?}");
+        }
+        for s in [
+            SolverStatus::NumericalError,
+            SolverStatus::InsufficientProgress,
+            SolverStatus::PrimalInfeasible,
+            SolverStatus::DualInfeasible,
+            SolverStatus::AlmostPrimalInfeasible,
+        ] {
+            assert!(breakdown(s), "{s:?}");
+        }
+    }
 }

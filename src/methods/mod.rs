@@ -58,6 +58,11 @@ pub struct LcpResult {
     pub lambda: Vec<f64>,
     pub iterations: usize,
     pub converged: bool,
+    /// Not converged because the method broke down numerically (Clarabel's
+    /// numerical error, insufficient progress, or a certificate of
+    /// infeasibility, which an LCP with W positive definite cannot have), not
+    /// because it ran out of iterations.
+    pub breakdown: bool,
 }
 
 pub struct Solution {
@@ -71,6 +76,8 @@ pub struct Solution {
     pub in_contact: Vec<bool>,
     pub iterations: usize,
     pub converged: bool,
+    /// Not converged on a numerical breakdown (`LcpResult::breakdown`).
+    pub breakdown: bool,
     /// Name of the method that ran.
     pub method: &'static str,
     /// Whether the method solves the exact contact conditions (penalty does not:

@@ -105,6 +105,7 @@ fn augmented_lagrangian(q: &[f64], d: &[f64], s: &SolverSettings, inner: Penalty
                     lambda: mu,
                     iterations: total,
                     converged: true,
+                    breakdown: false,
                 },
                 beta,
             );
@@ -115,6 +116,7 @@ fn augmented_lagrangian(q: &[f64], d: &[f64], s: &SolverSettings, inner: Penalty
             lambda: mu,
             iterations: total,
             converged: false,
+            breakdown: false,
         },
         beta,
     )
