@@ -160,6 +160,43 @@ fn half_plane_foundation_reproduces_hertz() {
     assert!(ws[0] < centre && ws[ws.len() - 1] < centre);
 }
 
+/// The same roller meshed with T6 (elements of 0.01, corners as far apart as
+/// the T3 example's nodes): the corners' dual mortar rows on the foundation
+/// give a pressure whose error against Hertz keeps one sign inside 0.95 a
+/// (nodal rows alternated between corner and midside nodes by 1.4 % of p0),
+/// with a nodal L2 error of 0.56 % (measured; the T3 example: 0.43 %). 1 %
+/// asked; the alternation test stops short of the zone edge, where the last
+/// node's error depends on where the edge falls.
+#[test]
+fn half_plane_foundation_t6_pressure_does_not_alternate() {
+    let mut req = example("foundation_half_plane_roller.json");
+    req["bodies"][0]["mesh"]["half_disk"]["element"] = json!("t6");
+    req["bodies"][0]["mesh"]["half_disk"]["grading"]["h_min"] = json!(0.01);
+    let r = solved(&req);
+    assert_kkt(&r, 1e-8);
+    let (a, p0) = hertz(r.pairs[0].resultant.fy, 8.0, 200.0, 0.3);
+    let exact = |x: f64| p0 * (1.0 - (x / a).powi(2)).max(0.0).sqrt();
+    let mut pts: Vec<_> = r.pairs[0].points.iter().collect();
+    pts.sort_by(|p, q| p.x.total_cmp(&q.x));
+    let (mut num, mut den) = (0.0, 0.0);
+    for q in &pts {
+        num += q.weight * (q.pressure - exact(q.x)).powi(2);
+        den += q.weight * exact(q.x).powi(2);
+    }
+    assert!((num / den).sqrt() < 0.01, "nodal L2 error {}", (num / den).sqrt());
+    let err: Vec<f64> = pts
+        .iter()
+        .filter(|q| q.x.abs() < 0.95 * a)
+        .map(|q| q.pressure - exact(q.x))
+        .collect();
+    for e in err.windows(3) {
+        assert!(
+            !(e[0] * e[1] < 0.0 && e[2] * e[1] < 0.0 && (e[1] - e[0]).abs().min((e[2] - e[1]).abs()) > 1e-3 * p0),
+            "alternating error {e:?} (p0 = {p0})"
+        );
+    }
+}
+
 /// Tensionless: a stiff footing on Winkler springs loaded off-centre lifts off.
 /// With the load's eccentricity e beyond B/6 the classical answer is a
 /// triangular pressure over c = 3 (B/2 − e) on the loaded side, peak 2P/c: the
