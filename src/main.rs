@@ -74,6 +74,9 @@ enum Cmd {
         /// Longest accepted `load_factors` list (each factor is a full solve).
         #[arg(long)]
         max_load_steps: Option<usize>,
+        /// Most numbers the requested `outputs` may put in one reply (all steps).
+        #[arg(long)]
+        max_output_values: Option<usize>,
         /// Largest accepted request payload in bytes.
         #[arg(long, default_value_t = 64 << 20)]
         max_request_bytes: usize,
@@ -193,6 +196,7 @@ fn run() -> anyhow::Result<ExitCode> {
             max_dofs,
             max_candidates,
             max_load_steps,
+            max_output_values,
             max_request_bytes,
             max_solve_s,
             cache_mb,
@@ -220,6 +224,9 @@ fn run() -> anyhow::Result<ExitCode> {
             }
             if let Some(m) = max_load_steps {
                 cfg.limits.max_load_steps = m;
+            }
+            if let Some(m) = max_output_values {
+                cfg.limits.max_output_values = m;
             }
             let rt = tokio::runtime::Builder::new_multi_thread().enable_all().build()?;
             rt.block_on(contact::service::run(cfg))?;

@@ -21,6 +21,7 @@ const LIMITS: Limits = Limits {
     max_dofs: 20_000,
     max_candidates: 400,
     max_load_steps: 10,
+    max_output_values: 2_000_000,
 };
 const DEADLINE: Duration = Duration::from_millis(250);
 /// Deadline plus the longest stage that does not poll it, with room for a loaded machine.

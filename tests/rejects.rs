@@ -261,6 +261,26 @@ fn load_factors_are_bounded() {
     expect(&req, ErrorCode::TooLarge, "/load_factors");
 }
 
+/// Fields over many load steps are bounded too: the Hertz example (about
+/// 15k nodes) with displacements and stresses (6 numbers per node and step)
+/// over 100 steps would be about 9e6 numbers, past a limit of 5e6, and is
+/// refused at `/outputs` before meshing; 10 steps pass.
+#[test]
+fn outputs_over_load_steps_are_bounded() {
+    let mut req = example("signorini_hertz_cylinder.json");
+    req["outputs"] = json!(["displacement", "stress"]);
+    req["load_factors"] = json!(vec![0.5; 100]);
+    let limits = contact::scene::Limits {
+        max_output_values: 5_000_000,
+        ..Default::default()
+    };
+    let run = |req: &Value| contact::pipeline::check_bytes(serde_json::to_string(req).unwrap().as_bytes(), &limits);
+    let e = run(&req).unwrap_err();
+    assert_eq!((e.code, e.path.as_str()), (ErrorCode::TooLarge, "/outputs"), "{e:?}");
+    req["load_factors"] = json!(vec![0.5; 10]);
+    assert!(run(&req).is_ok());
+}
+
 /// The full formulation turns each contact row into one rotated nodal
 /// coordinate; T6 rows against an obstacle are mortar rows over three nodes,
 /// so a full-formulation request on them is refused at the setting (it once

@@ -173,7 +173,8 @@ fn limits_are_reported_and_enforced() {
     assert_eq!(
         h["limits"],
         json!({"queue_limit": 1, "max_request_bytes": 200000, "max_dofs": 200000, "max_candidates": 300,
-               "max_load_steps": 10000, "max_solve_time_s": 30.0, "cache_limit_bytes": 2048u64 << 20})
+               "max_load_steps": 10000, "max_output_values": 20_000_000, "max_solve_time_s": 30.0,
+               "cache_limit_bytes": 2048u64 << 20})
     );
     assert_eq!(h["workers"], 1);
 

@@ -22,6 +22,10 @@ pub struct Limits {
     /// Longest `load_factors` list: each factor is a full contact solve and,
     /// with `outputs`, a full set of fields in the reply.
     pub max_load_steps: usize,
+    /// Most numbers the requested `outputs` may put in one reply, over all load
+    /// steps (estimated from the mesh size before meshing): a displacement
+    /// field is 2 per node and step, stresses 4, VTU about 8.
+    pub max_output_values: usize,
 }
 
 impl Default for Limits {
@@ -30,6 +34,9 @@ impl Default for Limits {
             max_dofs: 2_500_000,
             max_candidates: 4_000,
             max_load_steps: 100,
+            // 2e7 numbers are about 400 MB of JSON: ten full-field steps of
+            // a 500k-node mesh.
+            max_output_values: 20_000_000,
         }
     }
 }
@@ -38,6 +45,40 @@ impl Default for Limits {
 /// solve forms products of loads (W λ · λ, energies), which must stay finite,
 /// and a strain of 1e150 is meaningless long before.
 const MAX_SCALED_LOAD: f64 = 1e150;
+
+/// The requested fields over all load steps, against `max_output_values`
+/// (`nodes`: the estimated node count of all bodies).
+fn check_output_size(outputs: &[OutputKind], steps: usize, nodes: f64, limits: &Limits) -> Result<(), CoreError> {
+    let per_node: f64 = outputs
+        .iter()
+        .map(|o| match o {
+            OutputKind::Displacement => 2.0,
+            OutputKind::Stress => 4.0,
+            OutputKind::Mesh => 0.0,
+            OutputKind::Vtu => 8.0,
+        })
+        .sum();
+    // The mesh is written once, not per step: 2 coordinates and about 3
+    // element indices per node.
+    let once = if outputs.contains(&OutputKind::Mesh) {
+        5.0 * nodes
+    } else {
+        0.0
+    };
+    let values = per_node * nodes * steps.max(1) as f64 + once;
+    if values <= limits.max_output_values as f64 {
+        return Ok(());
+    }
+    Err(CoreError::TooLarge {
+        path: "/outputs".into(),
+        reason: format!(
+            "the requested outputs over {} load step(s) come to about {:.3e} numbers; this service returns at most {} per reply (fewer load steps or outputs, or a coarser mesh)",
+            steps.max(1),
+            values,
+            limits.max_output_values
+        ),
+    })
+}
 
 /// `load_factors`: a bounded list of finite factors whose scaled loads stay
 /// representable. `size`: the largest nondimensional load or prescribed motion.
@@ -711,6 +752,7 @@ impl Scene {
             })
             .fold(0.0f64, |a, v| a.max(v.abs()));
         check_load_factors(&req.load_factors, load_size, limits)?;
+        check_output_size(&req.outputs, req.load_factors.len(), nodes.iter().sum(), limits)?;
 
         Ok(Scene {
             analysis: req.analysis,

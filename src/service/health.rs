@@ -80,6 +80,7 @@ pub struct LimitsReport {
     pub max_dofs: usize,
     pub max_candidates: usize,
     pub max_load_steps: usize,
+    pub max_output_values: usize,
     pub max_solve_time_s: f64,
     pub cache_limit_bytes: usize,
 }
@@ -149,6 +150,7 @@ impl State {
                 max_dofs: cfg.limits.max_dofs,
                 max_candidates: cfg.limits.max_candidates,
                 max_load_steps: cfg.limits.max_load_steps,
+                max_output_values: cfg.limits.max_output_values,
                 max_solve_time_s: cfg.max_solve_time.as_secs_f64(),
                 cache_limit_bytes: cfg.cache_bytes,
             },
