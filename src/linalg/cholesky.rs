@@ -69,6 +69,35 @@ impl FactorCost {
         }
     }
 
+    /// The cost of factorizing `a` (lower triangle) in a fill-reducing order,
+    /// from a symbolic analysis alone (for factorizations that faer orders
+    /// itself: the full formulation's).
+    pub fn predict(a: &SparseColMat<usize, f64>) -> Result<Self, LinalgError> {
+        let n = a.nrows();
+        let (fwd, inv) = ordering(a, &[])?;
+        let perm = PermRef::new_checked(&fwd, &inv, n);
+        let params = CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            ..Default::default()
+        };
+        let symbolic = factorize_symbolic_cholesky(a.symbolic(), Side::Lower, SymmetricOrdering::Custom(perm), params)
+            .map_err(|e| LinalgError::Faer(format!("{e:?}")))?;
+        Ok(Self::of(&symbolic))
+    }
+
+    /// A numeric factorization does not poll the clock: start it only if it
+    /// can end within the time left.
+    pub fn fits_in_time_left(self) -> Result<(), LinalgError> {
+        let left = crate::cancel::remaining_secs();
+        if self.predicted_secs() > left {
+            return Err(LinalgError::Overrun {
+                cost: self,
+                left_s: left,
+            });
+        }
+        Ok(())
+    }
+
     /// Seconds the numeric factorization takes on the reference machine (2
     /// cores, faer sequential supernodal), t = a·flops + b·nnz + c·flops·nnz:
     /// the last term is the loss of cache reuse once L outgrows memory
@@ -109,12 +138,7 @@ impl Cholesky {
         let symbolic = factorize_symbolic_cholesky(a.symbolic(), Side::Lower, SymmetricOrdering::Custom(perm), params)
             .map_err(|e| LinalgError::Faer(format!("{e:?}")))?;
         let cost = FactorCost::of(&symbolic);
-        // A numeric factorization does not poll the clock: start it only if
-        // it can end within the time left.
-        let left = crate::cancel::remaining_secs();
-        if cost.predicted_secs() > left {
-            return Err(LinalgError::Overrun { cost, left_s: left });
-        }
+        cost.fits_in_time_left()?;
         let mut values = vec![0.0; symbolic.len_val()];
         let par = Par::Seq;
         let req = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());

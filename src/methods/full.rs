@@ -125,6 +125,8 @@ fn active_set_full(
     let fp = apply_q(rot, f, true);
     let symbolic =
         SymbolicLlt::try_new(rot.k.symbolic(), Side::Lower).map_err(|e| LinalgError::Faer(format!("{e:?}")))?;
+    // Every iteration refactors: each must fit in the time left.
+    let cost = crate::linalg::cholesky::FactorCost::predict(&rot.k)?;
     let sym = rot.k.symbolic();
     let diag = &rot.diag;
     let mut seen: Vec<Vec<bool>> = Vec::new();
@@ -171,6 +173,7 @@ fn active_set_full(
                 rhs[d] = fixed[d];
             }
         }
+        cost.fits_in_time_left()?;
         let llt = Llt::try_new_with_symbolic(symbolic.clone(), kk.as_ref(), Side::Lower)
             .map_err(|_| LinalgError::NotPositiveDefinite)?;
         let b = faer::Col::<f64>::from_fn(n, |i| rhs[i]);
