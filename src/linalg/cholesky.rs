@@ -73,16 +73,7 @@ impl FactorCost {
     /// from a symbolic analysis alone (for factorizations that faer orders
     /// itself: the full formulation's).
     pub fn predict(a: &SparseColMat<usize, f64>) -> Result<Self, LinalgError> {
-        let n = a.nrows();
-        let (fwd, inv) = ordering(a, &[])?;
-        let perm = PermRef::new_checked(&fwd, &inv, n);
-        let params = CholeskySymbolicParams {
-            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-            ..Default::default()
-        };
-        let symbolic = factorize_symbolic_cholesky(a.symbolic(), Side::Lower, SymmetricOrdering::Custom(perm), params)
-            .map_err(|e| LinalgError::Faer(format!("{e:?}")))?;
-        Ok(Self::of(&symbolic))
+        Ok(Self::of(&symbolic(a, &[])?))
     }
 
     /// A numeric factorization does not poll the clock: start it only if it
@@ -129,14 +120,7 @@ impl Cholesky {
     /// in the given order.
     pub fn try_new(a: &SparseColMat<usize, f64>, last: &[usize]) -> Result<Self, LinalgError> {
         let n = a.nrows();
-        let (fwd, inv) = ordering(a, last)?;
-        let perm = PermRef::new_checked(&fwd, &inv, n);
-        let params = CholeskySymbolicParams {
-            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-            ..Default::default()
-        };
-        let symbolic = factorize_symbolic_cholesky(a.symbolic(), Side::Lower, SymmetricOrdering::Custom(perm), params)
-            .map_err(|e| LinalgError::Faer(format!("{e:?}")))?;
+        let symbolic = symbolic(a, last)?;
         let cost = FactorCost::of(&symbolic);
         cost.fits_in_time_left()?;
         let mut values = vec![0.0; symbolic.len_val()];
@@ -255,6 +239,18 @@ impl Cholesky {
 /// given order). Measured on the 612k-DOF Hertz mesh with 1514 trailing DOFs:
 /// nnz(L) 81 M against 97 M for AMD on the remaining block alone (74.5 M with no
 /// trailing block at all).
+/// Supernodal symbolic factorization of `a` in the order of `ordering`.
+fn symbolic(a: &SparseColMat<usize, f64>, last: &[usize]) -> Result<SymbolicCholesky<usize>, LinalgError> {
+    let (fwd, inv) = ordering(a, last)?;
+    let perm = PermRef::new_checked(&fwd, &inv, a.nrows());
+    let params = CholeskySymbolicParams {
+        supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+        ..Default::default()
+    };
+    factorize_symbolic_cholesky(a.symbolic(), Side::Lower, SymmetricOrdering::Custom(perm), params)
+        .map_err(|e| LinalgError::Faer(format!("{e:?}")))
+}
+
 fn ordering(a: &SparseColMat<usize, f64>, last: &[usize]) -> Result<(Vec<usize>, Vec<usize>), LinalgError> {
     let n = a.nrows();
     let mut is_last = vec![false; n];
