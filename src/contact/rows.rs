@@ -14,8 +14,8 @@
 //!
 //! - **nodal**: one row per surface node, at the node, with its tributary
 //!   length w_i = ∫ N_i ds as weight (pressure p_i = λ_i / w_i);
-//! - **mortar**: row i is ∫ Ψ_i (·) ds / ∫ Φ_i ds over the part of the surface
-//!   that sees the target. Φ_i are the linear hats of the multiplier nodes (the
+//! - **mortar**: row i is ∫ Ψ_i (·) ds / ∫ Ψ_i ds over the part of the surface
+//!   that sees the target (∫ Ψ_i = ∫ Φ_i over a whole support). Φ_i are the linear hats of the multiplier nodes (the
 //!   nodes of T3 edges, the corners of T6 edges: quadratic nodal multipliers let
 //!   the pressure alternate between corner and midside nodes); Ψ_i are their
 //!   dual (biorthogonal) partners, ∫ Ψ_i Φ_j ds = δ_ij ∫ Φ_j ds, which on an
@@ -23,8 +23,9 @@
 //!   Testing with Ψ makes the discrete pressure a local quantity: with the
 //!   standard Φ the pressure is an L2-type projection and rings next to the
 //!   zone edge, where it drops like a square root (measured on the elastic disk
-//!   on a flat, T6, 2h/a = 0.034: corner pressures alternating by ±4–8 % of p0
-//!   over the last five nodes; with Ψ the error is monotone and ≤ 1.2 %).
+//!   on a flat, T6, corners a/29 apart: the error alternating in sign over the
+//!   last five corners and growing to +4.4 % and −7.7 % of p0; with Ψ it keeps
+//!   one sign and stays within 1.2 %).
 //!   The multiplier is the force λ_i = p_i w_i with w_i = ∫ Φ_i ds; since
 //!   Σ Ψ_i = 1 a uniform pressure is still transmitted exactly.
 
