@@ -160,13 +160,17 @@ fn half_plane_foundation_reproduces_hertz() {
     assert!(ws[0] < centre && ws[ws.len() - 1] < centre);
 }
 
-/// The same roller meshed with T6 (elements of 0.01, corners as far apart as
-/// the T3 example's nodes): the corners' dual mortar rows on the foundation
-/// give a pressure whose error against Hertz keeps one sign inside 0.95 a
-/// (nodal rows alternated between corner and midside nodes by 1.4 % of p0),
-/// with a nodal L2 error of 0.56 % (measured; the T3 example: 0.43 %). 1 %
-/// asked; the alternation test stops short of the zone edge, where the last
-/// node's error depends on where the edge falls.
+/// The same roller meshed with T6 (elements of 0.01, corners twice as far
+/// apart as the T3 example's nodes): the corners' dual mortar rows on the
+/// foundation give a pressure whose error against Hertz does not alternate
+/// inside 0.95 a (nodal rows alternated between corner and midside nodes by
+/// up to 1.3 % of p0), with a nodal L2 error of 0.56 % (measured; the T3
+/// example: 0.43 %).
+/// Bounds: 1 % L2 is the budget the T3 test gives half-width and peak; an
+/// alternation counts above 1e-3 p0, ten times under the nodal rows' and above
+/// the sign changes of an error that crosses zero smoothly (it passes through
+/// 0 near 0.51 a with neighbours 3e-5 p0 apart). The check stops short of the
+/// zone edge, where the last node's error depends on where the edge falls.
 #[test]
 fn half_plane_foundation_t6_pressure_does_not_alternate() {
     let mut req = example("foundation_half_plane_roller.json");

@@ -56,8 +56,6 @@ pub struct Term {
     pub coef: [f64; 2],
 }
 
-/// Splits nodal terms into the free-DOF row and the prescribed part, which
-/// moves to the right-hand side: returns (row, s − Σ coef · ū).
 /// Whether a row with no free DOF still constrains something: its node is held
 /// by a virtual support of a body whose rigid modes are free (they move it). A
 /// node held by real supports does not move at all: its row is pruned.
@@ -70,25 +68,8 @@ pub fn moves_rigidly(terms: &[Term], dofs: &DofMap) -> bool {
     })
 }
 
-/// Nodal terms, free-DOF row and right-hand side of a row.
-pub type NodeRow = (Vec<Term>, Vec<(usize, f64)>, f64);
-
-/// The one-node row n · u_node ≤ s against something that does not move with
-/// the body's DOFs (an obstacle, a foundation); None when the gap cannot close
-/// (beyond `limit`) or the node is fully prescribed.
-pub fn node_row(body: usize, node: usize, normal: [f64; 2], s: f64, limit: f64, dofs: &DofMap) -> Option<NodeRow> {
-    if s > limit {
-        return None;
-    }
-    let terms = vec![Term {
-        body,
-        node,
-        coef: normal,
-    }];
-    let (row, g) = free_row(&terms, dofs, s);
-    (!row.is_empty() || moves_rigidly(&terms, dofs)).then_some((terms, row, g))
-}
-
+/// Splits nodal terms into the free-DOF row and the prescribed part, which
+/// moves to the right-hand side: returns (row, s − Σ coef · ū).
 pub fn free_row(terms: &[Term], dofs: &DofMap, s: f64) -> (Vec<(usize, f64)>, f64) {
     let mut row: Vec<(usize, f64)> = Vec::with_capacity(2 * terms.len());
     let mut g = s;
@@ -165,11 +146,11 @@ impl ConstraintSet {
             }
         }
     }
-    /// Accumulates |B|ᵀ λ into y (λ ≥ 0 given).
+    /// Accumulates |B|ᵀ |λ| into y: the size of the terms Bᵀλ sums.
     pub fn apply_abs_transpose_into(&self, lambda: &[f64], y: &mut [f64]) {
         for (c, &l) in self.candidates.iter().zip(lambda) {
             for &(d, v) in &c.row {
-                y[d] += v.abs() * l;
+                y[d] += (v * l).abs();
             }
         }
     }

@@ -33,11 +33,11 @@ use std::collections::HashMap;
 
 use faer::Mat;
 
-use super::candidates::{free_row, moves_rigidly, node_row, Candidate};
+use super::candidates::{free_row, moves_rigidly, Candidate};
 use super::rows::{self, Seen, Surface};
 use crate::error::{CoreError, InvalidKind};
 use crate::fem::DofMap;
-use crate::mesh::{boundary::boundary_nodes, Edge, Mesh2d, Order};
+use crate::mesh::{Edge, Mesh2d, Order};
 use crate::proto::GapMeasure;
 use crate::scene::{FoundationModel, Scene};
 
@@ -73,83 +73,32 @@ fn node_panels(mesh: &Mesh2d, edges: &[Edge]) -> HashMap<usize, [f64; 2]> {
 }
 
 /// Rows of pair `p` on foundation `f`; returns the number pruned (nodes off
-/// the foundation's extent, not facing it, or too far above it).
+/// the foundation's extent, not facing it, or too far above it). The rows are
+/// those against a rigid obstacle (`rows`): one per node on T3 surfaces, the
+/// corners' dual mortar rows on T6 ones, since nodal rows on quadratic faces
+/// let the pressure alternate between corner and midside nodes (measured on
+/// the half-plane roller, T6: 1.3 % of p0; T3 none). Each row loads the
+/// foundation over its node's panel.
 pub fn rows(scene: &Scene, p: usize, f: usize, meshes: &[Mesh2d], dofs: &DofMap, out: &mut Vec<Candidate>) -> usize {
     let pair = &scene.pairs[p];
     let fnd = &scene.foundations[f];
     let mesh = &meshes[pair.body];
-    let edges = &mesh.edge_sets[&pair.edges];
-    let panels = node_panels(mesh, edges);
+    let surface = Surface {
+        body: pair.body,
+        mesh,
+        edges: &mesh.edge_sets[&pair.edges],
+    };
+    let panels = node_panels(mesh, surface.edges);
     let limit = scene.settings.prune_gap_ratio * mesh.size();
     let slack = 1e-9 * (fnd.x_max - fnd.x_min);
-    let mut pruned = 0;
-    if mesh.order == Order::T6 {
-        return mortar_rows(scene, p, f, meshes, dofs, &panels, out);
-    }
-    for bn in boundary_nodes(mesh, edges) {
-        let x = mesh.nodes[bn.node];
-        let n = bn.normal;
-        let panel = panels[&bn.node];
-        let clipped = [panel[0].max(fnd.x_min), panel[1].min(fnd.x_max)];
-        let off = x[0] < fnd.x_min - slack || x[0] > fnd.x_max + slack || clipped[1] <= clipped[0];
-        // Only a surface facing down can rest on the foundation.
-        if off || n[1] >= -1e-12 {
-            pruned += 1;
-            continue;
+    let see = |x: [f64; 2], n: [f64; 2]| -> Option<Seen> {
+        // Only a surface facing down, above the foundation's extent, can rest on it.
+        if x[0] < fnd.x_min - slack || x[0] > fnd.x_max + slack || n[1] >= -1e-12 {
+            return None;
         }
         // The foundation's surface is horizontal: its signed distance is the
         // height above it and the row is vertical (exact); the body-normal
         // form measures the gap along n instead.
-        let (n, s) = match scene.settings.gap {
-            GapMeasure::SignedDistance => ([0.0, -1.0], x[1] - fnd.y),
-            GapMeasure::BodyNormal => (n, (fnd.y - x[1]) / n[1]),
-        };
-        let Some((terms, row, g)) = node_row(pair.body, bn.node, n, s, limit, dofs) else {
-            pruned += 1;
-            continue;
-        };
-        let on = FoundationRow {
-            foundation: f,
-            panel: clipped,
-            proj: -n[1],
-        };
-        out.push(candidate(
-            p,
-            pair.body,
-            mesh,
-            bn.node,
-            n,
-            bn.weight,
-            (terms, row, g),
-            on,
-        ));
-    }
-    pruned
-}
-
-/// The rows of a T6 surface: the corners' dual mortar rows (`rows::mortar`),
-/// as against a rigid obstacle, since nodal rows on quadratic faces let the
-/// pressure alternate between corner and midside nodes (measured on the
-/// half-plane roller, T6: 1.4 % of p0; T3 none). Each row loads the
-/// foundation over its corner's panel.
-fn mortar_rows(
-    scene: &Scene,
-    p: usize,
-    f: usize,
-    meshes: &[Mesh2d],
-    dofs: &DofMap,
-    panels: &HashMap<usize, [f64; 2]>,
-    out: &mut Vec<Candidate>,
-) -> usize {
-    let pair = &scene.pairs[p];
-    let fnd = &scene.foundations[f];
-    let mesh = &meshes[pair.body];
-    let limit = scene.settings.prune_gap_ratio * mesh.size();
-    let slack = 1e-9 * (fnd.x_max - fnd.x_min);
-    let see = |x: [f64; 2], n: [f64; 2]| -> Option<Seen> {
-        if x[0] < fnd.x_min - slack || x[0] > fnd.x_max + slack || n[1] >= -1e-12 {
-            return None;
-        }
         let (dir, gap) = match scene.settings.gap {
             GapMeasure::SignedDistance => ([0.0, -1.0], x[1] - fnd.y),
             GapMeasure::BodyNormal => (n, (fnd.y - x[1]) / n[1]),
@@ -161,12 +110,11 @@ fn mortar_rows(
             punch: None,
         })
     };
-    let surface = Surface {
-        body: pair.body,
-        mesh,
-        edges: &mesh.edge_sets[&pair.edges],
+    let rows = if mesh.order == Order::T6 {
+        rows::mortar(&surface, &see, limit, &|_| vec![0.0, 0.5, 1.0])
+    } else {
+        rows::nodal(&surface, &see, limit)
     };
-    let rows = rows::mortar(&surface, &see, limit, &|_| vec![0.0, 0.5, 1.0]);
     let mut pruned = rows.pruned;
     for r in rows.rows {
         let panel = panels[&r.node];
@@ -176,50 +124,25 @@ fn mortar_rows(
             pruned += 1;
             continue;
         }
-        let on = FoundationRow {
-            foundation: f,
-            panel: clipped,
-            proj: -r.normal[1],
-        };
-        out.push(candidate(
-            p,
-            pair.body,
-            mesh,
-            r.node,
-            r.normal,
-            r.weight,
-            (r.terms, row, g),
-            on,
-        ));
+        out.push(Candidate {
+            pair: p,
+            body: pair.body,
+            node: r.node,
+            x: mesh.nodes[r.node],
+            normal: r.normal,
+            weight: r.weight,
+            terms: r.terms,
+            row,
+            g,
+            punch: None,
+            foundation: Some(FoundationRow {
+                foundation: f,
+                panel: clipped,
+                proj: -r.normal[1],
+            }),
+        });
     }
     pruned
-}
-
-/// A row resting on a foundation, as a candidate.
-#[allow(clippy::too_many_arguments)]
-fn candidate(
-    pair: usize,
-    body: usize,
-    mesh: &Mesh2d,
-    node: usize,
-    normal: [f64; 2],
-    weight: f64,
-    (terms, row, g): super::candidates::NodeRow,
-    on: FoundationRow,
-) -> Candidate {
-    Candidate {
-        pair,
-        body,
-        node,
-        x: mesh.nodes[node],
-        normal,
-        weight,
-        terms,
-        row,
-        g,
-        punch: None,
-        foundation: Some(on),
-    }
 }
 
 /// One foundation's discretization, built from the rows that rest on it.

@@ -90,13 +90,7 @@ pub fn solve_condensed_mixed(
             res.lambda[i] > 0.0 && res.lambda[i] * w[(i, i)] > wl[i] + q[i] + cb
         })
         .collect();
-    let mut rhs = p.f.to_vec();
-    let neg: Vec<f64> = res.lambda.iter().map(|l| -l).collect();
-    p.cons.apply_transpose_into(&neg, &mut rhs);
-    // f and Bᵀλ nearly cancel on a body held only by contact: the round-off of
-    // the right-hand side is that of its terms, not of their small difference.
-    let terms_size = f_size.max(rhs.iter().zip(p.f).map(|(r, f)| (r - f).abs()).fold(0.0, f64::max));
-    let (mut u, r1) = solve_refined(op, &rhs, terms_size);
+    let (mut u, r1) = displacements(p, &res.lambda);
     let mut lambda = res.lambda;
     let mut beta = beta;
     let r2 = if exact && res.converged {
@@ -118,6 +112,17 @@ pub fn solve_condensed_mixed(
         t_contact: t.elapsed().as_secs_f64(),
         fallback: None,
     })
+}
+
+/// u = K⁻¹ (f − Bᵀλ), refined; returns u and the refinement steps.
+fn displacements(p: &Problem, lambda: &[f64]) -> (Vec<f64>, usize) {
+    let mut rhs = p.f.to_vec();
+    let neg: Vec<f64> = lambda.iter().map(|l| -l).collect();
+    p.cons.apply_transpose_into(&neg, &mut rhs);
+    // f and Bᵀλ nearly cancel on a body held only by contact: the round-off of
+    // the right-hand side is that of its terms, not of their small difference.
+    let terms_size = inf_norm(p.f).max(rhs.iter().zip(p.f).map(|(r, f)| (r - f).abs()).fold(0.0, f64::max));
+    solve_refined(p.op, &rhs, terms_size)
 }
 
 /// The gaps g − B u + C β + F λ of the rows, from the sparse solution u.
@@ -180,11 +185,7 @@ fn refine_contact(
             return step;
         }
         let b2: Vec<f64> = beta.iter().zip(&db).map(|(b, d)| b + d).collect();
-        let mut rhs = p.f.to_vec();
-        let neg: Vec<f64> = l2.iter().map(|l| -l).collect();
-        p.cons.apply_transpose_into(&neg, &mut rhs);
-        let size = inf_norm(p.f).max(rhs.iter().zip(p.f).map(|(r, f)| (r - f).abs()).fold(0.0, f64::max));
-        let (u2, _) = solve_refined(p.op, &rhs, size);
+        let (u2, _) = displacements(p, &l2);
         let g2 = gaps(p, pb, &u2, &l2, &b2);
         if worst(&g2) > 0.5 * now {
             return step;

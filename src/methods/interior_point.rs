@@ -154,13 +154,14 @@ pub fn solve_mlcp(w: &Mat<f64>, q: &[f64], c: &Mat<f64>, r: &[f64], s: &SolverSe
     b.extend(std::iter::repeat_n(0.0, m));
     let settings = clarabel_settings(s);
     let cones = [ZeroConeT(k), NonnegativeConeT(m)];
+    // Clarabel refusing to set up, or stopping early (the status decides).
     let failed = || {
         (
             LcpResult {
                 lambda: vec![0.0; m],
                 iterations: 0,
                 converged: false,
-                breakdown: false,
+                breakdown: true,
             },
             vec![0.0; k],
         )

@@ -69,8 +69,7 @@ pub fn certify(
     let res: Vec<f64> = (0..u.len()).map(|i| ku[i] - f[i] + btl[i]).collect();
     let abs_ku = sym_lower_abs_matvec(k, u);
     let mut abs_btl = vec![0.0; u.len()];
-    let abs_lambda: Vec<f64> = lambda.iter().map(|l| l.abs()).collect();
-    cons.apply_abs_transpose_into(&abs_lambda, &mut abs_btl);
+    cons.apply_abs_transpose_into(lambda, &mut abs_btl);
     let eq = ratio(
         inf_norm(&res),
         inf_norm(f).max(inf_norm(&abs_ku)).max(inf_norm(&abs_btl)),
