@@ -210,11 +210,10 @@ impl Tested {
     }
 }
 
-/// A multiplier node's integrals: with Φ (its tributary length and normal) and
-/// the row tested with Ψ and with Φ.
+/// A multiplier node's integrals: its Φ-weighted normal and the row tested
+/// with Ψ and with Φ (whose weight is the node's tributary length ∫ Φ_i ds).
 #[derive(Default)]
 struct Acc {
-    weight: f64,
     normal: [f64; 2],
     dual: Tested,
     standard: Tested,
@@ -252,7 +251,6 @@ pub fn mortar(surface: &Surface, see: &See, limit: f64, breaks: &dyn Fn(&[[f64; 
                         order.push(node);
                         Acc::default()
                     });
-                    a.weight += wi;
                     a.normal[0] += wi * seen.dir[0];
                     a.normal[1] += wi * seen.dir[1];
                     a.dual.add(ti, &seen, surface.body, &nodes, &sn);
@@ -275,14 +273,15 @@ pub fn mortar(surface: &Surface, see: &See, limit: f64, breaks: &dyn Fn(&[[f64; 
         let a = acc.remove(&node).expect("accumulated");
         // A node whose multiplier barely overlaps the target has no
         // well-defined pressure.
-        if a.weight <= 1e-9 * full[&node] {
+        let weight = a.standard.weight;
+        if weight <= 1e-9 * full[&node] {
             out.pruned += 1;
             continue;
         }
         // Ψ integrates to ∫ Φ over a whole support; where the target sees only
         // part of it (an end of the target or of the pruned region) ∫ Ψ can
         // vanish or turn negative, and the node keeps the standard row.
-        let t = if a.dual.weight >= 0.5 * a.weight {
+        let t = if a.dual.weight >= 0.5 * weight {
             a.dual
         } else {
             a.standard
@@ -298,7 +297,7 @@ pub fn mortar(surface: &Surface, see: &See, limit: f64, breaks: &dyn Fn(&[[f64; 
         out.rows.push(Row {
             node,
             normal: [a.normal[0] / nl, a.normal[1] / nl],
-            weight: a.weight,
+            weight,
             terms: t
                 .terms
                 .into_iter()
