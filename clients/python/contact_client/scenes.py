@@ -16,6 +16,9 @@ from __future__ import annotations
 
 import math
 
+from . import request as rq
+from .request import PROTOCOL_VERSION
+
 __all__ = [
     "gmsh_mesh",
     "roller_on_floor",
@@ -33,9 +36,6 @@ __all__ = [
     "hertz_measure",
     "effective_modulus",
 ]
-
-PROTOCOL_VERSION = "1"
-
 
 def effective_modulus(youngs_modulus: float, poisson_ratio: float, analysis: str = "plane_strain") -> float:
     """E* of an elastic body against a rigid one."""
@@ -114,43 +114,25 @@ def hertz_cylinder(
         # Half-chord of the circle's overlap with the undeformed face: the surface
         # sinks under the load, so the contact half-width a is always smaller.
         extent = math.sqrt(depth * (2.0 * radius - depth))
-    req: dict = {
-        "version": PROTOCOL_VERSION,
-        "description": (
+    if mesh is None:
+        mesh = rq.rectangle(
+            [-width / 2.0, -height], width, height, size, element, rq.grading(h_min, ratio, extent, focus=[0.0, 0.0])
+        )
+    return rq.request(
+        bodies=[
+            rq.body("block", rq.material(youngs_modulus, poisson_ratio), mesh, [rq.support("bottom", 0.0, 0.0)])
+        ],
+        obstacles=[rq.obstacle("cylinder", rq.circle([0.0, radius - depth], radius))],
+        contacts=[rq.contact("block", "top", obstacle="cylinder")],
+        analysis=analysis,
+        method=method,
+        client_id=client_id,
+        outputs=outputs,
+        description=(
             f"Hertz: rigid cylinder R={radius} pressed {depth} into an elastic block "
             f"{width} x {height} (E={youngs_modulus}, nu={poisson_ratio}, {analysis}), fixed bottom"
         ),
-        "analysis": analysis,
-        "bodies": [
-            {
-                "name": "block",
-                "material": {"youngs_modulus": youngs_modulus, "poisson_ratio": poisson_ratio},
-                "mesh": {
-                    "rectangle": {
-                        "corner": [-width / 2.0, -height],
-                        "width": width,
-                        "height": height,
-                        "size": size,
-                        "element": element,
-                        "grading": {"focus": [0.0, 0.0], "h_min": h_min, "ratio": ratio, "extent": extent},
-                    }
-                },
-                "supports": [{"edges": "bottom", "ux": 0.0, "uy": 0.0}],
-            }
-        ],
-        "obstacles": [
-            {"name": "cylinder", "shape": {"circle": {"center": [0.0, radius - depth], "radius": radius}}}
-        ],
-        "contacts": [{"body": "block", "edges": "top", "obstacle": "cylinder"}],
-        "method": method,
-    }
-    if mesh is not None:
-        req["bodies"][0]["mesh"] = mesh
-    if client_id is not None:
-        req["client_id"] = client_id
-    if outputs:
-        req["outputs"] = list(outputs)
-    return req
+    )
 
 
 def hertz_measure(reply: dict, pair: int = 0) -> dict:
@@ -206,42 +188,17 @@ def punch_on_block(
     The mesh is uniform at ``h_min`` within ``extent`` of the origin (cover the
     contact zone) and graded by 1.1 up to size 1 elsewhere.
     """
-    return {
-        "version": PROTOCOL_VERSION,
-        "description": f"rigid punch {profile} pressed with P = {load} into an elastic block {width} x {depth}",
-        "analysis": "plane_strain",
-        "bodies": [
-            {
-                "name": "block",
-                "material": {"youngs_modulus": youngs_modulus, "poisson_ratio": poisson_ratio},
-                "mesh": {
-                    "rectangle": {
-                        "corner": [-0.5 * width, -depth],
-                        "width": width,
-                        "height": depth,
-                        "size": 1.0,
-                        "element": element,
-                        "grading": {"focus": [0.0, 0.0], "h_min": h_min, "ratio": 1.1, "extent": extent},
-                    }
-                },
-                "supports": [{"edges": "bottom", "ux": 0.0, "uy": 0.0}],
-            }
+    mesh = rq.rectangle([-0.5 * width, -depth], width, depth, 1.0, element, rq.grading(h_min, 1.1, extent, [0.0, 0.0]))
+    controls = rq.punch(horizontal=rq.load(horizontal_load), vertical=rq.load(-load), rotation=rq.load(moment))
+    return rq.request(
+        bodies=[
+            rq.body("block", rq.material(youngs_modulus, poisson_ratio), mesh, [rq.support("bottom", 0.0, 0.0)])
         ],
-        "obstacles": [
-            {
-                "name": "punch",
-                "shape": {"profile": {"reference": [0.0, 0.0], "psi": profile}},
-                "punch": {
-                    "reference": [0.0, 0.0],
-                    "horizontal": {"load": horizontal_load},
-                    "vertical": {"load": -load},
-                    "rotation": {"load": moment},
-                },
-            }
-        ],
-        "contacts": [{"body": "block", "edges": "top", "obstacle": "punch"}],
-        "method": method,
-    }
+        obstacles=[rq.obstacle("punch", rq.profile(profile), controls)],
+        contacts=[rq.contact("block", "top", obstacle="punch")],
+        method=method,
+        description=f"rigid punch {profile} pressed with P = {load} into an elastic block {width} x {depth}",
+    )
 
 
 def sadowsky_pressure(x: float, P: float, b: float) -> float:
@@ -294,44 +251,17 @@ def two_cylinders(
     """
 
     def half_disk(center, radius, facing, h):
-        return {
-            "half_disk": {
-                "center": center,
-                "radius": radius,
-                "facing": facing,
-                "size": radius / 16.0,
-                "element": element,
-                "grading": {"h_min": h, "ratio": 1.1, "extent": 0.15 * min(R1, R2)},
-            }
-        }
+        return rq.half_disk(center, radius, facing, radius / 16.0, element, rq.grading(h, 1.1, 0.15 * min(R1, R2)))
 
-    return {
-        "version": PROTOCOL_VERSION,
-        "analysis": "plane_strain",
-        "bodies": [
-            {
-                "name": "upper",
-                "material": {"youngs_modulus": E1, "poisson_ratio": nu1},
-                "mesh": half_disk([0.0, R1], R1, "down", h_min),
-                "supports": [{"edges": "flat", "ux": 0.0, "uy": -approach}],
-            },
-            {
-                "name": "lower",
-                "material": {"youngs_modulus": E2, "poisson_ratio": nu2},
-                "mesh": half_disk([0.0, -R2], R2, "up", 1.3 * h_min),
-                "supports": [{"edges": "flat", "ux": 0.0, "uy": 0.0}],
-            },
+    return rq.request(
+        bodies=[
+            rq.body("upper", rq.material(E1, nu1), half_disk([0.0, R1], R1, "down", h_min),
+                    [rq.support("flat", 0.0, -approach)]),
+            rq.body("lower", rq.material(E2, nu2), half_disk([0.0, -R2], R2, "up", 1.3 * h_min),
+                    [rq.support("flat", 0.0, 0.0)]),
         ],
-        "obstacles": [],
-        "contacts": [
-            {
-                "body": "upper",
-                "edges": "arc",
-                "against": {"body": "lower", "edges": "arc"},
-                "discretization": discretization,
-            }
-        ],
-    }
+        contacts=[rq.contact("upper", "arc", against=("lower", "arc"), discretization=discretization)],
+    )
 
 
 def footing_on_foundation(
@@ -356,29 +286,13 @@ def footing_on_foundation(
     The footing's horizontal translation is not resisted by a frictionless
     foundation; the reply says so in ``notes``.
     """
-    return {
-        "version": PROTOCOL_VERSION,
-        "analysis": "plane_strain",
-        "bodies": [
-            {
-                "name": "footing",
-                "material": {"youngs_modulus": youngs_modulus, "poisson_ratio": poisson_ratio},
-                "mesh": {
-                    "rectangle": {
-                        "corner": [-0.5 * width, 0.0],
-                        "width": width,
-                        "height": height,
-                        "size": size,
-                        "element": element,
-                    }
-                },
-                "supports": [],
-                "tractions": [{"edges": "top", "pressure": pressure}],
-            }
-        ],
-        "foundations": [{"name": "soil", "y": 0.0, "x_min": -extent, "x_max": extent, "model": model}],
-        "contacts": [{"body": "footing", "edges": "bottom", "foundation": "soil"}],
-    }
+    mesh = rq.rectangle([-0.5 * width, 0.0], width, height, size, element)
+    return rq.request(
+        bodies=[rq.body("footing", rq.material(youngs_modulus, poisson_ratio), mesh,
+                        tractions=[rq.pressure("top", pressure)])],
+        foundations=[rq.foundation("soil", model, -extent, extent)],
+        contacts=[rq.contact("footing", "bottom", foundation="soil")],
+    )
 
 
 def pasternak_deflection(x: float, P: float, a: float, k: float, mu: float) -> float:
@@ -395,10 +309,7 @@ def gmsh_mesh(msh: str, surfaces: list[str] | None = None) -> dict:
     Triangles (3- or 6-node) make the body, or only those of the physical surface groups
     named in ``surfaces``; each physical curve group becomes the edge set of its name.
     """
-    g: dict = {"msh": msh}
-    if surfaces:
-        g["surfaces"] = list(surfaces)
-    return {"gmsh": g}
+    return rq.gmsh(msh, surfaces)
 
 
 def roller_on_floor(
@@ -420,26 +331,20 @@ def roller_on_floor(
     ``h_min`` [length] within ``extent`` of the apex, graded by 1.1 up to ``size``.
     Hertz (elastic cylinder on a rigid flat) with P = |resultant.fy|: ``hertz_reference``.
     """
-    return {
-        "version": PROTOCOL_VERSION,
-        "description": f"elastic roller R={radius} pressed {approach} onto a rigid floor",
-        "analysis": analysis,
-        "bodies": [{
-            "name": "roller",
-            "material": {"youngs_modulus": youngs_modulus, "poisson_ratio": poisson_ratio},
-            "mesh": {"half_disk": {"center": [0.0, radius], "radius": radius, "size": size, "element": element,
-                                   "grading": {"h_min": h_min, "ratio": 1.1, "extent": extent}}},
-            "supports": [{"edges": "flat", "ux": 0.0, "uy": -approach}],
-        }],
-        "obstacles": [{"name": "floor", "shape": {"line": {"point": [0.0, 0.0], "normal": [0.0, 1.0]}}}],
-        "contacts": [{"body": "roller", "edges": "arc", "obstacle": "floor"}],
-    }
+    mesh = rq.half_disk([0.0, radius], radius, "down", size, element, rq.grading(h_min, 1.1, extent))
+    return rq.request(
+        bodies=[rq.body("roller", rq.material(youngs_modulus, poisson_ratio), mesh,
+                        [rq.support("flat", 0.0, -approach)])],
+        obstacles=[rq.obstacle("floor", rq.line([0.0, 0.0], [0.0, 1.0]))],
+        contacts=[rq.contact("roller", "arc", obstacle="floor")],
+        analysis=analysis,
+        description=f"elastic roller R={radius} pressed {approach} onto a rigid floor",
+    )
 
 
 def _block(width: float, height: float, size: float, element: str) -> dict:
     """Rectangle [-width/2, width/2] x [0, height]; edge sets bottom, right, top, left."""
-    return {"rectangle": {"corner": [-0.5 * width, 0.0], "width": width, "height": height, "size": size,
-                          "element": element}}
+    return rq.rectangle([-0.5 * width, 0.0], width, height, size, element)
 
 
 def block_on_polyline(
@@ -460,19 +365,14 @@ def block_on_polyline(
     ``push`` [length]. Material in force/length^2; uniform mesh of ``size``.
     """
     points = points if points is not None else [[-2.0, 0.2], [0.0, 0.0], [2.0, 0.2]]
-    return {
-        "version": PROTOCOL_VERSION,
-        "description": f"elastic block {width} x {height} pushed {push} onto a rigid polyline floor",
-        "analysis": analysis,
-        "bodies": [{
-            "name": "block",
-            "material": {"youngs_modulus": youngs_modulus, "poisson_ratio": poisson_ratio},
-            "mesh": _block(width, height, size, element),
-            "supports": [{"edges": "top", "ux": 0.0, "uy": -push}],
-        }],
-        "obstacles": [{"name": "floor", "shape": {"polyline": {"points": points}}}],
-        "contacts": [{"body": "block", "edges": "bottom", "obstacle": "floor"}],
-    }
+    return rq.request(
+        bodies=[rq.body("block", rq.material(youngs_modulus, poisson_ratio), _block(width, height, size, element),
+                        [rq.support("top", 0.0, -push)])],
+        obstacles=[rq.obstacle("floor", rq.polyline(points))],
+        contacts=[rq.contact("block", "bottom", obstacle="floor")],
+        analysis=analysis,
+        description=f"elastic block {width} x {height} pushed {push} onto a rigid polyline floor",
+    )
 
 
 def block_held_by_contact(
@@ -489,17 +389,10 @@ def block_held_by_contact(
     Its horizontal sliding is resisted by nothing (frictionless) and carries no load: the
     reply says so in ``notes``. Exact answer: uniform contact pressure equal to ``pressure``.
     """
-    return {
-        "version": PROTOCOL_VERSION,
-        "description": f"unsupported block {width} x {height} pressed by {pressure} onto a rigid floor",
-        "analysis": "plane_strain",
-        "bodies": [{
-            "name": "block",
-            "material": {"youngs_modulus": youngs_modulus, "poisson_ratio": poisson_ratio},
-            "mesh": _block(width, height, size, element),
-            "supports": [],
-            "tractions": [{"edges": "top", "pressure": pressure}],
-        }],
-        "obstacles": [{"name": "floor", "shape": {"line": {"point": [0.0, 0.0], "normal": [0.0, 1.0]}}}],
-        "contacts": [{"body": "block", "edges": "bottom", "obstacle": "floor"}],
-    }
+    return rq.request(
+        bodies=[rq.body("block", rq.material(youngs_modulus, poisson_ratio), _block(width, height, size, element),
+                        tractions=[rq.pressure("top", pressure)])],
+        obstacles=[rq.obstacle("floor", rq.line([0.0, 0.0], [0.0, 1.0]))],
+        contacts=[rq.contact("block", "bottom", obstacle="floor")],
+        description=f"unsupported block {width} x {height} pressed by {pressure} onto a rigid floor",
+    )

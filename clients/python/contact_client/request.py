@@ -1,0 +1,290 @@
+"""Composable request constructors: the parts of a solve request as plain dicts.
+
+Every builder in ``scenes``, the tests and the examples put their requests
+together from these, so the protocol's spelling lives in one place::
+
+    from contact_client import request as rq
+
+    req = rq.request(
+        bodies=[rq.body("block", rq.material(200.0, 0.3),
+                        rq.rectangle([-20, -20], 40, 20, size=1.0,
+                                     grading=rq.grading(0.01, extent=1.2, focus=[0, 0])),
+                        supports=[rq.support("bottom", ux=0.0, uy=0.0)])],
+        obstacles=[rq.obstacle("cylinder", rq.circle([0.0, 7.88], 8.0))],
+        contacts=[rq.contact("block", "top", obstacle="cylinder")],
+    )
+
+Units are the caller's, consistent (the reply uses the same). Arguments left
+as ``None`` are left out of the request, so the service's defaults apply.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Iterable
+
+PROTOCOL_VERSION = "1"
+
+__all__ = [
+    "PROTOCOL_VERSION",
+    "request",
+    "body",
+    "material",
+    "rectangle",
+    "half_disk",
+    "quarter_disk",
+    "inline_mesh",
+    "gmsh",
+    "grading",
+    "support",
+    "pressure",
+    "traction",
+    "obstacle",
+    "line",
+    "circle",
+    "polyline",
+    "profile",
+    "punch",
+    "load",
+    "displacement",
+    "foundation",
+    "winkler",
+    "pasternak",
+    "half_plane",
+    "contact",
+]
+
+
+def _given(**fields: Any) -> dict:
+    """The fields that are not None, in the order given."""
+    return {k: v for k, v in fields.items() if v is not None}
+
+
+def request(
+    bodies: Iterable[dict],
+    obstacles: Iterable[dict] = (),
+    contacts: Iterable[dict] = (),
+    foundations: Iterable[dict] | None = None,
+    *,
+    analysis: str | None = "plane_strain",
+    method: str | None = None,
+    settings: dict | None = None,
+    outputs: Iterable[str] | None = None,
+    load_factors: Iterable[float] | None = None,
+    time_limit: float | None = None,
+    client_id: str | None = None,
+    description: str | None = None,
+) -> dict:
+    """A whole solve request."""
+    req = _given(version=PROTOCOL_VERSION, description=description, analysis=analysis)
+    req["bodies"] = list(bodies)
+    obstacles = list(obstacles)
+    if foundations is not None:
+        req["foundations"] = list(foundations)
+    if foundations is None or obstacles:
+        req["obstacles"] = obstacles
+    req["contacts"] = list(contacts)
+    req.update(_given(method=method, settings=settings, time_limit=time_limit, client_id=client_id))
+    if outputs:
+        req["outputs"] = list(outputs)
+    if load_factors is not None:
+        req["load_factors"] = list(load_factors)
+    return req
+
+
+def material(youngs_modulus: float, poisson_ratio: float) -> dict:
+    """Linear elastic, isotropic: E [force/length^2] and nu (< 0.5)."""
+    return {"youngs_modulus": youngs_modulus, "poisson_ratio": poisson_ratio}
+
+
+def body(
+    name: str,
+    material: dict,
+    mesh: dict,
+    supports: Iterable[dict] = (),
+    tractions: Iterable[dict] | None = None,
+    body_force: list[float] | None = None,
+) -> dict:
+    """A deformable body; ``supports`` and ``tractions`` name the mesh's edge sets."""
+    b = {"name": name, "material": material, "mesh": mesh, "supports": list(supports)}
+    if tractions is not None:
+        b["tractions"] = list(tractions)
+    if body_force is not None:
+        b["body_force"] = list(body_force)
+    return b
+
+
+def grading(h_min: float, ratio: float = 1.1, extent: float = 0.0, focus: list[float] | None = None) -> dict:
+    """Elements of ``h_min`` within ``extent`` of ``focus`` (a disk's apex when
+    omitted), growing by ``ratio`` per element beyond, up to the mesh's size."""
+    return _given(focus=focus, h_min=h_min, ratio=ratio, extent=extent)
+
+
+def rectangle(
+    corner: list[float], width: float, height: float, size: float, element: str = "t3", grading: dict | None = None
+) -> dict:
+    """Generated rectangle from its lower-left ``corner``; edge sets bottom, right, top, left."""
+    return {
+        "rectangle": _given(
+            corner=list(corner), width=width, height=height, size=size, element=element, grading=grading
+        )
+    }
+
+
+def half_disk(
+    center: list[float], radius: float, facing: str, size: float, element: str = "t3", grading: dict | None = None
+) -> dict:
+    """Generated half-disk with its arc ``facing`` "down" or "up"; edge sets arc and flat."""
+    return {
+        "half_disk": _given(
+            center=list(center), radius=radius, facing=facing, size=size, element=element, grading=grading
+        )
+    }
+
+
+def quarter_disk(
+    center: list[float], radius: float, facing: str, size: float, element: str = "t3", grading: dict | None = None
+) -> dict:
+    """Generated quarter-disk (the right half of ``half_disk``, for a symmetric scene)."""
+    return {
+        "quarter_disk": _given(
+            center=list(center), radius=radius, facing=facing, size=size, element=element, grading=grading
+        )
+    }
+
+
+def inline_mesh(nodes: list[list[float]], elements: list[list[int]], edge_sets: dict[str, list[list[int]]]) -> dict:
+    """A mesh given node by node: counter-clockwise triangles (3 or 6 nodes) and
+    named edge sets of boundary edges."""
+    return {
+        "inline": {
+            "nodes": [list(p) for p in nodes],
+            "elements": [list(e) for e in elements],
+            "edge_sets": {k: [list(e) for e in v] for k, v in edge_sets.items()},
+        }
+    }
+
+
+def gmsh(msh: str, surfaces: list[str] | None = None) -> dict:
+    """A mesh from Gmsh MSH 4.1 ASCII text (e.g. ``open("part.msh").read()``).
+
+    Triangles (3- or 6-node) make the body, or only those of the physical surface
+    groups named in ``surfaces``; each physical curve group becomes the edge set
+    of its name."""
+    g: dict = {"msh": msh}
+    if surfaces:
+        g["surfaces"] = list(surfaces)
+    return {"gmsh": g}
+
+
+def support(edges: str, ux: float | None = None, uy: float | None = None) -> dict:
+    """Prescribed displacement components on an edge set (a missing one is free)."""
+    return _given(edges=edges, ux=ux, uy=uy)
+
+
+def pressure(edges: str, p: float) -> dict:
+    """Uniform pressure on an edge set, positive pushing into the body."""
+    return {"edges": edges, "pressure": p}
+
+
+def traction(edges: str, t: list[float]) -> dict:
+    """Uniform traction vector [tx, ty] on an edge set."""
+    return {"edges": edges, "traction": list(t)}
+
+
+def line(point: list[float], normal: list[float]) -> dict:
+    """Rigid half-plane through ``point``; ``normal`` points out of the obstacle."""
+    return {"line": {"point": list(point), "normal": list(normal)}}
+
+
+def circle(center: list[float], radius: float) -> dict:
+    """Rigid disk."""
+    return {"circle": {"center": list(center), "radius": radius}}
+
+
+def polyline(points: list[list[float]]) -> dict:
+    """Rigid material to the right of the direction of travel through ``points``."""
+    return {"polyline": {"points": [list(p) for p in points]}}
+
+
+def profile(psi: dict, reference: list[float] = (0.0, 0.0)) -> dict:
+    """Punch surface y = y_r + psi(x - x_r), rigid above; ``psi`` is e.g.
+    ``{"flat": {"half_width": 1.0}}`` or ``{"circle": {"radius": 8.0}}``."""
+    return {"profile": {"reference": list(reference), "psi": psi}}
+
+
+def load(value: float) -> dict:
+    """A punch motion left free, with this load on the punch."""
+    return {"load": value}
+
+
+def displacement(value: float) -> dict:
+    """A prescribed punch motion."""
+    return {"displacement": value}
+
+
+def punch(
+    reference: list[float] = (0.0, 0.0),
+    horizontal: dict | None = None,
+    vertical: dict | None = None,
+    rotation: dict | None = None,
+) -> dict:
+    """Rigid-motion controls of an obstacle about ``reference``: each of
+    (alpha1, P1), (alpha2, P2), (theta, M) as ``load(v)`` or ``displacement(v)``."""
+    return _given(reference=list(reference), horizontal=horizontal, vertical=vertical, rotation=rotation)
+
+
+def obstacle(name: str, shape: dict, punch: dict | None = None) -> dict:
+    """A rigid obstacle (a punch when ``punch`` is given)."""
+    return _given(name=name, shape=shape, punch=punch)
+
+
+def winkler(stiffness: float) -> dict:
+    """p = k w; k in pressure per length."""
+    return {"winkler": {"stiffness": stiffness}}
+
+
+def pasternak(stiffness: float, shear: float) -> dict:
+    """p = k w - (mu w')'; mu in force per unit thickness."""
+    return {"pasternak": {"stiffness": stiffness, "shear": shear}}
+
+
+def half_plane(youngs_modulus: float, poisson_ratio: float, reference_distance: float) -> dict:
+    """Elastic half-plane (Flamant), deflection zero at ``reference_distance`` from a load."""
+    return {
+        "half_plane": {
+            "youngs_modulus": youngs_modulus,
+            "poisson_ratio": poisson_ratio,
+            "reference_distance": reference_distance,
+        }
+    }
+
+
+def foundation(name: str, model: dict, x_min: float, x_max: float, y: float = 0.0) -> dict:
+    """A tensionless foundation along y, x in [x_min, x_max]."""
+    return {"name": name, "y": y, "x_min": x_min, "x_max": x_max, "model": model}
+
+
+def contact(
+    body: str | int,
+    edges: str,
+    *,
+    obstacle: str | int | None = None,
+    against: tuple[str | int, str] | None = None,
+    foundation: str | int | None = None,
+    discretization: str | None = None,
+) -> dict:
+    """A contact pair: the body's edge set against exactly one of a rigid
+    ``obstacle``, another body's edge set ``against=(body, edges)``, or a
+    ``foundation``."""
+    if sum(x is not None for x in (obstacle, against, foundation)) != 1:
+        raise ValueError("a contact pair names exactly one of obstacle, against or foundation")
+    c: dict = {"body": body, "edges": edges}
+    if obstacle is not None:
+        c["obstacle"] = obstacle
+    if foundation is not None:
+        c["foundation"] = foundation
+    if against is not None:
+        c["against"] = {"body": against[0], "edges": against[1]}
+    if discretization is not None:
+        c["discretization"] = discretization
+    return c

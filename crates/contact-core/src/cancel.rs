@@ -1,0 +1,126 @@
+//! Cooperative cancellation: a deadline per solving thread.
+//!
+//! The service installs a [`Deadline`] on the blocking thread before it calls the
+//! pipeline; the pipeline calls [`check`] at its stage boundaries and the
+//! iterative methods poll [`expired`] once per iteration (and Clarabel gets
+//! [`remaining_secs`] as its own time limit). A solve over its time therefore
+//! stops at the next boundary with [`CoreError::Timeout`], unwinding normally,
+//! so everything it allocated is dropped and the thread is free again. A stage
+//! that does not poll (one sparse factorization) runs to its end: the overshoot
+//! is at most one such stage.
+//!
+//! A thread-local rather than a parameter keeps the numerical signatures free of
+//! service concerns; the guard restores the previous deadline on drop (also when
+//! unwinding), so a reused worker thread never inherits a stale one. Without a
+//! deadline (the CLI, the library) every check is a no-op.
+
+use std::cell::Cell;
+use std::time::{Duration, Instant};
+
+use crate::error::CoreError;
+
+#[derive(Clone, Copy, Debug)]
+struct Limit {
+    at: Instant,
+    limit: Duration,
+}
+
+thread_local! {
+    static DEADLINE: Cell<Option<Limit>> = const { Cell::new(None) };
+}
+
+/// While alive, solves on this thread are limited to `limit` from its creation
+/// (or to an earlier deadline already installed).
+#[must_use = "the deadline is lifted when the guard is dropped"]
+pub struct Deadline {
+    previous: Option<Limit>,
+}
+
+impl Deadline {
+    pub fn install(limit: Duration) -> Self {
+        let now = Instant::now();
+        let new = Limit {
+            at: now
+                .checked_add(limit)
+                .unwrap_or(now + Duration::from_secs(86_400 * 365)),
+            limit,
+        };
+        let previous = DEADLINE.with(|d| d.get());
+        let kept = match previous {
+            Some(p) if p.at <= new.at => p,
+            _ => new,
+        };
+        DEADLINE.with(|d| d.set(Some(kept)));
+        Self { previous }
+    }
+}
+
+impl Drop for Deadline {
+    fn drop(&mut self) {
+        DEADLINE.with(|d| d.set(self.previous));
+    }
+}
+
+/// Whether this thread's deadline has passed (false without one).
+pub fn expired() -> bool {
+    DEADLINE.with(|d| d.get()).is_some_and(|l| Instant::now() >= l.at)
+}
+
+/// `Err(Timeout)` naming `stage` (the one just finished or cut) once the deadline has passed.
+pub fn check(stage: &'static str) -> Result<(), CoreError> {
+    match DEADLINE.with(|d| d.get()) {
+        Some(l) if Instant::now() >= l.at => Err(CoreError::Timeout {
+            stage,
+            limit_s: l.limit.as_secs_f64(),
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// Seconds left (infinite without a deadline; never negative).
+pub fn remaining_secs() -> f64 {
+    match DEADLINE.with(|d| d.get()) {
+        Some(l) => l.at.saturating_duration_since(Instant::now()).as_secs_f64(),
+        None => f64::INFINITY,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn no_deadline_never_expires() {
+        assert!(!expired());
+        assert!(check("mesh").is_ok());
+        assert_eq!(remaining_secs(), f64::INFINITY);
+    }
+
+    #[test]
+    fn a_passed_deadline_names_the_stage_and_is_lifted_on_drop() {
+        {
+            let _d = Deadline::install(Duration::ZERO);
+            assert!(expired());
+            match check("assembly") {
+                Err(CoreError::Timeout { stage, limit_s }) => {
+                    assert_eq!(stage, "assembly");
+                    assert_eq!(limit_s, 0.0);
+                }
+                other => panic!("expected a timeout, got {other:?}"),
+            }
+        }
+        assert!(check("assembly").is_ok());
+    }
+
+    #[test]
+    fn the_earlier_deadline_wins_and_nesting_restores() {
+        let _outer = Deadline::install(Duration::ZERO);
+        {
+            let _inner = Deadline::install(Duration::from_secs(3600));
+            assert!(expired(), "a later inner deadline must not extend the outer one");
+        }
+        assert!(expired());
+        let _long = Deadline::install(Duration::from_secs(3600));
+        assert!(expired());
+    }
+}

@@ -1,0 +1,601 @@
+//! The free rigid motions of a contact problem and their compatibility check.
+//!
+//! Two kinds of motion are held only by contact: the load-controlled components
+//! of a rigid punch, and the rigid modes a body's supports leave free
+//! (`fem::rigid_modes`). Both enter the rows as −C β and bring an equilibrium
+//! equation Cᵀλ = −P (P their loads), so they are one block of the mixed LCP.
+//!
+//! Before solving, the block is reduced to the motions contact can resist:
+//! a motion (or combination) that moves no candidate along its normal is
+//! undetermined — harmless if its load is zero (it is reported as such and set
+//! to 0), `incompatible_loads` otherwise. The rest must pass Fichera's LP test
+//! (`rigid::check`): some λ ≥ 0 on the candidates balances the loads.
+
+use faer::Mat;
+
+use super::{rigid, ConstraintSet};
+use crate::error::LoadBound;
+use crate::error::{CoreError, InvalidKind};
+use crate::fem::{rigid_modes::RigidModes, DofMap};
+use crate::linalg::dense::sym_eigen_small;
+use crate::mesh::Mesh2d;
+use crate::scene::Control;
+use crate::scene::Scene;
+
+pub const COMPONENT: [&str; 3] = ["horizontal", "vertical", "rotation"];
+
+/// Relative Gram eigenvalue below which a combination of free motions moves no
+/// candidate: a lever of 1e-6 of the motion, far above round-off (ε‖G‖) and far
+/// below any real lever (a circular punch's horizontal shift has n_x ≈ x/R).
+const NULL_COMBINATION: f64 = 1e-12;
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Motion {
+    /// Component (0: horizontal, 1: vertical, 2: rotation) of a punch.
+    Punch { obstacle: usize, component: usize },
+    /// Rigid motion `dir` = (ux, uy, rotation about the centre) of the body of
+    /// `dofs.rigid[set]`, a combination of its free modes.
+    Body { set: usize, dir: [f64; 3] },
+}
+
+pub struct FreeMotions {
+    /// Every free motion with its (nondimensional) load P.
+    pub motions: Vec<(Motion, f64)>,
+    /// Basis of the motions contact determines: β = V γ (motions × kept).
+    pub v: Mat<f64>,
+    /// C V (candidates × kept) and the equilibrium right-hand side −Vᵀ P.
+    pub c: Mat<f64>,
+    pub rhs: Vec<f64>,
+    /// Motions (or combinations) nothing resists and nothing loads: fixed at 0.
+    pub undetermined: Vec<Vec<f64>>,
+    /// The same, said in words, for rigid motions of bodies.
+    pub notes: Vec<String>,
+    /// Rigid motions of bodies treated as unresisted (held at 0 by the virtual
+    /// supports): their columns of C and each candidate's motion with them. A
+    /// solution must put no net generalized force on them (`unbalanced`).
+    pub unresisted: Vec<(Vec<f64>, Vec<f64>)>,
+}
+
+impl FreeMotions {
+    pub fn is_empty(&self) -> bool {
+        self.c.ncols() == 0
+    }
+
+    /// (C V) γ per candidate: the rows' share of the free motions.
+    pub fn shift(&self, gamma: &[f64]) -> Vec<f64> {
+        (0..self.c.nrows())
+            .map(|i| (0..gamma.len()).map(|j| self.c[(i, j)] * gamma[j]).sum())
+            .collect()
+    }
+
+    /// β = V γ: the amplitude of every free motion.
+    pub fn motion(&self, gamma: &[f64]) -> Vec<f64> {
+        (0..self.v.nrows())
+            .map(|i| (0..gamma.len()).map(|j| self.v[(i, j)] * gamma[j]).sum())
+            .collect()
+    }
+
+    /// Relative residual of the free motions' equilibrium for the contact
+    /// forces λ, for the certificate: (CV)ᵀλ = −VᵀP on the motions solved for,
+    /// and no net force on the motions treated as unresisted (`unbalanced`).
+    pub fn equilibrium(&self, lambda: &[f64]) -> f64 {
+        let mut worst = self.unbalanced(lambda);
+        for j in 0..self.c.ncols() {
+            let (mut ct, mut scale) = (0.0, self.rhs[j].abs());
+            for (i, l) in lambda.iter().enumerate() {
+                ct += self.c[(i, j)] * l;
+                scale = scale.max((self.c[(i, j)] * l).abs());
+            }
+            if scale > 0.0 {
+                worst = worst.max((ct - self.rhs[j]).abs() / scale);
+            }
+        }
+        worst
+    }
+
+    /// The largest net contact force on an unresisted motion, relative to the
+    /// contact forces acting along it: what the virtual supports would have to
+    /// carry (0 at a true solution).
+    fn unbalanced(&self, lambda: &[f64]) -> f64 {
+        self.unresisted
+            .iter()
+            .map(|(col, reach)| {
+                let net: f64 = col.iter().zip(lambda).map(|(c, l)| c * l).sum();
+                let scale: f64 = reach.iter().zip(lambda).map(|(r, l)| r * l.abs()).sum();
+                if net == 0.0 {
+                    0.0
+                } else {
+                    net.abs() / scale.max(f64::MIN_POSITIVE)
+                }
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// Whether motion `k` is fully determined by contact.
+    pub fn is_determined(&self, k: usize) -> bool {
+        self.undetermined.iter().all(|u| u[k].abs() <= 1e-12)
+    }
+
+    pub fn try_new(
+        scene: &Scene,
+        cons: &ConstraintSet,
+        dofs: &DofMap,
+        meshes: &[Mesh2d],
+        external: &[f64],
+    ) -> Result<Self, CoreError> {
+        let (punch_free, c_punch) = cons.punch_block(scene);
+        let m = cons.len();
+        let mut motions: Vec<(Motion, f64)> = punch_free
+            .iter()
+            .map(|&(o, k, load)| {
+                (
+                    Motion::Punch {
+                        obstacle: o,
+                        component: k,
+                    },
+                    load,
+                )
+            })
+            .collect();
+        // |work| of each load, the scale against which "zero load" is judged.
+        let mut load_scale: Vec<f64> = punch_free.iter().map(|f| f.2.abs()).collect();
+        let mut cols: Vec<Vec<f64>> = (0..punch_free.len())
+            .map(|j| (0..m).map(|i| c_punch[(i, j)]).collect())
+            .collect();
+        let mut notes = Vec::new();
+        let mut unresisted = Vec::new();
+        for (set, rm) in dofs.rigid.iter().enumerate() {
+            let resisted = body_directions(scene, cons, dofs, rm, &meshes[rm.body], external)?;
+            for d in resisted {
+                match d {
+                    Direction::Resisted { dir, col, load, scale } => {
+                        motions.push((Motion::Body { set, dir }, load));
+                        load_scale.push(scale);
+                        cols.push(col);
+                    }
+                    Direction::Free { col, reach, note } => {
+                        unresisted.push((col, reach));
+                        notes.push(note);
+                    }
+                }
+            }
+        }
+        let n = motions.len();
+        let norms: Vec<f64> = cols
+            .iter()
+            .map(|c| c.iter().map(|v| v * v).sum::<f64>().sqrt())
+            .collect();
+        let biggest = norms.iter().copied().fold(1.0, f64::max);
+        let describe = |k: usize| describe_motion(scene, dofs, motions[k].0);
+        let mut undetermined = Vec::new();
+        let mut live = Vec::new();
+        for k in 0..n {
+            if norms[k] > 1e-12 * biggest {
+                live.push(k);
+                continue;
+            }
+            if motions[k].1.abs() > 1e-12 * load_scale[k] && motions[k].1 != 0.0 {
+                let (mo, load) = motions[k];
+                let bound = LoadBound {
+                    path: motion_path(scene, dofs, mo),
+                    value: load_value(scene, mo, load),
+                    min: Some(0.0),
+                    max: Some(0.0),
+                };
+                return Err(CoreError::invalid(
+                    InvalidKind::IncompatibleLoads,
+                    bound.path.clone(),
+                    format!(
+                        "no contact normal has a component along the {}, so contact cannot carry its load {}: it must be 0",
+                        describe(k),
+                        load_words(scene, mo, load)
+                    ),
+                )
+                .with_loads(vec![bound]));
+            }
+            undetermined.push(unit(n, k));
+        }
+        // Combinations of resisted motions that together move no candidate
+        // (e.g. a body and a punch moving as one): the null space of C on `live`.
+        let l = live.len();
+        let g = Mat::<f64>::from_fn(l, l, |a, b| {
+            let (ca, cb) = (&cols[live[a]], &cols[live[b]]);
+            ca.iter().zip(cb).map(|(x, y)| x * y).sum::<f64>() / (norms[live[a]] * norms[live[b]])
+        });
+        let (vals, vecs) = if l > 0 {
+            sym_eigen_small(&g)
+        } else {
+            (Vec::new(), Mat::zeros(0, 0))
+        };
+        let top = vals.last().copied().unwrap_or(0.0);
+        // The Gram of unit columns is computed to about ε ‖G‖, so an exact null
+        // combination shows up as an eigenvalue of a few 1e-16, not 0: a
+        // circular punch's rotation about its own centre is a horizontal shift
+        // plus a rotation about its reference point, and the rows' radial
+        // directions make those two columns parallel.
+        let null: Vec<usize> = (0..l).filter(|&e| vals[e] <= NULL_COMBINATION * top).collect();
+        let v = if null.is_empty() {
+            Mat::<f64>::from_fn(n, l, |i, j| if i == live[j] { 1.0 } else { 0.0 })
+        } else {
+            for &e in &null {
+                // The eigenvector is accurate to about ε / (eigenvalue gap):
+                // components at that level are round-off, not part of the motion.
+                let biggest = (0..l).map(|a| vecs[(a, e)].abs()).fold(0.0, f64::max);
+                let dir: Vec<f64> = (0..n)
+                    .map(|i| live.iter().position(|&k| k == i).map_or(0.0, |a| vecs[(a, e)]))
+                    .map(|v| if v.abs() <= 1e-9 * biggest { 0.0 } else { v })
+                    .enumerate()
+                    .map(|(i, v)| if v == 0.0 { 0.0 } else { v / norms[i] })
+                    .collect();
+                let work: f64 = (0..n).map(|i| dir[i] * motions[i].1).sum();
+                let scale: f64 = (0..n).map(|i| (dir[i] * load_scale[i]).abs()).sum();
+                if work.abs() > 1e-12 * scale && work != 0.0 {
+                    let names: Vec<String> = (0..n).filter(|&i| dir[i] != 0.0).map(describe).collect();
+                    return Err(CoreError::invalid(
+                        InvalidKind::IncompatibleLoads,
+                        motion_path(scene, dofs, motions[live[0]].0),
+                        format!(
+                            "the {} can move together without moving any contact candidate along its normal, and their loads do work on that motion: contact cannot balance them",
+                            names.join(" and ")
+                        ),
+                    ));
+                }
+                undetermined.push(dir);
+            }
+            let keep: Vec<usize> = (0..l).filter(|e| !null.contains(e)).collect();
+            Mat::<f64>::from_fn(n, keep.len(), |i, j| {
+                live.iter()
+                    .position(|&k| k == i)
+                    .map_or(0.0, |a| vecs[(a, keep[j])] / norms[i])
+            })
+        };
+        let kept = v.ncols();
+        let c = Mat::<f64>::from_fn(m, kept, |i, j| (0..n).map(|k| cols[k][i] * v[(k, j)]).sum());
+        let rhs: Vec<f64> = (0..kept)
+            .map(|j| (0..n).map(|k| -motions[k].1 * v[(k, j)]).sum())
+            .collect();
+        for dir in &undetermined {
+            if dir
+                .iter()
+                .zip(&motions)
+                .any(|(v, (mo, _))| v.abs() > 1e-12 && matches!(mo, Motion::Body { .. }))
+            {
+                let parts: Vec<String> = (0..n).filter(|&i| dir[i].abs() > 1e-12).map(describe).collect();
+                notes.push(format!(
+                    "the {} is not determined: no contact normal resists it and no load works on it; the displacements are reported with it at 0, any amount of it is also a solution",
+                    parts.join(" combined with the ")
+                ));
+            }
+        }
+        let fm = Self {
+            motions,
+            v,
+            c,
+            rhs,
+            undetermined,
+            notes,
+            unresisted,
+        };
+        fm.check_compatibility(scene, dofs)?;
+        Ok(fm)
+    }
+
+    /// Fichera's condition as an LP; on failure, the admissible range of each
+    /// offending load with the others as given.
+    fn check_compatibility(&self, scene: &Scene, dofs: &DofMap) -> Result<(), CoreError> {
+        if self.is_empty() {
+            return Ok(());
+        }
+        let Err(bad) = rigid::check(&self.c, &self.rhs) else {
+            return Ok(());
+        };
+        // With the identity basis each kept component is one motion and its range
+        // is in that motion's units; a rotated basis only allows a general message.
+        let original = |j: usize| {
+            let nz: Vec<usize> = (0..self.v.nrows()).filter(|&k| self.v[(k, j)] != 0.0).collect();
+            (nz.len() == 1 && self.v[(nz[0], j)] == 1.0).then(|| nz[0])
+        };
+        let mut bounds: Vec<(f64, LoadBound)> = Vec::new();
+        let ranges: Vec<String> = bad
+            .iter()
+            .filter_map(|r| {
+                let k = original(r.component)?;
+                let (mo, load) = self.motions[k];
+                let b = LoadBound {
+                    path: motion_path(scene, dofs, mo),
+                    value: load_value(scene, mo, load),
+                    min: r.min.map(|v| load_value(scene, mo, v)),
+                    max: r.max.map(|v| load_value(scene, mo, v)),
+                };
+                bounds.push((outside(b.value, b.min, b.max), b));
+                let fmt =
+                    |v: Option<f64>, inf: &str| v.map(|x| load_words(scene, mo, x)).unwrap_or_else(|| inf.to_string());
+                let what = match mo {
+                    Motion::Punch { obstacle, component } => format!(
+                        "{} load {} on punch '{}'",
+                        COMPONENT[component],
+                        load_words(scene, mo, load),
+                        scene.obstacles[obstacle].name
+                    ),
+                    Motion::Body { .. } => format!(
+                        "load {} along the {}",
+                        load_words(scene, mo, load),
+                        describe_motion(scene, dofs, mo)
+                    ),
+                };
+                Some(format!(
+                    "the {what} must lie in [{}, {}]",
+                    fmt(r.min, "-inf"),
+                    fmt(r.max, "+inf")
+                ))
+            })
+            .collect();
+        let first = original(bad[0].component).unwrap_or(0);
+        let path = bounds
+            .iter()
+            .max_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(_, b)| b.path.clone())
+            .unwrap_or_else(|| motion_path(scene, dofs, self.motions[first].0));
+        let what: Vec<String> =
+            self.motions
+                .iter()
+                .map(|(mo, _)| owner(scene, dofs, *mo))
+                .fold(Vec::new(), |mut acc, o| {
+                    if !acc.contains(&o) {
+                        acc.push(o);
+                    }
+                    acc
+                });
+        let loads = bounds.into_iter().map(|(_, b)| b).collect();
+        Err(CoreError::invalid(
+            InvalidKind::IncompatibleLoads,
+            path,
+            if ranges.is_empty() {
+                format!(
+                    "no non-negative contact pressure on the candidate zone balances the loads on {}",
+                    what.join(" and ")
+                )
+            } else {
+                format!(
+                    "no non-negative contact pressure on the candidate zone balances the loads on {}; with the other loads as given, {}",
+                    what.join(" and "),
+                    ranges.join("; or ")
+                )
+            },
+        )
+        .with_loads(loads))
+    }
+}
+
+fn unit(n: usize, k: usize) -> Vec<f64> {
+    (0..n).map(|i| if i == k { 1.0 } else { 0.0 }).collect()
+}
+
+fn owner(scene: &Scene, dofs: &DofMap, mo: Motion) -> String {
+    match mo {
+        Motion::Punch { obstacle, .. } => format!("punch '{}'", scene.obstacles[obstacle].name),
+        Motion::Body { set, .. } => format!("body '{}'", scene.bodies[dofs.rigid[set].body].name),
+    }
+}
+
+pub fn describe_motion(scene: &Scene, dofs: &DofMap, mo: Motion) -> String {
+    match mo {
+        Motion::Punch { obstacle, component } => format!(
+            "{} motion of punch '{}'",
+            COMPONENT[component], scene.obstacles[obstacle].name
+        ),
+        Motion::Body { set, dir } => format!(
+            "{} of body '{}' (held only by contact)",
+            dofs.rigid[set].describe(dir, scene.scales.length(1.0)),
+            scene.bodies[dofs.rigid[set].body].name
+        ),
+    }
+}
+
+/// A load on a motion in the caller's units, with its kind.
+/// A load of a motion in the request's units (a force, a moment, or for a
+/// body's mixed rigid mode the nondimensional generalized load).
+fn load_value(scene: &Scene, mo: Motion, v: f64) -> f64 {
+    let sc = scene.scales;
+    match mo {
+        Motion::Punch { component: 2, .. } => sc.moment(v),
+        Motion::Punch { .. } => sc.force(v),
+        Motion::Body { dir: b, .. } if b[2] == 0.0 => sc.force(v),
+        Motion::Body { dir: b, .. } if b[0] == 0.0 && b[1] == 0.0 => sc.moment(v),
+        Motion::Body { .. } => v,
+    }
+}
+
+fn load_words(scene: &Scene, mo: Motion, v: f64) -> String {
+    let x = load_value(scene, mo, v);
+    match mo {
+        Motion::Body { dir: b, .. } if b[2] != 0.0 && b[0] == 0.0 && b[1] == 0.0 => {
+            format!("{x:.6e} (moment about the body's centroid)")
+        }
+        Motion::Body { dir: b, .. } if b[2] != 0.0 => format!("{x:.6e} (nondimensional generalized load)"),
+        _ => format!("{x:.6e}"),
+    }
+}
+
+/// How far a value lies outside [min, max], relative to the nearer bound
+/// (0 inside): the measure by which the component most likely set wrong is
+/// chosen (a flat punch's |M| = 1.1 P a: 0.1 for M against 0.09 for P).
+fn outside(value: f64, min: Option<f64>, max: Option<f64>) -> f64 {
+    // Relative to the bound; a bound of 0 (a load that must vanish) by the value.
+    let rel = |d: f64, bound: f64| d / if bound != 0.0 { bound.abs() } else { value.abs() };
+    match (min, max) {
+        (Some(lo), _) if value < lo => rel(lo - value, lo),
+        (_, Some(hi)) if value > hi => rel(value - hi, hi),
+        _ => 0.0,
+    }
+}
+
+fn motion_path(scene: &Scene, dofs: &DofMap, mo: Motion) -> String {
+    match mo {
+        Motion::Punch { obstacle, component } => {
+            format!("/obstacles/{obstacle}/punch/{}/load", COMPONENT[component])
+        }
+        Motion::Body { set, .. } => {
+            let b = &scene.bodies[dofs.rigid[set].body];
+            format!("{}/tractions", b.path)
+        }
+    }
+}
+
+/// Prescribed or solved amplitude of every punch component: (α1, α2, θ).
+pub fn punch_motion(scene: &Scene, fm: &FreeMotions, beta: &[f64], obstacle: usize) -> [f64; 3] {
+    let mut motion = [0.0; 3];
+    if let Some(pu) = &scene.obstacles[obstacle].punch {
+        for (k, ctl) in pu.controls.iter().enumerate() {
+            if let Control::Displacement(v) = ctl {
+                motion[k] = *v;
+            }
+        }
+    }
+    for (j, (mo, _)) in fm.motions.iter().enumerate() {
+        if let Motion::Punch { obstacle: o, component } = *mo {
+            if o == obstacle {
+                motion[component] = beta.get(j).copied().unwrap_or(0.0);
+            }
+        }
+    }
+    motion
+}
+
+/// Below this, contact "resists" a rigid motion of a body only through the
+/// discretization: the normals of its candidates move less than this fraction of
+/// the candidates' own motion (a cylinder turning about its centre, whose
+/// polygonal boundary is not quite round). Such a motion is treated as free: a
+/// load on it is refused rather than balanced by absurd pressures, and without
+/// load it is reported as undetermined.
+const WEAK_LEVER: f64 = 1e-2;
+
+enum Direction {
+    Resisted {
+        dir: [f64; 3],
+        col: Vec<f64>,
+        load: f64,
+        scale: f64,
+    },
+    Free {
+        col: Vec<f64>,
+        reach: Vec<f64>,
+        note: String,
+    },
+}
+
+/// The rigid motions of one body held by contact, split into those contact
+/// resists (a basis in which each moves the candidate nodes by 1 in the mean
+/// square and their normals by √μ ≥ WEAK_LEVER) and those it does not (which
+/// must carry no load).
+fn body_directions(
+    scene: &Scene,
+    cons: &ConstraintSet,
+    dofs: &DofMap,
+    rm: &RigidModes,
+    mesh: &Mesh2d,
+    external: &[f64],
+) -> Result<Vec<Direction>, CoreError> {
+    let r = rm.basis.len();
+    let m = cons.len();
+    let at = |k: usize, node: usize| rm.at(k, mesh.nodes[node]);
+    // C in the basis (m × r) and the motion Gram of the candidate nodes.
+    let mut c = Mat::<f64>::zeros(m, r);
+    let mut gr = Mat::<f64>::zeros(r, r);
+    for (i, cand) in cons.candidates.iter().enumerate() {
+        for t in cand.terms.iter().filter(|t| t.body == rm.body) {
+            let ms: Vec<[f64; 2]> = (0..r).map(|k| at(k, t.node)).collect();
+            for k in 0..r {
+                c[(i, k)] -= t.coef[0] * ms[k][0] + t.coef[1] * ms[k][1];
+                for l in 0..r {
+                    gr[(k, l)] += ms[k][0] * ms[l][0] + ms[k][1] * ms[l][1];
+                }
+            }
+        }
+    }
+    let (rho, w) = sym_eigen_small(&gr);
+    let top = rho.last().copied().unwrap_or(0.0);
+    // Directions that move candidate nodes, scaled to unit mean-square motion.
+    let moving: Vec<usize> = (0..r).filter(|&j| rho[j] > 1e-12 * top && top > 0.0).collect();
+    let u = Mat::<f64>::from_fn(r, moving.len(), |k, j| w[(k, moving[j])] / rho[moving[j]].sqrt());
+    let cu = &c * &u;
+    let gc = cu.transpose() * &cu;
+    let (mu, z) = if moving.is_empty() {
+        (Vec::new(), Mat::zeros(0, 0))
+    } else {
+        sym_eigen_small(&gc)
+    };
+    let mut dirs: Vec<(Vec<f64>, bool)> = Vec::new(); // (coefficients in the basis, resisted)
+    for j in 0..r {
+        if !moving.contains(&j) {
+            dirs.push(((0..r).map(|k| w[(k, j)]).collect(), false));
+        }
+    }
+    for (e, &mu_e) in mu.iter().enumerate() {
+        let coef: Vec<f64> = (0..r)
+            .map(|k| (0..moving.len()).map(|j| u[(k, j)] * z[(j, e)]).sum())
+            .collect();
+        dirs.push((coef, mu_e >= WEAK_LEVER * WEAK_LEVER));
+    }
+    let body = &scene.bodies[rm.body];
+    let mut out = Vec::new();
+    for (coef, resisted) in dirs {
+        let mut dir = [0.0; 3];
+        for (k, b) in rm.basis.iter().enumerate() {
+            for q in 0..3 {
+                dir[q] += coef[k] * b[q];
+            }
+        }
+        let (mut load, mut scale) = (0.0, 0.0);
+        // The work is judged against the loads' full size (‖f‖ ‖d‖ per node), so
+        // that round-off in a load perpendicular to the motion counts as zero.
+        for (n, x) in mesh.nodes.iter().enumerate() {
+            let d = rm.at_dir(dir, *x);
+            let f = [external[dofs.dof(rm.body, n, 0)], external[dofs.dof(rm.body, n, 1)]];
+            load += f[0] * d[0] + f[1] * d[1];
+            scale += f[0].hypot(f[1]) * d[0].hypot(d[1]);
+        }
+        if resisted {
+            let col: Vec<f64> = (0..m).map(|i| (0..r).map(|k| c[(i, k)] * coef[k]).sum()).collect();
+            out.push(Direction::Resisted { dir, col, load, scale });
+            continue;
+        }
+        let words = rm.describe(dir, scene.scales.length(1.0));
+        if load.abs() > 1e-12 * scale && load != 0.0 {
+            return Err(CoreError::invalid(
+                InvalidKind::IncompatibleLoads,
+                format!("{}/tractions", body.path),
+                format!(
+                    "contact does not resist the {words} of body '{}' (held only by contact): no contact normal moves with it (beyond the discretization's {:.0e} of its motion), so contact cannot carry the loads' work on it; balance the loads on the body or support it",
+                    body.name, WEAK_LEVER
+                ),
+            ));
+        }
+        // What contact does on this motion after all, per candidate, and how far
+        // each candidate moves with it: checked against λ after the solve.
+        let col: Vec<f64> = (0..m).map(|i| (0..r).map(|k| c[(i, k)] * coef[k]).sum()).collect();
+        let reach: Vec<f64> = cons
+            .candidates
+            .iter()
+            .map(|cand| {
+                cand.terms
+                    .iter()
+                    .filter(|t| t.body == rm.body)
+                    .map(|t| {
+                        let d = rm.at_dir(dir, mesh.nodes[t.node]);
+                        d[0].hypot(d[1])
+                    })
+                    .fold(0.0, f64::max)
+            })
+            .collect();
+        out.push(Direction::Free {
+            col,
+            reach,
+            note: format!(
+                "the {words} of body '{}' is not determined: contact does not resist it and no load works on it; the displacements are reported with it at 0, any amount of it is also a solution",
+                body.name
+            ),
+        });
+    }
+    Ok(out)
+}

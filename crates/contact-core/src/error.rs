@@ -1,0 +1,98 @@
+//! Errors of the core library. Every input error carries the JSON pointer of
+//! the offending request field.
+
+/// What kind of input was rejected.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InvalidKind {
+    Request,
+    Version,
+    Material,
+    Mesh,
+    Geometry,
+    NoSupport,
+    NoContactCandidates,
+    IncompatibleLoads,
+}
+
+/// A load component that no non-negative contact pressure can balance with
+/// the other loads as given, and the interval it would have to lie in
+/// (request units; `None`: unbounded on that side).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadBound {
+    /// JSON pointer of the load in the request.
+    pub path: String,
+    pub value: f64,
+    pub min: Option<f64>,
+    pub max: Option<f64>,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum CoreError {
+    /// The payload is not JSON at all.
+    #[error("malformed JSON: {message}")]
+    Malformed { message: String },
+    /// Input that was read but is not acceptable.
+    #[error("{reason} (at {path})")]
+    Invalid {
+        kind: InvalidKind,
+        path: String,
+        reason: String,
+        /// With `IncompatibleLoads`: the loads outside their admissible interval.
+        loads: Vec<LoadBound>,
+    },
+    /// Over a size limit.
+    #[error("{reason} (at {path})")]
+    TooLarge { path: String, reason: String },
+    #[error(transparent)]
+    Linalg(#[from] crate::linalg::LinalgError),
+    /// The solve ran past its time limit and was stopped after `stage`.
+    #[error("the solve exceeded its time limit of {limit_s} s and was stopped after stage '{stage}'")]
+    Timeout { stage: &'static str, limit_s: f64 },
+}
+
+impl CoreError {
+    pub fn invalid(kind: InvalidKind, path: impl Into<String>, reason: impl Into<String>) -> Self {
+        CoreError::Invalid {
+            kind,
+            path: path.into(),
+            reason: reason.into(),
+            loads: Vec::new(),
+        }
+    }
+
+    /// The same refusal with the loads it is about, as data.
+    pub fn with_loads(mut self, bounds: Vec<LoadBound>) -> Self {
+        if let CoreError::Invalid { loads, .. } = &mut self {
+            *loads = bounds;
+        }
+        self
+    }
+
+    /// The stable name of the refusal, as the service's error codes spell it.
+    pub fn code(&self) -> &'static str {
+        match self {
+            CoreError::Malformed { .. } => "malformed_json",
+            CoreError::Invalid { kind, .. } => match kind {
+                InvalidKind::Request => "invalid_request",
+                InvalidKind::Version => "unsupported_version",
+                InvalidKind::Material => "invalid_material",
+                InvalidKind::Mesh => "invalid_mesh",
+                InvalidKind::Geometry => "invalid_geometry",
+                InvalidKind::NoSupport => "no_support",
+                InvalidKind::NoContactCandidates => "no_contact_candidates",
+                InvalidKind::IncompatibleLoads => "incompatible_loads",
+            },
+            CoreError::TooLarge { .. } => "too_large",
+            CoreError::Linalg(crate::linalg::LinalgError::Overrun { .. }) => "timeout",
+            CoreError::Linalg(_) => "linear_algebra",
+            CoreError::Timeout { .. } => "timeout",
+        }
+    }
+
+    pub fn path(&self) -> &str {
+        match self {
+            CoreError::Invalid { path, .. } | CoreError::TooLarge { path, .. } => path,
+            _ => "",
+        }
+    }
+}

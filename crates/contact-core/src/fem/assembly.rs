@@ -1,0 +1,365 @@
+//! Global assembly: per-body stiffness and loads, Dirichlet elimination.
+//!
+//! Global DOF 2·(node + node_offset[body]) + c. Prescribed DOFs are eliminated:
+//! K_ff u_f = f_f − K_fd u_d. Only the lower triangle of K_ff is stored.
+
+use faer::sparse::SparseColMat;
+
+use super::element;
+use super::material::d_matrix;
+use super::rigid_modes::{self, free_modes, mode_row, virtual_supports, RigidModes};
+use crate::error::{CoreError, InvalidKind};
+use crate::mesh::{boundary::edge_normal, Mesh2d};
+use crate::scene::{Scene, Traction};
+
+pub const FIXED: usize = usize::MAX;
+
+/// Poisson's ratio from which T6 in plane strain switches to selective reduced
+/// integration (the volumetric stiffness is then over ten times the shear one).
+pub const NEARLY_INCOMPRESSIBLE: f64 = 0.45;
+
+/// Numbering of degrees of freedom over all bodies.
+#[derive(Debug, Clone)]
+pub struct DofMap {
+    /// First global node index of each body.
+    pub node_offset: Vec<usize>,
+    /// Free index of each global DOF, or FIXED.
+    pub free: Vec<usize>,
+    /// Prescribed value of each global DOF (0 where free).
+    pub prescribed: Vec<f64>,
+    pub n_free: usize,
+    /// Free rigid modes of bodies held (partly) by contact, with their virtual supports.
+    pub rigid: Vec<RigidModes>,
+}
+
+impl DofMap {
+    pub fn dof(&self, body: usize, node: usize, c: usize) -> usize {
+        2 * (self.node_offset[body] + node) + c
+    }
+}
+
+/// The load-independent part: K_ff (lower triangle) and the coupling K_fd of
+/// free rows to prescribed DOFs, so that a new set of prescribed values costs a
+/// sparse product, not a reassembly.
+pub struct Stiffness {
+    pub k: SparseColMat<usize, f64>,
+    /// (free row, global prescribed DOF, value) of K_fd.
+    pub k_fd: Vec<(usize, usize, f64)>,
+}
+
+pub struct Assembled {
+    pub dofs: DofMap,
+    pub stiffness: std::sync::Arc<Stiffness>,
+    /// f_f − K_fd u_d.
+    pub f: Vec<f64>,
+}
+
+/// Builds the DOF map from the supports. Rigid motions the supports leave free
+/// are allowed for bodies that take part in a contact pair (contact may hold
+/// them): they get virtual supports (`rigid_modes`) and become free rigid
+/// motions of the contact problem. A body with free modes and no contact is rejected.
+pub fn dof_map(scene: &Scene, meshes: &[Mesh2d]) -> Result<DofMap, CoreError> {
+    let mut node_offset = Vec::with_capacity(meshes.len());
+    let mut total = 0;
+    for m in meshes {
+        node_offset.push(total);
+        total += m.nodes.len();
+    }
+    let mut fixed = vec![false; 2 * total];
+    let mut prescribed = vec![0.0; 2 * total];
+    let mut rigid = Vec::new();
+    for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
+        let mut rows: Vec<[f64; 3]> = Vec::new();
+        let c0 = centroid(mesh);
+        for (k, s) in body.supports.iter().enumerate() {
+            for node in mesh.edge_set_nodes(&s.edges) {
+                for (c, v) in [(0, s.ux), (1, s.uy)] {
+                    if let Some(v) = v {
+                        let d = 2 * (node_offset[b] + node) + c;
+                        if fixed[d] && prescribed[d] != v {
+                            return Err(CoreError::invalid(
+                                InvalidKind::Request,
+                                format!("{}/supports/{k}", body.path),
+                                format!(
+                                    "conflicting prescribed displacements at node {node} (component {})",
+                                    ["x", "y"][c]
+                                ),
+                            ));
+                        }
+                        fixed[d] = true;
+                        prescribed[d] = v;
+                        let p = mesh.nodes[node];
+                        rows.push(mode_row(c, p[0] - c0[0], p[1] - c0[1]));
+                    }
+                }
+            }
+        }
+        let basis = free_modes(&rows);
+        if basis.is_empty() {
+            continue;
+        }
+        let in_contact = scene
+            .pairs
+            .iter()
+            .any(|p| p.body == b || matches!(p.target, crate::scene::Target::Body { body, .. } if body == b));
+        if !in_contact {
+            let modes: Vec<String> = basis
+                .iter()
+                .map(|m| rigid_modes::describe(*m, c0, scene.scales.length(1.0)))
+                .collect();
+            return Err(CoreError::invalid(
+                InvalidKind::NoSupport,
+                format!("{}/supports", body.path),
+                format!(
+                    "the supports of body '{}' leave its {} free and no contact pair involves the body to hold it",
+                    body.name,
+                    modes.join(" and ")
+                ),
+            ));
+        }
+        let off = node_offset[b];
+        // Away from the contact edges if possible: a row whose node is held by a
+        // virtual support sees the body only through its rigid modes.
+        let mut contact_nodes = std::collections::HashSet::new();
+        for p in &scene.pairs {
+            if p.body == b {
+                contact_nodes.extend(mesh.edge_set_nodes(&p.edges));
+            }
+            if let crate::scene::Target::Body { body, edges, .. } = &p.target {
+                if *body == b {
+                    contact_nodes.extend(mesh.edge_set_nodes(edges));
+                }
+            }
+        }
+        let away = virtual_supports(&mesh.nodes, c0, &basis, |n, c| {
+            fixed[2 * (off + n) + c] || contact_nodes.contains(&n)
+        });
+        let chosen = if away.len() == basis.len() {
+            away
+        } else {
+            virtual_supports(&mesh.nodes, c0, &basis, |n, c| fixed[2 * (off + n) + c])
+        };
+        let virtual_dofs: Vec<usize> = chosen.into_iter().map(|(n, c)| 2 * (off + n) + c).collect();
+        for &d in &virtual_dofs {
+            fixed[d] = true;
+        }
+        rigid.push(RigidModes {
+            body: b,
+            center: c0,
+            basis,
+            virtual_dofs,
+        });
+    }
+    let mut free = vec![FIXED; 2 * total];
+    let mut n_free = 0;
+    for d in 0..2 * total {
+        if !fixed[d] {
+            free[d] = n_free;
+            n_free += 1;
+        }
+    }
+    Ok(DofMap {
+        node_offset,
+        free,
+        prescribed,
+        n_free,
+        rigid,
+    })
+}
+
+fn centroid(m: &Mesh2d) -> [f64; 2] {
+    let n = m.nodes.len() as f64;
+    let s = m.nodes.iter().fold([0.0, 0.0], |a, p| [a[0] + p[0], a[1] + p[1]]);
+    [s[0] / n, s[1] / n]
+}
+
+/// CSC pattern of the lower triangle of K_ff from the node graph: column of
+/// free DOF j holds the free DOFs i ≥ j of the nodes sharing an element with j's
+/// node. Free indices grow with the global DOF number, so rows come out sorted.
+fn pattern(meshes: &[Mesh2d], dofs: &DofMap) -> (Vec<usize>, Vec<usize>) {
+    let total: usize = meshes.iter().map(|m| m.nodes.len()).sum();
+    // Neighbours b ≥ a of each global node a (small, so linear insertion).
+    let mut adj: Vec<Vec<u32>> = vec![Vec::new(); total];
+    for (b, mesh) in meshes.iter().enumerate() {
+        let off = dofs.node_offset[b];
+        for e in 0..mesh.n_elems() {
+            let conn = mesh.elem(e);
+            for &p in conn {
+                for &q in conn {
+                    let (a, c) = (off + p, off + q);
+                    if c >= a && !adj[a].contains(&(c as u32)) {
+                        adj[a].push(c as u32);
+                    }
+                }
+            }
+        }
+    }
+    let mut col_ptr = Vec::with_capacity(dofs.n_free + 1);
+    let mut row_idx = Vec::new();
+    col_ptr.push(0);
+    for (a, nb) in adj.iter_mut().enumerate() {
+        nb.sort_unstable();
+        for ca in 0..2 {
+            if dofs.free[2 * a + ca] == FIXED {
+                continue;
+            }
+            for &bn in nb.iter() {
+                let bn = bn as usize;
+                for cb in 0..2 {
+                    let i = dofs.free[2 * bn + cb];
+                    if i != FIXED && (bn > a || cb >= ca) {
+                        row_idx.push(i);
+                    }
+                }
+            }
+            col_ptr.push(row_idx.len());
+        }
+    }
+    (col_ptr, row_idx)
+}
+
+/// Assembles K_ff and K_fd of all bodies: the pattern once from the node graph,
+/// then element matrices added in place (no triplet sort).
+pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Result<Stiffness, CoreError> {
+    let n = dofs.n_free;
+    let (col_ptr, row_idx) = pattern(meshes, dofs);
+    let mut vals = vec![0.0; row_idx.len()];
+    let mut k_fd = Vec::new();
+    let mut ke = [0.0; 144];
+    for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
+        let d = d_matrix(body.youngs_modulus, body.poisson_ratio, scene.analysis);
+        // Nearly incompressible plane strain on T6: P2–P0 (see element::stiffness_selective).
+        let (e, nu) = (body.youngs_modulus, body.poisson_ratio);
+        let selective = (mesh.order == crate::mesh::Order::T6
+            && scene.analysis == crate::scene::Analysis::PlaneStrain
+            && nu >= NEARLY_INCOMPRESSIBLE)
+            .then(|| e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)));
+        let k = mesh.order.nodes_per_element();
+        let nd = 2 * k;
+        let mut x = [[0.0; 2]; 6];
+        let mut gd = [0usize; 12];
+        for e in 0..mesh.n_elems() {
+            let conn = mesh.elem(e);
+            for (i, &node) in conn.iter().enumerate() {
+                x[i] = mesh.nodes[node];
+                gd[2 * i] = dofs.dof(b, node, 0);
+                gd[2 * i + 1] = dofs.dof(b, node, 1);
+            }
+            match selective {
+                Some(lambda) => element::stiffness_selective(mesh.order, &x[..k], &d, lambda, &mut ke),
+                None => element::stiffness(mesh.order, &x[..k], &d, &mut ke),
+            }
+            for a in 0..nd {
+                let fa = dofs.free[gd[a]];
+                if fa == FIXED {
+                    continue;
+                }
+                for c in 0..nd {
+                    let fc = dofs.free[gd[c]];
+                    let v = ke[a * nd + c];
+                    if fc == FIXED {
+                        if v != 0.0 {
+                            k_fd.push((fa, gd[c], v));
+                        }
+                    } else if fc <= fa {
+                        let col = &row_idx[col_ptr[fc]..col_ptr[fc + 1]];
+                        let pos = col.binary_search(&fa).expect("pattern covers every element coupling");
+                        vals[col_ptr[fc] + pos] += v;
+                    }
+                }
+            }
+        }
+    }
+    // SAFETY-free construction: the checked constructor validates sortedness and bounds.
+    let sym = faer::sparse::SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+    Ok(Stiffness {
+        k: SparseColMat::new(sym, vals),
+        k_fd,
+    })
+}
+
+/// Right-hand side f_f − K_fd u_d from the external loads on every global DOF
+/// (`external_loads`, computed once per solve: the rigid modes need them too)
+/// and the prescribed displacements.
+pub fn assemble_loads(external: &[f64], dofs: &DofMap, stiffness: &Stiffness) -> Vec<f64> {
+    let mut f = vec![0.0; dofs.n_free];
+    for (d, &v) in external.iter().enumerate() {
+        if dofs.free[d] != FIXED {
+            f[dofs.free[d]] += v;
+        }
+    }
+    for &(row, d, v) in &stiffness.k_fd {
+        f[row] -= v * dofs.prescribed[d];
+    }
+    f
+}
+
+/// Nodal external loads (tractions, pressures, body forces) on every global
+/// DOF, fixed ones included: the rigid modes of a body need them all.
+pub fn external_loads(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Vec<f64> {
+    let mut f = vec![0.0; dofs.free.len()];
+    let mut fe = [0.0; 12];
+    for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
+        let k = mesh.order.nodes_per_element();
+        if body.body_force != [0.0, 0.0] {
+            let mut x = [[0.0; 2]; 6];
+            for e in 0..mesh.n_elems() {
+                let conn = mesh.elem(e);
+                for (i, &node) in conn.iter().enumerate() {
+                    x[i] = mesh.nodes[node];
+                }
+                element::body_load(mesh.order, &x[..k], body.body_force, &mut fe);
+                for (i, &node) in conn.iter().enumerate() {
+                    for c in 0..2 {
+                        f[dofs.dof(b, node, c)] += fe[2 * i + c];
+                    }
+                }
+            }
+        }
+        for t in &body.tractions {
+            let (edges, vector, pressure) = match t {
+                Traction::Vector { edges, t } => (edges, Some(*t), 0.0),
+                Traction::Pressure { edges, p } => (edges, None, *p),
+            };
+            for edge in mesh.edge_sets.get(edges).map(|v| v.as_slice()).unwrap_or(&[]) {
+                let nodes: Vec<usize> = edge.nodes().collect();
+                let (normal, _) = edge_normal(mesh, edge);
+                for g in &element::GAUSS3 {
+                    let (nn, dn) = element::edge_shape(nodes.len(), g[0]);
+                    let (mut tx, mut ty) = (0.0, 0.0);
+                    for (i, &node) in nodes.iter().enumerate() {
+                        tx += dn[i] * mesh.nodes[node][0];
+                        ty += dn[i] * mesh.nodes[node][1];
+                    }
+                    let jac = (tx * tx + ty * ty).sqrt();
+                    // Pressure acts against the local outward normal (−t⊥ of the tangent).
+                    let tr = vector.unwrap_or_else(|| {
+                        let (nx, ny) = if jac > 0.0 {
+                            (ty / jac, -tx / jac)
+                        } else {
+                            (normal[0], normal[1])
+                        };
+                        [-pressure * nx, -pressure * ny]
+                    });
+                    for (i, &node) in nodes.iter().enumerate() {
+                        for (c, tc) in tr.iter().enumerate() {
+                            f[dofs.dof(b, node, c)] += g[1] * jac * nn[i] * tc;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    f
+}
+
+/// Stiffness and loads together (no cache).
+pub fn assemble(scene: &Scene, meshes: &[Mesh2d], dofs: DofMap) -> Result<Assembled, CoreError> {
+    let stiffness = assemble_stiffness(scene, meshes, &dofs)?;
+    let f = assemble_loads(&external_loads(scene, meshes, &dofs), &dofs, &stiffness);
+    Ok(Assembled {
+        dofs,
+        stiffness: std::sync::Arc::new(stiffness),
+        f,
+    })
+}

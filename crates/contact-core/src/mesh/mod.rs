@@ -1,0 +1,112 @@
+//! Triangle meshes of the bodies (nondimensional coordinates), no file I/O.
+//!
+//! # Invariants
+//! - every element is counter-clockwise with positive area;
+//! - T6 elements list corners first, then the midsides of edges 01, 12, 20, and
+//!   midside nodes sit at the edge midpoints (affine elements);
+//! - boundary edges of an edge set are oriented with the body on their left, so
+//!   the outward normal of edge a→b is (dy, −dx)/|ab|.
+
+pub mod boundary;
+pub mod build;
+pub mod estimate;
+pub mod generate;
+pub mod gmsh;
+pub mod quality;
+pub mod refine;
+
+use std::collections::BTreeMap;
+
+/// Triangle order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Order {
+    T3,
+    T6,
+}
+
+impl Order {
+    pub fn nodes_per_element(self) -> usize {
+        match self {
+            Order::T3 => 3,
+            Order::T6 => 6,
+        }
+    }
+    pub fn nodes_per_edge(self) -> usize {
+        match self {
+            Order::T3 => 2,
+            Order::T6 => 3,
+        }
+    }
+}
+
+/// A boundary edge: corners `a → b` (body on the left) and, for T6, the midside node.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Edge {
+    pub a: usize,
+    pub b: usize,
+    pub mid: Option<usize>,
+}
+
+impl Edge {
+    /// Nodes in edge-parameter order: a, (mid), b.
+    pub fn nodes(&self) -> impl Iterator<Item = usize> + '_ {
+        std::iter::once(self.a).chain(self.mid).chain(std::iter::once(self.b))
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct Mesh2d {
+    pub order: Order,
+    pub nodes: Vec<[f64; 2]>,
+    /// Connectivity, `order.nodes_per_element()` indices per element.
+    pub elems: Vec<usize>,
+    pub edge_sets: BTreeMap<String, Vec<Edge>>,
+}
+
+impl Mesh2d {
+    pub fn n_elems(&self) -> usize {
+        self.elems.len() / self.order.nodes_per_element()
+    }
+    pub fn elem(&self, e: usize) -> &[usize] {
+        let k = self.order.nodes_per_element();
+        &self.elems[e * k..(e + 1) * k]
+    }
+
+    /// Nodes of an edge set, each once, in order of first appearance.
+    /// Largest side of the bounding box: the body's size.
+    pub fn size(&self) -> f64 {
+        extent(&self.nodes)
+    }
+
+    pub fn edge_set_nodes(&self, name: &str) -> Vec<usize> {
+        let mut seen = std::collections::HashSet::new();
+        let mut out = Vec::new();
+        if let Some(edges) = self.edge_sets.get(name) {
+            for e in edges {
+                for n in e.nodes() {
+                    if seen.insert(n) {
+                        out.push(n);
+                    }
+                }
+            }
+        }
+        out
+    }
+}
+
+/// Largest side of the bounding box of `nodes`.
+pub fn extent(nodes: &[[f64; 2]]) -> f64 {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in nodes {
+        for c in 0..2 {
+            lo[c] = lo[c].min(p[c]);
+            hi[c] = hi[c].max(p[c]);
+        }
+    }
+    (hi[0] - lo[0]).max(hi[1] - lo[1])
+}
+
+/// Signed area of triangle (p, q, r); positive when counter-clockwise.
+pub fn signed_area(p: [f64; 2], q: [f64; 2], r: [f64; 2]) -> f64 {
+    0.5 * ((q[0] - p[0]) * (r[1] - p[1]) - (r[0] - p[0]) * (q[1] - p[1]))
+}

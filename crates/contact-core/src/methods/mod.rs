@@ -1,0 +1,153 @@
+//! Constraint treatments. Each takes the assembled problem
+//!
+//! ```text
+//! minimize ½ uᵀK u − fᵀu   subject to   B u ≤ g
+//! ```
+//!
+//! and returns (u, λ) with λ ≥ 0 the nodal contact forces. The exact methods
+//! work on the condensed (dual) problem over the contact candidates:
+//!
+//! ```text
+//! minimize ½ λᵀW λ + qᵀλ over λ ≥ 0,   W = B K⁻¹ Bᵀ,  q = g − B K⁻¹ f,
+//! ```
+//!
+//! i.e. the LCP  λ ≥ 0,  w = Wλ + q ≥ 0,  λᵀw = 0  (w is the gap after deformation).
+//! Load-controlled punch motions β add −Cβ to the rows and their equilibrium
+//! Cᵀλ = −P as equalities: a mixed LCP, w = Wλ + q + Cβ (`PunchBlock`).
+//! `settings.formulation = full` runs the exact methods on the uncondensed system
+//! instead (`full`), for comparison.
+
+pub mod active_set;
+pub mod barrier;
+pub mod condensed;
+pub mod full;
+pub mod interior_point;
+pub mod penalty;
+
+use crate::contact::ConstraintSet;
+use crate::error::CoreError;
+use crate::scene::{Method, Settings};
+
+pub struct Problem<'a> {
+    /// K (factored, with the condensed operator W), possibly from the cache.
+    pub op: &'a crate::cache::Prepared,
+    pub f: &'a [f64],
+    pub cons: &'a ConstraintSet,
+    pub settings: &'a Settings,
+    /// Free rigid motions (punches, bodies held by contact): rows −C β and
+    /// their equilibrium Cᵀλ = rhs.
+    pub punch: Option<PunchBlock<'a>>,
+    /// Compliance added to W (foundations), m × m.
+    pub compliance: Option<&'a faer::Mat<f64>>,
+}
+
+/// A solver of the mixed LCP (W, q) with the punch block bound in: returns (λ, β).
+pub type MixedSolver<'a> = &'a dyn Fn(&faer::Mat<f64>, &[f64]) -> (LcpResult, Vec<f64>);
+
+pub struct PunchBlock<'a> {
+    pub c: &'a faer::Mat<f64>,
+    pub rhs: &'a [f64],
+}
+
+/// Result of the LCP stage.
+pub struct LcpResult {
+    pub lambda: Vec<f64>,
+    pub iterations: usize,
+    pub converged: bool,
+    /// Not converged because the method broke down numerically (Clarabel's
+    /// numerical error, insufficient progress, or a certificate of
+    /// infeasibility, which an LCP with W positive definite cannot have), not
+    /// because it ran out of iterations.
+    pub breakdown: bool,
+}
+
+pub struct Solution {
+    pub u: Vec<f64>,
+    pub lambda: Vec<f64>,
+    /// Free punch motions β_F (empty without load-controlled punches).
+    pub beta: Vec<f64>,
+    /// Candidates in contact: λ_i > 0 and λ_i W_ii > gap_i (the force's own
+    /// displacement exceeds what is left of the gap). For exact methods this is
+    /// λ_i > 0; for the penalty, penetration; for the barrier, gap_i² < ζ w_i W_ii.
+    pub in_contact: Vec<bool>,
+    pub iterations: usize,
+    pub converged: bool,
+    /// Not converged on a numerical breakdown (`LcpResult::breakdown`).
+    pub breakdown: bool,
+    /// Name of the method that ran.
+    pub method: &'static str,
+    /// Whether the method solves the exact contact conditions (penalty does not:
+    /// its penetration and complementarity gap are inherent, not a failure).
+    pub exact: bool,
+    /// LCP and the two solves.
+    pub t_contact: f64,
+    /// Iterative-refinement steps the solves with K needed.
+    pub refinements: usize,
+    /// Why another method ran instead of the first choice of `auto`.
+    pub fallback: Option<String>,
+}
+
+/// Runs the requested method (`auto` → condensed active set, the fastest exact
+/// method measured so far; see `contact bench`).
+pub fn solve(problem: &Problem, method: Method) -> Result<Solution, CoreError> {
+    let first = solve_with(problem, method)?;
+    if method != Method::Auto || first.converged || crate::cancel::expired() {
+        return Ok(first);
+    }
+    // `auto` must not fail where another exact method succeeds: the active set
+    // can cycle on a mixed LCP whose free motions are weakly resisted (a
+    // half-disk held sideways only by contact with body-normal rows: 200
+    // iterations, max_iterations; interior point: 15).
+    let mut second = solve_with(problem, Method::InteriorPoint)?;
+    if !second.converged {
+        return Ok(first);
+    }
+    second.fallback = Some(format!(
+        "auto: the active set did not converge ({} iterations); the interior point method ran instead",
+        first.iterations
+    ));
+    second.iterations += first.iterations;
+    second.t_contact += first.t_contact;
+    Ok(second)
+}
+
+fn solve_with(problem: &Problem, method: Method) -> Result<Solution, CoreError> {
+    let weights: Vec<f64> = problem.cons.candidates.iter().map(|c| c.weight).collect();
+    let d = penalty::springs(&weights, problem.settings.penalty);
+    let run = |name: &'static str, exact: bool, lcp: &dyn Fn(&faer::Mat<f64>, &[f64]) -> LcpResult| {
+        condensed::solve_condensed(problem, name, exact, lcp)
+    };
+    let s = problem.settings;
+    if let Some(pb) = &problem.punch {
+        let (c, r) = (pb.c, pb.rhs);
+        let run = |name: &'static str, exact: bool, mlcp: MixedSolver| {
+            condensed::solve_condensed_mixed(problem, pb, name, exact, mlcp)
+        };
+        return match method {
+            Method::Auto | Method::ActiveSet => run("active_set", true, &|w, q| active_set::solve_mlcp(w, q, c, r, s)),
+            Method::InteriorPoint => run("interior_point", true, &|w, q| {
+                interior_point::solve_mlcp(w, q, c, r, s)
+            }),
+            Method::Penalty => run("penalty", false, &|w, q| {
+                penalty::solve_penalty_mixed(w, q, c, r, &d, s)
+            }),
+            Method::AugmentedLagrangian => run("augmented_lagrangian", true, &|w, q| {
+                penalty::solve_augmented_lagrangian_mixed(w, q, c, r, &d, s)
+            }),
+            Method::Barrier => run("barrier", false, &|w, q| {
+                barrier::solve_barrier_mixed(w, q, c, r, &weights, problem.settings.barrier, s)
+            }),
+        };
+    }
+    match method {
+        Method::Auto | Method::ActiveSet => run("active_set", true, &|w, q| active_set::solve_lcp(w, q, s)),
+        Method::InteriorPoint => run("interior_point", true, &|w, q| interior_point::solve_lcp(w, q, s)),
+        Method::Penalty => run("penalty", false, &|w, q| penalty::solve_penalty(w, q, &d, s)),
+        Method::Barrier => run("barrier", false, &|w, q| {
+            barrier::solve_barrier(w, q, &weights, problem.settings.barrier, s)
+        }),
+        Method::AugmentedLagrangian => run("augmented_lagrangian", true, &|w, q| {
+            penalty::solve_augmented_lagrangian(w, q, &d, s)
+        }),
+    }
+}

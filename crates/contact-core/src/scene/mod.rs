@@ -1,0 +1,267 @@
+//! The validated, nondimensional domain model built from a request.
+//!
+//! `Scene::try_new` is the only place that rejects request content; everything
+//! downstream trusts it. All lengths are divided by `scales.length` and all
+//! moduli and stresses by `scales.modulus`, so the numerics see O(1) numbers
+//! whatever the caller's units.
+
+pub mod scaling;
+pub mod settings;
+mod size_limit;
+pub mod validate;
+
+pub use scaling::Scales;
+pub use settings::{Analysis, Control, Discretization, Formulation, GapMeasure, Method, Settings};
+pub use validate::Limits;
+
+use crate::mesh::{generate::Grading, Mesh2d, Order};
+
+#[derive(Debug, Clone)]
+pub struct Scene {
+    pub analysis: Analysis,
+    pub scales: Scales,
+    pub bodies: Vec<Body>,
+    pub obstacles: Vec<Obstacle>,
+    pub foundations: Vec<Foundation>,
+    pub pairs: Vec<Pair>,
+    pub method: Method,
+    pub settings: Settings,
+    pub outputs: Outputs,
+    pub client_id: Option<String>,
+    /// Seconds the solve may take (the request's `time_limit`), if limited.
+    pub time_limit: Option<f64>,
+    /// What validation decided that the user should know (echoed in the reply's notes).
+    pub notes: Vec<String>,
+    /// Load multipliers to solve for (empty: the loads as given).
+    pub load_factors: Vec<f64>,
+}
+
+impl Scene {
+    /// The same scene with every load and prescribed displacement times `k`.
+    pub fn scaled(&self, k: f64) -> Scene {
+        let mut s = self.clone();
+        s.load_factors.clear();
+        for b in &mut s.bodies {
+            b.body_force = [k * b.body_force[0], k * b.body_force[1]];
+            for sup in &mut b.supports {
+                sup.ux = sup.ux.map(|v| k * v);
+                sup.uy = sup.uy.map(|v| k * v);
+            }
+            for t in &mut b.tractions {
+                match t {
+                    Traction::Vector { t, .. } => *t = [k * t[0], k * t[1]],
+                    Traction::Pressure { p, .. } => *p *= k,
+                }
+            }
+        }
+        s
+    }
+}
+
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Outputs {
+    pub displacement: bool,
+    pub mesh: bool,
+    pub stress: bool,
+    /// The VTU file (needs all three of the above, computed for it).
+    pub vtu: bool,
+}
+
+#[derive(Debug, Clone)]
+pub struct Body {
+    pub name: String,
+    pub youngs_modulus: f64,
+    pub poisson_ratio: f64,
+    pub mesh: MeshSource,
+    pub supports: Vec<Support>,
+    pub tractions: Vec<Traction>,
+    pub body_force: [f64; 2],
+    /// JSON pointer of the body in the request.
+    pub path: String,
+}
+
+/// How the body's mesh is obtained (generated lazily by the mesh stage).
+/// Generated meshes keep the request's units; `Inline` is nondimensional.
+#[derive(Debug, Clone)]
+pub enum MeshSource {
+    Rectangle {
+        corner: [f64; 2],
+        width: f64,
+        height: f64,
+        size: f64,
+        grading: Option<([f64; 2], Grading)>,
+        order: Order,
+    },
+    Disk {
+        center: [f64; 2],
+        radius: f64,
+        down: bool,
+        part: crate::mesh::generate::DiskPart,
+        size: f64,
+        grading: Option<Grading>,
+        order: Order,
+    },
+    Inline(Mesh2d),
+}
+
+#[derive(Debug, Clone)]
+pub struct Support {
+    pub edges: String,
+    pub ux: Option<f64>,
+    pub uy: Option<f64>,
+}
+
+#[derive(Debug, Clone)]
+pub enum Traction {
+    Vector { edges: String, t: [f64; 2] },
+    Pressure { edges: String, p: f64 },
+}
+
+#[derive(Debug, Clone)]
+pub struct Obstacle {
+    pub name: String,
+    pub shape: Shape,
+    /// Rigid motion controls; None: fixed.
+    pub punch: Option<Punch>,
+}
+
+/// A rigid punch: motion (α1, α2, θ) about `reference`, each component either
+/// prescribed or paired with a prescribed load (P1, P2, M) on the punch.
+#[derive(Debug, Clone)]
+pub struct Punch {
+    pub reference: [f64; 2],
+    pub controls: [Control; 3],
+}
+
+/// Punch profile ψ(t), t = x − x_r.
+#[derive(Debug, Clone)]
+pub enum Psi {
+    Flat {
+        half_width: f64,
+        corner_radius: f64,
+    },
+    Circle {
+        radius: f64,
+    },
+    /// (t, ψ) with increasing t.
+    Points(Vec<[f64; 2]>),
+}
+
+impl Psi {
+    /// ψ(t), or None outside the profile's extent.
+    pub fn eval(&self, t: f64) -> Option<f64> {
+        // Nodes placed at a profile's end by a mesh generator land there only to
+        // round-off: accept them.
+        let (t0, t1) = self.extent();
+        let slack = 1e-9 * (t1 - t0);
+        let t = if t < t0 && t >= t0 - slack {
+            t0
+        } else if t > t1 && t <= t1 + slack {
+            t1
+        } else {
+            t
+        };
+        match self {
+            Psi::Flat {
+                half_width,
+                corner_radius,
+            } => {
+                let a = t.abs();
+                let flat = half_width - corner_radius;
+                if a <= flat {
+                    Some(0.0)
+                } else if a <= *half_width {
+                    let d = a - flat;
+                    Some(corner_radius - (corner_radius * corner_radius - d * d).max(0.0).sqrt())
+                } else {
+                    None
+                }
+            }
+            Psi::Circle { radius } => (t.abs() < *radius).then(|| radius - (radius * radius - t * t).sqrt()),
+            Psi::Points(p) => {
+                let k = p.windows(2).position(|w| t >= w[0][0] && t <= w[1][0])?;
+                let (a, b) = (p[k], p[k + 1]);
+                Some(a[1] + (b[1] - a[1]) * (t - a[0]) / (b[0] - a[0]))
+            }
+        }
+    }
+
+    /// Extent [t_min, t_max] of the profile.
+    pub fn extent(&self) -> (f64, f64) {
+        match self {
+            Psi::Flat { half_width, .. } => (-half_width, *half_width),
+            Psi::Circle { radius } => (-radius, *radius),
+            Psi::Points(p) => (p[0][0], p[p.len() - 1][0]),
+        }
+    }
+}
+
+#[derive(Debug, Clone)]
+pub enum Shape {
+    /// Half-plane {(x − p)·n ≤ 0}; `n` unit, pointing out of the obstacle.
+    Line {
+        point: [f64; 2],
+        normal: [f64; 2],
+    },
+    Circle {
+        center: [f64; 2],
+        radius: f64,
+    },
+    /// Rigid material to the right of the direction of travel.
+    Polyline {
+        points: Vec<[f64; 2]>,
+    },
+    /// Surface y = reference_y + ψ(x − reference_x), rigid above.
+    Profile {
+        reference: [f64; 2],
+        psi: Psi,
+    },
+}
+
+#[derive(Debug, Clone)]
+pub struct Pair {
+    pub body: usize,
+    pub edges: String,
+    pub target: Target,
+    pub path: String,
+}
+
+/// What the pair's edge set may touch.
+#[derive(Debug, Clone)]
+pub enum Target {
+    Obstacle(usize),
+    /// A foundation of `Scene::foundations`.
+    Foundation(usize),
+    /// An edge set of another deformable body.
+    Body {
+        body: usize,
+        edges: String,
+        discretization: Discretization,
+    },
+}
+
+/// A tensionless foundation (nondimensional).
+#[derive(Debug, Clone)]
+pub struct Foundation {
+    pub name: String,
+    pub y: f64,
+    pub x_min: f64,
+    pub x_max: f64,
+    pub model: FoundationModel,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FoundationModel {
+    Winkler {
+        k: f64,
+    },
+    Pasternak {
+        k: f64,
+        mu: f64,
+    },
+    /// E* = E / (1 − ν²) and the reference distance d.
+    HalfPlane {
+        e_star: f64,
+        d: f64,
+    },
+}

@@ -1,0 +1,88 @@
+//! The scene's choices of model and method, as the numerics read them (the
+//! request's names for them stay at the scene boundary, `validate`).
+
+/// 2D kinematics of the bodies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Analysis {
+    PlaneStrain,
+    PlaneStress,
+}
+
+/// The contact method asked for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// Fastest exact method for the scene.
+    Auto,
+    ActiveSet,
+    InteriorPoint,
+    Penalty,
+    AugmentedLagrangian,
+    Barrier,
+}
+
+/// Where the contact problem is solved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Formulation {
+    /// One factorization, the LCP on the contact rows.
+    Condensed,
+    /// The whole system, refactored per iteration (exact methods, for comparison).
+    Full,
+}
+
+/// Discretization of a two-body pair.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Discretization {
+    /// Segment-to-segment, passes the contact patch test.
+    Mortar,
+    NodeToSegment,
+}
+
+/// How the gap of a contact row is measured.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GapMeasure {
+    /// Linearized signed distance to the target, the row along its normal.
+    SignedDistance,
+    /// Along the body's own outward normal (the classical u·n ≤ s).
+    BodyNormal,
+}
+
+/// One component of a punch's rigid motion: prescribed, or free with its
+/// load prescribed (nondimensional).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Control {
+    Displacement(f64),
+    Load(f64),
+}
+
+/// Tolerances and parameters of the contact solve (nondimensional).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Settings {
+    /// Convergence tolerance on the relative KKT residuals.
+    pub tolerance: f64,
+    /// Iteration cap of the contact iteration.
+    pub max_iterations: usize,
+    /// Rows whose initial gap exceeds this multiple of the body size are dropped.
+    pub prune_gap_ratio: f64,
+    pub formulation: Formulation,
+    pub gap: GapMeasure,
+    /// Penalty compliance ζ of `penalty` and `augmented_lagrangian`.
+    pub penalty: f64,
+    /// Barrier parameter ζ of `barrier`.
+    pub barrier: f64,
+}
+
+impl Default for Settings {
+    /// The request's defaults: ζ 1e-6 of the natural compliance L/E, barrier
+    /// 1e-8 of E·L (1 in the scaled units).
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-8,
+            max_iterations: 200,
+            prune_gap_ratio: 0.5,
+            formulation: Formulation::Condensed,
+            gap: GapMeasure::SignedDistance,
+            penalty: 1e-6,
+            barrier: 1e-8,
+        }
+    }
+}

@@ -1,0 +1,305 @@
+//! Solution → report: the certificate and the status it earns, contact zones
+//! and pressures, punch motions and loads, foundation deflections, optional
+//! fields, and the notes and warnings the user should read, all in the
+//! request's units.
+
+use faer::sparse::SparseColMat;
+use faer::Mat;
+
+use crate::contact::{
+    self,
+    foundation::Foundations,
+    free_motions::{self, FreeMotions, Motion},
+};
+use crate::fem::{self, element, material::d_matrix};
+use crate::mesh::Mesh2d;
+use crate::methods;
+use crate::model::Model;
+use crate::observer::{Observer, Stage};
+use crate::scene::{Analysis, FoundationModel, Scene};
+use crate::solution::report::{
+    BodyFields, CacheState, Diagnostics, FoundationReport, ProblemSize, PunchReport, Report, Status,
+};
+use crate::solution::{certificate::certify, post, validity};
+
+/// What the report needs of a solve besides its solution.
+pub struct Solved<'a> {
+    pub model: &'a Model,
+    pub k: &'a SparseColMat<usize, f64>,
+    pub f: &'a [f64],
+    /// `Cholesky::pivot_ratio` of the factor (condensed path).
+    pub pivot_ratio: Option<f64>,
+    /// `FactorCost::predicted_secs` of the factorization (condensed path).
+    pub predicted: Option<f64>,
+    /// The foundations' compliance D F D (condensed path, with foundations).
+    pub compliance: Option<&'a Mat<f64>>,
+}
+
+/// Certificate, status, contact zones, optional fields: the report.
+pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Observer, cache: CacheState) -> Report {
+    obs.enter(Stage::Post);
+    let m = st.model;
+    let free = Some(&m.free).filter(|p| !p.motions.is_empty());
+    let beta = free.map(|p| p.motion(&sol.beta)).unwrap_or_default();
+    let mut shift = free.filter(|p| !p.is_empty()).map(|p| p.shift(&sol.beta));
+    // The foundations' deflection opens the gaps: D F D λ joins the shift.
+    if let Some(wf) = st.compliance {
+        let opened = crate::linalg::dense::matvec(wf, &sol.lambda);
+        let s = shift.get_or_insert_with(|| vec![0.0; opened.len()]);
+        s.iter_mut().zip(&opened).for_each(|(a, b)| *a += b);
+    }
+    let (mut certificate, gaps) = certify(st.k, st.f, &m.cons, &sol.u, &sol.lambda, shift.as_deref());
+    certificate.equilibrium = certificate.equilibrium.max(m.free.equilibrium(&sol.lambda));
+    let punches = free
+        .map(|p| punch_results(scene, &m.cons, p, &beta, &sol.lambda))
+        .unwrap_or_default();
+    let mut notes = scene.notes.clone();
+    for (body, mesh) in scene.bodies.iter().zip(&m.meshes) {
+        if mesh.order == crate::mesh::Order::T3
+            && scene.analysis == Analysis::PlaneStrain
+            && body.poisson_ratio >= fem::assembly::NEARLY_INCOMPRESSIBLE
+        {
+            notes.push(format!(
+                "body '{}' is nearly incompressible (ν = {}) on linear triangles, which lock in plane strain: its pressures may be too stiff and oscillate (measured 31 % L2 error on Hertz at ν = 0.4999); use T6 elements, which switch to selective reduced integration from ν = {}",
+                body.name,
+                body.poisson_ratio,
+                fem::assembly::NEARLY_INCOMPRESSIBLE
+            ));
+        }
+    }
+    notes.extend(m.free.notes.iter().cloned());
+    notes.extend(sol.fallback.clone());
+    let foundations = foundation_results(scene, &m.cons, &m.foundations, &sol.lambda);
+    let (pairs, resultant, n_active) = post::pairs(scene, &m.meshes, &m.cons, &sol.lambda, &sol.in_contact, &gaps);
+    let status = if !certificate.is_finite() || (!sol.converged && sol.breakdown) {
+        Status::NumericalError
+    } else if !sol.converged {
+        Status::MaxIterations
+    } else if certificate.worst() > scene.settings.tolerance && sol.exact {
+        Status::NumericalError
+    } else if !sol.exact && certificate.dual.max(certificate.equilibrium) > scene.settings.tolerance {
+        // Penalty answers violate primal feasibility and complementarity by design;
+        // their own equations (equilibrium, λ ≥ 0) must still hold.
+        Status::NumericalError
+    } else {
+        Status::Solved
+    };
+    let disp = nodal_displacements(&m.meshes, &m.dofs, &sol.u, free.map(|p| (p, beta.as_slice())));
+    let punch_rotations: Vec<(usize, f64)> = (0..scene.obstacles.len())
+        .filter(|&o| scene.obstacles[o].punch.is_some())
+        .map(|o| (o, free_motions::punch_motion(scene, &m.free, &beta, o)[2]))
+        .collect();
+    let zones: Vec<Vec<[f64; 2]>> = pairs
+        .iter()
+        .map(|pr| {
+            pr.zones
+                .iter()
+                .map(|z| [z[0] / scene.scales.length, z[1] / scene.scales.length])
+                .collect()
+        })
+        .collect();
+    let warnings = validity::check(scene, &m.meshes, &disp, &m.cons, &punch_rotations, &zones);
+    let bodies = body_outputs(scene, &m.meshes, &disp);
+    // The post stage has no deadline check: its answer is ready.
+    let _ = obs.leave(Stage::Post);
+    Report {
+        client_id: scene.client_id.clone(),
+        status,
+        method: sol.method.to_string(),
+        iterations: sol.iterations,
+        pairs,
+        resultant,
+        certificate,
+        size: ProblemSize {
+            dofs: m.dofs.n_free,
+            candidates: m.cons.len(),
+            active: n_active,
+        },
+        diagnostics: Diagnostics {
+            condition_estimate: st.pivot_ratio,
+            refinements: sol.refinements,
+            factorization_predicted: st.predicted,
+        },
+        timings: obs.finish(),
+        cache,
+        steps: None,
+        punches,
+        bodies,
+        foundations,
+        notes,
+        warnings,
+        outputs: scene.outputs,
+    }
+}
+
+/// Motion and loads of every punch, in the caller's units.
+fn punch_results(
+    scene: &Scene,
+    cons: &contact::ConstraintSet,
+    fm: &FreeMotions,
+    beta: &[f64],
+    lambda: &[f64],
+) -> Vec<PunchReport> {
+    let sc = scene.scales;
+    let mut out = Vec::new();
+    for (o, ob) in scene.obstacles.iter().enumerate() {
+        if ob.punch.is_none() {
+            continue;
+        }
+        let motion = free_motions::punch_motion(scene, fm, beta, o);
+        // Loads on the punch balance the contact forces: P = −Σ λ_i c_i.
+        let mut load = [0.0; 3];
+        for (c, l) in cons.candidates.iter().zip(lambda) {
+            if let Some((po, row)) = c.punch {
+                if po == o {
+                    for k in 0..3 {
+                        load[k] -= l * row[k];
+                    }
+                }
+            }
+        }
+        let undetermined: Vec<&str> = fm
+            .motions
+            .iter()
+            .enumerate()
+            .filter_map(|(k, (mo, _))| match *mo {
+                Motion::Punch { obstacle, component } if obstacle == o && !fm.is_determined(k) => {
+                    Some(free_motions::COMPONENT[component])
+                }
+                _ => None,
+            })
+            .collect();
+        out.push(PunchReport {
+            name: ob.name.clone(),
+            alpha1: sc.length(motion[0]),
+            alpha2: sc.length(motion[1]),
+            theta: motion[2],
+            p1: sc.force(load[0]),
+            p2: sc.force(load[1]),
+            m: sc.moment(load[2]),
+            unique: undetermined.is_empty(),
+            note: (!undetermined.is_empty()).then(|| {
+                format!(
+                    "the {} motion is not determined: no contact normal resists it and its load is 0; it is reported as 0, any value is a solution",
+                    undetermined.join(" and ")
+                )
+            }),
+        });
+    }
+    out
+}
+
+/// Nodal displacements of every body (nondimensional): the solved free DOFs,
+/// the prescribed ones, and the rigid motions of bodies held by contact
+/// (`free`: the free motions and their amplitudes β, whose body modes add R β).
+fn nodal_displacements(
+    meshes: &[Mesh2d],
+    dofs: &fem::DofMap,
+    u: &[f64],
+    free: Option<(&FreeMotions, &[f64])>,
+) -> Vec<Vec<[f64; 2]>> {
+    let rigid = |b: usize, x: [f64; 2]| {
+        let mut r = [0.0; 2];
+        if let Some((fm, beta)) = free {
+            for ((mo, _), a) in fm.motions.iter().zip(beta) {
+                if let Motion::Body { set, dir } = *mo {
+                    let rm = &dofs.rigid[set];
+                    if rm.body == b {
+                        let d = rm.at_dir(dir, x);
+                        r[0] += a * d[0];
+                        r[1] += a * d[1];
+                    }
+                }
+            }
+        }
+        r
+    };
+    let value = |d: usize| match dofs.free[d] {
+        fem::assembly::FIXED => dofs.prescribed[d],
+        k => u[k],
+    };
+    meshes
+        .iter()
+        .enumerate()
+        .map(|(b, mesh)| {
+            (0..mesh.nodes.len())
+                .map(|n| {
+                    let r = rigid(b, mesh.nodes[n]);
+                    [value(dofs.dof(b, n, 0)) + r[0], value(dofs.dof(b, n, 1)) + r[1]]
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Optional per-body fields, only when the request lists them.
+fn body_outputs(scene: &Scene, meshes: &[Mesh2d], disp: &[Vec<[f64; 2]>]) -> Option<Vec<BodyFields>> {
+    let o = scene.outputs;
+    if !(o.displacement || o.mesh || o.stress || o.vtu) {
+        return None;
+    }
+    // The VTU file needs every field; `output::attach_vtu` drops those not asked for.
+    let (o_mesh, o_displacement, o_stress) = (o.mesh || o.vtu, o.displacement || o.vtu, o.stress || o.vtu);
+    let sc = scene.scales;
+    Some(
+        scene
+            .bodies
+            .iter()
+            .zip(meshes)
+            .zip(disp)
+            .map(|((body, mesh), disp)| BodyFields {
+                name: body.name.clone(),
+                nodes: o_mesh.then(|| mesh.nodes.iter().map(|p| [sc.length(p[0]), sc.length(p[1])]).collect()),
+                elements: o_mesh.then(|| (0..mesh.n_elems()).map(|e| mesh.elem(e).to_vec()).collect()),
+                displacement: o_displacement.then(|| disp.iter().map(|d| [sc.length(d[0]), sc.length(d[1])]).collect()),
+                stress: o_stress.then(|| {
+                    let dm = d_matrix(body.youngs_modulus, body.poisson_ratio, scene.analysis);
+                    (0..mesh.n_elems())
+                        .map(|e| {
+                            let conn = mesh.elem(e);
+                            let x: Vec<[f64; 2]> = conn.iter().map(|&n| mesh.nodes[n]).collect();
+                            let ue: Vec<f64> = conn.iter().flat_map(|&n| disp[n]).collect();
+                            let s = element::centroid_stress(mesh.order, &x, &dm, &ue);
+                            [sc.stress(s[0]), sc.stress(s[1]), sc.stress(s[2])]
+                        })
+                        .collect()
+                }),
+            })
+            .collect(),
+    )
+}
+
+/// Deflection of every loaded foundation in the caller's units.
+fn foundation_results(
+    scene: &Scene,
+    cons: &contact::ConstraintSet,
+    f: &Foundations,
+    lambda: &[f64],
+) -> Vec<FoundationReport> {
+    let sc = scene.scales;
+    f.deflections(scene, cons, lambda)
+        .into_iter()
+        .map(|(k, x, w)| {
+            let fnd = &scene.foundations[k];
+            let load: f64 = cons
+                .candidates
+                .iter()
+                .zip(lambda)
+                .filter_map(|(c, l)| c.foundation.filter(|r| r.foundation == k).map(|r| r.proj * l))
+                .sum();
+            let (model, reference_distance) = match fnd.model {
+                FoundationModel::Winkler { .. } => ("winkler", None),
+                FoundationModel::Pasternak { .. } => ("pasternak", None),
+                FoundationModel::HalfPlane { d, .. } => ("half_plane", Some(sc.length(d))),
+            };
+            FoundationReport {
+                name: fnd.name.clone(),
+                model,
+                x: x.into_iter().map(|v| sc.length(v)).collect(),
+                w: w.into_iter().map(|v| sc.length(v)).collect(),
+                reference_distance,
+                load: sc.force(load),
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,7 @@
+//! Solution → report: certificate, contact zones, pressures, resultants.
+
+pub mod certificate;
+pub mod compose;
+pub mod post;
+pub mod report;
+pub mod validity;

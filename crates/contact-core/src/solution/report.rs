@@ -1,0 +1,235 @@
+//! The domain result of a solve: what the core knows of the answer, in the
+//! request's units. The service's reply (`contact::wire`) is written from it
+//! field by field; benches and tests read it directly.
+
+use crate::scene::{Discretization, Outputs};
+
+/// The answer to a scene that could be attempted.
+#[derive(Debug, Clone)]
+pub struct Report {
+    /// Echo of the request's `client_id`.
+    pub client_id: Option<String>,
+    pub status: Status,
+    /// The method that ran (after `auto` made its choice).
+    pub method: String,
+    /// Iterations of the contact solver.
+    pub iterations: usize,
+    /// One entry per contact pair, in request order.
+    pub pairs: Vec<PairReport>,
+    /// Total contact force and moment about the origin acting on the bodies.
+    pub resultant: Resultant,
+    pub certificate: Certificate,
+    pub size: ProblemSize,
+    pub diagnostics: Diagnostics,
+    pub timings: Timings,
+    pub cache: CacheState,
+    /// Motion and loads of every punch.
+    pub punches: Vec<PunchReport>,
+    /// One entry per load factor when the scene lists load factors.
+    pub steps: Option<Vec<LoadStep>>,
+    /// Per-body fields, when the outputs ask for them.
+    pub bodies: Option<Vec<BodyFields>>,
+    pub foundations: Vec<FoundationReport>,
+    pub notes: Vec<String>,
+    /// Violated assumptions of the model (`solution::validity`).
+    pub warnings: Vec<Warning>,
+    /// What the request asked to be returned (the reply layer writes the VTU file).
+    pub outputs: Outputs,
+}
+
+/// Whether the answer can be used.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Status {
+    /// Converged; the certificate is within the tolerance.
+    Solved,
+    /// Stopped at the iteration cap; the certificate tells how far off it is.
+    MaxIterations,
+    /// The linear algebra lost accuracy; the numbers must not be trusted.
+    NumericalError,
+}
+
+/// Whether the prepared operator came from a cache.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CacheState {
+    Hit,
+    Miss,
+    Off,
+}
+
+/// Relative KKT residuals (dimensionless, each ≥ 0; see `solution::certificate`).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Certificate {
+    pub primal: f64,
+    pub dual: f64,
+    pub complementarity: f64,
+    pub equilibrium: f64,
+}
+
+impl Certificate {
+    pub fn worst(&self) -> f64 {
+        self.primal
+            .max(self.dual)
+            .max(self.complementarity)
+            .max(self.equilibrium)
+    }
+    /// Every entry finite (`worst` alone would hide a NaN: f64::max ignores it).
+    pub fn is_finite(&self) -> bool {
+        [self.primal, self.dual, self.complementarity, self.equilibrium]
+            .iter()
+            .all(|v| v.is_finite())
+    }
+}
+
+/// Force and moment about the origin (counter-clockwise positive).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Resultant {
+    pub fx: f64,
+    pub fy: f64,
+    pub m: f64,
+}
+
+/// A violated assumption of the model: the measured value and the limit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Warning {
+    pub code: &'static str,
+    pub value: f64,
+    pub limit: f64,
+    /// JSON pointer of the body, obstacle or pair concerned.
+    pub location: String,
+}
+
+/// A punch's rigid motion and the loads on it.
+#[derive(Debug, Clone)]
+pub struct PunchReport {
+    pub name: String,
+    pub alpha1: f64,
+    pub alpha2: f64,
+    pub theta: f64,
+    pub p1: f64,
+    pub p2: f64,
+    pub m: f64,
+    pub unique: bool,
+    pub note: Option<String>,
+}
+
+/// The answer at one load factor.
+#[derive(Debug, Clone)]
+pub struct LoadStep {
+    pub factor: f64,
+    pub status: Status,
+    pub iterations: usize,
+    pub pairs: Vec<PairReport>,
+    pub resultant: Resultant,
+    pub certificate: Certificate,
+}
+
+/// What touches what in one pair.
+#[derive(Debug, Clone)]
+pub enum PairTarget {
+    Obstacle(String),
+    /// The other body and its discretization.
+    Body(String, Discretization),
+    Foundation(String),
+}
+
+#[derive(Debug, Clone)]
+pub struct PairReport {
+    pub body: String,
+    pub target: PairTarget,
+    /// Intervals [x_start, x_end] along x1 where the body touches.
+    pub zones: Vec<[f64; 2]>,
+    pub points: Vec<ContactPoint>,
+    pub resultant: Resultant,
+    pub max_penetration: f64,
+    pub pruned: usize,
+    /// Two bodies: the pressure at the other body's nodes, and its resultant.
+    pub other_points: Option<Vec<CounterPoint>>,
+    pub other_resultant: Option<Resultant>,
+}
+
+/// A node of the other body of a two-body pair.
+#[derive(Debug, Clone)]
+pub struct CounterPoint {
+    pub x: f64,
+    pub y: f64,
+    pub pressure: f64,
+    pub force: f64,
+    pub weight: f64,
+    pub node: usize,
+}
+
+/// A contact row.
+#[derive(Debug, Clone)]
+pub struct ContactPoint {
+    pub x: f64,
+    pub y: f64,
+    pub gap: f64,
+    /// Positive in compression.
+    pub pressure: f64,
+    pub force: f64,
+    pub weight: f64,
+    pub node: usize,
+    pub normal: [f64; 2],
+}
+
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ProblemSize {
+    pub dofs: usize,
+    pub candidates: usize,
+    pub active: usize,
+}
+
+/// Wall-clock seconds per stage.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Timings {
+    pub mesh: f64,
+    pub assembly: f64,
+    pub factorization: f64,
+    pub condensation: f64,
+    pub contact_solve: f64,
+    pub post: f64,
+    pub total: f64,
+}
+
+impl Timings {
+    /// Stage by stage sum (load steps).
+    pub fn add(&mut self, s: &Timings) {
+        self.mesh += s.mesh;
+        self.assembly += s.assembly;
+        self.factorization += s.factorization;
+        self.condensation += s.condensation;
+        self.contact_solve += s.contact_solve;
+        self.post += s.post;
+        self.total += s.total;
+    }
+}
+
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Diagnostics {
+    pub condition_estimate: Option<f64>,
+    pub refinements: usize,
+    pub factorization_predicted: Option<f64>,
+}
+
+/// Per-body fields (each present when asked for).
+#[derive(Debug, Clone)]
+pub struct BodyFields {
+    pub name: String,
+    pub nodes: Option<Vec<[f64; 2]>>,
+    pub elements: Option<Vec<Vec<usize>>>,
+    pub displacement: Option<Vec<[f64; 2]>>,
+    /// Element-centroid stress [σxx, σyy, σxy].
+    pub stress: Option<Vec<[f64; 3]>>,
+}
+
+/// A foundation's surface deflection along its whole length.
+#[derive(Debug, Clone)]
+pub struct FoundationReport {
+    pub name: String,
+    /// "winkler", "pasternak" or "half_plane".
+    pub model: &'static str,
+    pub x: Vec<f64>,
+    pub w: Vec<f64>,
+    pub reference_distance: Option<f64>,
+    pub load: f64,
+}

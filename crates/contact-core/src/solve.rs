@@ -1,0 +1,158 @@
+//! The algorithm, stage by stage:
+//!
+//! ```text
+//! request ─validate→ Scene ─mesh→ meshes ─admit→ ─assemble→ Model ─admit→ Route
+//!   Condensed: K ─factor+condense→ Prepared (cacheable) ─LCP→ Solution
+//!   Full:      K ─active set / interior point on the whole system→ Solution
+//! Solution ─certify, post-process→ Report
+//! ```
+//!
+//! Each stage is a typed value in and out; the [`Observer`] announces, times
+//! and deadline-checks them.
+
+use std::sync::Arc;
+
+use crate::admit::{self, Route};
+use crate::cache::{self, OperatorCache};
+use crate::error::CoreError;
+use crate::fem::assembly::{assemble_loads, assemble_stiffness};
+use crate::methods::{self, full, Problem, PunchBlock};
+use crate::model::Model;
+use crate::observer::{Observer, Stage};
+use crate::scene::{Limits, Method, Scene};
+use crate::solution::compose::{self, Solved};
+use crate::solution::report::{CacheState, LoadStep, Report, Status, Timings};
+
+/// Solves the scene, once per load factor (one factorization serves them all).
+/// Within the scene's own time limit, if it has one.
+pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<Report, CoreError> {
+    let _deadline = scene
+        .time_limit
+        .map(|s| crate::cancel::Deadline::install(std::time::Duration::from_secs_f64(s.min(1e9))));
+    if scene.load_factors.is_empty() {
+        return solve_once(scene, limits, cache);
+    }
+    // Later factors find the operator the first one prepared.
+    let local = OperatorCache::new(usize::MAX);
+    let mut steps = Vec::with_capacity(scene.load_factors.len());
+    let (mut timings, mut first_cache, mut last) = (Timings::default(), None, None);
+    for &k in &scene.load_factors {
+        let r = solve_once(&scene.scaled(k), limits, cache.or(Some(&local)))?;
+        steps.push(LoadStep {
+            factor: k,
+            status: r.status,
+            iterations: r.iterations,
+            pairs: r.pairs.clone(),
+            resultant: r.resultant,
+            certificate: r.certificate,
+        });
+        timings.add(&r.timings);
+        first_cache.get_or_insert(r.cache);
+        last = Some(r);
+    }
+    let mut last = last.expect("at least one factor");
+    // The report is only as good as its worst step.
+    if let Some(bad) = steps.iter().find(|st| st.status != Status::Solved) {
+        last.status = bad.status;
+    }
+    last.timings = timings;
+    last.cache = match (local.is_empty(), first_cache) {
+        (true, Some(c)) => c,
+        _ => CacheState::Off,
+    };
+    last.steps = Some(steps);
+    Ok(last)
+}
+
+fn solve_once(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<Report, CoreError> {
+    let mut obs = Observer::new();
+    obs.enter(Stage::Mesh);
+    let meshes = crate::mesh::build::meshes(scene)?;
+    obs.leave(Stage::Mesh)?;
+    admit::meshes(&meshes, limits)?;
+
+    obs.enter(Stage::Assembly);
+    let model = Model::build(scene, meshes)?;
+    match admit::route(scene, &model, limits)? {
+        Route::Full => solve_full(scene, &model, obs),
+        Route::Condensed => solve_condensed(scene, &model, cache, obs),
+    }
+}
+
+/// One factorization (or the cache's), the LCP on the contact rows.
+fn solve_condensed(
+    scene: &Scene,
+    model: &Model,
+    cache: Option<&OperatorCache>,
+    mut obs: Observer,
+) -> Result<Report, CoreError> {
+    let key = cache::key(scene, &model.meshes, &model.dofs, &model.cons);
+    let (op, cache_state) = match cache.and_then(|c| c.get(key)) {
+        Some(op) => (op, CacheState::Hit),
+        None => {
+            let stiffness = Arc::new(assemble_stiffness(scene, &model.meshes, &model.dofs)?);
+            obs.leave(Stage::Assembly)?;
+            obs.enter(Stage::Factorization);
+            let op = Arc::new(methods::condensed::prepare(stiffness, &model.cons)?);
+            obs.timings.factorization = op.t_factorization;
+            obs.timings.condensation = op.t_condensation;
+            if let Some(c) = cache {
+                c.insert(key, op.clone());
+            }
+            (op, cache.map_or(CacheState::Off, |_| CacheState::Miss))
+        }
+    };
+    obs.check(Stage::Factorization)?;
+    let f = assemble_loads(&model.external, &model.dofs, &op.stiffness);
+    let compliance = (!model.foundations.is_empty()).then(|| model.foundations.compliance(&model.cons));
+    let problem = Problem {
+        op: &op,
+        f: &f,
+        cons: &model.cons,
+        settings: &scene.settings,
+        punch: (!model.free.is_empty()).then_some(PunchBlock {
+            c: &model.free.c,
+            rhs: &model.free.rhs,
+        }),
+        compliance: compliance.as_ref(),
+    };
+    obs.enter(Stage::ContactSolve);
+    let sol = methods::solve(&problem, scene.method)?;
+    obs.leave(Stage::ContactSolve)?;
+    obs.timings.contact_solve = sol.t_contact;
+    let solved = Solved {
+        model,
+        k: &op.stiffness.k,
+        f: &f,
+        pivot_ratio: Some(op.pivot_ratio),
+        predicted: Some(op.chol.cost().predicted_secs()),
+        compliance: compliance.as_ref(),
+    };
+    Ok(compose::report(scene, &solved, sol, obs, cache_state))
+}
+
+/// Exact methods on the whole system: no condensation, no cache (they are
+/// the comparison, and `auto`'s choice for many rows on few DOFs).
+fn solve_full(scene: &Scene, model: &Model, mut obs: Observer) -> Result<Report, CoreError> {
+    let stiffness = assemble_stiffness(scene, &model.meshes, &model.dofs)?;
+    let f = assemble_loads(&model.external, &model.dofs, &stiffness);
+    obs.leave(Stage::Assembly)?;
+    let g = model.cons.g();
+    obs.enter(Stage::ContactSolve);
+    let sol = match scene.method {
+        Method::InteriorPoint => full::solve_interior_point(&stiffness.k, &f, &model.cons, &g, &scene.settings)?,
+        // `admit::route` lets only the exact methods through.
+        _ => full::solve_active_set(&stiffness.k, &f, &model.cons, &g, &scene.settings)?,
+    };
+    obs.leave(Stage::ContactSolve)?;
+    obs.timings.contact_solve = sol.t_contact;
+    let solved = Solved {
+        model,
+        k: &stiffness.k,
+        f: &f,
+        pivot_ratio: None,
+        predicted: None,
+        compliance: None,
+    };
+    Ok(compose::report(scene, &solved, sol, obs, CacheState::Off))
+}

@@ -1,0 +1,323 @@
+//! The solve reply. Lengths, forces and pressures are in the request's units.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// The answer to a solve request that could be attempted.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SolveReply {
+    pub version: String,
+    /// Echo of the request's `client_id`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub client_id: Option<String>,
+    /// Server-side id of this request, `<instance>-<n>` (set by the service, absent from the CLI).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub request_id: Option<String>,
+    /// "solved" when the certificate meets the tolerance; otherwise why not.
+    pub status: SolveStatus,
+    /// The method that ran (after `auto` made its choice).
+    pub method: String,
+    /// Iterations of the contact solver.
+    pub iterations: usize,
+    /// One entry per contact pair, in request order.
+    pub pairs: Vec<PairResult>,
+    /// Total contact force and moment about the origin acting on the bodies.
+    pub resultant: Resultant,
+    /// KKT residuals of the discrete solution, relative and dimensionless.
+    pub certificate: Certificate,
+    /// Problem sizes.
+    pub size: ProblemSize,
+    /// Numerical health of the solve.
+    #[serde(default)]
+    pub diagnostics: Diagnostics,
+    /// Wall-clock seconds per stage.
+    pub timings: Timings,
+    /// Whether the factorization and condensed operator came from the service's cache.
+    pub cache: CacheState,
+    /// Motion and loads of every punch (obstacle with `punch`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub punches: Vec<PunchResult>,
+    /// One entry per load factor when the request lists `load_factors`; the
+    /// top-level fields then describe the last factor.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steps: Option<Vec<LoadStep>>,
+    /// Per body, when `outputs` asks for it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bodies: Option<Vec<BodyOutput>>,
+    /// Surface deflection of every foundation a body rests on.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub foundations: Vec<FoundationResult>,
+    /// What the user should know about this solution (e.g. a rigid motion of a
+    /// body held only by contact that nothing determines).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
+    /// Assumptions of the model (small strain, small rotation, linearized
+    /// gaps) that this solution violates: its numbers answer the linear model,
+    /// which is then not a model of the physical scene. Limits: strain 5e-2,
+    /// rotation 0.15 rad, displacement 5e-2 of the body's size, contact
+    /// half-width 0.3 of a curved obstacle's radius, contact displacement 5e-2
+    /// of that radius.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<Warning>,
+    /// With `outputs` listing `vtu`: the VTK XML unstructured grid of every body
+    /// (point data `displacement`, `contact_pressure`; cell data `stress`,
+    /// `body`), base64-encoded; decode and save as `.vtu` for ParaView.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vtu: Option<String>,
+}
+
+/// A violated assumption of the model, with the measured value and the limit
+/// (both dimensionless).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Warning {
+    /// `large_strain` (largest principal strain), `large_rotation` (largest
+    /// material or punch rotation, radian), `large_displacement` (largest
+    /// displacement over the body's size), `large_contact_zone` (contact
+    /// half-width over the obstacle's radius), `gap_linearization` (largest
+    /// displacement of a contact point over the obstacle's radius).
+    pub code: String,
+    pub value: f64,
+    pub limit: f64,
+    /// JSON pointer of the body, obstacle or contact pair concerned.
+    pub location: String,
+}
+
+/// A punch's rigid motion and the loads on it (prescribed or reactions).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PunchResult {
+    pub name: String,
+    /// Horizontal displacement α1 [length].
+    pub alpha1: f64,
+    /// Vertical displacement α2 [length].
+    pub alpha2: f64,
+    /// Rotation θ about the reference point [radian], counter-clockwise.
+    pub theta: f64,
+    /// Loads on the punch balancing the contact: P1, P2 [force], M about the reference [force × length].
+    pub p1: f64,
+    pub p2: f64,
+    pub m: f64,
+    /// False when some motion is not determined by the contact (e.g. sliding of a flat punch).
+    pub unique: bool,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
+}
+
+/// The answer at one load factor.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LoadStep {
+    pub factor: f64,
+    pub status: SolveStatus,
+    pub iterations: usize,
+    pub pairs: Vec<PairResult>,
+    pub resultant: Resultant,
+    pub certificate: Certificate,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum CacheState {
+    /// Reused: assembly of K, factorization and condensation were skipped.
+    Hit,
+    /// Computed and stored for later requests on the same mesh, material, supports and candidates.
+    Miss,
+    /// No cache (the CLI).
+    Off,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum SolveStatus {
+    /// Converged; the certificate is within the tolerance.
+    Solved,
+    /// Stopped at the iteration cap; the certificate tells how far off it is.
+    MaxIterations,
+    /// The linear algebra lost accuracy (see certificate); do not trust the numbers.
+    NumericalError,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PairResult {
+    pub body: String,
+    /// The rigid obstacle of an obstacle pair.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub obstacle: Option<String>,
+    /// The other body of a two-body pair (its `against` edge set).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub against: Option<String>,
+    /// The foundation of a foundation pair.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub foundation: Option<String>,
+    /// Discretization of a two-body pair.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub discretization: Option<crate::Discretization>,
+    /// Intervals [x_start, x_end] along x1 where the body touches, from the
+    /// first to the last node of each run of consecutive active candidates
+    /// (mortar: the support of the interpolated pressure Σ p_i N_i, which
+    /// reaches the neighbouring open nodes; foundation: the union of the active
+    /// nodes' panels, on which the foundation pressure is constant).
+    pub zones: Vec<[f64; 2]>,
+    /// Every contact candidate of the pair, ordered along the boundary.
+    pub points: Vec<ContactPoint>,
+    /// Contact force and moment about the origin on the body from this pair.
+    pub resultant: Resultant,
+    /// Largest penetration (−gap) over the candidates, ≥ 0.
+    pub max_penetration: f64,
+    /// Candidates dropped because their initial gap cannot close.
+    pub pruned: usize,
+    /// Two bodies: the pressure as the other body sees it, at its nodes on the
+    /// `against` edge set (nodal contact force over its tributary length).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub other_points: Option<Vec<CounterPoint>>,
+    /// Two bodies: contact force and moment about the origin on the other body
+    /// (equal and opposite to `resultant`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub other_resultant: Option<Resultant>,
+}
+
+/// A node of the other body of a two-body pair.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CounterPoint {
+    /// Undeformed position.
+    pub x: f64,
+    pub y: f64,
+    /// Contact pressure on this body, positive in compression [force/length²].
+    pub pressure: f64,
+    /// Nodal contact force (per unit thickness) along the inward normal.
+    pub force: f64,
+    /// Tributary length of the node on the edge set.
+    pub weight: f64,
+    /// Node index in this body's mesh.
+    pub node: usize,
+}
+
+/// A contact candidate node.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ContactPoint {
+    /// Undeformed position.
+    pub x: f64,
+    pub y: f64,
+    /// Gap after deformation, along the row's direction `normal` (≥ 0; 0 in
+    /// contact): the distance to the obstacle or other body (`settings.gap`).
+    pub gap: f64,
+    /// Contact pressure, positive in compression (= −r_n) [force/length²].
+    pub pressure: f64,
+    /// Nodal contact force (per unit thickness) = pressure × tributary length.
+    pub force: f64,
+    /// Tributary length of the row: ∫ N_i ds of the node on the contact edges,
+    /// or ∫ Φ_i ds of its multiplier (mortar rows: two bodies, T6 against rigid
+    /// obstacles) over the part that sees the target.
+    pub weight: f64,
+    /// Node index in the body's mesh.
+    pub node: usize,
+    /// Unit direction of the row and of the contact force on the other side:
+    /// the obstacle's (or other body's) inward normal at the point facing the
+    /// node with `settings.gap = signed_distance`, the body's outward normal at
+    /// the node with `body_normal` (mean over the support for mortar rows).
+    pub normal: [f64; 2],
+}
+
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Resultant {
+    pub fx: f64,
+    pub fy: f64,
+    /// Moment about the origin (counter-clockwise positive).
+    pub m: f64,
+}
+
+/// Relative KKT residuals (dimensionless, each ≥ 0).
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Certificate {
+    /// Largest penetration relative to the displacement scale.
+    pub primal: f64,
+    /// Largest tensile (negative) contact force relative to the largest force.
+    pub dual: f64,
+    /// Largest |force × gap| relative to (largest force × displacement scale).
+    pub complementarity: f64,
+    /// ‖K u − f + Bᵀλ‖∞ on the free DOFs relative to the largest nodal force.
+    pub equilibrium: f64,
+}
+
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ProblemSize {
+    /// Free degrees of freedom of all bodies.
+    pub dofs: usize,
+    /// Contact candidates after pruning.
+    pub candidates: usize,
+    /// Candidates in contact.
+    pub active: usize,
+}
+
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Timings {
+    pub mesh: f64,
+    pub assembly: f64,
+    pub factorization: f64,
+    /// Condensation onto the contact candidates.
+    pub condensation: f64,
+    pub contact_solve: f64,
+    pub post: f64,
+    pub total: f64,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BodyOutput {
+    pub name: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nodes: Option<Vec<[f64; 2]>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub elements: Option<Vec<Vec<usize>>>,
+    /// Nodal displacement [ux, uy].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub displacement: Option<Vec<[f64; 2]>>,
+    /// Element-centroid stress [σxx, σyy, σxy].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stress: Option<Vec<[f64; 3]>>,
+}
+
+/// A foundation's surface deflection w(x) (downward positive) along its whole
+/// length, also outside the contact zone where the model spreads it.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FoundationResult {
+    pub name: String,
+    /// "winkler", "pasternak" or "half_plane".
+    pub model: String,
+    pub x: Vec<f64>,
+    pub w: Vec<f64>,
+    /// Half-plane: the distance from a load at which its deflection is zero
+    /// (the reference that fixes the 2D half-plane's rigid motion).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reference_distance: Option<f64>,
+    /// Total force the foundation carries (per unit thickness, downward).
+    pub load: f64,
+}
+
+/// How well-posed the linear algebra was.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Diagnostics {
+    /// (max / min pivot of the Cholesky factor of K)², a lower bound of its
+    /// condition number (absent for the full formulation, which refactors).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub condition_estimate: Option<f64>,
+    /// Iterative-refinement steps the solves with K needed to bring their
+    /// residual below 1e-10 (relative); 0 on a well-conditioned K.
+    pub refinements: usize,
+    /// Seconds the numeric factorization was predicted to take from its
+    /// symbolic analysis, before it ran (what a `time_limit` is judged against;
+    /// a factor from the cache gives its own; absent for the full formulation).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub factorization_predicted: Option<f64>,
+}

@@ -1,0 +1,298 @@
+//! The time-against-error benchmark: the Hertz scene (rigid cylinder into a
+//! block) at several mesh sizes, T3 and T6, with every method, each row timed
+//! per stage and compared with the closed form and with the physical floor of
+//! one symbolic + numeric Cholesky + one solve of the same K (faer's default
+//! AMD path). The harness returns rows; the CLI prints and writes them.
+
+use std::time::Instant;
+
+use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::Side;
+use serde_json::json;
+
+use contact_core::solution::report::Report;
+use contact_core::{Limits, Scene};
+use contact_proto::{Formulation, MethodName};
+
+#[derive(Debug, Clone)]
+pub struct Row {
+    pub scene: String,
+    pub element: &'static str,
+    pub h_min: f64,
+    pub dofs: usize,
+    pub candidates: usize,
+    pub method: String,
+    pub iterations: usize,
+    pub t_mesh: f64,
+    pub t_assembly: f64,
+    pub t_factorization: f64,
+    pub t_condensation: f64,
+    pub t_contact: f64,
+    pub t_post: f64,
+    pub t_total: f64,
+    /// Symbolic + numeric Cholesky + one solve of K (faer AMD), same mesh.
+    pub t_floor: f64,
+    pub err_half_width: f64,
+    pub err_peak: f64,
+    pub err_l2: f64,
+    pub max_penetration: f64,
+    pub certificate: f64,
+    pub status: String,
+}
+
+impl Row {
+    pub const HEADER: &'static str = "scene,element,h_min,dofs,candidates,method,iterations,t_mesh,t_assembly,t_factorization,t_condensation,t_contact,t_post,t_total,t_floor,ratio_solve_to_floor,ratio_total_to_floor,err_half_width,err_peak,err_l2,max_penetration,certificate,status";
+
+    /// Time of the contact solve proper (factorization through recovery) over the floor.
+    pub fn ratio(&self) -> f64 {
+        (self.t_factorization + self.t_condensation + self.t_contact) / self.t_floor
+    }
+
+    pub fn csv(&self) -> String {
+        format!(
+            "{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.3},{:.3},{:.3e},{:.3e},{:.3e},{:.3e},{:.1e},{}",
+            self.scene,
+            self.element,
+            self.h_min,
+            self.dofs,
+            self.candidates,
+            self.method,
+            self.iterations,
+            self.t_mesh,
+            self.t_assembly,
+            self.t_factorization,
+            self.t_condensation,
+            self.t_contact,
+            self.t_post,
+            self.t_total,
+            self.t_floor,
+            self.ratio(),
+            self.t_total / self.t_floor,
+            self.err_half_width,
+            self.err_peak,
+            self.err_l2,
+            self.max_penetration,
+            self.certificate,
+            self.status
+        )
+    }
+
+    pub fn table_header() -> String {
+        format!(
+            "{:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>9} {:>9} {:>9} {:>8}",
+            "element",
+            "h_min",
+            "dofs",
+            "cand",
+            "method",
+            "it",
+            "assembly",
+            "factor",
+            "contact",
+            "total",
+            "floor",
+            "ratio",
+            "err_a",
+            "err_p0",
+            "err_L2",
+            "cert"
+        )
+    }
+
+    pub fn table_line(&self) -> String {
+        format!(
+            "{:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8.3} {:>8.3} {:>8.4} {:>8.3} {:>8.3} {:>6.2} {:>+9.2e} {:>+9.2e} {:>9.2e} {:>8.1e}",
+            self.element,
+            self.h_min,
+            self.dofs,
+            self.candidates,
+            self.method,
+            self.iterations,
+            self.t_assembly,
+            self.t_factorization,
+            self.t_condensation + self.t_contact,
+            self.t_total,
+            self.t_floor,
+            self.ratio(),
+            self.err_half_width,
+            self.err_peak,
+            self.err_l2,
+            self.certificate
+        )
+    }
+}
+
+/// The benchmark's Hertz request: rigid cylinder R = 8 pressed 0.12 into a
+/// 40 × 20 block (E = 200, ν = 0.3), uniform `h_min` within 0.8 of the apex.
+pub fn hertz_request(h_min: f64, element: &str, method: &str) -> serde_json::Value {
+    json!({
+        "version": "1",
+        "description": "benchmark: Hertz, rigid cylinder into a block",
+        "bodies": [{
+            "name": "block",
+            "material": {"youngs_modulus": 200.0, "poisson_ratio": 0.3},
+            "mesh": {"rectangle": {"corner": [-20.0, -20.0], "width": 40.0, "height": 20.0, "size": 1.0, "element": element,
+                     "grading": {"focus": [0.0, 0.0], "h_min": h_min, "ratio": 1.1, "extent": 0.8}}},
+            "supports": [{"edges": "bottom", "ux": 0.0, "uy": 0.0}]
+        }],
+        "obstacles": [{"name": "cylinder", "shape": {"circle": {"center": [0.0, 7.88], "radius": 8.0}}}],
+        "contacts": [{"body": "block", "edges": "top", "obstacle": "cylinder"}],
+        "method": method
+    })
+}
+
+/// Hertz line contact (VERIFICATION.md §1): half-width a and peak p0 for the
+/// load P per unit thickness, the effective radius and the effective modulus.
+pub fn hertz(p: f64, radius: f64, e_star: f64) -> (f64, f64) {
+    let a = (4.0 * p * radius / (std::f64::consts::PI * e_star)).sqrt();
+    (a, 2.0 * p / (std::f64::consts::PI * a))
+}
+
+/// Errors of a Hertz reply against the closed form with the reply's own load:
+/// (half-width, peak pressure, relative L2 of the pressure along the contact line).
+pub fn hertz_errors(r: &Report, radius: f64, e_star: f64) -> (f64, f64, f64) {
+    let pair = &r.pairs[0];
+    let (a, p0) = hertz(-r.resultant.fy, radius, e_star);
+    let a_fe = pair.zones.first().map(|z| 0.5 * (z[1] - z[0])).unwrap_or(0.0);
+    let p_fe = pair.points.iter().map(|q| q.pressure).fold(0.0, f64::max);
+    let (mut num, mut den) = (0.0, 0.0);
+    for q in &pair.points {
+        let exact = if q.x.abs() < a {
+            p0 * (1.0 - (q.x / a).powi(2)).sqrt()
+        } else {
+            0.0
+        };
+        // Tributary lengths integrate along the contact line.
+        num += q.weight * (q.pressure - exact).powi(2);
+        den += q.weight * exact * exact;
+    }
+    (a_fe / a - 1.0, p_fe / p0 - 1.0, (num / den).sqrt())
+}
+
+/// Floor: faer's own symbolic + numeric Cholesky and one solve of K_ff, the
+/// better of faer's sequential and default (parallel) settings.
+fn floor_time(scene: &Scene) -> (f64, usize) {
+    let meshes = contact_core::mesh::build::meshes(scene).expect("the bench's scenes mesh");
+    let dofs = contact_core::fem::assembly::dof_map(scene, &meshes).expect("benchmark scene is valid");
+    let asm = contact_core::fem::assemble(scene, &meshes, dofs).expect("benchmark scene assembles");
+    let k = &asm.stiffness.k;
+    let default = faer::get_global_parallelism();
+    let par = floor_once(k, &asm.f);
+    faer::set_global_parallelism(faer::Par::Seq);
+    let seq = floor_once(k, &asm.f);
+    faer::set_global_parallelism(default);
+    (par.min(seq), k.nrows())
+}
+
+fn floor_once(k: &faer::sparse::SparseColMat<usize, f64>, f: &[f64]) -> f64 {
+    let t = Instant::now();
+    let sym = SymbolicLlt::try_new(k.symbolic(), Side::Lower).expect("symbolic");
+    let llt = Llt::try_new_with_symbolic(sym, k.as_ref(), Side::Lower).expect("numeric");
+    let b = faer::Col::<f64>::from_fn(f.len(), |i| f[i]);
+    let x = faer::linalg::solvers::Solve::solve(&llt, &b);
+    std::hint::black_box(x);
+    t.elapsed().as_secs_f64()
+}
+
+/// Runs the benchmark; `quick` keeps to the two smallest meshes. Each timing is
+/// the median of `repeat` runs (the floor too), since run-to-run spread on this
+/// machine reaches ±30 % for the same factorization.
+pub fn run(quick: bool, repeat: usize, mut progress: impl FnMut(&Row)) -> Vec<Row> {
+    let repeat = repeat.max(1);
+    // Node spacing at the contact (T6 elements are twice as long): ~3k to ~1M DOF.
+    let sizes: &[f64] = if quick {
+        &[0.16, 0.04]
+    } else {
+        &[0.16, 0.04, 0.01, 0.0025, 0.0017]
+    };
+    let e_star = 200.0 / (1.0 - 0.09);
+    let mut rows = Vec::new();
+    let limits = Limits::default();
+    for element in ["t3", "t6"] {
+        // The finest T6 mesh would be ~1.8M DOF; T3 alone reaches ~1.2M.
+        let sizes = if element == "t6" && sizes.len() > 4 {
+            &sizes[..4]
+        } else {
+            sizes
+        };
+        for &h in sizes {
+            // T6 has twice the node density per element: compare at equal node spacing.
+            let h_el = if element == "t6" { 2.0 * h } else { h };
+            let req0 = hertz_request(h_el, element, "auto");
+            let scene0 = Scene::try_new(&serde_json::from_value(req0).unwrap(), &limits).unwrap();
+            let mut floors: Vec<(f64, usize)> = (0..repeat).map(|_| floor_time(&scene0)).collect();
+            floors.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let (t_floor, n_free) = floors[repeat / 2];
+            // (method, formulation, ζ); the full-system variants refactor per
+            // iteration, so they run only where that takes seconds, not minutes.
+            let mut runs: Vec<(MethodName, Formulation, Option<f64>)> = vec![
+                (MethodName::ActiveSet, Formulation::Condensed, None),
+                (MethodName::InteriorPoint, Formulation::Condensed, None),
+                (MethodName::AugmentedLagrangian, Formulation::Condensed, Some(1e-5)),
+                (MethodName::Penalty, Formulation::Condensed, Some(1e-4)),
+                (MethodName::Penalty, Formulation::Condensed, Some(1e-6)),
+                (MethodName::Penalty, Formulation::Condensed, Some(1e-8)),
+                (MethodName::Barrier, Formulation::Condensed, Some(1e-4)),
+                (MethodName::Barrier, Formulation::Condensed, Some(1e-6)),
+            ];
+            // T6 contact rows are mortar rows over three nodes, which the full
+            // formulation does not take (it rotates one node per row).
+            let nodal = element == "t3";
+            if nodal && n_free < 200_000 {
+                runs.push((MethodName::ActiveSet, Formulation::Full, None));
+            }
+            if nodal && n_free < 40_000 {
+                runs.push((MethodName::InteriorPoint, Formulation::Full, None));
+            }
+            for (method, formulation, zeta) in runs {
+                let name = serde_json::to_value(method).unwrap().as_str().unwrap().to_string();
+                let mut req = hertz_request(h_el, element, &name);
+                let mut settings = json!({ "formulation": formulation });
+                match (method, zeta) {
+                    (MethodName::Barrier, Some(z)) => settings["barrier"] = json!(z),
+                    (_, Some(z)) => settings["penalty"] = json!(z),
+                    _ => {}
+                }
+                req["settings"] = settings;
+                let mut replies: Vec<Report> = (0..repeat)
+                    .map(|_| match crate::run::solve(&req, &limits) {
+                        Ok(r) => r,
+                        Err(e) => panic!("benchmark scene rejected: {e:?}"),
+                    })
+                    .collect();
+                replies.sort_by(|a, b| a.timings.total.total_cmp(&b.timings.total));
+                let r = replies.swap_remove(repeat / 2);
+                let (ea, ep, el2) = hertz_errors(&r, 8.0, e_star);
+                let row = Row {
+                    scene: "hertz_block".into(),
+                    element: if element == "t3" { "T3" } else { "T6" },
+                    h_min: h_el,
+                    dofs: r.size.dofs,
+                    candidates: r.size.candidates,
+                    method: match zeta {
+                        Some(z) => format!("{}(ζ={z:.0e})", r.method),
+                        None => r.method.clone(),
+                    },
+                    iterations: r.iterations,
+                    t_mesh: r.timings.mesh,
+                    t_assembly: r.timings.assembly,
+                    t_factorization: r.timings.factorization,
+                    t_condensation: r.timings.condensation,
+                    t_contact: r.timings.contact_solve,
+                    t_post: r.timings.post,
+                    t_total: r.timings.total,
+                    t_floor,
+                    err_half_width: ea,
+                    err_peak: ep,
+                    err_l2: el2,
+                    max_penetration: r.pairs[0].max_penetration,
+                    certificate: r.certificate.worst(),
+                    status: format!("{:?}", r.status).to_lowercase(),
+                };
+                progress(&row);
+                rows.push(row);
+            }
+        }
+    }
+    rows
+}

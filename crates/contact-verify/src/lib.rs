@@ -1,0 +1,10 @@
+//! # contact-verify — what the contact solver is checked against
+//!
+//! Analytic references (Hertz), the time-against-error benchmark (`bench`),
+//! convergence under refinement (`convergence`) and the numerical stress suite
+//! (`stability`). Used by the tests, the CI smoke run and `contact bench`.
+
+pub mod bench;
+pub mod convergence;
+pub mod run;
+pub mod stability;

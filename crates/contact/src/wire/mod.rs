@@ -1,0 +1,138 @@
+//! Bytes ↔ domain: the one place where a payload becomes a request for the
+//! core and the core's answer or refusal becomes a wire message.
+
+use contact_core::cache::OperatorCache;
+use contact_core::error::{CoreError, InvalidKind};
+use contact_core::linalg::LinalgError;
+use contact_core::{Limits, Scene};
+use contact_proto::{ErrorCode, ErrorDetails, ErrorReply, LoadBound, SolveReply};
+
+use crate::parse::parse_request;
+
+pub mod reply;
+
+/// Bytes in, reply or structured error out: what the service and the CLI call.
+pub fn solve_bytes(bytes: &[u8], limits: &Limits) -> Result<SolveReply, ErrorReply> {
+    solve_bytes_cached(bytes, limits, None)
+}
+
+/// As `solve_bytes`, reusing prepared operators from `cache` when given.
+pub fn solve_bytes_cached(
+    bytes: &[u8],
+    limits: &Limits,
+    cache: Option<&OperatorCache>,
+) -> Result<SolveReply, ErrorReply> {
+    let run = || -> Result<SolveReply, CoreError> {
+        let req = parse_request(bytes)?;
+        let scene = Scene::try_new(&req, limits)?;
+        contact_core::solve(&scene, limits, cache).map(reply::reply)
+    };
+    run().map_err(|e| error_reply(&e).with_client_id_of(bytes))
+}
+
+/// The checks of `solve_bytes` that come before any numerics: parse, the time
+/// limit, validation (with its size estimates). Cheap and bounded by the
+/// payload, so the service runs it on arrival and only valid work queues.
+pub fn check_bytes(bytes: &[u8], limits: &Limits) -> Result<(), ErrorReply> {
+    let run = || -> Result<(), CoreError> { Scene::try_new(&parse_request(bytes)?, limits).map(|_| ()) };
+    run().map_err(|e| error_reply(&e).with_client_id_of(bytes))
+}
+
+/// The wire form of a refusal: its code, message, pointer and details.
+pub fn error_reply(e: &CoreError) -> ErrorReply {
+    let code = match e {
+        CoreError::Malformed { .. } => ErrorCode::MalformedJson,
+        CoreError::Invalid { kind, .. } => match kind {
+            InvalidKind::Request => ErrorCode::InvalidRequest,
+            InvalidKind::Version => ErrorCode::UnsupportedVersion,
+            InvalidKind::Material => ErrorCode::InvalidMaterial,
+            InvalidKind::Mesh => ErrorCode::InvalidMesh,
+            InvalidKind::Geometry => ErrorCode::InvalidGeometry,
+            InvalidKind::NoSupport => ErrorCode::NoSupport,
+            InvalidKind::NoContactCandidates => ErrorCode::NoContactCandidates,
+            InvalidKind::IncompatibleLoads => ErrorCode::IncompatibleLoads,
+        },
+        CoreError::TooLarge { .. } => ErrorCode::TooLarge,
+        CoreError::Linalg(LinalgError::Overrun { .. }) => ErrorCode::Timeout,
+        CoreError::Linalg(_) => ErrorCode::LinearAlgebra,
+        CoreError::Timeout { .. } => ErrorCode::Timeout,
+    };
+    let message = match e {
+        CoreError::Invalid { reason, .. } | CoreError::TooLarge { reason, .. } => reason.clone(),
+        other => other.to_string(),
+    };
+    let mut reply = ErrorReply::new(code, message, e.path());
+    if let CoreError::Invalid { loads, .. } = e {
+        if !loads.is_empty() {
+            reply.details = Some(Box::new(ErrorDetails {
+                loads: loads
+                    .iter()
+                    .map(|b| LoadBound {
+                        path: b.path.clone(),
+                        value: b.value,
+                        min: b.min,
+                        max: b.max,
+                    })
+                    .collect(),
+            }));
+        }
+    }
+    reply
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use contact_core::linalg::cholesky::FactorCost;
+
+    /// A factorization refused for want of time is a `timeout` (the user's
+    /// remedy is a longer limit or a coarser mesh), not a linear-algebra failure.
+    /// The core's names of its refusals are the wire's error codes.
+    #[test]
+    fn error_codes_are_the_cores_names() {
+        use InvalidKind as K;
+        let mut errors: Vec<CoreError> = [
+            K::Request,
+            K::Version,
+            K::Material,
+            K::Mesh,
+            K::Geometry,
+            K::NoSupport,
+            K::NoContactCandidates,
+            K::IncompatibleLoads,
+        ]
+        .into_iter()
+        .map(|k| CoreError::invalid(k, "/x", "why"))
+        .collect();
+        errors.push(CoreError::Malformed { message: "m".into() });
+        errors.push(CoreError::TooLarge {
+            path: "/x".into(),
+            reason: "r".into(),
+        });
+        errors.push(CoreError::Timeout {
+            stage: "mesh",
+            limit_s: 1.0,
+        });
+        for e in errors {
+            let code = serde_json::to_value(error_reply(&e).code).unwrap();
+            assert_eq!(code.as_str(), Some(e.code()), "{e:?}");
+        }
+    }
+
+    #[test]
+    fn a_predicted_overrun_is_a_timeout_with_the_prediction() {
+        let cost = FactorCost {
+            nnz: 494_000_000,
+            flops: 9.6e11,
+        };
+        let e = CoreError::Linalg(LinalgError::Overrun { cost, left_s: 1.1 });
+        let r = error_reply(&e);
+        assert_eq!(r.code, ErrorCode::Timeout);
+        let predicted = format!("{:.1} s", cost.predicted_secs());
+        assert!(
+            r.message.contains(&predicted) && r.message.contains("1.1 s left"),
+            "{}",
+            r.message
+        );
+    }
+}

@@ -1,0 +1,195 @@
+//! Report → reply: the domain result written as the wire message, field by
+//! field (the reply's documentation is the schema, `contact_proto::reply`).
+
+use contact_core::scene::Discretization;
+use contact_core::solution::report::{
+    self as r, CacheState, LoadStep, PairReport, PairTarget, Report, Resultant, Status,
+};
+use contact_proto as p;
+
+/// The wire reply of `report`, with the VTU file attached when asked for.
+pub fn reply(report: Report) -> p::SolveReply {
+    let outputs = report.outputs;
+    let mut reply = p::SolveReply {
+        version: p::PROTOCOL_VERSION.to_string(),
+        client_id: report.client_id,
+        request_id: None,
+        status: status(report.status),
+        method: report.method,
+        iterations: report.iterations,
+        pairs: report.pairs.into_iter().map(pair).collect(),
+        resultant: resultant(report.resultant),
+        certificate: certificate(report.certificate),
+        size: p::ProblemSize {
+            dofs: report.size.dofs,
+            candidates: report.size.candidates,
+            active: report.size.active,
+        },
+        diagnostics: p::Diagnostics {
+            condition_estimate: report.diagnostics.condition_estimate,
+            refinements: report.diagnostics.refinements,
+            factorization_predicted: report.diagnostics.factorization_predicted,
+        },
+        timings: timings(report.timings),
+        cache: match report.cache {
+            CacheState::Hit => p::CacheState::Hit,
+            CacheState::Miss => p::CacheState::Miss,
+            CacheState::Off => p::CacheState::Off,
+        },
+        steps: report.steps.map(|s| s.into_iter().map(step).collect()),
+        punches: report.punches.into_iter().map(punch).collect(),
+        bodies: report.bodies.map(|b| b.into_iter().map(body).collect()),
+        foundations: report.foundations.into_iter().map(foundation).collect(),
+        notes: report.notes,
+        warnings: report
+            .warnings
+            .into_iter()
+            .map(|w| p::Warning {
+                code: w.code.to_string(),
+                value: w.value,
+                limit: w.limit,
+                location: w.location,
+            })
+            .collect(),
+        vtu: None,
+    };
+    crate::output::attach_vtu(&mut reply, outputs);
+    reply
+}
+
+pub fn status(s: Status) -> p::SolveStatus {
+    match s {
+        Status::Solved => p::SolveStatus::Solved,
+        Status::MaxIterations => p::SolveStatus::MaxIterations,
+        Status::NumericalError => p::SolveStatus::NumericalError,
+    }
+}
+
+fn resultant(r: Resultant) -> p::Resultant {
+    p::Resultant {
+        fx: r.fx,
+        fy: r.fy,
+        m: r.m,
+    }
+}
+
+fn certificate(c: r::Certificate) -> p::Certificate {
+    p::Certificate {
+        primal: c.primal,
+        dual: c.dual,
+        complementarity: c.complementarity,
+        equilibrium: c.equilibrium,
+    }
+}
+
+fn timings(t: r::Timings) -> p::Timings {
+    p::Timings {
+        mesh: t.mesh,
+        assembly: t.assembly,
+        factorization: t.factorization,
+        condensation: t.condensation,
+        contact_solve: t.contact_solve,
+        post: t.post,
+        total: t.total,
+    }
+}
+
+fn step(s: LoadStep) -> p::LoadStep {
+    p::LoadStep {
+        factor: s.factor,
+        status: status(s.status),
+        iterations: s.iterations,
+        pairs: s.pairs.into_iter().map(pair).collect(),
+        resultant: resultant(s.resultant),
+        certificate: certificate(s.certificate),
+    }
+}
+
+fn pair(pr: PairReport) -> p::PairResult {
+    let (obstacle, against, foundation, discretization) = match pr.target {
+        PairTarget::Obstacle(o) => (Some(o), None, None, None),
+        PairTarget::Foundation(f) => (None, None, Some(f), None),
+        PairTarget::Body(b, d) => (
+            None,
+            Some(b),
+            None,
+            Some(match d {
+                Discretization::Mortar => p::Discretization::Mortar,
+                Discretization::NodeToSegment => p::Discretization::NodeToSegment,
+            }),
+        ),
+    };
+    p::PairResult {
+        body: pr.body,
+        obstacle,
+        against,
+        foundation,
+        discretization,
+        zones: pr.zones,
+        points: pr
+            .points
+            .into_iter()
+            .map(|c| p::ContactPoint {
+                x: c.x,
+                y: c.y,
+                gap: c.gap,
+                pressure: c.pressure,
+                force: c.force,
+                weight: c.weight,
+                node: c.node,
+                normal: c.normal,
+            })
+            .collect(),
+        resultant: resultant(pr.resultant),
+        max_penetration: pr.max_penetration,
+        pruned: pr.pruned,
+        other_points: pr.other_points.map(|pts| {
+            pts.into_iter()
+                .map(|c| p::CounterPoint {
+                    x: c.x,
+                    y: c.y,
+                    pressure: c.pressure,
+                    force: c.force,
+                    weight: c.weight,
+                    node: c.node,
+                })
+                .collect()
+        }),
+        other_resultant: pr.other_resultant.map(resultant),
+    }
+}
+
+fn punch(pu: r::PunchReport) -> p::PunchResult {
+    p::PunchResult {
+        name: pu.name,
+        alpha1: pu.alpha1,
+        alpha2: pu.alpha2,
+        theta: pu.theta,
+        p1: pu.p1,
+        p2: pu.p2,
+        m: pu.m,
+        unique: pu.unique,
+        note: pu.note,
+    }
+}
+
+fn body(b: r::BodyFields) -> p::BodyOutput {
+    p::BodyOutput {
+        name: b.name,
+        nodes: b.nodes,
+        elements: b.elements,
+        displacement: b.displacement,
+        stress: b.stress,
+    }
+}
+
+fn foundation(f: r::FoundationReport) -> p::FoundationResult {
+    p::FoundationResult {
+        name: f.name,
+        model: f.model.to_string(),
+        x: f.x,
+        w: f.w,
+        reference_distance: f.reference_distance,
+        load: f.load,
+    }
+}

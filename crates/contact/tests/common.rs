@@ -1,0 +1,113 @@
+//! Shared helpers of the integration tests.
+#![allow(dead_code)]
+
+use contact::proto::{ErrorReply, SolveReply};
+use contact::scene::Limits;
+use serde_json::Value;
+
+pub fn example(name: &str) -> Value {
+    let path = format!(
+        "{}/proto/examples/{name}",
+        concat!(env!("CARGO_MANIFEST_DIR"), "/../..")
+    );
+    serde_json::from_str(&std::fs::read_to_string(&path).expect("example exists")).expect("example is JSON")
+}
+
+pub fn solve(req: &Value) -> Result<SolveReply, ErrorReply> {
+    contact::solve_bytes(serde_json::to_string(req).unwrap().as_bytes(), &Limits::default())
+}
+
+pub fn solved(req: &Value) -> SolveReply {
+    match solve(req) {
+        Ok(r) => {
+            assert_eq!(
+                r.status,
+                contact::proto::SolveStatus::Solved,
+                "certificate {:?}",
+                r.certificate
+            );
+            r
+        }
+        Err(e) => panic!("solve failed: {e:?}"),
+    }
+}
+
+/// Hertz line contact, one elastic body against a rigid one, plane strain:
+/// (a, p0) for load P per unit thickness.
+pub fn hertz(p: f64, r: f64, e: f64, nu: f64) -> (f64, f64) {
+    contact_verify::bench::hertz(p, r, e / (1.0 - nu * nu))
+}
+
+pub fn peak_pressure(r: &SolveReply) -> f64 {
+    r.pairs[0].points.iter().map(|p| p.pressure).fold(0.0, f64::max)
+}
+
+pub fn half_width(r: &SolveReply) -> f64 {
+    assert_eq!(
+        r.pairs[0].zones.len(),
+        1,
+        "one contact zone expected: {:?}",
+        r.pairs[0].zones
+    );
+    let z = r.pairs[0].zones[0];
+    0.5 * (z[1] - z[0])
+}
+
+/// The certificate's largest residual, NaN if any residual is NaN.
+pub fn worst_residual(c: &contact::proto::Certificate) -> f64 {
+    [c.primal, c.dual, c.complementarity, c.equilibrium]
+        .into_iter()
+        .fold(0.0, |a, v| if v.is_nan() || a.is_nan() { f64::NAN } else { a.max(v) })
+}
+
+/// Every truth of §6 that holds for any frictionless solution: complementarity
+/// and sign conditions to the certificate's tolerance.
+pub fn assert_kkt(r: &SolveReply, tol: f64) {
+    let c = r.certificate;
+    for (name, v) in [
+        ("primal", c.primal),
+        ("dual", c.dual),
+        ("complementarity", c.complementarity),
+        ("equilibrium", c.equilibrium),
+    ] {
+        assert!(v <= tol, "{name} residual {v:e} > {tol:e}");
+    }
+    let pmax = peak_pressure(r);
+    for pair in &r.pairs {
+        for p in &pair.points {
+            assert!(p.pressure >= -tol * pmax, "tensile pressure {p:?}");
+            if p.pressure > tol * pmax {
+                assert!(p.gap.abs() <= 1e-9 * (1.0 + p.x.abs()), "pressure on an open gap {p:?}");
+            }
+        }
+    }
+}
+
+/// Largest pointwise pressure difference between two replies of the same scene.
+pub fn max_pressure_diff(a: &SolveReply, b: &SolveReply) -> f64 {
+    a.pairs[0]
+        .points
+        .iter()
+        .zip(&b.pairs[0].points)
+        .map(|(p, q)| (p.pressure - q.pressure).abs())
+        .fold(0.0, f64::max)
+}
+
+/// Solves `req` with `active_set` and with `interior_point`: every candidate's
+/// pressure agrees to `tol` of the peak (the exact methods solve one problem).
+pub fn assert_exact_methods_agree(req: &Value, tol: f64) {
+    let mut req = req.clone();
+    req["method"] = Value::from("active_set");
+    let a = solved(&req);
+    req["method"] = Value::from("interior_point");
+    let b = solved(&req);
+    let peak = peak_pressure(&a);
+    for (p, q) in a.pairs[0].points.iter().zip(&b.pairs[0].points) {
+        assert!(
+            (p.pressure - q.pressure).abs() <= tol * peak,
+            "{} vs {}",
+            p.pressure,
+            q.pressure
+        );
+    }
+}

@@ -1,0 +1,30 @@
+//! Progress reports of a whole solve, as the service publishes them.
+
+use std::sync::{Arc, Mutex};
+
+use contact::progress::{Sink, STAGES};
+
+#[test]
+fn a_solve_reports_every_stage_in_order() {
+    let seen = Arc::new(Mutex::new(Vec::new()));
+    let s = seen.clone();
+    let _g = Sink::install(move |p| s.lock().unwrap().push(p.clone()));
+    let example = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../proto/examples/signorini_roller_on_flat.json"
+    );
+    let reply = contact::solve_bytes(&std::fs::read(example).unwrap(), &contact::Limits::default()).unwrap();
+    let seen = seen.lock().unwrap();
+    let mut stages: Vec<&str> = seen.iter().map(|p| p.stage).collect();
+    stages.dedup();
+    assert_eq!(stages, STAGES.to_vec());
+    let iterations = seen.iter().filter(|p| p.iteration.is_some()).count();
+    assert!(
+        iterations >= 1 && iterations <= reply.iterations,
+        "{iterations} vs {}",
+        reply.iterations
+    );
+    let last = seen.iter().rev().find(|p| p.iteration.is_some()).unwrap();
+    assert!(last.residual.unwrap() >= 0.0);
+    assert!(seen.windows(2).all(|w| w[0].elapsed <= w[1].elapsed));
+}
