@@ -9,12 +9,12 @@
 //! free (`fem::assembly::dof_map`, its rigid modes) and loads no
 //! non-negative pressure can balance (`contact::free_motions`, an LP), and a
 //! half-plane reference distance too short for the loaded length
-//! (`contact::foundation`).
+//! (`contact::compliance`).
 
-use crate::contact::ConstraintSet;
+use crate::contact::{compliance::Foundations, free_motions::FreeMotions, ConstraintSet};
 use crate::error::{CoreError, InvalidKind};
+use crate::fem::DofMap;
 use crate::mesh::Mesh2d;
-use crate::model::Model;
 use crate::scene::{Discretization, Formulation, Limits, Method, Scene, Target};
 
 /// Where the contact problem is solved.
@@ -103,10 +103,18 @@ pub fn candidates(scene: &Scene, cons: &ConstraintSet) -> Result<(), CoreError> 
 /// full QP needs about 4 GB and a minute at 1M DOF.
 const FULL_IPM_MAX_DOFS: usize = 200_000;
 
+/// The discrete model's parts the route depends on (`model::Model` holds them).
+pub struct Parts<'a> {
+    pub dofs: &'a DofMap,
+    pub cons: &'a ConstraintSet,
+    pub free: &'a FreeMotions,
+    pub foundations: &'a Foundations,
+}
+
 /// The route of the solve, refusing a formulation the scene cannot run on
 /// and a condensed operator over the candidate limit.
-pub fn route(scene: &Scene, model: &Model, limits: &Limits) -> Result<Route, CoreError> {
-    let (free, cons) = (&model.free, &model.cons);
+pub fn route(scene: &Scene, model: Parts, limits: &Limits) -> Result<Route, CoreError> {
+    let (free, cons) = (model.free, model.cons);
     if scene.settings.formulation == Formulation::Full {
         if !free.motions.is_empty() || !model.foundations.is_empty() {
             return Err(CoreError::invalid(
@@ -122,7 +130,7 @@ pub fn route(scene: &Scene, model: &Model, limits: &Limits) -> Result<Route, Cor
                 "the full formulation needs nodal contact rows (one node per row, as T3 and discretization 'nodal' give); mortar rows (the T6 default) and two-body rows are solved on the condensed formulation only",
             ));
         }
-        return full_method(scene, model).map(|()| Route::Full);
+        return full_method(scene, model.dofs.n_free).map(|()| Route::Full);
     }
     if scene.method == Method::Auto
         && free.motions.is_empty()
@@ -149,14 +157,14 @@ pub fn route(scene: &Scene, model: &Model, limits: &Limits) -> Result<Route, Cor
 
 /// The full formulation runs the exact methods only, the interior point up to
 /// `FULL_IPM_MAX_DOFS`.
-fn full_method(scene: &Scene, model: &Model) -> Result<(), CoreError> {
+fn full_method(scene: &Scene, n_free: usize) -> Result<(), CoreError> {
     match scene.method {
         Method::Auto | Method::ActiveSet => Ok(()),
-        Method::InteriorPoint if model.dofs.n_free > FULL_IPM_MAX_DOFS => Err(CoreError::TooLarge {
+        Method::InteriorPoint if n_free > FULL_IPM_MAX_DOFS => Err(CoreError::TooLarge {
             path: "/settings/formulation".into(),
             reason: format!(
                 "interior_point on the full formulation is limited to {FULL_IPM_MAX_DOFS} DOFs ({} requested); use the condensed formulation",
-                model.dofs.n_free
+                n_free
             ),
         }),
         Method::InteriorPoint => Ok(()),

@@ -4,7 +4,7 @@
 //! pipeline; the pipeline calls [`check`] at its stage boundaries and the
 //! iterative methods poll [`expired`] once per iteration (and Clarabel gets
 //! [`remaining_secs`] as its own time limit). A solve over its time therefore
-//! stops at the next boundary with [`CoreError::Timeout`], unwinding normally,
+//! stops at the next boundary with [`Timeout`] (a `CoreError::Timeout`), unwinding normally,
 //! so everything it allocated is dropped and the thread is free again. A stage
 //! that does not poll (one sparse factorization) runs to its end: the overshoot
 //! is at most one such stage.
@@ -17,7 +17,13 @@
 use std::cell::Cell;
 use std::time::{Duration, Instant};
 
-use crate::error::CoreError;
+/// The deadline passed; `stage` is the one just finished or cut (it becomes
+/// `CoreError::Timeout`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Timeout {
+    pub stage: &'static str,
+    pub limit_s: f64,
+}
 
 #[derive(Clone, Copy, Debug)]
 struct Limit {
@@ -67,9 +73,9 @@ pub fn expired() -> bool {
 }
 
 /// `Err(Timeout)` naming `stage` (the one just finished or cut) once the deadline has passed.
-pub fn check(stage: &'static str) -> Result<(), CoreError> {
+pub fn check(stage: &'static str) -> Result<(), Timeout> {
     match DEADLINE.with(|d| d.get()) {
-        Some(l) if Instant::now() >= l.at => Err(CoreError::Timeout {
+        Some(l) if Instant::now() >= l.at => Err(Timeout {
             stage,
             limit_s: l.limit.as_secs_f64(),
         }),
@@ -102,7 +108,7 @@ mod tests {
             let _d = Deadline::install(Duration::ZERO);
             assert!(expired());
             match check("assembly") {
-                Err(CoreError::Timeout { stage, limit_s }) => {
+                Err(Timeout { stage, limit_s }) => {
                     assert_eq!(stage, "assembly");
                     assert_eq!(limit_s, 0.0);
                 }

@@ -50,6 +50,15 @@ pub enum CoreError {
     Timeout { stage: &'static str, limit_s: f64 },
 }
 
+impl From<crate::cancel::Timeout> for CoreError {
+    fn from(t: crate::cancel::Timeout) -> Self {
+        CoreError::Timeout {
+            stage: t.stage,
+            limit_s: t.limit_s,
+        }
+    }
+}
+
 impl CoreError {
     pub fn invalid(kind: InvalidKind, path: impl Into<String>, reason: impl Into<String>) -> Self {
         CoreError::Invalid {

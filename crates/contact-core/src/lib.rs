@@ -27,6 +27,7 @@ pub mod error;
 pub mod fem;
 pub mod linalg;
 pub mod mesh;
+pub mod meshing;
 pub mod methods;
 pub mod model;
 pub mod observer;

@@ -4,7 +4,7 @@
 //! left to contact, and the foundations.
 
 use crate::admit;
-use crate::contact::{self, foundation::Foundations, free_motions::FreeMotions, ConstraintSet};
+use crate::contact::{self, compliance::Foundations, free_motions::FreeMotions, ConstraintSet};
 use crate::error::CoreError;
 use crate::fem::{self, DofMap};
 use crate::mesh::Mesh2d;
@@ -23,6 +23,16 @@ pub struct Model {
 }
 
 impl Model {
+    /// What `admit::route` judges.
+    pub fn parts(&self) -> admit::Parts<'_> {
+        admit::Parts {
+            dofs: &self.dofs,
+            cons: &self.cons,
+            free: &self.free,
+            foundations: &self.foundations,
+        }
+    }
+
     pub fn build(scene: &Scene, meshes: Vec<Mesh2d>) -> Result<Model, CoreError> {
         let dofs = fem::assembly::dof_map(scene, &meshes)?;
         admit::search_work(scene, &meshes)?;

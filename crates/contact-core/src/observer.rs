@@ -5,7 +5,6 @@
 use std::time::Instant;
 
 use crate::error::CoreError;
-use crate::solution::report::Timings;
 
 /// The stages of a solve, in order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -37,6 +36,31 @@ impl Stage {
             Stage::Factorization => "condensation",
             s => s.name(),
         }
+    }
+}
+
+/// Wall-clock seconds per stage.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Timings {
+    pub mesh: f64,
+    pub assembly: f64,
+    pub factorization: f64,
+    pub condensation: f64,
+    pub contact_solve: f64,
+    pub post: f64,
+    pub total: f64,
+}
+
+impl Timings {
+    /// Stage by stage sum (load steps).
+    pub fn add(&mut self, s: &Timings) {
+        self.mesh += s.mesh;
+        self.assembly += s.assembly;
+        self.factorization += s.factorization;
+        self.condensation += s.condensation;
+        self.contact_solve += s.contact_solve;
+        self.post += s.post;
+        self.total += s.total;
     }
 }
 
@@ -85,7 +109,7 @@ impl Observer {
 
     /// The deadline, as after `stage` (a stage skipped by the cache still counts).
     pub fn check(&self, stage: Stage) -> Result<(), CoreError> {
-        crate::cancel::check(stage.done())
+        Ok(crate::cancel::check(stage.done())?)
     }
 
     /// The timings with the total since the observer was made.

@@ -67,13 +67,13 @@ pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
 fn solve_once(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<Report, CoreError> {
     let mut obs = Observer::new();
     obs.enter(Stage::Mesh);
-    let meshes = crate::mesh::build::meshes(scene)?;
+    let meshes = crate::meshing::meshes(scene)?;
     obs.leave(Stage::Mesh)?;
     admit::meshes(&meshes, limits)?;
 
     obs.enter(Stage::Assembly);
     let model = Model::build(scene, meshes)?;
-    match admit::route(scene, &model, limits)? {
+    match admit::route(scene, model.parts(), limits)? {
         Route::Full => solve_full(scene, &model, obs),
         Route::Condensed => solve_condensed(scene, &model, cache, obs),
     }

@@ -1,5 +1,8 @@
 //! The solve request. Units are the caller's, but must be consistent
 //! (e.g. mm, N, MPa); forces are per unit thickness.
+//!
+//! Length: the whole request in one file, so that its documentation (these doc
+//! comments, which become the JSON Schema) reads in one place; type definitions only.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};

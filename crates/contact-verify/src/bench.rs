@@ -172,7 +172,7 @@ pub fn hertz_errors(r: &Report, radius: f64, e_star: f64) -> (f64, f64, f64) {
 /// Floor: faer's own symbolic + numeric Cholesky and one solve of K_ff, the
 /// better of faer's sequential and default (parallel) settings.
 fn floor_time(scene: &Scene) -> (f64, usize) {
-    let meshes = contact_core::mesh::build::meshes(scene).expect("the bench's scenes mesh");
+    let meshes = contact_core::meshing::meshes(scene).expect("the bench's scenes mesh");
     let dofs = contact_core::fem::assembly::dof_map(scene, &meshes).expect("benchmark scene is valid");
     let asm = contact_core::fem::assemble(scene, &meshes, dofs).expect("benchmark scene assembles");
     let k = &asm.stiffness.k;

@@ -9,11 +9,15 @@
 //! a motion (or combination) that moves no candidate along its normal is
 //! undetermined — harmless if its load is zero (it is reported as such and set
 //! to 0), `incompatible_loads` otherwise. The rest must pass Fichera's LP test
-//! (`rigid::check`): some λ ≥ 0 on the candidates balances the loads.
+//! (`fichera::check`): some λ ≥ 0 on the candidates balances the loads.
+//!
+//! Length: the free motions, their null space and the refusal of loads that
+//! contact cannot carry share one set of private fields (the basis V, C, the
+//! right-hand side); split into files, each would reach into the others.
 
 use faer::Mat;
 
-use super::{rigid, ConstraintSet};
+use super::{fichera, ConstraintSet};
 use crate::error::LoadBound;
 use crate::error::{CoreError, InvalidKind};
 use crate::fem::{rigid_modes::RigidModes, DofMap};
@@ -286,7 +290,7 @@ impl FreeMotions {
         if self.is_empty() {
             return Ok(());
         }
-        let Err(bad) = rigid::check(&self.c, &self.rhs) else {
+        let Err(bad) = fichera::check(&self.c, &self.rhs) else {
             return Ok(());
         };
         // With the identity basis each kept component is one motion and its range

@@ -22,6 +22,9 @@
 //! Either returns None when the point cannot meet the obstacle: the ray misses
 //! it, or the closest point is an open end of a polyline or profile that the
 //! point lies beyond (such obstacles extend no further than their ends).
+//!
+//! Length: about 420 lines of geometry (closest points on lines, circles,
+//! polylines and smoothed punch profiles) and its tests.
 
 use crate::scene::{Psi, Shape};
 

@@ -1,12 +1,24 @@
-//! Contact constraints: candidate rows B u ≤ g on the free DOFs, and the rigid
+//! Contact constraints: the rows B u ≤ g on the free DOFs, and the rigid
 //! motions (punches, bodies held only by contact) that enter them.
+//!
+//! Layers, each using only those above it (a test checks there is no cycle):
+//!
+//! - `gap`: geometry of rigid obstacles (closest point, signed distance);
+//! - `rows`: from what a surface point sees (`Seen`) to nodal or mortar rows;
+//! - `constraints`: the rows on the free DOFs (`Candidate`, `ConstraintSet`);
+//! - `targets`: one file per kind of contact target, and `build`;
+//! - `compliance`: the foundations' compliance, which joins the condensed operator;
+//! - `free_motions` and `fichera`: rigid motions left to contact and the
+//!   compatibility of their loads.
 
-pub mod candidates;
-pub mod foundation;
+pub mod compliance;
+pub mod constraints;
+pub mod fichera;
 pub mod free_motions;
 pub mod gap;
-pub mod rigid;
 pub mod rows;
-pub mod two_body;
+pub mod targets;
 
-pub use candidates::{build, Candidate, ConstraintSet, Term};
+pub use constraints::{Candidate, ConstraintSet};
+pub use rows::Term;
+pub use targets::build;

@@ -31,8 +31,16 @@
 
 use std::collections::HashMap;
 
-use super::candidates::Term;
 use crate::mesh::{boundary::boundary_nodes, Edge, Mesh2d};
+
+/// One node's share of a candidate row; the contact force the row's
+/// multiplier λ puts on that node is −λ · coef.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Term {
+    pub body: usize,
+    pub node: usize,
+    pub coef: [f64; 2],
+}
 
 /// An edge set of one body.
 pub struct Surface<'a> {

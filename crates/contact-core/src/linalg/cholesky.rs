@@ -29,6 +29,9 @@ pub enum LinalgError {
     NotPositiveDefinite,
     #[error("sparse factorization failed: {0}")]
     Faer(String),
+    /// Clarabel refused to set the problem up (its own message).
+    #[error("the interior point solver could not set the problem up: {0}")]
+    Clarabel(String),
     /// The numeric factorization would not end within the time left.
     #[error(
         "the factorization was predicted to take {:.1} s (nnz(L) = {:.2e}, {:.2e} multiply-adds), more than the {:.1} s left of the time limit: refused before starting it",

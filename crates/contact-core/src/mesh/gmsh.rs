@@ -18,6 +18,9 @@
 //!
 //! Counts read from the file are never used to reserve memory: a hostile count
 //! fails on the missing data instead.
+//!
+//! Length: about 470 lines of MSH 4.1 parser (sections, physical groups,
+//! T3/T6 elements, edge sets) and its tests.
 
 use std::collections::{BTreeMap, HashMap};
 

@@ -8,7 +8,6 @@
 //!   the outward normal of edge a→b is (dy, −dx)/|ab|.
 
 pub mod boundary;
-pub mod build;
 pub mod estimate;
 pub mod generate;
 pub mod gmsh;

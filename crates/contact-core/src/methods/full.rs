@@ -290,7 +290,7 @@ pub fn solve_interior_point(
         .build()
         .expect("static clarabel settings are valid");
     let mut solver = DefaultSolver::new(&p, &qv, &a, g, &[NonnegativeConeT(m)], settings)
-        .map_err(|e| LinalgError::Faer(format!("clarabel: {e:?}")))?;
+        .map_err(|e| LinalgError::Clarabel(format!("{e:?}")))?;
     solver.solve();
     let sol = &solver.solution;
     let ipm_iterations = sol.iterations as usize;

@@ -1,7 +1,8 @@
 //! The validated, nondimensional domain model built from a request.
 //!
-//! `Scene::try_new` is the only place that rejects request content; everything
-//! downstream trusts it. All lengths are divided by `scales.length` and all
+//! `Scene::try_new` (`validate`) refuses everything the request alone shows
+//! to be wrong; what only the meshes and rows can show is `admit`'s, right
+//! after meshing and assembly. All lengths are divided by `scales.length` and all
 //! moduli and stresses by `scales.modulus`, so the numerics see O(1) numbers
 //! whatever the caller's units.
 

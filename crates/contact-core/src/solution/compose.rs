@@ -8,7 +8,7 @@ use faer::Mat;
 
 use crate::contact::{
     self,
-    foundation::Foundations,
+    compliance::Foundations,
     free_motions::{self, FreeMotions, Motion},
 };
 use crate::fem::{self, element, material::d_matrix};
@@ -150,7 +150,7 @@ fn punch_results(
         // Loads on the punch balance the contact forces: P = −Σ λ_i c_i.
         let mut load = [0.0; 3];
         for (c, l) in cons.candidates.iter().zip(lambda) {
-            if let Some((po, row)) = c.punch {
+            if let Some((po, row)) = c.punch() {
                 if po == o {
                     for k in 0..3 {
                         load[k] -= l * row[k];
@@ -285,7 +285,7 @@ fn foundation_results(
                 .candidates
                 .iter()
                 .zip(lambda)
-                .filter_map(|(c, l)| c.foundation.filter(|r| r.foundation == k).map(|r| r.proj * l))
+                .filter_map(|(c, l)| c.foundation().filter(|r| r.foundation == k).map(|r| r.proj * l))
                 .sum();
             let (model, reference_distance) = match fnd.model {
                 FoundationModel::Winkler { .. } => ("winkler", None),

@@ -80,7 +80,7 @@ pub fn pairs(
             max_pen = max_pen.max(-gaps[i]);
             let x = sc.length(c.x[0]);
             // A foundation's pressure is constant on each row's panel.
-            let (lo, hi) = match c.foundation {
+            let (lo, hi) = match c.foundation() {
                 Some(fr) => (sc.length(fr.panel[0]), sc.length(fr.panel[1])),
                 None => (x, x),
             };

@@ -2,6 +2,7 @@
 //! request's units. The service's reply (`contact::wire`) is written from it
 //! field by field; benches and tests read it directly.
 
+pub use crate::observer::Timings;
 use crate::scene::{Discretization, Outputs};
 
 /// The answer to a scene that could be attempted.
@@ -177,31 +178,6 @@ pub struct ProblemSize {
     pub dofs: usize,
     pub candidates: usize,
     pub active: usize,
-}
-
-/// Wall-clock seconds per stage.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct Timings {
-    pub mesh: f64,
-    pub assembly: f64,
-    pub factorization: f64,
-    pub condensation: f64,
-    pub contact_solve: f64,
-    pub post: f64,
-    pub total: f64,
-}
-
-impl Timings {
-    /// Stage by stage sum (load steps).
-    pub fn add(&mut self, s: &Timings) {
-        self.mesh += s.mesh;
-        self.assembly += s.assembly;
-        self.factorization += s.factorization;
-        self.condensation += s.condensation;
-        self.contact_solve += s.contact_solve;
-        self.post += s.post;
-        self.total += s.total;
-    }
 }
 
 #[derive(Debug, Clone, Copy, Default)]

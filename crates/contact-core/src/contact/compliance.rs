@@ -1,5 +1,6 @@
-//! Tensionless deformable foundations: Winkler, Pasternak and the elastic
-//! half-plane under a body.
+//! The compliance of tensionless deformable foundations under a body:
+//! Winkler, Pasternak and the elastic half-plane (the rows that rest on them
+//! are `targets::foundation`).
 //!
 //! A body node x on a pair's edge set with outward normal n (facing down) may
 //! not pass the deflected foundation surface y0 − w:
@@ -29,121 +30,11 @@
 //!   the panel) deflection, which keeps F symmetric. It is positive definite when
 //!   d exceeds a quarter of the loaded length (the logarithmic capacity).
 
-use std::collections::HashMap;
-
 use faer::Mat;
 
-use super::candidates::{free_row, moves_rigidly, Candidate};
-use super::rows::{self, Seen, Surface};
+use super::constraints::ConstraintSet;
 use crate::error::{CoreError, InvalidKind};
-use crate::fem::DofMap;
-use crate::mesh::{Edge, Mesh2d, Order};
-use crate::scene::GapMeasure;
 use crate::scene::{FoundationModel, Scene};
-
-/// A candidate row's link to its foundation.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FoundationRow {
-    pub foundation: usize,
-    /// The row's panel [a, b] on the foundation line (x).
-    pub panel: [f64; 2],
-    /// −n_y: the share of the row's force that loads the foundation, and of
-    /// the foundation's deflection that opens the gap.
-    pub proj: f64,
-}
-
-/// Each multiplier node's share of an edge set projected on x, as [a, b] (the
-/// panels tile the projection): halves of every edge, the support of the end
-/// nodes' hats ∫ Φ_i ds (T6 midsides carry no multiplier, see `rows`).
-fn node_panels(mesh: &Mesh2d, edges: &[Edge]) -> HashMap<usize, [f64; 2]> {
-    let mut out: HashMap<usize, [f64; 2]> = HashMap::new();
-    let mut put = |node: usize, a: f64, b: f64| {
-        let (lo, hi) = (a.min(b), a.max(b));
-        let e = out.entry(node).or_insert([lo, hi]);
-        e[0] = e[0].min(lo);
-        e[1] = e[1].max(hi);
-    };
-    for e in edges {
-        let (xa, xb) = (mesh.nodes[e.a][0], mesh.nodes[e.b][0]);
-        let m = 0.5 * (xa + xb);
-        put(e.a, xa, m);
-        put(e.b, m, xb);
-    }
-    out
-}
-
-/// Rows of pair `p` on foundation `f`; returns the number pruned (nodes off
-/// the foundation's extent, not facing it, or too far above it). The rows are
-/// those against a rigid obstacle (`rows`): one per node on T3 surfaces, the
-/// corners' dual mortar rows on T6 ones, since nodal rows on quadratic faces
-/// let the pressure alternate between corner and midside nodes (measured on
-/// the half-plane roller, T6: 1.3 % of p0; T3 none). Each row loads the
-/// foundation over its node's panel.
-pub fn rows(scene: &Scene, p: usize, f: usize, meshes: &[Mesh2d], dofs: &DofMap, out: &mut Vec<Candidate>) -> usize {
-    let pair = &scene.pairs[p];
-    let fnd = &scene.foundations[f];
-    let mesh = &meshes[pair.body];
-    let surface = Surface {
-        body: pair.body,
-        mesh,
-        edges: &mesh.edge_sets[&pair.edges],
-    };
-    let panels = node_panels(mesh, surface.edges);
-    let limit = scene.settings.prune_gap_ratio * mesh.size();
-    let slack = 1e-9 * (fnd.x_max - fnd.x_min);
-    let see = |x: [f64; 2], n: [f64; 2]| -> Option<Seen> {
-        // Only a surface facing down, above the foundation's extent, can rest on it.
-        if x[0] < fnd.x_min - slack || x[0] > fnd.x_max + slack || n[1] >= -1e-12 {
-            return None;
-        }
-        // The foundation's surface is horizontal: its signed distance is the
-        // height above it and the row is vertical (exact); the body-normal
-        // form measures the gap along n instead.
-        let (dir, gap) = match scene.settings.gap {
-            GapMeasure::SignedDistance => ([0.0, -1.0], x[1] - fnd.y),
-            GapMeasure::BodyNormal => (n, (fnd.y - x[1]) / n[1]),
-        };
-        Some(Seen {
-            gap,
-            dir,
-            other: Vec::new(),
-            punch: None,
-        })
-    };
-    let rows = if mesh.order == Order::T6 {
-        rows::mortar(&surface, &see, limit, &|_| vec![0.0, 0.5, 1.0])
-    } else {
-        rows::nodal(&surface, &see, limit)
-    };
-    let mut pruned = rows.pruned;
-    for r in rows.rows {
-        let panel = panels[&r.node];
-        let clipped = [panel[0].max(fnd.x_min), panel[1].min(fnd.x_max)];
-        let (row, g) = free_row(&r.terms, dofs, r.gap);
-        if clipped[1] <= clipped[0] || (row.is_empty() && !moves_rigidly(&r.terms, dofs)) {
-            pruned += 1;
-            continue;
-        }
-        out.push(Candidate {
-            pair: p,
-            body: pair.body,
-            node: r.node,
-            x: mesh.nodes[r.node],
-            normal: r.normal,
-            weight: r.weight,
-            terms: r.terms,
-            row,
-            g,
-            punch: None,
-            foundation: Some(FoundationRow {
-                foundation: f,
-                panel: clipped,
-                proj: -r.normal[1],
-            }),
-        });
-    }
-    pruned
-}
 
 /// One foundation's discretization, built from the rows that rest on it.
 struct Line {
@@ -177,16 +68,16 @@ pub struct Foundations {
 }
 
 impl Foundations {
-    pub fn try_new(scene: &Scene, cons: &super::ConstraintSet) -> Result<Self, CoreError> {
+    pub fn try_new(scene: &Scene, cons: &ConstraintSet) -> Result<Self, CoreError> {
         let mut lines = Vec::new();
         for (f, fnd) in scene.foundations.iter().enumerate() {
             let mut rows: Vec<usize> = (0..cons.len())
-                .filter(|&i| cons.candidates[i].foundation.is_some_and(|r| r.foundation == f))
+                .filter(|&i| cons.candidates[i].foundation().is_some_and(|r| r.foundation == f))
                 .collect();
             if rows.is_empty() {
                 continue;
             }
-            let panel = |i: usize| cons.candidates[i].foundation.expect("foundation row").panel;
+            let panel = |i: usize| cons.candidates[i].foundation().expect("foundation row").panel;
             rows.sort_by(|&a, &b| panel(a)[0].total_cmp(&panel(b)[0]));
             let kind = match fnd.model {
                 FoundationModel::Winkler { k } => LineKind::Winkler { k },
@@ -228,10 +119,10 @@ impl Foundations {
     }
 
     /// D F D over all candidates (m × m), in the rows' force units.
-    pub fn compliance(&self, cons: &super::ConstraintSet) -> Mat<f64> {
+    pub fn compliance(&self, cons: &ConstraintSet) -> Mat<f64> {
         let m = cons.len();
         let mut w = Mat::<f64>::zeros(m, m);
-        let row = |i: usize| cons.candidates[i].foundation.expect("foundation row");
+        let row = |i: usize| cons.candidates[i].foundation().expect("foundation row");
         for line in &self.lines {
             let r = &line.rows;
             match &line.kind {
@@ -271,13 +162,8 @@ impl Foundations {
 
     /// Surface deflection (downward) of every foundation with rows, at points
     /// along its whole length: (foundation, x, w).
-    pub fn deflections(
-        &self,
-        scene: &Scene,
-        cons: &super::ConstraintSet,
-        lambda: &[f64],
-    ) -> Vec<(usize, Vec<f64>, Vec<f64>)> {
-        let row = |i: usize| cons.candidates[i].foundation.expect("foundation row");
+    pub fn deflections(&self, scene: &Scene, cons: &ConstraintSet, lambda: &[f64]) -> Vec<(usize, Vec<f64>, Vec<f64>)> {
+        let row = |i: usize| cons.candidates[i].foundation().expect("foundation row");
         let load = |i: usize| row(i).proj * lambda[i];
         self.lines
             .iter()

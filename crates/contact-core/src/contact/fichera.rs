@@ -15,6 +15,9 @@ enum Lp {
     Optimal(f64),
     Infeasible,
     Unbounded,
+    /// Clarabel could not decide (set-up failure, iteration cap, numerical
+    /// trouble): nothing is known of feasibility.
+    Failed,
 }
 
 fn lp(c: &Mat<f64>, rhs: &[f64], keep: &[usize], objective: Option<(usize, f64)>) -> Lp {
@@ -57,13 +60,14 @@ fn lp(c: &Mat<f64>, rhs: &[f64], keep: &[usize], objective: Option<(usize, f64)>
         .expect("static settings");
     let cones = [ZeroConeT(ne), NonnegativeConeT(m)];
     let Ok(mut solver) = DefaultSolver::new(&p, &q, &a, &b, &cones, settings) else {
-        return Lp::Infeasible;
+        return Lp::Failed;
     };
     solver.solve();
     match solver.solution.status {
         SolverStatus::Solved | SolverStatus::AlmostSolved => Lp::Optimal(solver.solution.obj_val),
         SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => Lp::Infeasible,
-        _ => Lp::Unbounded,
+        SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible => Lp::Unbounded,
+        _ => Lp::Failed,
     }
 }
 
@@ -79,6 +83,8 @@ pub struct LoadRange {
     pub max: Option<f64>,
 }
 
+/// An LP that Clarabel cannot decide does not refuse the request: the loads
+/// are then left to the contact solve, whose certificate judges the answer.
 pub fn check(c: &Mat<f64>, rhs: &[f64]) -> Result<(), Vec<LoadRange>> {
     let k = c.ncols();
     let all: Vec<usize> = (0..k).collect();
@@ -91,7 +97,8 @@ pub fn check(c: &Mat<f64>, rhs: &[f64]) -> Result<(), Vec<LoadRange>> {
         // (C_Fᵀλ)_j ranges over [lo, hi]; the load is its negative.
         let lo = match lp(c, rhs, &others, Some((j, 1.0))) {
             Lp::Optimal(v) => Some(v),
-            Lp::Unbounded => None,
+            // An undecided bound is reported as open rather than guessed.
+            Lp::Unbounded | Lp::Failed => None,
             Lp::Infeasible => continue, // the others alone are infeasible: not this component's fault
         };
         let hi = match lp(c, rhs, &others, Some((j, -1.0))) {

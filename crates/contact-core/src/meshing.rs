@@ -1,4 +1,5 @@
-//! The mesh stage: every body's mesh in nondimensional coordinates.
+//! The mesh stage: every body's mesh in nondimensional coordinates, built
+//! here for every kind of mesh source.
 
 use crate::error::{CoreError, InvalidKind};
 use crate::mesh::{generate, Mesh2d};

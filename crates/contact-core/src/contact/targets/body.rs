@@ -1,4 +1,5 @@
-//! What a point of one deformable body sees of another body's surface.
+//! Another deformable body as a contact target: what a point of one body's
+//! surface sees of the other's, and the rows that follow.
 //!
 //! The non-mortar ("slave") side a carries the pressure; a point x of it faces
 //! the point y of the other (mortar or "master") body b. Linearized about the
@@ -18,12 +19,15 @@
 //!
 //! The rows themselves (node-to-segment: one per slave node; mortar: weighted
 //! by the slave multipliers and integrated, split at the projections of the
-//! master nodes) are built by `rows`.
+//! master nodes) are built by `contact::rows`.
 
 use std::collections::HashMap;
 
-use super::rows::{edge_point, shape01, Seen, Surface};
+use crate::contact::constraints::{Candidate, Link};
+use crate::contact::rows::{self, edge_point, shape01, Seen, Surface};
+use crate::fem::DofMap;
 use crate::mesh::boundary::boundary_nodes;
+use crate::scene::{Discretization, GapMeasure, Scene};
 
 fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
     a[0] * b[1] - a[1] * b[0]
@@ -254,4 +258,40 @@ pub fn mortar_breaks(master: &Surface) -> impl Fn(&[[f64; 2]]) -> Vec<f64> {
         breaks.dedup_by(|a, b| (*a - *b).abs() <= 1e-12);
         breaks
     }
+}
+
+/// Rows of the slave surface against the master edge set `edges` of `body`
+/// into `out`; returns how many were pruned.
+#[allow(clippy::too_many_arguments)]
+pub fn rows(
+    scene: &Scene,
+    p: usize,
+    slave: &Surface,
+    master: &Surface,
+    discretization: Discretization,
+    limit: f64,
+    dofs: &DofMap,
+    out: &mut Vec<Candidate>,
+) -> usize {
+    let signed = scene.settings.gap == GapMeasure::SignedDistance;
+    let projection = Projection::new(master);
+    let see = |x: [f64; 2], n: [f64; 2]| {
+        if signed {
+            projection.see(x, n, limit)
+        } else {
+            along_normal(master, x, n, limit)
+        }
+    };
+    let rows = match discretization {
+        Discretization::NodeToSegment => rows::nodal(slave, &see, limit),
+        Discretization::Mortar => rows::mortar(slave, &see, limit, &mortar_breaks(master)),
+    };
+    let mut pruned = rows.pruned;
+    for r in rows.rows {
+        match Candidate::try_new(p, slave.body, slave.mesh, r, dofs, Link::Fixed) {
+            Some(c) => out.push(c),
+            None => pruned += 1,
+        }
+    }
+    pruned
 }

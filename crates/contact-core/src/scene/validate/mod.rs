@@ -1,0 +1,132 @@
+//! Request → Scene: the one door every request passes. Each part of the
+//! request has its module (`bodies`, `obstacles`, `foundations`, `pairs`,
+//! `settings`); every failure names the JSON pointer of the offending field.
+//! What can only be judged after meshing is `admit`'s.
+
+mod bodies;
+mod foundations;
+mod obstacles;
+mod pairs;
+mod settings;
+
+use contact_proto::{self as proto, SolveRequest};
+
+use crate::error::{CoreError, InvalidKind};
+use crate::scene::Scene;
+
+/// Size limits of a deployment (the CLI and the service set them).
+#[derive(Debug, Clone, Copy)]
+pub struct Limits {
+    /// Largest number of degrees of freedom (2 per node, before supports).
+    pub max_dofs: usize,
+    /// Largest number of contact candidates over all pairs. The condensed
+    /// operator is dense: about 56·m² bytes (W, the trailing factor and Bᵀ), so
+    /// 4000 candidates take about 0.9 GB.
+    pub max_candidates: usize,
+    /// Longest `load_factors` list: each factor is a full contact solve and,
+    /// with `outputs`, a full set of fields in the reply.
+    pub max_load_steps: usize,
+    /// Most numbers the requested `outputs` may put in one reply, over all load
+    /// steps (estimated from the mesh size before meshing): a displacement
+    /// field is 2 per node and step, stresses 4, VTU about 8.
+    pub max_output_values: usize,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Self {
+            max_dofs: 2_500_000,
+            max_candidates: 4_000,
+            max_load_steps: 100,
+            // 2e7 numbers are about 400 MB of JSON: ten full-field steps of
+            // a 500k-node mesh.
+            max_output_values: 20_000_000,
+        }
+    }
+}
+
+pub(super) fn invalid(kind: InvalidKind, path: impl Into<String>, reason: impl Into<String>) -> CoreError {
+    CoreError::invalid(kind, path, reason)
+}
+
+pub(super) fn finite(v: f64, path: &str, kind: InvalidKind) -> Result<f64, CoreError> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(invalid(kind, path, format!("value {v} is not a finite number")))
+    }
+}
+
+/// Poisson's ratio of an isotropic elastic material: −1 < ν < 0.5.
+pub(super) fn poisson(nu: f64, path: &str) -> Result<f64, CoreError> {
+    finite(nu, path, InvalidKind::Material)?;
+    if nu > -1.0 && nu < 0.5 {
+        Ok(nu)
+    } else {
+        Err(invalid(
+            InvalidKind::Material,
+            path,
+            format!("Poisson's ratio must satisfy -1 < nu < 0.5, got {nu}"),
+        ))
+    }
+}
+
+pub(super) fn positive(v: f64, path: &str, kind: InvalidKind, what: &str) -> Result<f64, CoreError> {
+    finite(v, path, kind)?;
+    if v > 0.0 {
+        Ok(v)
+    } else {
+        Err(invalid(kind, path, format!("{what} must be positive, got {v}")))
+    }
+}
+
+impl Scene {
+    /// Validates `req` against the deployment's `limits` and builds the scene
+    /// in nondimensional form. The checks run in a fixed order, so the same
+    /// request is always refused for the same first fault.
+    pub fn try_new(req: &SolveRequest, limits: &Limits) -> Result<Scene, CoreError> {
+        use InvalidKind as K;
+        let time_limit = settings::time_limit(req)?;
+        if req.version != proto::PROTOCOL_VERSION {
+            return Err(invalid(
+                K::Version,
+                "/version",
+                format!(
+                    "version '{}' is not supported; this service speaks '{}'",
+                    req.version,
+                    proto::PROTOCOL_VERSION
+                ),
+            ));
+        }
+        if req.bodies.is_empty() {
+            return Err(invalid(K::Request, "/bodies", "at least one body is required"));
+        }
+        let survey = bodies::survey(req, limits)?;
+        let scales = survey.scales;
+        let (names, bodies) = bodies::bodies(req, &survey)?;
+        let (obstacle_names, obstacles) = obstacles::obstacles(req, scales)?;
+        let (foundation_names, foundations) = foundations::foundations(req, scales)?;
+        let names = pairs::Names {
+            bodies: &names,
+            obstacles: &obstacle_names,
+            foundations: &foundation_names,
+        };
+        let (pairs, notes) = pairs::pairs(req, &survey, &names)?;
+        let settings = settings::settings(req, scales, &bodies, survey.nodes.iter().sum(), limits)?;
+        Ok(Scene {
+            analysis: settings::analysis(req),
+            scales,
+            bodies,
+            obstacles,
+            foundations,
+            pairs,
+            method: settings::method(req),
+            settings,
+            outputs: settings::outputs(req),
+            client_id: req.client_id.clone(),
+            time_limit,
+            notes,
+            load_factors: req.load_factors.clone(),
+        })
+    }
+}

@@ -1,0 +1,151 @@
+//! `contacts`: each pair's body, edge set and target (obstacle, another
+//! body's edge set, foundation), the softer body of two made the slave side.
+
+use contact_proto::{self as proto, BodyRef, SolveRequest};
+
+use super::bodies::{edge_names, Survey};
+use super::invalid;
+use crate::error::{CoreError, InvalidKind as K};
+use crate::scene::{Discretization, Pair, Target};
+
+/// The names pairs refer to.
+pub struct Names<'a> {
+    pub bodies: &'a [String],
+    pub obstacles: &'a [String],
+    pub foundations: &'a [String],
+}
+
+/// The pairs, and the notes on pairs turned round.
+pub fn pairs(req: &SolveRequest, survey: &Survey, n: &Names) -> Result<(Vec<Pair>, Vec<String>), CoreError> {
+    let (names, obstacle_names, foundation_names) = (n.bodies, n.obstacles, n.foundations);
+    let parsed = &survey.parsed;
+    if req.contacts.is_empty() {
+        return Err(invalid(
+            K::NoContactCandidates,
+            "/contacts",
+            "at least one contact pair is required",
+        ));
+    }
+    let mut pairs = Vec::new();
+    let mut notes = Vec::new();
+    for (k, c) in req.contacts.iter().enumerate() {
+        let cp = format!("/contacts/{k}");
+        let body = resolve(&c.body, names, &format!("{cp}/body"), "body")?;
+        let has_edges = |b: usize, edges: &str, path: String| {
+            if edge_names(&req.bodies[b].mesh, parsed[b].as_ref())
+                .iter()
+                .any(|e| e == edges)
+            {
+                Ok(())
+            } else {
+                Err(invalid(
+                    K::Request,
+                    path,
+                    format!("body '{}' has no edge set named '{}'", names[b], edges),
+                ))
+            }
+        };
+        has_edges(body, &c.edges, format!("{cp}/edges"))?;
+        let target = match (&c.obstacle, &c.against, &c.foundation) {
+            (Some(o), None, None) => {
+                Target::Obstacle(resolve(o, obstacle_names, &format!("{cp}/obstacle"), "obstacle")?)
+            }
+            (None, None, Some(f)) => {
+                Target::Foundation(resolve(f, foundation_names, &format!("{cp}/foundation"), "foundation")?)
+            }
+            (None, Some(a), None) => {
+                let other = resolve(&a.body, names, &format!("{cp}/against/body"), "body")?;
+                if other == body {
+                    return Err(invalid(
+                        K::Request,
+                        format!("{cp}/against/body"),
+                        "a body cannot be in contact with itself (self-contact is not supported)",
+                    ));
+                }
+                has_edges(other, &a.edges, format!("{cp}/against/edges"))?;
+                Target::Body {
+                    body: other,
+                    edges: a.edges.clone(),
+                    discretization: discretization(c.discretization),
+                }
+            }
+            _ => {
+                return Err(invalid(
+                    K::Request,
+                    cp.clone(),
+                    "a contact pair names exactly one of 'obstacle' (rigid), 'against' (another body's edge set) or 'foundation'",
+                ))
+            }
+        };
+        // The side that carries the pressure (slave) must be the softer one:
+        // a stiff slave's pressure oscillates from node to node (measured 80 %
+        // at a stiffness ratio of 1e6, against 2 % the other way round).
+        let stiffness = |b: usize| {
+            let m = &req.bodies[b].material;
+            match req.analysis {
+                proto::Analysis::PlaneStrain => m.youngs_modulus / (1.0 - m.poisson_ratio * m.poisson_ratio),
+                proto::Analysis::PlaneStress => m.youngs_modulus,
+            }
+        };
+        let (body, edges, target) = match target {
+            Target::Body {
+                body: other,
+                edges: other_edges,
+                discretization,
+            } if stiffness(body) > SWAP_STIFFNESS_RATIO * stiffness(other) => {
+                notes.push(format!(
+                    "contact pair {k}: body '{}' is {:.1e} times stiffer than '{}', so '{}' carries the pressure (its edge set '{}' is the slave side) and the pair is reported that way round",
+                    names[body],
+                    stiffness(body) / stiffness(other),
+                    names[other],
+                    names[other],
+                    other_edges
+                ));
+                (
+                    other,
+                    other_edges,
+                    Target::Body {
+                        body,
+                        edges: c.edges.clone(),
+                        discretization,
+                    },
+                )
+            }
+            t => (body, c.edges.clone(), t),
+        };
+        pairs.push(Pair {
+            body,
+            edges,
+            target,
+            path: cp,
+        });
+    }
+
+    Ok((pairs, notes))
+}
+
+fn resolve(r: &BodyRef, names: &[String], path: &str, what: &str) -> Result<usize, CoreError> {
+    match r {
+        BodyRef::Index(i) if *i < names.len() => Ok(*i),
+        BodyRef::Index(i) => Err(invalid(
+            K::Request,
+            path,
+            format!("{what} index {i} out of range ({} given)", names.len()),
+        )),
+        BodyRef::Name(n) => names
+            .iter()
+            .position(|x| x == n)
+            .ok_or_else(|| invalid(K::Request, path, format!("no {what} named '{n}'"))),
+    }
+}
+
+fn discretization(d: proto::Discretization) -> Discretization {
+    match d {
+        proto::Discretization::Mortar => Discretization::Mortar,
+        proto::Discretization::NodeToSegment => Discretization::NodeToSegment,
+    }
+}
+
+/// A two-body pair whose named body is this many times stiffer than the other
+/// is turned round, so that the softer body carries the pressure.
+const SWAP_STIFFNESS_RATIO: f64 = 10.0;

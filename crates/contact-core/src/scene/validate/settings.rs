@@ -1,0 +1,185 @@
+//! `analysis`, `method`, `settings`, `load_factors`, `outputs`, `time_limit`:
+//! the choices of model and method, and the limits on the reply's size.
+
+use contact_proto::{self as proto, OutputKind, SolveRequest};
+
+use super::{finite, invalid, positive, Limits};
+use crate::error::{CoreError, InvalidKind, InvalidKind as K};
+use crate::scene::{Analysis, Body, Formulation, GapMeasure, Method, Outputs, Scales, Settings, Traction};
+
+/// `time_limit`: a positive number of seconds, if given.
+pub fn time_limit(req: &SolveRequest) -> Result<Option<f64>, CoreError> {
+    if let Some(s) = req.time_limit.filter(|s| !(s.is_finite() && *s > 0.0)) {
+        return Err(invalid(
+            K::Request,
+            "/time_limit",
+            format!("time_limit must be a positive number of seconds, got {s}"),
+        ));
+    }
+    Ok(req.time_limit)
+}
+
+/// The solver settings, nondimensional; the load factors and the reply's size
+/// are judged here too, in the order the checks have always run.
+pub fn settings(
+    req: &SolveRequest,
+    scales: Scales,
+    bodies: &[Body],
+    nodes: f64,
+    limits: &Limits,
+) -> Result<Settings, CoreError> {
+    let s = &req.settings;
+    let tol = positive(s.tolerance, "/settings/tolerance", K::Request, "tolerance")?;
+    if tol >= 1e-2 {
+        return Err(invalid(
+            K::Request,
+            "/settings/tolerance",
+            "tolerance must be below 1e-2",
+        ));
+    }
+    if s.max_iterations == 0 || s.max_iterations > 100_000 {
+        return Err(invalid(
+            K::Request,
+            "/settings/max_iterations",
+            "max_iterations must be between 1 and 100000",
+        ));
+    }
+    positive(
+        s.prune_gap_ratio,
+        "/settings/prune_gap_ratio",
+        K::Request,
+        "prune_gap_ratio",
+    )?;
+
+    let load_size = bodies
+        .iter()
+        .flat_map(|b| {
+            let supports = b.supports.iter().flat_map(|s| [s.ux, s.uy]).flatten();
+            let tractions = b.tractions.iter().flat_map(|t| match t {
+                Traction::Vector { t, .. } => vec![t[0], t[1]],
+                Traction::Pressure { p, .. } => vec![*p],
+            });
+            supports.chain(tractions).chain(b.body_force).collect::<Vec<f64>>()
+        })
+        .fold(0.0f64, |a, v| a.max(v.abs()));
+    check_load_factors(&req.load_factors, load_size, limits)?;
+    check_output_size(&req.outputs, req.load_factors.len(), nodes, limits)?;
+
+    Ok(Settings {
+        tolerance: tol,
+        max_iterations: s.max_iterations,
+        prune_gap_ratio: s.prune_gap_ratio,
+        formulation: match s.formulation {
+            proto::Formulation::Condensed => Formulation::Condensed,
+            proto::Formulation::Full => Formulation::Full,
+        },
+        gap: match s.gap {
+            proto::GapMeasure::SignedDistance => GapMeasure::SignedDistance,
+            proto::GapMeasure::BodyNormal => GapMeasure::BodyNormal,
+        },
+        // ζ is a compliance [length / pressure], the barrier a pressure × length.
+        penalty: match s.penalty {
+            Some(z) => positive(z, "/settings/penalty", K::Request, "penalty")? * scales.modulus / scales.length,
+            None => Settings::default().penalty,
+        },
+        barrier: match s.barrier {
+            Some(z) => positive(z, "/settings/barrier", K::Request, "barrier")? / (scales.modulus * scales.length),
+            None => Settings::default().barrier,
+        },
+    })
+}
+
+pub fn analysis(req: &SolveRequest) -> Analysis {
+    match req.analysis {
+        proto::Analysis::PlaneStrain => Analysis::PlaneStrain,
+        proto::Analysis::PlaneStress => Analysis::PlaneStress,
+    }
+}
+
+pub fn method(req: &SolveRequest) -> Method {
+    match req.method {
+        proto::MethodName::Auto => Method::Auto,
+        proto::MethodName::ActiveSet => Method::ActiveSet,
+        proto::MethodName::InteriorPoint => Method::InteriorPoint,
+        proto::MethodName::Penalty => Method::Penalty,
+        proto::MethodName::AugmentedLagrangian => Method::AugmentedLagrangian,
+        proto::MethodName::Barrier => Method::Barrier,
+    }
+}
+
+pub fn outputs(req: &SolveRequest) -> Outputs {
+    Outputs {
+        displacement: req.outputs.contains(&OutputKind::Displacement),
+        mesh: req.outputs.contains(&OutputKind::Mesh),
+        stress: req.outputs.contains(&OutputKind::Stress),
+        vtu: req.outputs.contains(&OutputKind::Vtu),
+    }
+}
+
+/// Largest |factor| × (largest nondimensional load or prescribed motion): the
+/// solve forms products of loads (W λ · λ, energies), which must stay finite,
+/// and a strain of 1e150 is meaningless long before.
+const MAX_SCALED_LOAD: f64 = 1e150;
+
+/// The requested fields over all load steps, against `max_output_values`
+/// (`nodes`: the estimated node count of all bodies).
+fn check_output_size(outputs: &[OutputKind], steps: usize, nodes: f64, limits: &Limits) -> Result<(), CoreError> {
+    let per_node: f64 = outputs
+        .iter()
+        .map(|o| match o {
+            OutputKind::Displacement => 2.0,
+            OutputKind::Stress => 4.0,
+            OutputKind::Mesh => 0.0,
+            OutputKind::Vtu => 8.0,
+        })
+        .sum();
+    // The mesh is written once, not per step: 2 coordinates and about 3
+    // element indices per node.
+    let once = if outputs.contains(&OutputKind::Mesh) {
+        5.0 * nodes
+    } else {
+        0.0
+    };
+    let values = per_node * nodes * steps.max(1) as f64 + once;
+    if values <= limits.max_output_values as f64 {
+        return Ok(());
+    }
+    Err(CoreError::TooLarge {
+        path: "/outputs".into(),
+        reason: format!(
+            "the requested outputs over {} load step(s) come to about {:.3e} numbers; this service returns at most {} per reply (fewer load steps or outputs, or a coarser mesh)",
+            steps.max(1),
+            values,
+            limits.max_output_values
+        ),
+    })
+}
+
+/// `load_factors`: a bounded list of finite factors whose scaled loads stay
+/// representable. `size`: the largest nondimensional load or prescribed motion.
+fn check_load_factors(factors: &[f64], size: f64, limits: &Limits) -> Result<(), CoreError> {
+    if factors.len() > limits.max_load_steps {
+        return Err(CoreError::TooLarge {
+            path: "/load_factors".into(),
+            reason: format!(
+                "{} load factors; this service solves at most {} load steps per request (split the list)",
+                factors.len(),
+                limits.max_load_steps
+            ),
+        });
+    }
+    for (k, &f) in factors.iter().enumerate() {
+        let path = format!("/load_factors/{k}");
+        finite(f, &path, InvalidKind::Request)?;
+        if f.abs() * size > MAX_SCALED_LOAD {
+            return Err(invalid(
+                InvalidKind::Request,
+                path,
+                format!(
+                    "load factor {f:e} scales the loads beyond what the solve can represent (|factor| × load must stay below {MAX_SCALED_LOAD:e} in units of E·L)"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,240 @@
+//! The layout rules of the core, checked on its sources:
+//!
+//! - the top-level modules depend on each other without a cycle, and so do
+//!   the files of `contact` (whose target kinds once imported each other in a
+//!   circle);
+//! - only the scene boundary (`scene::validate` and its modules,
+//!   `scene::size_limit`) reads wire types;
+//! - a source file over 500 lines says why in its module doc (a line
+//!   starting `//! Length:`).
+//!
+//! Dependencies are read from `crate::a::b` paths and `super::` imports
+//! (test modules excluded); a `mod.rs` only declares and re-exports within
+//! `contact`, so it is not a node there.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            sources(&p, out);
+        } else if p.extension().is_some_and(|x| x == "rs") {
+            out.push(p);
+        }
+    }
+}
+
+fn src() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
+}
+
+/// Module path of a source file: `contact/targets/body.rs` → ["contact", "targets", "body"].
+fn module_of(file: &Path) -> Vec<String> {
+    let rel = file.strip_prefix(src()).unwrap().with_extension("");
+    let mut parts: Vec<String> = rel.iter().map(|s| s.to_string_lossy().into_owned()).collect();
+    if parts.last().is_some_and(|l| l == "mod" || l == "lib") {
+        parts.pop();
+    }
+    parts
+}
+
+/// The code of a file without its test module and comments.
+fn code(file: &Path) -> String {
+    let text = std::fs::read_to_string(file).unwrap();
+    let text = text.split("#[cfg(test)]").next().unwrap();
+    text.lines()
+        .map(|l| l.split("//").next().unwrap())
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// Identifiers following `prefix` (`crate::`, `super::`), and those listed in
+/// `prefix{a, b::c}` groups (first segment of each).
+fn paths_after(text: &str, prefix: &str) -> Vec<Vec<String>> {
+    let mut out = Vec::new();
+    for (i, _) in text.match_indices(prefix) {
+        let rest = &text[i + prefix.len()..];
+        if let Some(group) = rest.strip_prefix('{') {
+            // Top-level items of the group, nested groups skipped over.
+            let (mut depth, mut item) = (0, String::new());
+            for c in group.chars() {
+                match c {
+                    '{' => depth += 1,
+                    '}' if depth == 0 => break,
+                    '}' => depth -= 1,
+                    ',' if depth == 0 => {
+                        out.push(item.split("::").map(|s| s.trim().to_string()).collect());
+                        item.clear();
+                        continue;
+                    }
+                    _ => {}
+                }
+                item.push(c);
+            }
+            out.push(item.split("::").map(|s| s.trim().to_string()).collect());
+            out.retain(|segs: &Vec<String>| !segs[0].is_empty());
+        } else {
+            let end = rest
+                .find(|c: char| !(c.is_alphanumeric() || c == '_' || c == ':'))
+                .unwrap_or(rest.len());
+            out.push(
+                rest[..end]
+                    .split("::")
+                    .filter(|s| !s.is_empty())
+                    .map(String::from)
+                    .collect(),
+            );
+        }
+    }
+    out
+}
+
+fn has_cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>> {
+    fn visit(
+        n: &str,
+        g: &BTreeMap<String, BTreeSet<String>>,
+        state: &mut BTreeMap<String, u8>,
+        stack: &mut Vec<String>,
+    ) -> Option<Vec<String>> {
+        match state.get(n) {
+            Some(1) => {
+                let k = stack.iter().position(|s| s == n).unwrap();
+                let mut cycle = stack[k..].to_vec();
+                cycle.push(n.to_string());
+                return Some(cycle);
+            }
+            Some(2) => return None,
+            _ => {}
+        }
+        state.insert(n.to_string(), 1);
+        stack.push(n.to_string());
+        for m in g.get(n).into_iter().flatten() {
+            if let Some(c) = visit(m, g, state, stack) {
+                return Some(c);
+            }
+        }
+        stack.pop();
+        state.insert(n.to_string(), 2);
+        None
+    }
+    let mut state = BTreeMap::new();
+    for n in graph.keys() {
+        if let Some(c) = visit(n, graph, &mut state, &mut Vec::new()) {
+            return Some(c);
+        }
+    }
+    None
+}
+
+fn files() -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    sources(&src(), &mut files);
+    files.sort();
+    files
+}
+
+#[test]
+fn top_level_modules_form_no_cycle() {
+    let files = files();
+    let tops: BTreeSet<String> = files.iter().filter_map(|f| module_of(f).first().cloned()).collect();
+    let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for f in &files {
+        let Some(me) = module_of(f).first().cloned() else {
+            continue;
+        };
+        for p in paths_after(&code(f), "crate::") {
+            if let Some(t) = p.first().filter(|t| tops.contains(*t) && **t != me) {
+                graph.entry(me.clone()).or_default().insert(t.clone());
+            }
+        }
+    }
+    assert!(graph.len() > 5, "the scan found the modules: {graph:?}");
+    assert_eq!(has_cycle(&graph), None, "{graph:#?}");
+}
+
+#[test]
+fn contact_files_form_no_cycle() {
+    let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    let nodes: BTreeSet<Vec<String>> = files()
+        .iter()
+        .filter(|f| f.file_name().is_some_and(|n| n != "mod.rs"))
+        .map(|f| module_of(f))
+        .filter(|m| m.first().is_some_and(|t| t == "contact"))
+        .collect();
+    for me in &nodes {
+        let file = src().join(me.join("/")).with_extension("rs");
+        let text = code(&file);
+        let parent = &me[..me.len() - 1];
+        let mut targets: Vec<Vec<String>> = paths_after(&text, "crate::");
+        for p in paths_after(&text, "super::") {
+            targets.push(parent.iter().cloned().chain(p).collect());
+        }
+        for t in targets {
+            // The longest prefix of the path that is a file of `contact`.
+            if let Some(dep) = (1..=t.len()).rev().map(|k| t[..k].to_vec()).find(|k| nodes.contains(k)) {
+                if &dep != me {
+                    graph.entry(me.join("::")).or_default().insert(dep.join("::"));
+                }
+            }
+        }
+    }
+    assert!(
+        graph
+            .get("contact::targets::body")
+            .is_some_and(|d| d.contains("contact::rows")),
+        "the scan sees the targets' imports: {graph:#?}"
+    );
+    assert_eq!(has_cycle(&graph), None, "{graph:#?}");
+}
+
+#[test]
+fn only_the_scene_boundary_reads_wire_types() {
+    let boundary = [["scene", "validate"], ["scene", "size_limit"]];
+    for f in files() {
+        let m = module_of(&f);
+        if boundary.iter().any(|b| m.len() >= 2 && m[..2] == b[..]) {
+            continue;
+        }
+        let text = code(&f);
+        assert!(
+            !text.contains("contact_proto") && !text.contains("proto::"),
+            "{} reads wire types below the scene boundary",
+            f.display()
+        );
+    }
+}
+
+#[test]
+fn long_files_say_why() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut all = Vec::new();
+    for krate in ["contact-proto", "contact-core", "contact-verify", "contact"] {
+        sources(&root.join(krate).join("src"), &mut all);
+    }
+    assert!(all.len() > 40);
+    for f in all {
+        let text = std::fs::read_to_string(&f).unwrap();
+        if text.lines().count() > 500 {
+            assert!(
+                text.lines().any(|l| l.starts_with("//! Length:")),
+                "{} has {} lines and no `//! Length:` line saying why",
+                f.display(),
+                text.lines().count()
+            );
+        }
+    }
+}
+
+#[test]
+fn the_cycle_search_finds_a_circle() {
+    let g: BTreeMap<String, BTreeSet<String>> = [("a", "b"), ("b", "c"), ("c", "a")]
+        .into_iter()
+        .map(|(x, y)| (x.to_string(), BTreeSet::from([y.to_string()])))
+        .collect();
+    assert_eq!(has_cycle(&g).map(|c| c.len()), Some(4));
+    let imports = paths_after("use super::{rows::{self, Seen}, gap};", "super::");
+    assert_eq!(imports[0][0], "rows");
+    assert_eq!(imports[1][0], "gap");
+}
