@@ -11,6 +11,8 @@ E / (1 - nu^2) * delta / H at every point and the total force is that times W.
 
 from __future__ import annotations
 
+from contact_client import request as rq
+
 E = 200.0
 NU = 0.3
 DELTA = 0.01
@@ -28,28 +30,13 @@ def expected_pressure() -> float:
 
 
 def square_block(elements=None) -> dict:
-    return {
-        "version": "1",
-        "description": "unit square pressed 0.01 by a rigid flat; uniform stress",
-        "bodies": [
-            {
-                "name": "square",
-                "material": {"youngs_modulus": E, "poisson_ratio": NU},
-                "mesh": {
-                    "inline": {
-                        "nodes": [list(p) for p in NODES],
-                        "elements": [list(e) for e in (elements or ELEMENTS_CCW)],
-                        "edge_sets": {
-                            "bottom": [[0, 1]],
-                            "right": [[1, 2]],
-                            "top": [[2, 3]],
-                            "left": [[3, 0]],
-                        },
-                    }
-                },
-                "supports": [{"edges": "bottom", "uy": 0.0}, {"edges": "left", "ux": 0.0}],
-            }
-        ],
-        "obstacles": [{"name": "flat", "shape": {"line": {"point": [0.0, -DELTA], "normal": [0.0, -1.0]}}}],
-        "contacts": [{"body": 0, "edges": "top", "obstacle": 0}],
-    }
+    mesh = rq.inline_mesh(NODES, elements or ELEMENTS_CCW,
+                          {"bottom": [[0, 1]], "right": [[1, 2]], "top": [[2, 3]], "left": [[3, 0]]})
+    square = rq.body("square", rq.material(E, NU), mesh, [rq.support("bottom", uy=0.0), rq.support("left", ux=0.0)])
+    return rq.request(
+        bodies=[square],
+        obstacles=[rq.obstacle("flat", rq.line([0.0, -DELTA], [0.0, -1.0]))],
+        contacts=[rq.contact(0, "top", obstacle=0)],
+        analysis=None,
+        description="unit square pressed 0.01 by a rigid flat; uniform stress",
+    )

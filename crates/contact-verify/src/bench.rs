@@ -125,20 +125,19 @@ impl Row {
 /// The benchmark's Hertz request: rigid cylinder R = 8 pressed 0.12 into a
 /// 40 × 20 block (E = 200, ν = 0.3), uniform `h_min` within 0.8 of the apex.
 pub fn hertz_request(h_min: f64, element: &str, method: &str) -> serde_json::Value {
-    json!({
-        "version": "1",
-        "description": "benchmark: Hertz, rigid cylinder into a block",
-        "bodies": [{
-            "name": "block",
-            "material": {"youngs_modulus": 200.0, "poisson_ratio": 0.3},
-            "mesh": {"rectangle": {"corner": [-20.0, -20.0], "width": 40.0, "height": 20.0, "size": 1.0, "element": element,
-                     "grading": {"focus": [0.0, 0.0], "h_min": h_min, "ratio": 1.1, "extent": 0.8}}},
-            "supports": [{"edges": "bottom", "ux": 0.0, "uy": 0.0}]
-        }],
-        "obstacles": [{"name": "cylinder", "shape": {"circle": {"center": [0.0, 7.88], "radius": 8.0}}}],
-        "contacts": [{"body": "block", "edges": "top", "obstacle": "cylinder"}],
-        "method": method
-    })
+    use crate::build::*;
+    let mesh = graded(
+        rectangle([-20.0, -20.0], 40.0, 20.0, 1.0, element),
+        grading(h_min, 1.1, 0.8, Some([0.0, 0.0])),
+    );
+    request(
+        vec![body("block", 200.0, 0.3, mesh).fixed("bottom")],
+        vec![pair("block", "top").obstacle("cylinder")],
+    )
+    .with_obstacle(obstacle("cylinder", circle([0.0, 7.88], 8.0)))
+    .with_method(method_name(method))
+    .with_description("benchmark: Hertz, rigid cylinder into a block")
+    .to_value()
 }
 
 /// Hertz line contact (VERIFICATION.md §1): half-width a and peak p0 for the

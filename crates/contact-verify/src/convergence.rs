@@ -132,19 +132,18 @@ impl Row {
 /// The elastic disk on a rigid flat, symmetric quarter: element size `h_min`
 /// within 0.105 R (≈ 1.6 a) of the apex.
 pub fn disk_request(h_min: f64, element: &str) -> Value {
-    json!({
-        "version": "1",
-        "description": "convergence: elastic cylinder (quarter) pressed 0.0075 R onto a rigid flat",
-        "bodies": [{
-            "name": "disk",
-            "material": {"youngs_modulus": 1.0, "poisson_ratio": 0.3},
-            "mesh": {"quarter_disk": {"center": [0.0, 1.0], "radius": 1.0, "size": 0.125, "element": element,
-                     "facing": "down", "grading": {"h_min": h_min, "ratio": 1.1, "extent": 0.105}}},
-            "supports": [{"edges": "flat", "uy": -0.0075}, {"edges": "axis", "ux": 0.0}]
-        }],
-        "obstacles": [{"name": "floor", "shape": {"line": {"point": [0.0, 0.0], "normal": [0.0, 1.0]}}}],
-        "contacts": [{"body": "disk", "edges": "arc", "obstacle": "floor"}]
-    })
+    use crate::build::*;
+    let mesh = graded(
+        quarter_disk([0.0, 1.0], 1.0, true, 0.125, element),
+        grading(h_min, 1.1, 0.105, None),
+    );
+    let disk = body("disk", 1.0, 0.3, mesh)
+        .support("flat", None, Some(-0.0075))
+        .support("axis", Some(0.0), None);
+    request(vec![disk], vec![pair("disk", "arc").obstacle("floor")])
+        .with_obstacle(obstacle("floor", line([0.0, 0.0], [0.0, 1.0])))
+        .with_description("convergence: elastic cylinder (quarter) pressed 0.0075 R onto a rigid flat")
+        .to_value()
 }
 
 /// A Hertz scene: (request at a level, radius, E*, load factor of the model

@@ -5,6 +5,7 @@
 //! (`stability`). Used by the tests, the CI smoke run and `contact bench`.
 
 pub mod bench;
+pub mod build;
 pub mod convergence;
 pub mod run;
 pub mod stability;

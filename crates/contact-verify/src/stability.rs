@@ -358,19 +358,17 @@ pub const STRIP_PRESSURE: f64 = 200.0 / (1.0 - 0.09) * 1e-3;
 /// A strip n elements long and 2 deep, on rollers, pressed 1e-3 of its depth
 /// by a rigid flat: n + 1 candidates in uniform compression.
 pub fn strip_request(n: usize, full: bool) -> Value {
+    use crate::build::*;
     let h = 1.0 / n as f64;
-    json!({
-        "version": "1",
-        "bodies": [{
-            "name": "strip",
-            "material": { "youngs_modulus": 200.0, "poisson_ratio": 0.3 },
-            "mesh": { "rectangle": { "corner": [0.0, 0.0], "width": 1.0, "height": 2.0 * h, "size": h } },
-            "supports": [{ "edges": "bottom", "uy": 0.0 }, { "edges": "left", "ux": 0.0 }]
-        }],
-        "obstacles": [{ "name": "flat", "shape": { "line": { "point": [0.0, 2.0 * h * (1.0 - 1e-3)], "normal": [0.0, -1.0] } } }],
-        "contacts": [{ "body": "strip", "edges": "top", "obstacle": "flat" }],
-        "settings": { "formulation": if full { "full" } else { "condensed" } }
-    })
+    let strip = body("strip", 200.0, 0.3, rectangle([0.0, 0.0], 1.0, 2.0 * h, h, "t3"))
+        .support("bottom", None, Some(0.0))
+        .support("left", Some(0.0), None);
+    let mut req = request(vec![strip], vec![pair("strip", "top").obstacle("flat")])
+        .with_obstacle(obstacle("flat", line([0.0, 2.0 * h * (1.0 - 1e-3)], [0.0, -1.0])));
+    if full {
+        req.settings.formulation = contact_proto::Formulation::Full;
+    }
+    req.to_value()
 }
 
 /// The whole suite (`quick`: coarser meshes and fewer points per axis).

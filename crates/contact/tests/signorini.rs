@@ -2,6 +2,7 @@
 
 mod common;
 use common::*;
+use contact_verify::build::*;
 use serde_json::json;
 
 /// Hertz, rigid cylinder R = 8 into an elastic block (T3 and T6). The zone ends
@@ -117,16 +118,12 @@ fn exact_methods_agree() {
 fn uniform_compression_is_exact() {
     for element in ["t3", "t6"] {
         let (e, nu, h, d) = (1000.0, 0.3, 2.0, 1e-3);
-        let req = json!({
-            "version": "1",
-            "bodies": [{
-                "material": {"youngs_modulus": e, "poisson_ratio": nu},
-                "mesh": {"rectangle": {"corner": [0.0, 0.0], "width": 3.0, "height": h, "size": 0.37, "element": element}},
-                "supports": [{"edges": "top", "uy": -d}, {"edges": "left", "ux": 0.0}]
-            }],
-            "obstacles": [{"shape": {"line": {"point": [0.0, 0.0], "normal": [0.0, 1.0]}}}],
-            "contacts": [{"body": 0, "edges": "bottom", "obstacle": 0}]
-        });
+        let block = body("block", e, nu, rectangle([0.0, 0.0], 3.0, h, 0.37, element))
+            .support("top", None, Some(-d))
+            .support("left", Some(0.0), None);
+        let req = request(vec![block], vec![pair("block", "bottom").obstacle("floor")])
+            .with_obstacle(obstacle("floor", line([0.0, 0.0], [0.0, 1.0])))
+            .to_value();
         let r = solved(&req);
         let expect = e / (1.0 - nu * nu) * d / h;
         for p in &r.pairs[0].points {
@@ -357,22 +354,25 @@ fn an_unrelated_body_changes_nothing() {
 /// formula is about 0.15 %), and the peak within 1 % (measured +0.3 %). The
 /// body-normal rows stall at −1.1 % on the same mesh (and stay there under
 /// refinement: measured −1.06 % at four times finer).
+/// An elastic half-disk (E = 1, ν = 0.3, R = 1) whose flat top is pressed
+/// 0.0075 down onto the rigid floor y = 0, graded to `h_min` within 0.105 of
+/// the apex; `ux` holds the top sideways when given.
+fn disk_on_flat(h_min: f64, ux: Option<f64>) -> contact::proto::SolveRequest {
+    let mesh = graded(
+        half_disk([0.0, 1.0], 1.0, true, 0.125, "t3"),
+        grading(h_min, 1.1, 0.105, None),
+    );
+    let disk = body("disk", 1.0, 0.3, mesh).support("flat", ux, Some(-0.0075));
+    request(vec![disk], vec![pair("disk", "arc").obstacle("floor")])
+        .with_obstacle(obstacle("floor", line([0.0, 0.0], [0.0, 1.0])))
+}
+
 #[test]
 fn elastic_cylinder_on_rigid_flat_matches_hertz() {
     let req = |gap: &str| {
-        json!({
-            "version": "1",
-            "bodies": [{
-                "name": "disk",
-                "material": {"youngs_modulus": 1.0, "poisson_ratio": 0.3},
-                "mesh": {"half_disk": {"center": [0.0, 1.0], "radius": 1.0, "size": 0.125,
-                         "grading": {"h_min": 0.0022, "extent": 0.105}}},
-                "supports": [{"edges": "flat", "ux": 0.0, "uy": -0.0075}]
-            }],
-            "obstacles": [{"name": "floor", "shape": {"line": {"point": [0.0, 0.0], "normal": [0.0, 1.0]}}}],
-            "contacts": [{"body": "disk", "edges": "arc", "obstacle": "floor"}],
-            "settings": {"gap": gap}
-        })
+        let mut r = disk_on_flat(0.0022, Some(0.0)).to_value();
+        r["settings"] = json!({"gap": gap});
+        r
     };
     let moment_half_width = |r: &contact::proto::SolveReply| {
         let (mut m0, mut m2) = (0.0, 0.0);
@@ -457,20 +457,9 @@ fn violated_assumptions_are_reported() {
 #[test]
 fn the_active_set_solves_a_body_held_sideways_by_contact() {
     let req = |method: &str| {
-        json!({
-            "version": "1",
-            "bodies": [{
-                "name": "disk",
-                "material": {"youngs_modulus": 1.0, "poisson_ratio": 0.3},
-                "mesh": {"half_disk": {"center": [0.0, 1.0], "radius": 1.0, "size": 0.125, "element": "t3",
-                         "facing": "down", "grading": {"h_min": 0.0044, "extent": 0.105}}},
-                "supports": [{"edges": "flat", "uy": -0.0075}]
-            }],
-            "obstacles": [{"name": "plane", "shape": {"line": {"point": [0.0, 0.0], "normal": [0.0, 1.0]}}}],
-            "contacts": [{"body": "disk", "edges": "arc", "obstacle": "plane"}],
-            "settings": {"gap": "body_normal"},
-            "method": method
-        })
+        let mut r = disk_on_flat(0.0044, None).with_method(method_name(method)).to_value();
+        r["settings"] = json!({"gap": "body_normal"});
+        r
     };
     for method in ["active_set", "auto"] {
         let r = solved(&req(method));
