@@ -8,6 +8,12 @@
 //! reuses it. The key is a hash of exactly those inputs, computed from the
 //! generated meshes, so equal meshes hit whatever way they were described.
 //! The cache is owned by the caller (the service), bounded in bytes, LRU.
+//!
+//! Beside the operators it keeps the last few symbolic factorizations (the
+//! AMD ordering and the supernodal structure), keyed by the sparsity pattern
+//! of K and the contact DOFs only: a request that changes a material (E, ν)
+//! misses the operator but reuses the ordering and redoes only the numeric
+//! factorization.
 
 use std::hash::{Hash, Hasher};
 use std::sync::{Arc, Mutex};
@@ -16,6 +22,7 @@ use faer::Mat;
 
 use crate::contact::ConstraintSet;
 use crate::fem::assembly::{DofMap, Stiffness};
+use crate::linalg::cholesky::SymbolicFactor;
 use crate::linalg::Cholesky;
 use crate::mesh::Mesh2d;
 use crate::scene::Scene;
@@ -68,14 +75,53 @@ pub fn key(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap, cons: &ConstraintSet
 pub struct OperatorCache {
     entries: Mutex<Vec<(u64, Arc<Prepared>)>>,
     max_bytes: usize,
+    /// Symbolic factorizations, most recently used last.
+    symbolic: Mutex<Vec<Arc<SymbolicFactor>>>,
+    symbolic_hits: std::sync::atomic::AtomicUsize,
 }
+
+/// Symbolic factorizations kept: their index arrays are a fraction of the
+/// numeric factor's values, and a service sees few distinct meshes at a time.
+const SYMBOLIC_KEPT: usize = 8;
 
 impl OperatorCache {
     pub fn new(max_bytes: usize) -> Self {
         Self {
             entries: Mutex::new(Vec::new()),
             max_bytes,
+            symbolic: Mutex::new(Vec::new()),
+            symbolic_hits: Default::default(),
         }
+    }
+
+    /// The symbolic factorization for `pattern` (`cholesky::pattern_key`), if kept.
+    pub fn get_symbolic(&self, pattern: u64) -> Option<Arc<SymbolicFactor>> {
+        if self.max_bytes == 0 {
+            return None;
+        }
+        let mut e = self.symbolic.lock().unwrap_or_else(|p| p.into_inner());
+        let pos = e.iter().position(|s| s.key() == pattern)?;
+        let entry = e.remove(pos);
+        e.push(entry.clone());
+        self.symbolic_hits.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        Some(entry)
+    }
+
+    pub fn insert_symbolic(&self, s: Arc<SymbolicFactor>) {
+        if self.max_bytes == 0 {
+            return;
+        }
+        let mut e = self.symbolic.lock().unwrap_or_else(|p| p.into_inner());
+        e.retain(|x| x.key() != s.key());
+        e.push(s);
+        if e.len() > SYMBOLIC_KEPT {
+            e.remove(0);
+        }
+    }
+
+    /// How many factorizations reused a kept symbolic analysis.
+    pub fn symbolic_hits(&self) -> usize {
+        self.symbolic_hits.load(std::sync::atomic::Ordering::Relaxed)
     }
 
     pub fn get(&self, key: u64) -> Option<Arc<Prepared>> {

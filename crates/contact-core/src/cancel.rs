@@ -1,7 +1,7 @@
 //! Cooperative cancellation: a deadline per solving thread.
 //!
 //! The service installs a [`Deadline`] on the blocking thread before it calls the
-//! pipeline; the pipeline calls [`check`] at its stage boundaries and the
+//! solve; the solve's observer calls [`check`] at its stage boundaries and the
 //! iterative methods poll [`expired`] once per iteration (and Clarabel gets
 //! [`remaining_secs`] as its own time limit). A solve over its time therefore
 //! stops at the next boundary with [`Timeout`] (a `CoreError::Timeout`), unwinding normally,

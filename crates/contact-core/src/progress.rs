@@ -2,7 +2,7 @@
 //! a sink the caller installs on the solving thread.
 //!
 //! Like `cancel`'s deadline, the sink is a thread-local so the numerics keep
-//! their signatures and do no I/O: the pipeline calls [`stage`] at its stage
+//! their signatures and do no I/O: the solve's observer calls [`stage`] at its stage
 //! boundaries and the active-set loops call [`iteration`]; without a sink (the
 //! CLI, the library) both are a thread-local read. The service installs a sink
 //! that publishes each report on zenoh (`service::progress`). The guard puts the

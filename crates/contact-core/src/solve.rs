@@ -93,7 +93,7 @@ fn solve_condensed(
             let stiffness = Arc::new(assemble_stiffness(scene, &model.meshes, &model.dofs)?);
             obs.leave(Stage::Assembly)?;
             obs.enter(Stage::Factorization);
-            let op = Arc::new(methods::condensed::prepare(stiffness, &model.cons)?);
+            let op = Arc::new(methods::condensed::prepare(stiffness, &model.cons, cache)?);
             obs.timings.factorization = op.t_factorization;
             obs.timings.condensation = op.t_condensation;
             if let Some(c) = cache {

@@ -35,7 +35,7 @@ pub fn solve(file: &str, bytes: &[u8], want_vtu: bool) -> Result<Solved, ErrorRe
     let vtu = reply.vtu.as_deref().map(|b64| {
         base64::engine::general_purpose::STANDARD
             .decode(b64)
-            .expect("the pipeline encodes valid base64")
+            .expect("the reply layer encodes valid base64")
     });
     if !asked {
         reply.vtu = None;
@@ -44,7 +44,7 @@ pub fn solve(file: &str, bytes: &[u8], want_vtu: bool) -> Result<Solved, ErrorRe
 }
 
 /// The request with `vtu` in its `outputs`, and whether it was there already.
-/// A request that is not a JSON object is left for the pipeline to refuse.
+/// A request that is not a JSON object is left for the solve to refuse.
 fn with_vtu_output(bytes: &[u8]) -> (Vec<u8>, bool) {
     let Ok(mut v) = serde_json::from_slice::<serde_json::Value>(bytes) else {
         return (bytes.to_vec(), true);

@@ -22,6 +22,8 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::linalg::{amd, SupernodalThreshold};
 use faer::sparse::SparseColMat;
 use faer::{Conj, Mat, MatMut, Par, Side};
+use std::hash::{Hash, Hasher};
+use std::sync::Arc;
 
 #[derive(Debug, thiserror::Error)]
 pub enum LinalgError {
@@ -108,24 +110,72 @@ impl FactorCost {
     }
 }
 
-/// Numeric Cholesky factor of an SPD matrix given by its lower triangle.
-pub struct Cholesky {
+/// The ordering and supernodal symbolic factorization of a sparsity pattern
+/// with given trailing DOFs: everything of a factorization that does not
+/// depend on the values, so a matrix with the same pattern (a change of E or
+/// ν, of the loads or of the prescribed values) factors without redoing it.
+pub struct SymbolicFactor {
     symbolic: SymbolicCholesky<usize>,
-    values: Vec<f64>,
     n: usize,
     /// Number of trailing DOFs (in factor order) that form the Schur block.
     n_trailing: usize,
     cost: FactorCost,
+    /// `pattern_key` of the matrix and trailing DOFs it was made for.
+    key: u64,
+}
+
+impl SymbolicFactor {
+    /// Orders `a` (lower triangle) with the DOFs in `last` eliminated last, in
+    /// the given order, and analyzes the factor's structure.
+    pub fn try_new(a: &SparseColMat<usize, f64>, last: &[usize]) -> Result<Self, LinalgError> {
+        let symbolic = symbolic(a, last)?;
+        Ok(Self {
+            cost: FactorCost::of(&symbolic),
+            symbolic,
+            n: a.nrows(),
+            n_trailing: last.len(),
+            key: pattern_key(a, last),
+        })
+    }
+
+    /// The key of the pattern and trailing DOFs this analysis is for.
+    pub fn key(&self) -> u64 {
+        self.key
+    }
+}
+
+/// Identity of a sparsity pattern (lower triangle) and its trailing DOFs:
+/// equal keys share one `SymbolicFactor`.
+pub fn pattern_key(a: &SparseColMat<usize, f64>, last: &[usize]) -> u64 {
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    let sym = a.symbolic();
+    (sym.nrows(), sym.ncols()).hash(&mut h);
+    sym.col_ptr().hash(&mut h);
+    sym.row_idx().hash(&mut h);
+    sym.col_nnz().hash(&mut h);
+    last.hash(&mut h);
+    h.finish()
+}
+
+/// Numeric Cholesky factor of an SPD matrix given by its lower triangle.
+pub struct Cholesky {
+    analysis: Arc<SymbolicFactor>,
+    values: Vec<f64>,
 }
 
 impl Cholesky {
     /// Factorizes `a` (lower triangle, n×n) with the DOFs in `last` eliminated last,
     /// in the given order.
     pub fn try_new(a: &SparseColMat<usize, f64>, last: &[usize]) -> Result<Self, LinalgError> {
-        let n = a.nrows();
-        let symbolic = symbolic(a, last)?;
-        let cost = FactorCost::of(&symbolic);
-        cost.fits_in_time_left()?;
+        Self::with_symbolic(Arc::new(SymbolicFactor::try_new(a, last)?), a)
+    }
+
+    /// The numeric factorization of `a` on an analysis of its pattern (the
+    /// caller matched `analysis.key()` with `pattern_key`).
+    pub fn with_symbolic(analysis: Arc<SymbolicFactor>, a: &SparseColMat<usize, f64>) -> Result<Self, LinalgError> {
+        debug_assert_eq!(a.nrows(), analysis.n);
+        let symbolic = &analysis.symbolic;
+        analysis.cost.fits_in_time_left()?;
         let mut values = vec![0.0; symbolic.len_val()];
         let par = Par::Seq;
         let req = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
@@ -141,22 +191,21 @@ impl Cholesky {
                 Default::default(),
             )
             .map_err(|_| LinalgError::NotPositiveDefinite)?;
-        Ok(Self {
-            symbolic,
-            values,
-            n,
-            n_trailing: last.len(),
-            cost,
-        })
+        Ok(Self { analysis, values })
+    }
+
+    /// The ordering and structure this factor was computed on.
+    pub fn symbolic(&self) -> &Arc<SymbolicFactor> {
+        &self.analysis
     }
 
     pub fn dim(&self) -> usize {
-        self.n
+        self.analysis.n
     }
 
     /// The numeric factorization's cost as predicted before it ran.
     pub fn cost(&self) -> FactorCost {
-        self.cost
+        self.analysis.cost
     }
 
     /// Entries in the factor L (a memory and cost measure).
@@ -166,9 +215,10 @@ impl Cholesky {
 
     /// Solves K X = B in place for every column of `rhs`.
     pub fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
-        let llt = faer::sparse::linalg::cholesky::LltRef::new(&self.symbolic, &self.values);
+        let symbolic = &self.analysis.symbolic;
+        let llt = faer::sparse::linalg::cholesky::LltRef::new(symbolic, &self.values);
         let par = Par::Seq;
-        let req = self.symbolic.solve_in_place_scratch::<f64>(rhs.ncols(), par);
+        let req = symbolic.solve_in_place_scratch::<f64>(rhs.ncols(), par);
         let mut mem = MemBuffer::new(req);
         llt.solve_in_place_with_conj(Conj::No, rhs, par, MemStack::new(&mut mem));
     }
@@ -183,7 +233,7 @@ impl Cholesky {
     /// of K (the ratio of the factor's pivots), reported with every solve so
     /// that ill-conditioned scenes are visible.
     pub fn pivot_ratio(&self) -> f64 {
-        let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
+        let SymbolicCholeskyRaw::Supernodal(sym) = self.analysis.symbolic.raw() else {
             unreachable!("factorization is forced supernodal")
         };
         let llt = SupernodalLltRef::new(sym, &self.values);
@@ -206,10 +256,10 @@ impl Cholesky {
     /// The dense lower-triangular trailing block L_cc (Cholesky factor of the
     /// Schur complement on the `last` DOFs, in the order they were given).
     pub fn trailing_factor(&self) -> Mat<f64> {
-        let m = self.n_trailing;
-        let off = self.n - m;
+        let m = self.analysis.n_trailing;
+        let off = self.analysis.n - m;
         let mut lcc = Mat::<f64>::zeros(m, m);
-        let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
+        let SymbolicCholeskyRaw::Supernodal(sym) = self.analysis.symbolic.raw() else {
             unreachable!("factorization is forced supernodal")
         };
         let llt = SupernodalLltRef::new(sym, &self.values);

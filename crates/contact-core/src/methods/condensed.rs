@@ -8,18 +8,36 @@ use std::time::Instant;
 use faer::Mat;
 
 use super::{LcpResult, Problem, Solution};
-use crate::cache::Prepared;
+use crate::cache::{OperatorCache, Prepared};
 use crate::contact::ConstraintSet;
 use crate::error::CoreError;
 use crate::fem::assembly::Stiffness;
+use crate::linalg::cholesky::{pattern_key, SymbolicFactor};
 use crate::linalg::{dense, Cholesky};
 use std::sync::Arc;
 
-/// Factorization and condensation: everything that does not depend on the loads or gaps.
-pub fn prepare(stiffness: Arc<Stiffness>, cons: &ConstraintSet) -> Result<Prepared, CoreError> {
+/// Factorization and condensation: everything that does not depend on the
+/// loads or gaps. The ordering and symbolic analysis come from `cache` when it
+/// holds one for this pattern (and go into it when not).
+pub fn prepare(
+    stiffness: Arc<Stiffness>,
+    cons: &ConstraintSet,
+    cache: Option<&OperatorCache>,
+) -> Result<Prepared, CoreError> {
     let t0 = Instant::now();
     let cdofs = cons.dofs();
-    let chol = Cholesky::try_new(&stiffness.k, &cdofs)?;
+    let pattern = pattern_key(&stiffness.k, &cdofs);
+    let symbolic = match cache.and_then(|c| c.get_symbolic(pattern)) {
+        Some(s) => s,
+        None => {
+            let s = Arc::new(SymbolicFactor::try_new(&stiffness.k, &cdofs)?);
+            if let Some(c) = cache {
+                c.insert_symbolic(s.clone());
+            }
+            s
+        }
+    };
+    let chol = Cholesky::with_symbolic(symbolic, &stiffness.k)?;
     let t_factorization = t0.elapsed().as_secs_f64();
     crate::cancel::check("factorization")?;
     crate::progress::stage("condensation");

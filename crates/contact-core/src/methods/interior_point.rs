@@ -222,7 +222,7 @@ mod tests {
     use super::*;
 
     /// Clarabel's statuses keep their meaning: its caps are caps
-    /// (max_iterations; the deadline is answered by the pipeline as timeout),
+    /// (max_iterations; the deadline is answered by the solve as timeout),
     /// everything else that is not a solution is a numerical breakdown (the
     /// LCP of a positive definite W always has one).
     #[test]

@@ -266,3 +266,23 @@ pub enum FoundationModel {
         d: f64,
     },
 }
+
+impl FoundationModel {
+    /// The model's name in the request and the report.
+    pub fn name(&self) -> &'static str {
+        match self {
+            FoundationModel::Winkler { .. } => "winkler",
+            FoundationModel::Pasternak { .. } => "pasternak",
+            FoundationModel::HalfPlane { .. } => "half_plane",
+        }
+    }
+
+    /// The distance at which a load's deflection is zero, where the model
+    /// needs one to fix its rigid motion (nondimensional).
+    pub fn reference_distance(&self) -> Option<f64> {
+        match self {
+            FoundationModel::HalfPlane { d, .. } => Some(*d),
+            _ => None,
+        }
+    }
+}

@@ -16,7 +16,7 @@ use crate::mesh::Mesh2d;
 use crate::methods;
 use crate::model::Model;
 use crate::observer::{Observer, Stage};
-use crate::scene::{Analysis, FoundationModel, Scene};
+use crate::scene::{Analysis, Scene};
 use crate::solution::report::{
     BodyFields, CacheState, Diagnostics, FoundationReport, ProblemSize, PunchReport, Report, Status,
 };
@@ -287,11 +287,7 @@ fn foundation_results(
                 .zip(lambda)
                 .filter_map(|(c, l)| c.foundation().filter(|r| r.foundation == k).map(|r| r.proj * l))
                 .sum();
-            let (model, reference_distance) = match fnd.model {
-                FoundationModel::Winkler { .. } => ("winkler", None),
-                FoundationModel::Pasternak { .. } => ("pasternak", None),
-                FoundationModel::HalfPlane { d, .. } => ("half_plane", Some(sc.length(d))),
-            };
+            let (model, reference_distance) = (fnd.model.name(), fnd.model.reference_distance().map(|d| sc.length(d)));
             FoundationReport {
                 name: fnd.name.clone(),
                 model,

@@ -21,7 +21,7 @@ const VTK_TRIANGLE: u8 = 5;
 const VTK_QUADRATIC_TRIANGLE: u8 = 22;
 
 /// The VTU file of a reply whose `bodies` carry nodes, elements, displacement
-/// and stress (the pipeline computes them when `outputs` lists `vtu`).
+/// and stress (the core computes them when `outputs` lists `vtu`).
 pub fn vtu(reply: &SolveReply) -> Vec<u8> {
     let bodies = reply.bodies.as_deref().unwrap_or_default();
     let mut points = Vec::new();
