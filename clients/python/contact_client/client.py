@@ -164,16 +164,27 @@ def make_config(connect: str = DEFAULT_CONNECT) -> zenoh.Config:
     return conf
 
 
+def _plain(value):
+    """numpy scalars and arrays (anything with ``tolist``) as plain Python
+    numbers and lists, so a request can be built from numpy results; numpy is
+    not imported (nor required)."""
+    tolist = getattr(value, "tolist", None)
+    if callable(tolist):
+        return tolist()
+    raise TypeError(f"Object of type {type(value).__name__} is not JSON serializable")
+
+
 def encode_request(request: Request) -> bytes:
     """The payload bytes of a request.
 
     A dict is serialised as strict JSON (NaN and infinities are refused here:
-    strict JSON cannot carry them). A ``str`` or ``bytes`` is sent verbatim and
+    strict JSON cannot carry them); numpy scalars and arrays anywhere in it
+    become plain numbers and lists. A ``str`` or ``bytes`` is sent verbatim and
     not parsed locally, so the service alone judges it.
     """
     if isinstance(request, dict):
         try:
-            return json.dumps(request, allow_nan=False, separators=(",", ":")).encode("utf-8")
+            return json.dumps(request, allow_nan=False, separators=(",", ":"), default=_plain).encode("utf-8")
         except ValueError as e:
             raise ValueError(f"request is not representable as strict JSON: {e}") from e
     if isinstance(request, str):
@@ -210,7 +221,7 @@ def _query(session: zenoh.Session, key: str, payload: bytes | None, timeout: flo
     except zenoh.ZError as e:
         raise TransportError(f"query on {key!r} failed: {e}") from e
     if first is None:
-        raise TransportError(f"no reply on {key!r} (timeout {timeout} s; is the service running?)")
+        raise TransportError(f"no reply on {key!r} within {timeout} s: is `contact serve` running and reachable?")
 
     ok = first.ok
     if ok is not None:
@@ -240,7 +251,11 @@ def _open(connect: str) -> zenoh.Session:
     try:
         return zenoh.open(make_config(connect))
     except zenoh.ZError as e:
-        raise TransportError(f"cannot open a zenoh session to {connect}: {e}") from e
+        # zenoh's message ends with the Rust source location of the failure,
+        # which tells a Python user nothing; the original stays chained.
+        if "Unable to connect" in str(e):
+            raise TransportError(f"no contact service answers at {connect}: is `contact serve` running?") from e
+        raise TransportError(f"cannot open a zenoh session to {connect}: {str(e).split('  at ')[0]}") from e
 
 
 class Client:

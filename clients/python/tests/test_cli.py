@@ -77,3 +77,34 @@ def test_python_cli_solve_and_health(service, tmp_path):
     cp = _py_client("health", "--connect", service)
     assert cp.returncode == 0, cp.stderr.decode(errors="replace")
     assert "uptime_s" in json.loads(cp.stdout)
+
+
+def test_service_starts_quietly_without_colours_off_a_terminal(contact_bin, tmp_path):
+    from contact_client.local import local_service
+
+    log = tmp_path / "serve.log"
+    with local_service(contact_bin, log=log):
+        pass
+    text = log.read_text(errors="replace")
+    assert "serving contact/solve" in text, text
+    assert "Gossip" not in text and "WARN" not in text, text
+    assert "\x1b[" not in text, "no ANSI escapes when the log is a file"
+
+
+def test_contact_solve_summary_is_a_short_table(contact_bin, hertz_example_path, hertz_reply, tmp_path):
+    cp = subprocess.run([str(contact_bin), "solve", str(hertz_example_path), "--summary"], capture_output=True,
+                        timeout=120)
+    assert cp.returncode == 0, cp.stderr.decode(errors="replace")
+    lines = cp.stdout.decode().splitlines()
+    assert lines[0].split() == ["status", "solved"]
+    assert len(lines) < 20
+    (pair_line,) = [ln for ln in lines if ln.startswith("pair 0")]
+    peak = max(p["pressure"] for p in hertz_reply["pairs"][0]["points"])
+    assert f"peak pressure {peak:.6f}".rstrip("0") in pair_line
+    bad = square_block()
+    bad["bodies"][0]["material"]["poisson_ratio"] = 0.5
+    path = tmp_path / "bad.json"
+    path.write_text(json.dumps(bad))
+    cp = subprocess.run([str(contact_bin), "solve", str(path), "--summary"], capture_output=True, timeout=60)
+    assert cp.returncode == 1
+    assert cp.stdout.decode().startswith("refused      invalid_material at /bodies/0/material/poisson_ratio: ")

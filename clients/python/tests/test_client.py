@@ -35,6 +35,22 @@ def test_encode_refuses_non_json_floats():
         client_mod.encode_request(req)
 
 
+def test_numpy_values_anywhere_in_a_request_are_plain_json():
+    np = pytest.importorskip("numpy")
+    req = square_block()
+    numpy_req = square_block()
+    body = numpy_req["bodies"][0]
+    body["material"]["youngs_modulus"] = np.float32(body["material"]["youngs_modulus"])
+    body["material"]["poisson_ratio"] = np.float64(body["material"]["poisson_ratio"])
+    body["mesh"]["inline"]["nodes"] = np.array(body["mesh"]["inline"]["nodes"])
+    body["mesh"]["inline"]["elements"] = np.array(body["mesh"]["inline"]["elements"], dtype=np.int64)
+    numpy_req["contacts"][0]["body"] = np.int32(0)
+    assert json.loads(client_mod.encode_request(numpy_req)) == json.loads(client_mod.encode_request(req))
+    body["mesh"]["inline"]["nodes"][0, 0] = np.nan
+    with pytest.raises(ValueError):
+        client_mod.encode_request(numpy_req)
+
+
 def test_config_is_client_loopback_without_multicast():
     conf = client_mod.make_config("tcp/127.0.0.1:7447")
     assert json.loads(conf.get_json("mode")) == "client"
@@ -49,8 +65,10 @@ def test_nobody_listening_is_a_transport_error():
     # A client-mode open against a loopback port nobody listens on fails at once.
     endpoint = f"tcp/127.0.0.1:{free_loopback_port()}"
     t0 = time.monotonic()
-    with pytest.raises(TransportError):
+    with pytest.raises(TransportError) as e:
         contact_client.solve(square_block(), connect=endpoint, timeout=5.0)
+    # Said in the user's terms, not in zenoh's (no Rust source paths).
+    assert str(e.value) == f"no contact service answers at {endpoint}: is `contact serve` running?"
     with pytest.raises(TransportError):
         contact_client.health(connect=endpoint, timeout=5.0)
     assert time.monotonic() - t0 < 30.0

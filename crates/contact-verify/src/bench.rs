@@ -10,6 +10,7 @@ use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use faer::Side;
 use serde_json::json;
 
+use crate::reference::hertz;
 use contact_core::solution::report::Report;
 use contact_core::{Limits, Scene};
 use contact_proto::{Formulation, MethodName};
@@ -138,13 +139,6 @@ pub fn hertz_request(h_min: f64, element: &str, method: &str) -> serde_json::Val
     .with_method(method_name(method))
     .with_description("benchmark: Hertz, rigid cylinder into a block")
     .to_value()
-}
-
-/// Hertz line contact (VERIFICATION.md §1): half-width a and peak p0 for the
-/// load P per unit thickness, the effective radius and the effective modulus.
-pub fn hertz(p: f64, radius: f64, e_star: f64) -> (f64, f64) {
-    let a = (4.0 * p * radius / (std::f64::consts::PI * e_star)).sqrt();
-    (a, 2.0 * p / (std::f64::consts::PI * a))
 }
 
 /// Errors of a Hertz reply against the closed form with the reply's own load:

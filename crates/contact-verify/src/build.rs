@@ -107,6 +107,8 @@ pub trait BodyExt {
     fn fixed(self, edges: &str) -> Self;
     /// Uniform pressure, positive pushing into the body.
     fn pressure(self, edges: &str, p: f64) -> Self;
+    /// Body force per unit volume.
+    fn body_force(self, f: [f64; 2]) -> Self;
 }
 
 impl BodyExt for BodySpec {
@@ -127,6 +129,10 @@ impl BodyExt for BodySpec {
             traction: None,
             pressure: Some(p),
         });
+        self
+    }
+    fn body_force(mut self, f: [f64; 2]) -> Self {
+        self.body_force = Some(f);
         self
     }
 }

@@ -215,7 +215,7 @@ pub struct Errors {
 /// Hertz errors of a reply against the closed form at the reply's own load.
 pub fn errors(r: &Report, radius: f64, e_star: f64, symmetry: f64) -> Errors {
     let load = r.resultant.fy.abs() * symmetry;
-    let (a, p0) = crate::bench::hertz(load, radius, e_star);
+    let (a, p0) = crate::reference::hertz(load, radius, e_star);
     let exact = |x: f64| p0 * (1.0 - (x / a).powi(2)).max(0.0).sqrt();
     let mut pts: Vec<(f64, f64, f64)> = r.pairs[0].points.iter().map(|q| (q.x, q.pressure, q.weight)).collect();
     pts.sort_by(|p, q| p.0.total_cmp(&q.0));

@@ -1,11 +1,13 @@
 //! # contact-verify — what the contact solver is checked against
 //!
-//! Analytic references (Hertz), the time-against-error benchmark (`bench`),
+//! Analytic references (`reference`: Hertz), typed request builders (`build`),
+//! the time-against-error benchmark (`bench`),
 //! convergence under refinement (`convergence`) and the numerical stress suite
 //! (`stability`). Used by the tests, the CI smoke run and `contact bench`.
 
 pub mod bench;
 pub mod build;
 pub mod convergence;
+pub mod reference;
 pub mod run;
 pub mod stability;

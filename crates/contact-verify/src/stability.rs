@@ -15,7 +15,8 @@ use std::time::Instant;
 
 use serde_json::{json, Value};
 
-use crate::bench::{hertz, hertz_errors, hertz_request};
+use crate::bench::{hertz_errors, hertz_request};
+use crate::reference::hertz;
 use contact_core::error::CoreError;
 use contact_core::solution::report::{Report, Status};
 use contact_core::Limits;

@@ -14,6 +14,7 @@ pub mod parse;
 pub mod request_files;
 #[cfg(feature = "service")]
 pub mod service;
+pub mod summary;
 pub mod wire;
 
 pub use wire::{check_bytes, error_reply, solve_bytes, solve_bytes_cached};

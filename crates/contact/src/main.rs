@@ -1,8 +1,9 @@
 //! `contact`: the command-line shell over the library.
 //!
 //! - `contact solve FILE|-`: one request, no zenoh; prints the reply JSON (or the
-//!   error JSON and exits 1) exactly as the service would answer; `--vtu` and
-//!   `--points-csv` also write files (see `cli_files`).
+//!   error JSON and exits 1) exactly as the service would answer, or with
+//!   `--summary` a short table (`summary`); `--vtu` and `--points-csv` also
+//!   write files (see `cli_files`).
 //! - `contact serve`: the zenoh service.
 //! - `contact router`: a zenoh router (what `zenohd` does) for scale-out without installing zenohd.
 //! - `contact schema`: writes the JSON Schemas into proto/.
@@ -41,6 +42,10 @@ enum Cmd {
         /// Indent the JSON output.
         #[arg(long)]
         pretty: bool,
+        /// Print a short table (status, method, load, zones, peak pressures,
+        /// certificate, time) instead of the JSON.
+        #[arg(long, conflicts_with = "pretty")]
+        summary: bool,
         /// Also write every body's mesh, displacement, stress and contact pressure as a VTU file (ParaView).
         #[arg(long, value_name = "OUT.vtu")]
         vtu: Option<PathBuf>,
@@ -165,6 +170,7 @@ fn run() -> anyhow::Result<ExitCode> {
         Cmd::Solve {
             file,
             pretty,
+            summary,
             vtu,
             points_csv,
         } => {
@@ -179,8 +185,14 @@ fn run() -> anyhow::Result<ExitCode> {
             let (text, code) = match cli_files::solve(&file, &bytes, vtu.is_some()) {
                 Ok(reply) => {
                     cli_files::write_outputs(&reply, vtu.as_deref(), points_csv.as_deref())?;
-                    (out(&reply.shown), exit_code(&reply.shown))
+                    let text = if summary {
+                        contact::summary::reply(&reply.shown)
+                    } else {
+                        out(&reply.shown)
+                    };
+                    (text, exit_code(&reply.shown))
                 }
+                Err(err) if summary => (contact::summary::error(&err), ExitCode::from(EXIT_REFUSED)),
                 Err(err) => (out(&err), ExitCode::from(EXIT_REFUSED)),
             };
             // A closed pipe (e.g. `| head`) is the reader's choice, not an error of ours.
@@ -318,10 +330,17 @@ fn positive_seconds(s: &str) -> Result<f64, String> {
     }
 }
 
+/// Logs to stderr, coloured only on a terminal. zenoh warns at every start
+/// that gossip is disabled, which is our loopback configuration's intent
+/// (`service::config`), so that one module logs errors only unless RUST_LOG
+/// says otherwise.
 fn init_logging(format: LogFormat) {
-    let filter = tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| "info,zenoh=warn".into());
+    use std::io::IsTerminal;
+    let filter = tracing_subscriber::EnvFilter::try_from_default_env()
+        .unwrap_or_else(|_| "info,zenoh=warn,zenoh::net::routing::hat::peer=error".into());
     let builder = tracing_subscriber::fmt()
         .with_env_filter(filter)
+        .with_ansi(std::io::stderr().is_terminal())
         .with_writer(std::io::stderr);
     match format {
         LogFormat::Text => builder.init(),

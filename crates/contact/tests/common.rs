@@ -35,7 +35,7 @@ pub fn solved(req: &Value) -> SolveReply {
 /// Hertz line contact, one elastic body against a rigid one, plane strain:
 /// (a, p0) for load P per unit thickness.
 pub fn hertz(p: f64, r: f64, e: f64, nu: f64) -> (f64, f64) {
-    contact_verify::bench::hertz(p, r, e / (1.0 - nu * nu))
+    contact_verify::reference::hertz(p, r, e / (1.0 - nu * nu))
 }
 
 pub fn peak_pressure(r: &SolveReply) -> f64 {

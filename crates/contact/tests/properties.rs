@@ -7,8 +7,9 @@
 mod common;
 use common::*;
 use contact::proto::SolveReply;
+use contact_verify::build::*;
 use proptest::prelude::*;
-use serde_json::{json, Value};
+use serde_json::Value;
 
 fn config() -> ProptestConfig {
     ProptestConfig {
@@ -49,23 +50,22 @@ impl Indent {
     fn request(&self) -> Value {
         let size = self.w.min(self.h) / 12.0;
         let [ox, oy] = self.origin;
-        json!({
-            "version": "1",
-            "analysis": if self.plane_stress { "plane_stress" } else { "plane_strain" },
-            "bodies": [{
-                "name": "block",
-                "material": { "youngs_modulus": self.e, "poisson_ratio": self.nu },
-                // Uniform, with the diagonals mirrored about the top centre: a
-                // mesh that is its own mirror image.
-                "mesh": { "rectangle": { "corner": [ox, oy], "width": self.w, "height": self.h, "size": size,
-                    "element": if self.t6 { "t6" } else { "t3" },
-                    "grading": { "focus": [ox + 0.5 * self.w, oy + self.h], "h_min": size, "ratio": 1.0 } } },
-                "supports": [{ "edges": "bottom", "ux": 0.0, "uy": 0.0 }]
-            }],
-            "obstacles": [{ "name": "indenter", "shape": { "circle": {
-                "center": [ox + 0.5 * self.w + self.x0, oy + self.h + self.r - self.delta], "radius": self.r } } }],
-            "contacts": [{ "body": "block", "edges": "top", "obstacle": "indenter" }]
-        })
+        // Uniform, with the diagonals mirrored about the top centre: a mesh
+        // that is its own mirror image.
+        let mesh = graded(
+            rectangle([ox, oy], self.w, self.h, size, if self.t6 { "t6" } else { "t3" }),
+            grading(size, 1.0, 0.0, Some([ox + 0.5 * self.w, oy + self.h])),
+        );
+        let centre = [ox + 0.5 * self.w + self.x0, oy + self.h + self.r - self.delta];
+        let mut req = request(
+            vec![body("block", self.e, self.nu, mesh).fixed("bottom")],
+            vec![pair("block", "top").obstacle("indenter")],
+        )
+        .with_obstacle(obstacle("indenter", circle(centre, self.r)));
+        if self.plane_stress {
+            req.analysis = contact::proto::Analysis::PlaneStress;
+        }
+        req.to_value()
     }
 }
 
@@ -118,19 +118,12 @@ fn same_pressures(a: &SolveReply, b: &SolveReply, tol: f64) -> Result<(), TestCa
 /// pressure q on its top and its weight: Fichera holds, the zone is unknown
 /// only in principle, and the loads are proportional with s = 0.
 fn resting(w: f64, h: f64, e: f64, nu: f64, q: f64, g: f64) -> Value {
-    json!({
-        "version": "1",
-        "bodies": [{
-            "name": "block",
-            "material": { "youngs_modulus": e, "poisson_ratio": nu },
-            "mesh": { "rectangle": { "corner": [0.0, 0.0], "width": w, "height": h, "size": w.min(h) / 10.0 } },
-            "supports": [],
-            "tractions": [{ "edges": "top", "pressure": q }],
-            "body_force": [0.0, -g]
-        }],
-        "obstacles": [{ "name": "floor", "shape": { "line": { "point": [0.0, 0.0], "normal": [0.0, 1.0] } } }],
-        "contacts": [{ "body": "block", "edges": "bottom", "obstacle": "floor" }]
-    })
+    let block = body("block", e, nu, rectangle([0.0, 0.0], w, h, w.min(h) / 10.0, "t3"))
+        .pressure("top", q)
+        .body_force([0.0, -g]);
+    request(vec![block], vec![pair("block", "bottom").obstacle("floor")])
+        .with_obstacle(obstacle("floor", line([0.0, 0.0], [0.0, 1.0])))
+        .to_value()
 }
 
 proptest! {

@@ -6,8 +6,8 @@
 //! pairs, resultants, punches, foundations, bodies, warnings, notes (solve
 //! replies) or code, path and details (errors); timings, cache state, request
 //! ids, certificates and diagnostics are round-off or bookkeeping and are left
-//! out. Numbers must agree to 1e-10 of the largest magnitude under the same key
-//! in the recorded reply (so a pressure to 1e-10 of the peak): far above the
+//! out. Numbers must agree to 1e-12 of the largest magnitude under the same key
+//! in the recorded reply (so a pressure to 1e-12 of the peak): above the
 //! round-off of these well-conditioned scenes (condition estimates ≤ 1e5, a
 //! dense LCP of at most a few hundred rows), far below any change of the
 //! discrete problem (a moved node or a changed row moves pressures by 1e-4 and
@@ -23,7 +23,7 @@ use serde_json::{json, Map, Value};
 use std::collections::HashMap;
 
 /// Relative agreement asked of every number (see the module doc).
-const TOL: f64 = 1e-10;
+const TOL: f64 = 1e-12;
 
 const VOLATILE: [&str; 8] = [
     "timings",

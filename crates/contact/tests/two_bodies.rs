@@ -10,7 +10,7 @@ use serde_json::{json, Value};
 fn hertz_two(p: f64, r1: f64, r2: f64, (e1, nu1): (f64, f64), (e2, nu2): (f64, f64)) -> (f64, f64) {
     let r = 1.0 / (1.0 / r1 + 1.0 / r2);
     let es = 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2);
-    contact_verify::bench::hertz(p, r, es)
+    contact_verify::reference::hertz(p, r, es)
 }
 
 fn other_peak(r: &SolveReply) -> f64 {

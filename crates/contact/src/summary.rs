@@ -1,0 +1,149 @@
+//! `contact solve --summary`: the reply as a short table a person reads
+//! (status, method, sizes, loads, zones, peak pressures, certificate, times)
+//! instead of the full JSON.
+
+use std::fmt::Write;
+
+use contact_proto::{ErrorReply, SolveReply, SolveStatus};
+
+/// Six significant digits, no trailing noise.
+fn num(v: f64) -> String {
+    if v == 0.0 {
+        "0".into()
+    } else if (1e-3..1e6).contains(&v.abs()) {
+        let s = format!("{v:.6}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        s.to_string()
+    } else {
+        format!("{v:.5e}")
+    }
+}
+
+pub fn reply(r: &SolveReply) -> String {
+    let mut o = String::new();
+    let status = match r.status {
+        SolveStatus::Solved => "solved",
+        SolveStatus::MaxIterations => "NOT SOLVED: iteration cap reached (see the certificate)",
+        SolveStatus::NumericalError => "NOT SOLVED: numerical error (do not use the numbers)",
+    };
+    let _ = writeln!(o, "status       {status}");
+    let _ = writeln!(o, "method       {} ({} iterations)", r.method, r.iterations);
+    let _ = writeln!(
+        o,
+        "size         {} DOFs, {} contact rows, {} in contact",
+        r.size.dofs, r.size.candidates, r.size.active
+    );
+    let _ = writeln!(
+        o,
+        "contact load fx {}, fy {}, m {} (on the bodies, moment about the origin)",
+        num(r.resultant.fx),
+        num(r.resultant.fy),
+        num(r.resultant.m)
+    );
+    for (k, p) in r.pairs.iter().enumerate() {
+        let target = p
+            .obstacle
+            .as_ref()
+            .map(|o| format!("obstacle '{o}'"))
+            .or_else(|| p.against.as_ref().map(|a| format!("body '{a}'")))
+            .or_else(|| p.foundation.as_ref().map(|f| format!("foundation '{f}'")))
+            .unwrap_or_default();
+        let peak = p.points.iter().max_by(|a, b| a.pressure.total_cmp(&b.pressure));
+        let zones: Vec<String> = p
+            .zones
+            .iter()
+            .map(|z| format!("[{}, {}]", num(z[0]), num(z[1])))
+            .collect();
+        let _ = writeln!(
+            o,
+            "pair {k}       body '{}' against {target}: zones {}; peak pressure {}{}",
+            p.body,
+            if zones.is_empty() {
+                "none".to_string()
+            } else {
+                zones.join(" ")
+            },
+            peak.map_or("-".into(), |q| num(q.pressure)),
+            peak.map_or(String::new(), |q| format!(" at x = {}", num(q.x)))
+        );
+    }
+    for pu in &r.punches {
+        let _ = writeln!(
+            o,
+            "punch        '{}': alpha1 {}, alpha2 {}, theta {}; loads p1 {}, p2 {}, m {}",
+            pu.name,
+            num(pu.alpha1),
+            num(pu.alpha2),
+            num(pu.theta),
+            num(pu.p1),
+            num(pu.p2),
+            num(pu.m)
+        );
+    }
+    for f in &r.foundations {
+        let w = f.w.iter().fold(0.0f64, |a, v| a.max(*v));
+        let _ = writeln!(
+            o,
+            "foundation   '{}' ({}): load {}, largest deflection {}",
+            f.name,
+            f.model,
+            num(f.load),
+            num(w)
+        );
+    }
+    let c = &r.certificate;
+    let _ = writeln!(
+        o,
+        "certificate  primal {:.1e}, dual {:.1e}, complementarity {:.1e}, equilibrium {:.1e}",
+        c.primal, c.dual, c.complementarity, c.equilibrium
+    );
+    let t = &r.timings;
+    let _ = writeln!(
+        o,
+        "time         {:.3} s (mesh {:.3}, assembly {:.3}, factorization {:.3}, condensation {:.3}, contact {:.3}, post {:.3})",
+        t.total, t.mesh, t.assembly, t.factorization, t.condensation, t.contact_solve, t.post
+    );
+    if let Some(steps) = &r.steps {
+        let _ = writeln!(o, "load steps   {} (the lines above are the last)", steps.len());
+    }
+    for w in &r.warnings {
+        let _ = writeln!(
+            o,
+            "WARNING      {} at {}: {} > {}",
+            w.code,
+            w.location,
+            num(w.value),
+            num(w.limit)
+        );
+    }
+    for n in &r.notes {
+        let _ = writeln!(o, "note         {n}");
+    }
+    o.trim_end().to_string()
+}
+
+pub fn error(e: &ErrorReply) -> String {
+    let code = serde_json::to_value(e.code)
+        .ok()
+        .and_then(|v| v.as_str().map(String::from))
+        .unwrap_or_default();
+    let at = if e.path.is_empty() {
+        String::new()
+    } else {
+        format!(" at {}", e.path)
+    };
+    format!("refused      {code}{at}: {}", e.message)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_keep_six_digits_without_noise() {
+        assert_eq!(num(0.0), "0");
+        assert_eq!(num(10.0), "10");
+        assert_eq!(num(-0.6912345678), "-0.691235");
+        assert_eq!(num(2.5e-7), "2.50000e-7");
+    }
+}
