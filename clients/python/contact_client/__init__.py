@@ -1,7 +1,9 @@
-"""Python client of the ``contact`` 2D frictionless contact solve service.
+"""The ``contact`` 2D frictionless contact solver in Python: in this process
+(``solve_local``, ``Client(local=True)``) or through a ``contact serve``
+service over zenoh (``solve``, ``Client(connect)``), with the same replies.
 
-    >>> from contact_client import solve, scenes
-    >>> reply = solve(scenes.hertz_cylinder(), connect="tcp/127.0.0.1:7447")
+    >>> from contact_client import solve_local, scenes
+    >>> reply = solve_local(scenes.hertz_cylinder())
     >>> reply["resultant"]["fy"]
 """
 
@@ -15,6 +17,7 @@ from .client import (
     make_config,
     schema,
     solve,
+    solve_local,
 )
 from . import scenes
 from .results import plot_pressure, save_vtu, to_numpy
@@ -32,6 +35,7 @@ __all__ = [
     "schema",
     "scenes",
     "solve",
+    "solve_local",
     "plot_pressure",
     "save_vtu",
     "to_numpy",

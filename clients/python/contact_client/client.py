@@ -266,17 +266,24 @@ class Client:
             reply = c.solve(request)
     """
 
-    def __init__(self, connect: str = DEFAULT_CONNECT, timeout: float = DEFAULT_TIMEOUT_S, spread: bool = False):
+    def __init__(self, connect: str = DEFAULT_CONNECT, timeout: float = DEFAULT_TIMEOUT_S, spread: bool = False,
+                 local: bool = False):
+        """``local=True`` solves in this process with the built-in solver
+        (:func:`solve_local`) and opens no zenoh session."""
         self.connect = connect
         self.timeout = float(timeout)
         self.spread = spread
+        self.local = local
         self._instances: list[str] = []
         self._listed_at = float("-inf")
         self._turn = 0
-        self._session: zenoh.Session | None = _open(connect)
+        self._session: zenoh.Session | None = None if local else _open(connect)
 
     @property
     def session(self) -> zenoh.Session:
+        if self.local:
+            raise TransportError("Client(local=True) solves in this process; health, schema and instances "
+                                 "are the service's: use Client(connect) for them")
         if self._session is None:
             raise TransportError("client is closed")
         return self._session
@@ -306,6 +313,11 @@ class Client:
         when it is a plain key chunk (no ``/ * $ ? #``), else one is generated
         (``progress-<uuid>``) and set in the request, so it comes back in the reply.
         """
+        if self.local:
+            if progress:
+                raise ValueError("progress is published by the service; an in-process solve has none")
+            return solve_local(request if timeout is None else _with_time_limit(request, float(timeout)),
+                               check=check)
         if progress:
             request, key = _with_progress_key(request)
             sink = progress if callable(progress) else _ProgressBar()
@@ -392,6 +404,34 @@ class Client:
 
     def __exit__(self, *exc) -> None:
         self.close()
+
+
+def solve_local(request: Request, check: bool = True) -> dict:
+    """Solve one request in this process with the solver built into the
+    package; the reply is the service's (same fields, same numbers; no
+    ``request_id``, and the timings and ``cache`` of this run).
+
+    Raises :class:`ContactError` for a refusal (the service's error reply) and
+    :class:`NotSolved` when the status is not ``solved`` (unless
+    ``check=False``). The solve holds no lock on the interpreter: other threads
+    go on while it runs.
+    """
+    try:
+        from ._contact import solve as _solve
+    except ImportError as e:
+        raise TransportError(
+            "this install has no built-in solver (contact_client._contact): install the package from source "
+            "with a Rust toolchain (`pip install ./clients/python`) or from a wheel made with "
+            "`maturin build --release`, or use a service (Client(connect))"
+        ) from e
+    ok, text = _solve(encode_request(request))
+    value = json.loads(text)
+    if not ok:
+        raise ContactError(value["code"], value["message"], value.get("path", ""),
+                           version=value.get("version"), reply=value)
+    if check and value.get("status", "solved") != "solved":
+        raise NotSolved(value)
+    return value
 
 
 def solve(request: Request, connect: str = DEFAULT_CONNECT, timeout: float = DEFAULT_TIMEOUT_S,

@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use base64::Engine;
 
-use contact::proto::{ErrorReply, OutputKind, SolveReply};
-use contact::scene::Limits;
+use crate::proto::{ErrorReply, OutputKind, SolveReply};
+use crate::scene::Limits;
 
 /// A reply and the VTU file made with it.
 pub struct Solved {
@@ -23,7 +23,7 @@ pub fn solve(file: &str, bytes: &[u8], want_vtu: bool) -> Result<Solved, ErrorRe
         "-" => PathBuf::from("."),
         f => Path::new(f).parent().map(Path::to_path_buf).unwrap_or_default(),
     };
-    let bytes = contact::request_files::resolve_gmsh_files(bytes, |name| {
+    let bytes = crate::request_files::resolve_gmsh_files(bytes, |name| {
         std::fs::read_to_string(dir.join(name)).map_err(|e| e.to_string())
     })?;
     let (bytes, asked) = if want_vtu {
@@ -31,7 +31,7 @@ pub fn solve(file: &str, bytes: &[u8], want_vtu: bool) -> Result<Solved, ErrorRe
     } else {
         (bytes, true)
     };
-    let mut reply = contact::solve_bytes(&bytes, &Limits::default())?;
+    let mut reply = crate::solve_bytes(&bytes, &Limits::default())?;
     let vtu = reply.vtu.as_deref().map(|b64| {
         base64::engine::general_purpose::STANDARD
             .decode(b64)
@@ -70,7 +70,7 @@ pub fn write_outputs(s: &Solved, vtu: Option<&Path>, points_csv: Option<&Path>) 
         std::fs::write(path, bytes).with_context(|| format!("writing {}", path.display()))?;
     }
     if let Some(path) = points_csv {
-        std::fs::write(path, contact::output::csv::points_csv(&s.shown))
+        std::fs::write(path, crate::output::csv::points_csv(&s.shown))
             .with_context(|| format!("writing {}", path.display()))?;
     }
     Ok(())

@@ -9,6 +9,9 @@
 pub use contact_core::{cache, cancel, progress, scene, CoreError, Limits};
 pub use contact_proto as proto;
 
+#[cfg(feature = "service")]
+pub mod cli;
+pub mod cli_files;
 pub mod output;
 pub mod parse;
 pub mod request_files;
