@@ -38,6 +38,7 @@ __all__ = [
     "support",
     "pressure",
     "traction",
+    "point_load",
     "obstacle",
     "line",
     "circle",
@@ -103,11 +104,16 @@ def body(
     supports: Iterable[dict] = (),
     tractions: Iterable[dict] | None = None,
     body_force: list[float] | None = None,
+    point_loads: Iterable[dict] | None = None,
 ) -> dict:
-    """A deformable body; ``supports`` and ``tractions`` name the mesh's edge sets."""
+    """A deformable body; ``supports``, ``tractions`` and ``point_loads`` name
+    the mesh's edge sets (generated meshes: rectangle "bottom", "right", "top",
+    "left"; half-disk "flat", "arc"; quarter-disk "flat", "arc", "axis")."""
     b = {"name": name, "material": material, "mesh": mesh, "supports": list(supports)}
     if tractions is not None:
         b["tractions"] = list(tractions)
+    if point_loads:
+        b["point_loads"] = list(point_loads)
     if body_force is not None:
         b["body_force"] = list(body_force)
     return b
@@ -181,14 +187,21 @@ def support(edges: str, ux: float | None = None, uy: float | None = None) -> dic
     return _given(edges=edges, ux=ux, uy=uy)
 
 
-def pressure(edges: str, p: float) -> dict:
-    """Uniform pressure on an edge set, positive pushing into the body."""
-    return {"edges": edges, "pressure": p}
+def pressure(edges: str, p: float, x_range: list[float] | None = None) -> dict:
+    """Uniform pressure on an edge set, positive pushing into the body; with
+    ``x_range=[x_min, x_max]`` only on the part of the set inside it."""
+    return _given(edges=edges, pressure=p, x_range=None if x_range is None else list(x_range))
 
 
-def traction(edges: str, t: list[float]) -> dict:
-    """Uniform traction vector [tx, ty] on an edge set."""
-    return {"edges": edges, "traction": list(t)}
+def traction(edges: str, t: list[float], x_range: list[float] | None = None) -> dict:
+    """Uniform traction vector [tx, ty] on an edge set (or its part in ``x_range``)."""
+    return _given(edges=edges, traction=list(t), x_range=None if x_range is None else list(x_range))
+
+
+def point_load(edges: str, at: list[float], force: list[float]) -> dict:
+    """A concentrated force [fx, fy] (per unit thickness) at the point ``at`` of an
+    edge set, shared by the nodes of the edge it falls on as their shape functions say."""
+    return {"edges": edges, "at": list(at), "force": list(force)}
 
 
 def line(point: list[float], normal: list[float]) -> dict:

@@ -65,3 +65,22 @@ def test_the_packaged_contact_command_runs_in_process(hertz_example_path):
                         capture_output=True, timeout=120)
     assert cp.returncode == 0, cp.stderr.decode(errors="replace")
     assert cp.stdout.decode().splitlines()[0].split() == ["status", "solved"]
+
+
+def test_point_load_and_partial_pressure_are_carried_with_their_moments():
+    # A 2 x 1 block held only by the rigid floor y = 0: the floor carries each
+    # load and its moment exactly (equilibrium of the discrete problem).
+    from contact_client import request as rq
+
+    def on_floor(**loads):
+        block = rq.body("block", rq.material(1000.0, 0.25), rq.rectangle([-1.0, 0.0], 2.0, 1.0, 0.05), **loads)
+        return rq.request([block], [rq.obstacle("floor", rq.line([0.0, 0.0], [0.0, 1.0]))],
+                          [rq.contact("block", "bottom", obstacle="floor")])
+
+    r = solve_local(on_floor(point_loads=[rq.point_load("top", [0.237, 1.0], [0.0, -3.0])]))
+    assert r["resultant"]["fy"] == pytest.approx(3.0, rel=1e-9)
+    assert r["resultant"]["m"] == pytest.approx(3.0 * 0.237, rel=1e-9)
+    q, a, b = 2.0, -0.33, 0.71
+    r = solve_local(on_floor(tractions=[rq.pressure("top", q, x_range=[a, b])]))
+    assert r["resultant"]["fy"] == pytest.approx(q * (b - a), rel=1e-9)
+    assert r["resultant"]["m"] == pytest.approx(q * (b * b - a * a) / 2.0, rel=1e-9)

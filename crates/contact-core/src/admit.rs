@@ -13,7 +13,7 @@
 
 use crate::contact::{compliance::Foundations, free_motions::FreeMotions, ConstraintSet};
 use crate::error::{CoreError, InvalidKind};
-use crate::fem::DofMap;
+use crate::fem::{loads::Located, DofMap};
 use crate::mesh::Mesh2d;
 use crate::scene::{Discretization, Formulation, Limits, Method, Scene, Target};
 
@@ -78,6 +78,13 @@ pub fn search_work(scene: &Scene, meshes: &[Mesh2d]) -> Result<(), CoreError> {
         }
     }
     Ok(())
+}
+
+/// Where every point load falls on its edge set; a point off it is an
+/// `invalid_geometry` at the load's `at`.
+pub fn point_loads(scene: &Scene, meshes: &[Mesh2d]) -> Result<Vec<Vec<Located>>, CoreError> {
+    crate::fem::loads::locate_all(scene, meshes)
+        .map_err(|(path, reason)| CoreError::invalid(InvalidKind::Geometry, path, reason))
 }
 
 /// Every pair has at least one contact row.

@@ -38,7 +38,8 @@ impl Model {
         admit::search_work(scene, &meshes)?;
         let cons = contact::build(scene, &meshes, &dofs);
         admit::candidates(scene, &cons)?;
-        let external = fem::assembly::external_loads(scene, &meshes, &dofs);
+        let points = admit::point_loads(scene, &meshes)?;
+        let external = fem::loads::external(scene, &meshes, &dofs, &points);
         let free = FreeMotions::try_new(scene, &cons, &dofs, &meshes, &external)?;
         let foundations = Foundations::try_new(scene, &cons)?;
         Ok(Model {

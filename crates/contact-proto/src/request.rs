@@ -73,12 +73,30 @@ pub struct BodySpec {
     /// Displacement constraints on named edge sets (fixed supports, rollers, prescribed motion).
     #[serde(default)]
     pub supports: Vec<SupportSpec>,
-    /// Surface loads on named edge sets.
+    /// Surface loads on named edge sets (or on part of one, `x_range`).
     #[serde(default)]
     pub tractions: Vec<TractionSpec>,
+    /// Concentrated forces at points of named edge sets.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub point_loads: Vec<PointLoadSpec>,
     /// Body force per unit volume [force/length³], e.g. weight density.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body_force: Option<[f64; 2]>,
+}
+
+/// A concentrated force [force per unit thickness] at a point of an edge set
+/// (a node, or between nodes: shared by the edge's nodes as its shape
+/// functions there say, the consistent nodal load of a point force).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PointLoadSpec {
+    /// Name of the edge set the point lies on.
+    pub edges: String,
+    /// The point [x, y] [length]; it must lie on the edge set (within 1e-6 of
+    /// the body's size).
+    pub at: [f64; 2],
+    /// The force [fx, fy] [force per unit thickness].
+    pub force: [f64; 2],
 }
 
 /// Isotropic linear elastic material.
@@ -243,6 +261,10 @@ pub struct TractionSpec {
     /// Normal pressure, positive pushing into the body [force/length²].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pressure: Option<f64>,
+    /// Load only the part of the edge set with x in [x_min, x_max] [length]
+    /// (an edge crossing an end is loaded on its part inside).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub x_range: Option<[f64; 2]>,
 }
 
 /// A rigid obstacle, fixed or (with `punch`) a rigid punch whose motion and loads

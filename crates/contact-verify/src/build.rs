@@ -16,8 +16,8 @@
 
 use contact_proto::{
     BodyRef, BodySpec, ContactSpec, Discretization, ElementKind, Facing, FoundationModel, FoundationSpec, GradingSpec,
-    HalfDiskSpec, MaterialSpec, MeshSpec, MethodName, ObstacleShape, ObstacleSpec, RectangleSpec, SolveRequest,
-    SolverSettings, SupportSpec, SurfaceSpec, TractionSpec, PROTOCOL_VERSION,
+    HalfDiskSpec, MaterialSpec, MeshSpec, MethodName, ObstacleShape, ObstacleSpec, PointLoadSpec, RectangleSpec,
+    SolveRequest, SolverSettings, SupportSpec, SurfaceSpec, TractionSpec, PROTOCOL_VERSION,
 };
 
 /// A request with the service's defaults for everything not given.
@@ -95,6 +95,7 @@ pub fn body(name: &str, youngs_modulus: f64, poisson_ratio: f64, mesh: MeshSpec)
         mesh,
         supports: Vec::new(),
         tractions: Vec::new(),
+        point_loads: Vec::new(),
         body_force: None,
     }
 }
@@ -107,6 +108,10 @@ pub trait BodyExt {
     fn fixed(self, edges: &str) -> Self;
     /// Uniform pressure, positive pushing into the body.
     fn pressure(self, edges: &str, p: f64) -> Self;
+    /// Uniform pressure on the part of the edge set with x in [x_min, x_max].
+    fn pressure_on(self, edges: &str, p: f64, x_range: [f64; 2]) -> Self;
+    /// A concentrated force at a point of the edge set.
+    fn point_load(self, edges: &str, at: [f64; 2], force: [f64; 2]) -> Self;
     /// Body force per unit volume.
     fn body_force(self, f: [f64; 2]) -> Self;
 }
@@ -128,6 +133,24 @@ impl BodyExt for BodySpec {
             edges: edges.to_string(),
             traction: None,
             pressure: Some(p),
+            x_range: None,
+        });
+        self
+    }
+    fn pressure_on(mut self, edges: &str, p: f64, x_range: [f64; 2]) -> Self {
+        self.tractions.push(TractionSpec {
+            edges: edges.to_string(),
+            traction: None,
+            pressure: Some(p),
+            x_range: Some(x_range),
+        });
+        self
+    }
+    fn point_load(mut self, edges: &str, at: [f64; 2], force: [f64; 2]) -> Self {
+        self.point_loads.push(PointLoadSpec {
+            edges: edges.to_string(),
+            at,
+            force,
         });
         self
     }

@@ -9,8 +9,8 @@ use super::element;
 use super::material::d_matrix;
 use super::rigid_modes::{self, free_modes, mode_row, virtual_supports, RigidModes};
 use crate::error::{CoreError, InvalidKind};
-use crate::mesh::{boundary::edge_normal, Mesh2d};
-use crate::scene::{Scene, Traction};
+use crate::mesh::Mesh2d;
+use crate::scene::Scene;
 
 pub const FIXED: usize = usize::MAX;
 
@@ -294,69 +294,16 @@ pub fn assemble_loads(external: &[f64], dofs: &DofMap, stiffness: &Stiffness) ->
     f
 }
 
-/// Nodal external loads (tractions, pressures, body forces) on every global
-/// DOF, fixed ones included: the rigid modes of a body need them all.
-pub fn external_loads(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Vec<f64> {
-    let mut f = vec![0.0; dofs.free.len()];
-    let mut fe = [0.0; 12];
-    for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
-        let k = mesh.order.nodes_per_element();
-        if body.body_force != [0.0, 0.0] {
-            let mut x = [[0.0; 2]; 6];
-            for e in 0..mesh.n_elems() {
-                let conn = mesh.elem(e);
-                for (i, &node) in conn.iter().enumerate() {
-                    x[i] = mesh.nodes[node];
-                }
-                element::body_load(mesh.order, &x[..k], body.body_force, &mut fe);
-                for (i, &node) in conn.iter().enumerate() {
-                    for c in 0..2 {
-                        f[dofs.dof(b, node, c)] += fe[2 * i + c];
-                    }
-                }
-            }
-        }
-        for t in &body.tractions {
-            let (edges, vector, pressure) = match t {
-                Traction::Vector { edges, t } => (edges, Some(*t), 0.0),
-                Traction::Pressure { edges, p } => (edges, None, *p),
-            };
-            for edge in mesh.edge_sets.get(edges).map(|v| v.as_slice()).unwrap_or(&[]) {
-                let nodes: Vec<usize> = edge.nodes().collect();
-                let (normal, _) = edge_normal(mesh, edge);
-                for g in &element::GAUSS3 {
-                    let (nn, dn) = element::edge_shape(nodes.len(), g[0]);
-                    let (mut tx, mut ty) = (0.0, 0.0);
-                    for (i, &node) in nodes.iter().enumerate() {
-                        tx += dn[i] * mesh.nodes[node][0];
-                        ty += dn[i] * mesh.nodes[node][1];
-                    }
-                    let jac = (tx * tx + ty * ty).sqrt();
-                    // Pressure acts against the local outward normal (−t⊥ of the tangent).
-                    let tr = vector.unwrap_or_else(|| {
-                        let (nx, ny) = if jac > 0.0 {
-                            (ty / jac, -tx / jac)
-                        } else {
-                            (normal[0], normal[1])
-                        };
-                        [-pressure * nx, -pressure * ny]
-                    });
-                    for (i, &node) in nodes.iter().enumerate() {
-                        for (c, tc) in tr.iter().enumerate() {
-                            f[dofs.dof(b, node, c)] += g[1] * jac * nn[i] * tc;
-                        }
-                    }
-                }
-            }
-        }
-    }
-    f
-}
-
 /// Stiffness and loads together (no cache).
 pub fn assemble(scene: &Scene, meshes: &[Mesh2d], dofs: DofMap) -> Result<Assembled, CoreError> {
     let stiffness = assemble_stiffness(scene, meshes, &dofs)?;
-    let f = assemble_loads(&external_loads(scene, meshes, &dofs), &dofs, &stiffness);
+    let points = super::loads::locate_all(scene, meshes)
+        .map_err(|(path, reason)| CoreError::invalid(InvalidKind::Geometry, path, reason))?;
+    let f = assemble_loads(
+        &super::loads::external(scene, meshes, &dofs, &points),
+        &dofs,
+        &stiffness,
+    );
     Ok(Assembled {
         dofs,
         stiffness: std::sync::Arc::new(stiffness),

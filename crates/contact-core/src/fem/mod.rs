@@ -2,6 +2,7 @@
 
 pub mod assembly;
 pub mod element;
+pub mod loads;
 pub mod material;
 pub mod rigid_modes;
 

@@ -54,6 +54,9 @@ impl Scene {
                     Traction::Pressure { p, .. } => *p *= k,
                 }
             }
+            for pl in &mut b.point_loads {
+                pl.force = [k * pl.force[0], k * pl.force[1]];
+            }
         }
         s
     }
@@ -76,6 +79,7 @@ pub struct Body {
     pub mesh: MeshSource,
     pub supports: Vec<Support>,
     pub tractions: Vec<Traction>,
+    pub point_loads: Vec<PointLoad>,
     pub body_force: [f64; 2],
     /// JSON pointer of the body in the request.
     pub path: String,
@@ -112,10 +116,30 @@ pub struct Support {
     pub uy: Option<f64>,
 }
 
+/// A surface load on an edge set, or on its part with x in `x_range`.
 #[derive(Debug, Clone)]
 pub enum Traction {
-    Vector { edges: String, t: [f64; 2] },
-    Pressure { edges: String, p: f64 },
+    Vector {
+        edges: String,
+        t: [f64; 2],
+        x_range: Option<[f64; 2]>,
+    },
+    Pressure {
+        edges: String,
+        p: f64,
+        x_range: Option<[f64; 2]>,
+    },
+}
+
+/// A concentrated force at a point of an edge set (nondimensional); where it
+/// falls on the mesh is found after meshing (`admit::point_loads`).
+#[derive(Debug, Clone)]
+pub struct PointLoad {
+    pub edges: String,
+    pub at: [f64; 2],
+    pub force: [f64; 2],
+    /// JSON pointer of the load.
+    pub path: String,
 }
 
 #[derive(Debug, Clone)]

@@ -11,7 +11,7 @@ use super::{finite, invalid, poisson, positive, Limits};
 use crate::error::{CoreError, InvalidKind, InvalidKind as K};
 use crate::mesh::generate::{DiskPart, Grading};
 use crate::mesh::{gmsh, quality, Order};
-use crate::scene::{Body, MeshSource, Scales, Support, Traction};
+use crate::scene::{Body, MeshSource, PointLoad, Scales, Support, Traction};
 
 /// What the first pass learns: the scales, each body's estimated node count,
 /// and the Gmsh files it parsed.
@@ -170,6 +170,21 @@ pub fn bodies(req: &SolveRequest, survey: &Survey) -> Result<(Vec<String>, Vec<B
         for (k, t) in b.tractions.iter().enumerate() {
             let tp = format!("{bp}/tractions/{k}");
             need_edges(&t.edges, format!("{tp}/edges"))?;
+            let x_range = match t.x_range {
+                None => None,
+                Some([a, c]) => {
+                    finite(a, &format!("{tp}/x_range/0"), K::Request)?;
+                    finite(c, &format!("{tp}/x_range/1"), K::Request)?;
+                    if c <= a {
+                        return Err(invalid(
+                            K::Request,
+                            format!("{tp}/x_range"),
+                            format!("x_range must be [x_min, x_max] with x_max > x_min, got [{a}, {c}]"),
+                        ));
+                    }
+                    Some([l(a), l(c)])
+                }
+            };
             match (t.traction, t.pressure) {
                 (Some(v), None) => {
                     finite(v[0], &format!("{tp}/traction/0"), K::Request)?;
@@ -177,6 +192,7 @@ pub fn bodies(req: &SolveRequest, survey: &Survey) -> Result<(Vec<String>, Vec<B
                     tractions.push(Traction::Vector {
                         edges: t.edges.clone(),
                         t: [v[0] / modulus, v[1] / modulus],
+                        x_range,
                     });
                 }
                 (None, Some(p)) => {
@@ -184,10 +200,26 @@ pub fn bodies(req: &SolveRequest, survey: &Survey) -> Result<(Vec<String>, Vec<B
                     tractions.push(Traction::Pressure {
                         edges: t.edges.clone(),
                         p: p / modulus,
+                        x_range,
                     });
                 }
                 _ => return Err(invalid(K::Request, tp, "give exactly one of 'traction' and 'pressure'")),
             }
+        }
+        let mut point_loads = Vec::new();
+        for (k, pl) in b.point_loads.iter().enumerate() {
+            let pp = format!("{bp}/point_loads/{k}");
+            need_edges(&pl.edges, format!("{pp}/edges"))?;
+            for (name, v) in [("at", pl.at), ("force", pl.force)] {
+                finite(v[0], &format!("{pp}/{name}/0"), K::Request)?;
+                finite(v[1], &format!("{pp}/{name}/1"), K::Request)?;
+            }
+            point_loads.push(PointLoad {
+                edges: pl.edges.clone(),
+                at: lp(pl.at),
+                force: [pl.force[0] / (modulus * length), pl.force[1] / (modulus * length)],
+                path: pp,
+            });
         }
         let bf = b.body_force.unwrap_or([0.0, 0.0]);
         finite(bf[0], &format!("{bp}/body_force/0"), K::Request)?;
@@ -199,6 +231,7 @@ pub fn bodies(req: &SolveRequest, survey: &Survey) -> Result<(Vec<String>, Vec<B
             mesh,
             supports,
             tractions,
+            point_loads,
             body_force: [bf[0] * length / modulus, bf[1] * length / modulus],
             path: bp,
         });

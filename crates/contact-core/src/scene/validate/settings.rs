@@ -59,7 +59,12 @@ pub fn settings(
                 Traction::Vector { t, .. } => vec![t[0], t[1]],
                 Traction::Pressure { p, .. } => vec![*p],
             });
-            supports.chain(tractions).chain(b.body_force).collect::<Vec<f64>>()
+            let points = b.point_loads.iter().flat_map(|p| p.force);
+            supports
+                .chain(tractions)
+                .chain(points)
+                .chain(b.body_force)
+                .collect::<Vec<f64>>()
         })
         .fold(0.0f64, |a, v| a.max(v.abs()));
     check_load_factors(&req.load_factors, load_size, limits)?;

@@ -1,0 +1,214 @@
+//! Nodal external loads: body forces, tractions and pressures on edge sets
+//! (or on the part of one inside an x range), and concentrated forces at
+//! points of edge sets.
+//!
+//! Surface loads are integrated with the edge's own shape functions (3-point
+//! Gauss, exact for a uniform load on T3 and T6 edges); an edge crossing an
+//! end of the x range is integrated over its part inside, mapped from the
+//! straight chord between its corners. A point force at edge parameter s is
+//! shared by the edge's nodes as N_i(s) (the consistent nodal load), so a force
+//! at a node stays at that node.
+
+use super::assembly::DofMap;
+use super::element;
+use crate::mesh::{boundary::edge_normal, Edge, Mesh2d};
+use crate::scene::{Scene, Traction};
+
+/// Where a point load falls: its edge's nodes and their shares N_i(s).
+pub type Located = Vec<(usize, f64)>;
+
+/// A point within this fraction of the nearest edge's length of the discrete
+/// boundary is on it: a point given on the true curve of a meshed arc lies up
+/// to the sagitta h²/(8R) off the chords.
+const ON_EDGE: f64 = 0.05;
+
+/// The point loads of every body on their meshes, per body in request order;
+/// a point off its edge set is `(path, reason)`.
+pub fn locate_all(scene: &Scene, meshes: &[Mesh2d]) -> Result<Vec<Vec<Located>>, (String, String)> {
+    scene
+        .bodies
+        .iter()
+        .zip(meshes)
+        .map(|(body, mesh)| {
+            body.point_loads
+                .iter()
+                .map(|pl| {
+                    let edges = mesh.edge_sets.get(&pl.edges).map(|v| v.as_slice()).unwrap_or(&[]);
+                    locate(mesh, edges, pl.at).map_err(|(distance, nearest)| {
+                        let sc = scene.scales;
+                        (
+                            format!("{}/at", pl.path),
+                            format!(
+                                "the point ({:.6e}, {:.6e}) is {:.3e} from edge set '{}' (nearest point ({:.6e}, {:.6e})): a point load must lie on its edge set",
+                                sc.length(pl.at[0]),
+                                sc.length(pl.at[1]),
+                                sc.length(distance),
+                                pl.edges,
+                                sc.length(nearest[0]),
+                                sc.length(nearest[1])
+                            ),
+                        )
+                    })
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The edge of `edges` nearest to `p` and the shares of its nodes at the
+/// nearest point, or (distance, nearest point) when `p` is off the edges.
+fn locate(mesh: &Mesh2d, edges: &[Edge], p: [f64; 2]) -> Result<Located, (f64, [f64; 2])> {
+    let mut best: Option<(f64, f64, &Edge, [f64; 2])> = None;
+    for e in edges {
+        let s = nearest_parameter(mesh, e, p);
+        let x = point_at(mesh, e, s);
+        let d = (x[0] - p[0]).hypot(x[1] - p[1]);
+        if best.is_none_or(|b| d < b.0) {
+            best = Some((d, s, e, x));
+        }
+    }
+    let Some((d, s, e, x)) = best else {
+        return Err((f64::INFINITY, p));
+    };
+    let (_, len) = edge_normal(mesh, e);
+    if d > ON_EDGE * len + 1e-12 * mesh.size() {
+        return Err((d, x));
+    }
+    let nodes: Vec<usize> = e.nodes().collect();
+    let (n, _) = element::edge_shape(nodes.len(), s);
+    Ok(nodes.into_iter().zip(n).filter(|&(_, w)| w != 0.0).collect())
+}
+
+fn point_at(mesh: &Mesh2d, e: &Edge, s: f64) -> [f64; 2] {
+    let nodes: Vec<usize> = e.nodes().collect();
+    let (n, _) = element::edge_shape(nodes.len(), s);
+    let mut x = [0.0; 2];
+    for (i, &node) in nodes.iter().enumerate() {
+        x[0] += n[i] * mesh.nodes[node][0];
+        x[1] += n[i] * mesh.nodes[node][1];
+    }
+    x
+}
+
+/// The edge parameter s ∈ [−1, 1] nearest to `p`: the chord's projection,
+/// refined by Newton on |x(s) − p|² for a curved (T6) edge.
+fn nearest_parameter(mesh: &Mesh2d, e: &Edge, p: [f64; 2]) -> f64 {
+    let (a, b) = (mesh.nodes[e.a], mesh.nodes[e.b]);
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let t = ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy);
+    let mut s = (2.0 * t - 1.0).clamp(-1.0, 1.0);
+    if e.mid.is_some() {
+        let nodes: Vec<usize> = e.nodes().collect();
+        for _ in 0..8 {
+            let (_, dn) = element::edge_shape(3, s);
+            let x = point_at(mesh, e, s);
+            let mut dxds = [0.0; 2];
+            for (i, &node) in nodes.iter().enumerate() {
+                dxds[0] += dn[i] * mesh.nodes[node][0];
+                dxds[1] += dn[i] * mesh.nodes[node][1];
+            }
+            // Gauss–Newton on the distance (x'' is small on a mesh edge).
+            let g = (x[0] - p[0]) * dxds[0] + (x[1] - p[1]) * dxds[1];
+            let h = dxds[0] * dxds[0] + dxds[1] * dxds[1];
+            if h <= 0.0 {
+                break;
+            }
+            s = (s - g / h).clamp(-1.0, 1.0);
+        }
+    }
+    s
+}
+
+/// The part [s0, s1] of an edge with x in `range` (the chord's map), or None.
+fn clip(mesh: &Mesh2d, e: &Edge, range: Option<[f64; 2]>) -> Option<(f64, f64)> {
+    let Some([lo, hi]) = range else {
+        return Some((-1.0, 1.0));
+    };
+    let (xa, xb) = (mesh.nodes[e.a][0], mesh.nodes[e.b][0]);
+    if xa == xb {
+        return (xa >= lo && xa <= hi).then_some((-1.0, 1.0));
+    }
+    let s_of = |x: f64| 2.0 * (x - xa) / (xb - xa) - 1.0;
+    let (s0, s1) = {
+        let (u, v) = (s_of(lo), s_of(hi));
+        (u.min(v).max(-1.0), u.max(v).min(1.0))
+    };
+    (s1 > s0).then_some((s0, s1))
+}
+
+/// Nodal external loads (tractions, pressures, point forces, body forces) on
+/// every global DOF, fixed ones included: the rigid modes of a body need them
+/// all. `points`: `locate_all` of the scene.
+pub fn external(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap, points: &[Vec<Located>]) -> Vec<f64> {
+    let mut f = vec![0.0; dofs.free.len()];
+    let mut fe = [0.0; 12];
+    for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
+        let k = mesh.order.nodes_per_element();
+        if body.body_force != [0.0, 0.0] {
+            let mut x = [[0.0; 2]; 6];
+            for e in 0..mesh.n_elems() {
+                let conn = mesh.elem(e);
+                for (i, &node) in conn.iter().enumerate() {
+                    x[i] = mesh.nodes[node];
+                }
+                element::body_load(mesh.order, &x[..k], body.body_force, &mut fe);
+                for (i, &node) in conn.iter().enumerate() {
+                    for c in 0..2 {
+                        f[dofs.dof(b, node, c)] += fe[2 * i + c];
+                    }
+                }
+            }
+        }
+        for t in &body.tractions {
+            let (edges, vector, pressure, range) = match t {
+                Traction::Vector { edges, t, x_range } => (edges, Some(*t), 0.0, *x_range),
+                Traction::Pressure { edges, p, x_range } => (edges, None, *p, *x_range),
+            };
+            for edge in mesh.edge_sets.get(edges).map(|v| v.as_slice()).unwrap_or(&[]) {
+                let Some((s0, s1)) = clip(mesh, edge, range) else {
+                    continue;
+                };
+                let nodes: Vec<usize> = edge.nodes().collect();
+                let (normal, _) = edge_normal(mesh, edge);
+                let half = 0.5 * (s1 - s0);
+                for g in &element::GAUSS3 {
+                    // The whole edge keeps the plain Gauss points (bit for bit).
+                    let s = if range.is_none() {
+                        g[0]
+                    } else {
+                        s0 + half * (g[0] + 1.0)
+                    };
+                    let (nn, dn) = element::edge_shape(nodes.len(), s);
+                    let (mut tx, mut ty) = (0.0, 0.0);
+                    for (i, &node) in nodes.iter().enumerate() {
+                        tx += dn[i] * mesh.nodes[node][0];
+                        ty += dn[i] * mesh.nodes[node][1];
+                    }
+                    let jac = (tx * tx + ty * ty).sqrt();
+                    // Pressure acts against the local outward normal (−t⊥ of the tangent).
+                    let tr = vector.unwrap_or_else(|| {
+                        let (nx, ny) = if jac > 0.0 {
+                            (ty / jac, -tx / jac)
+                        } else {
+                            (normal[0], normal[1])
+                        };
+                        [-pressure * nx, -pressure * ny]
+                    });
+                    for (i, &node) in nodes.iter().enumerate() {
+                        for (c, tc) in tr.iter().enumerate() {
+                            f[dofs.dof(b, node, c)] += g[1] * half * jac * nn[i] * tc;
+                        }
+                    }
+                }
+            }
+        }
+        for (pl, at) in body.point_loads.iter().zip(&points[b]) {
+            for &(node, share) in at {
+                for c in 0..2 {
+                    f[dofs.dof(b, node, c)] += share * pl.force[c];
+                }
+            }
+        }
+    }
+    f
+}
