@@ -21,6 +21,10 @@ from .request import PROTOCOL_VERSION
 
 __all__ = [
     "gmsh_mesh",
+    "roller_on_plate",
+    "footing_with_eccentric_load",
+    "rigid_footing_pressure",
+    "punch_from_polyline",
     "roller_on_floor",
     "block_on_polyline",
     "block_held_by_contact",
@@ -396,3 +400,113 @@ def block_held_by_contact(
         contacts=[rq.contact("block", "bottom", obstacle="floor")],
         description=f"unsupported block {width} x {height} pressed by {pressure} onto a rigid floor",
     )
+
+
+def roller_on_plate(
+    radius: float = 8.0,
+    youngs_modulus: float = 200.0,
+    poisson_ratio: float = 0.3,
+    plate_modulus: float = 70.0,
+    plate_poisson: float = 0.33,
+    approach: float = 0.05,
+    plate_width: float = 40.0,
+    plate_depth: float = 20.0,
+    h_min: float = 0.01,
+    extent: float = 1.2,
+    element: str = "t3",
+    discretization: str = "mortar",
+) -> dict:
+    """An elastic roller on an elastic plate (two deformable bodies, any materials).
+
+    A half-disk of ``radius`` (arc down, touching the plate's top face y = 0 at
+    the origin) with its flat top clamped and moved down by ``approach``; the
+    plate ``plate_width`` x ``plate_depth`` below it is fixed at its bottom.
+    Both meshes are ``h_min`` within ``extent`` of the contact point (not
+    matching: the plate's is 1.3 h_min), graded by 1.1 elsewhere. The softer
+    body carries the pressure (the service turns the pair round when needed).
+    Reference: ``hertz_two_cylinders(P, radius, math.inf, E, nu, E_plate,
+    nu_plate)`` with P = |resultant.fy| of the pair (a flat is a cylinder of
+    infinite radius), while a is small against the radius and the plate.
+    """
+    roller = rq.body("roller", rq.material(youngs_modulus, poisson_ratio),
+                     rq.half_disk([0.0, radius], radius, "down", radius / 16.0, element,
+                                  rq.grading(h_min, 1.1, extent)),
+                     [rq.support("flat", 0.0, -approach)])
+    plate = rq.body("plate", rq.material(plate_modulus, plate_poisson),
+                    rq.rectangle([-0.5 * plate_width, -plate_depth], plate_width, plate_depth, plate_depth / 16.0,
+                                 element, rq.grading(1.3 * h_min, 1.1, extent, focus=[0.0, 0.0])),
+                    [rq.support("bottom", 0.0, 0.0)])
+    return rq.request(
+        bodies=[roller, plate],
+        contacts=[rq.contact("roller", "arc", against=("plate", "top"), discretization=discretization)],
+        description=f"elastic roller R={radius} (E={youngs_modulus}) pressed {approach} onto an elastic plate "
+                    f"(E={plate_modulus})",
+    )
+
+
+def footing_with_eccentric_load(
+    model: dict,
+    load: float = 10.0,
+    eccentricity: float = 0.0,
+    moment: float = 0.0,
+    width: float = 2.0,
+    height: float = 0.5,
+    youngs_modulus: float = 1e5,
+    poisson_ratio: float = 0.2,
+    size: float = 0.05,
+    extent: float = 5.0,
+    element: str = "t3",
+) -> dict:
+    """A footing ``width`` x ``height`` with no support on a tensionless
+    foundation (``model``: ``request.winkler(k)``, ``request.pasternak(k, mu)``
+    or ``request.half_plane(E, nu, d)``) along y = 0, loaded on its top by a
+    vertical point load ``load`` (per unit thickness, downward) at x =
+    ``eccentricity`` and by a ``moment`` (counter-clockwise), the moment
+    applied as a pair of opposite vertical point loads at the top corners.
+
+    Reference for a stiff footing (the default modulus is 1e5 against the
+    foundation): ``rigid_footing_pressure`` with the resultant's eccentricity
+    ``eccentricity - moment / load``: the linear pressure of a rigid footing,
+    valid while that stays within the kern (|e| <= width/6: no uplift; exact
+    for Winkler). Equilibrium holds whatever the model: the foundation carries
+    ``load`` and the moment load * eccentricity - moment about the origin.
+    """
+    half = 0.5 * width
+    points = [rq.point_load("top", [eccentricity, height], [0.0, -load])]
+    if moment:
+        # M = couple of ±M/width at the corners (counter-clockwise positive).
+        f = moment / width
+        points += [rq.point_load("top", [half, height], [0.0, f]),
+                   rq.point_load("top", [-half, height], [0.0, -f])]
+    footing = rq.body("footing", rq.material(youngs_modulus, poisson_ratio),
+                      rq.rectangle([-half, 0.0], width, height, size, element), point_loads=points)
+    return rq.request(
+        bodies=[footing],
+        foundations=[rq.foundation("soil", model, -extent, extent)],
+        contacts=[rq.contact("footing", "bottom", foundation="soil")],
+        description=f"footing {width} x {height} on a tensionless foundation, load {load} at x = {eccentricity}, "
+                    f"moment {moment}",
+    )
+
+
+def rigid_footing_pressure(x: float, load: float, eccentricity: float, width: float) -> float:
+    """Pressure under a rigid footing of ``width`` centred at 0 on a Winkler
+    foundation, carrying ``load`` whose resultant acts at x = ``eccentricity``:
+    P/B (1 + 12 e x / B^2), valid while it stays >= 0 (|e| <= B/6, no uplift)."""
+    if abs(x) > 0.5 * width:
+        return 0.0
+    return load / width * (1.0 + 12.0 * eccentricity * x / width ** 2)
+
+
+def punch_from_polyline(points: list[list[float]], load: float = 10.0, **block) -> dict:
+    """A rigid punch whose face is a drawing's polyline ``points`` [[x, y], ...]
+    (left to right, y up; the rigid material above it), pressed with ``load``
+    into the block of ``punch_on_block`` (keyword arguments as there). x is
+    measured from the punch's reference point (the load acts there); the
+    drawing is moved up or down so its lowest point touches the block's top
+    face. A straight face from -b to b is the flat punch of ``sadowsky_pressure``."""
+    if len(points) < 2 or any(b[0] <= a[0] for a, b in zip(points, points[1:])):
+        raise ValueError("points must be at least two [x, y] with increasing x")
+    low = min(y for _, y in points)
+    shifted = [[float(x), float(y) - low] for x, y in points]
+    return punch_on_block({"polyline": {"points": shifted}}, load=load, **block)

@@ -68,3 +68,47 @@ def test_a_pair_names_exactly_one_target():
         rq.contact("a", "top")
     with pytest.raises(ValueError):
         rq.contact("a", "top", obstacle="o", foundation="f")
+
+
+def test_roller_on_plate_obeys_hertz_for_two_bodies():
+    import math
+    from contact_client import solve_local
+
+    r = solve_local(scenes.roller_on_plate(h_min=0.02))
+    pair = r["pairs"][0]
+    P = abs(pair["resultant"]["fy"])
+    a, p0 = scenes.hertz_two_cylinders(P, 8.0, math.inf, 200.0, 0.3, 70.0, 0.33)
+    zone = pair["zones"][0]
+    # The zone ends are node positions: h/a is about 3 % here (measured +1.6 %);
+    # the peak is resolved much better (measured +0.2 %).
+    assert 0.5 * (zone[1] - zone[0]) == pytest.approx(a, rel=0.03)
+    assert max(p["pressure"] for p in pair["points"]) == pytest.approx(p0, rel=0.02)
+    assert pair["other_resultant"]["fy"] == pytest.approx(-pair["resultant"]["fy"], rel=1e-12)
+
+
+@pytest.mark.parametrize("e, M", [(0.0, 0.0), (0.2, 0.0), (0.0, 3.0), (0.25, 1.0)])
+def test_eccentric_footing_on_winkler_is_the_rigid_footing(e, M):
+    from contact_client import request as rq, solve_local
+
+    P, B = 10.0, 2.0
+    r = solve_local(scenes.footing_with_eccentric_load(rq.winkler(100.0), load=P, eccentricity=e, moment=M))
+    # Equilibrium, exact: the foundation carries P and the moment P e - M.
+    assert r["resultant"]["fy"] == pytest.approx(P, rel=1e-9)
+    assert r["resultant"]["m"] == pytest.approx(P * e - M, abs=1e-9 * P)
+    # A footing 1000 times stiffer than the springs is nearly rigid: the linear
+    # pressure within 1.5 % of P/B away from the ends (measured 0.6 %).
+    for p in r["pairs"][0]["points"]:
+        if abs(p["x"]) < 0.95:
+            ref = scenes.rigid_footing_pressure(p["x"], P, e - M / P, B)
+            assert abs(p["pressure"] - ref) < 0.015 * P / B
+
+
+def test_a_straight_polyline_punch_is_the_flat_punch():
+    from contact_client import solve_local
+
+    flat = solve_local(scenes.punch_on_block({"flat": {"half_width": 1.0}}, h_min=0.02))
+    drawn = solve_local(scenes.punch_from_polyline([[-1.0, 3.0], [1.0, 3.0]], h_min=0.02))
+    peak = max(p["pressure"] for p in flat["pairs"][0]["points"])
+    for a, b in zip(flat["pairs"][0]["points"], drawn["pairs"][0]["points"]):
+        assert abs(a["pressure"] - b["pressure"]) <= 1e-12 * peak
+    assert drawn["punches"][0]["alpha2"] == pytest.approx(flat["punches"][0]["alpha2"], rel=1e-12)
