@@ -54,9 +54,21 @@ def _hertz_overlay(request: dict, result: dict, pair: int) -> tuple[Callable[[fl
     return (lambda x: scenes.hertz_pressure(x - cx, a, p0)), f"Hertz (P = {P:.4g}, a = {a:.4g}, p0 = {p0:.4g})"
 
 
+def _unit(result: dict, kind: str) -> str:
+    """`` [name]`` of the reply's echoed unit of ``kind``, or nothing."""
+    name = (result.get("units") or {}).get(kind)
+    return f" [{name}]" if name else ""
+
+
 def plot_pressure(result: dict, ax=None, reference: str | Callable[[float], float] | None = None,
-                  request: dict | None = None, pairs: list[int] | None = None):
+                  request: dict | None = None, pairs: list[int] | None = None, title: str | None = None):
     """Contact pressure against x, one line per pair, contact zones shaded; returns the axes.
+
+    The axes are labelled with the request's ``units`` when it names them (echoed in
+    the reply); the title is ``title``, else the request's ``description``, else
+    "Contact pressure". The solver's pressures are solid lines with open markers (a
+    different marker per pair) and the reference is a black dashed line, so the
+    figure reads in grey-scale print.
 
     ``reference``: ``"hertz"`` overlays Hertz's p0 sqrt(1 - x^2/a^2) for the load the reply
     reports (|resultant.fy| of the pair), computed from ``request`` (a rigid circle on one
@@ -83,10 +95,11 @@ def plot_pressure(result: dict, ax=None, reference: str | Callable[[float], floa
         d = arrays[k]
         order = np.argsort(d["x"])
         target = d.get("obstacle") or d.get("against") or d.get("foundation") or "?"
-        line, = ax.plot(d["x"][order], d["pressure"][order], ".-", ms=3, lw=1,
-                        label=f"pair {k}: {d['body']} / {target}")
+        marker = "osD^v"[k % 5]
+        line, = ax.plot(d["x"][order], d["pressure"][order], "-", marker=marker, ms=3.5, lw=1,
+                        markerfacecolor="none", label=f"FE, pair {k}: {d['body']} / {target}")
         for i, (x0, x1) in enumerate(d["zones"]):
-            ax.axvspan(x0, x1, color=line.get_color(), alpha=0.12, lw=0,
+            ax.axvspan(x0, x1, color="0.5", alpha=0.12, lw=0,
                        label="contact zone" if i == 0 and k == next(iter(chosen)) else None)
         xs_all.append(d["x"])
     if reference is not None:
@@ -100,8 +113,13 @@ def plot_pressure(result: dict, ax=None, reference: str | Callable[[float], floa
             raise ValueError(f"reference must be 'hertz' or a callable p(x), not {reference!r}")
         x = np.linspace(min(v.min() for v in xs_all), max(v.max() for v in xs_all), 801)
         ax.plot(x, [p_ref(v) for v in x], "k--", lw=1, label=label)
-    ax.set_xlabel("x")
-    ax.set_ylabel("contact pressure")
+    ax.set_xlabel("x" + _unit(result, "length"))
+    ax.set_ylabel("contact pressure" + _unit(result, "stress"))
+    if title is None:
+        title = (request or {}).get("description") or "Contact pressure"
+    import textwrap
+
+    ax.set_title(textwrap.fill(title, 80), fontsize=8)
     ax.legend(fontsize=8)
     return ax
 

@@ -41,6 +41,20 @@ def test_vtu_opens_with_meshio_and_holds_the_named_fields(hertz_vtu_reply, tmp_p
     # Under the indenter the block is in compression: sigma_yy < 0 somewhere, of the order of p0.
     assert stress[:, 1].min() < -0.5 * p.max()
     assert set(m.cell_data["body"][0].ravel().tolist()) == {0}
+    # The named tensor (XX, YY, ZZ, XY, YZ, XZ) carries plane strain's
+    # sigma_zz = nu (sigma_xx + sigma_yy); von Mises and the principal stresses
+    # follow from it (ParaView needs no calculator).
+    import numpy as np
+
+    t = m.cell_data["stress_tensor"][0]
+    assert t.shape == (len(stress), 6)
+    assert np.allclose(t[:, [0, 1, 3]], stress) and np.allclose(t[:, 2], 0.3 * (stress[:, 0] + stress[:, 1]))
+    xx, yy, zz, xy = t[:, 0], t[:, 1], t[:, 2], t[:, 3]
+    vm = np.sqrt(0.5 * ((xx - yy) ** 2 + (yy - zz) ** 2 + (zz - xx) ** 2) + 3 * xy ** 2)
+    assert np.allclose(m.cell_data["von_mises"][0].ravel(), vm)
+    pr = m.cell_data["principal_stress"][0]
+    assert np.all(pr[:, 0] >= pr[:, 1]) and np.all(pr[:, 1] >= pr[:, 2])
+    assert np.allclose(pr.sum(axis=1), xx + yy + zz)
     # The top face sinks under the cylinder: the largest downward displacement is the indentation depth.
     uy = m.point_data["displacement"][:, 1]
     depth = 0.12
@@ -76,3 +90,23 @@ def test_plot_pressure_draws_the_pressures_and_the_hertz_overlay(hertz_reply, he
     assert out.read_bytes()[:8] == PNG_MAGIC
     with pytest.raises(ValueError):
         plot_pressure(hertz_reply, reference="hertz")
+
+
+def test_plot_labels_carry_the_request_units_and_read_in_grey_scale(tmp_path):
+    pytest.importorskip("matplotlib")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from contact_client import solve_local
+
+    req = scenes.hertz_cylinder(h_min=0.04)
+    req["units"] = {"length": "mm", "force": "N", "stress": "MPa"}
+    reply = solve_local(req)
+    assert reply["units"] == req["units"], "the reply echoes the request's units"
+    ax = plot_pressure(reply, reference="hertz", request=req)
+    assert ax.get_xlabel() == "x [mm]" and ax.get_ylabel() == "contact pressure [MPa]"
+    assert ax.get_title().replace("\n", " ") == req["description"]
+    fe, ref = ax.lines[1], ax.lines[-1]
+    # Told apart without colour: markers and a solid line against a dashed one.
+    assert fe.get_marker() not in (None, "None", "") and fe.get_linestyle() == "-"
+    assert ref.get_linestyle() == "--" and ref.get_marker() in (None, "None", "")

@@ -62,9 +62,15 @@ pub struct SolveReply {
     pub warnings: Vec<Warning>,
     /// With `outputs` listing `vtu`: the VTK XML unstructured grid of every body
     /// (point data `displacement`, `contact_pressure`; cell data `stress`,
-    /// `body`), base64-encoded; decode and save as `.vtu` for ParaView.
+    /// `stress_tensor` (XX, YY, ZZ, XY, YZ, XZ), `von_mises`,
+    /// `principal_stress`, `body`), base64-encoded; decode and save as `.vtu`
+    /// for ParaView.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub vtu: Option<String>,
+    /// Echo of the request's `units` (names only: the numbers are in the
+    /// request's units either way).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub units: Option<crate::Units>,
 }
 
 /// A violated assumption of the model, with the measured value and the limit

@@ -50,6 +50,25 @@ pub struct SolveRequest {
     /// `steps` holds each answer.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub load_factors: Vec<f64>,
+    /// The names of the units the request's numbers are in, echoed in the
+    /// reply for plots and files. Nothing is converted: the numbers must be
+    /// consistent (e.g. mm, N, MPa) whatever the names say.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub units: Option<Units>,
+}
+
+/// Names of units (free text of at most 32 characters, e.g. "mm", "N", "MPa").
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Units {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub length: Option<String>,
+    /// Force (per unit thickness where the reply says so).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub force: Option<String>,
+    /// Stress and pressure.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stress: Option<String>,
 }
 
 /// 2D kinematic assumption.

@@ -36,6 +36,7 @@ pub fn request(bodies: Vec<BodySpec>, contacts: Vec<ContactSpec>) -> SolveReques
         settings: SolverSettings::default(),
         outputs: Vec::new(),
         load_factors: Vec::new(),
+        units: None,
     }
 }
 

@@ -314,3 +314,14 @@ fn time_limit_penalty_and_barrier_must_be_positive() {
         }
     }
 }
+
+/// Unit names are short printable text, echoed as given.
+#[test]
+fn unit_names_are_short_printable_text() {
+    let mut req = base();
+    req["units"] = json!({"length": "mm", "stress": "MPa"});
+    let r = solve(&req).expect("solved");
+    assert_eq!(r.units.and_then(|u| u.stress).as_deref(), Some("MPa"));
+    req["units"]["force"] = json!("x".repeat(33));
+    expect(&req, ErrorCode::InvalidRequest, "/units/force");
+}

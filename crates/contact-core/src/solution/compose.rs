@@ -247,12 +247,8 @@ fn body_outputs(scene: &Scene, meshes: &[Mesh2d], disp: &[Vec<[f64; 2]>]) -> Opt
             .iter()
             .zip(meshes)
             .zip(disp)
-            .map(|((body, mesh), disp)| BodyFields {
-                name: body.name.clone(),
-                nodes: o_mesh.then(|| mesh.nodes.iter().map(|p| [sc.length(p[0]), sc.length(p[1])]).collect()),
-                elements: o_mesh.then(|| (0..mesh.n_elems()).map(|e| mesh.elem(e).to_vec()).collect()),
-                displacement: o_displacement.then(|| disp.iter().map(|d| [sc.length(d[0]), sc.length(d[1])]).collect()),
-                stress: o_stress.then(|| {
+            .map(|((body, mesh), disp)| {
+                let stress: Option<Vec<[f64; 3]>> = o_stress.then(|| {
                     let dm = d_matrix(body.youngs_modulus, body.poisson_ratio, scene.analysis);
                     (0..mesh.n_elems())
                         .map(|e| {
@@ -263,7 +259,23 @@ fn body_outputs(scene: &Scene, meshes: &[Mesh2d], disp: &[Vec<[f64; 2]>]) -> Opt
                             [sc.stress(s[0]), sc.stress(s[1]), sc.stress(s[2])]
                         })
                         .collect()
-                }),
+                });
+                // ε_zz = 0 in plane strain: σ_zz = ν (σ_xx + σ_yy); 0 in plane stress.
+                let nu_zz = match scene.analysis {
+                    Analysis::PlaneStrain => body.poisson_ratio,
+                    Analysis::PlaneStress => 0.0,
+                };
+                BodyFields {
+                    name: body.name.clone(),
+                    nodes: o_mesh.then(|| mesh.nodes.iter().map(|p| [sc.length(p[0]), sc.length(p[1])]).collect()),
+                    elements: o_mesh.then(|| (0..mesh.n_elems()).map(|e| mesh.elem(e).to_vec()).collect()),
+                    displacement: o_displacement
+                        .then(|| disp.iter().map(|d| [sc.length(d[0]), sc.length(d[1])]).collect()),
+                    stress_zz: stress
+                        .as_ref()
+                        .map(|s| s.iter().map(|s| nu_zz * (s[0] + s[1])).collect()),
+                    stress,
+                }
             })
             .collect(),
     )

@@ -10,12 +10,13 @@ use crate::proto::SolveReply;
 use contact_core::scene::Outputs;
 
 /// With `vtu` requested: sets the reply's `vtu` (base64 of the file) and drops
-/// the per-body fields it needed that the request did not list.
-pub fn attach_vtu(reply: &mut SolveReply, asked: Outputs) {
+/// the per-body fields it needed that the request did not list. `stress_zz`:
+/// each body's σzz per element (plane strain), which the reply does not carry.
+pub fn attach_vtu(reply: &mut SolveReply, asked: Outputs, stress_zz: &[Vec<f64>]) {
     if !asked.vtu {
         return;
     }
-    reply.vtu = Some(base64::engine::general_purpose::STANDARD.encode(vtu::vtu(reply)));
+    reply.vtu = Some(base64::engine::general_purpose::STANDARD.encode(vtu::vtu(reply, stress_zz)));
     if !(asked.mesh || asked.displacement || asked.stress) {
         reply.bodies = None;
         return;

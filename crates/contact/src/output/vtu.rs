@@ -4,8 +4,11 @@
 //! T3, 22 for T6, whose node order — corners, then midsides of edges 01, 12,
 //! 20 — is ours), point data `displacement` (ux, uy, 0) and `contact_pressure`
 //! (0 off the contact candidates; a node in several pairs gets their sum), cell
-//! data `stress` (σxx, σyy, σxy at the centroid) and `body` (the body's index in
-//! the request). Arrays are inline `binary` (base64 of a UInt64 byte count and
+//! data at the element centroids: `stress` (σxx, σyy, σxy), `stress_tensor`
+//! (the symmetric tensor in ParaView's order XX, YY, ZZ, XY, YZ, XZ, with σzz
+//! of plane strain), `von_mises`, `principal_stress` (σ1 ≥ σ2 ≥ σ3) and `body`
+//! (the body's index in the request), so ParaView shows them without a
+//! calculator. Arrays are inline `binary` (base64 of a UInt64 byte count and
 //! the little-endian values), which ParaView and meshio read, at a third more
 //! than raw size rather than the ~2.5× of decimal text.
 //!
@@ -20,9 +23,21 @@ use crate::proto::SolveReply;
 const VTK_TRIANGLE: u8 = 5;
 const VTK_QUADRATIC_TRIANGLE: u8 = 22;
 
+/// The symmetric tensor (XX, YY, ZZ, XY, YZ, XZ), the von Mises stress and
+/// the principal stresses (descending) of an in-plane stress with its σzz.
+fn invariants(s: [f64; 3], zz: f64) -> ([f64; 6], f64, [f64; 3]) {
+    let [xx, yy, xy] = s;
+    let von_mises = (0.5 * ((xx - yy).powi(2) + (yy - zz).powi(2) + (zz - xx).powi(2)) + 3.0 * xy * xy).sqrt();
+    let (c, r) = (0.5 * (xx + yy), (0.25 * (xx - yy).powi(2) + xy * xy).sqrt());
+    let mut p = [c + r, c - r, zz];
+    p.sort_by(|a, b| b.total_cmp(a));
+    ([xx, yy, zz, xy, 0.0, 0.0], von_mises, p)
+}
+
 /// The VTU file of a reply whose `bodies` carry nodes, elements, displacement
-/// and stress (the core computes them when `outputs` lists `vtu`).
-pub fn vtu(reply: &SolveReply) -> Vec<u8> {
+/// and stress (the core computes them when `outputs` lists `vtu`); `stress_zz`
+/// holds each body's σzz per element (empty: 0).
+pub fn vtu(reply: &SolveReply, stress_zz: &[Vec<f64>]) -> Vec<u8> {
     let bodies = reply.bodies.as_deref().unwrap_or_default();
     let mut points = Vec::new();
     let mut disp = Vec::new();
@@ -30,6 +45,7 @@ pub fn vtu(reply: &SolveReply) -> Vec<u8> {
     let mut offsets: Vec<i64> = Vec::new();
     let mut types = Vec::new();
     let mut stress = Vec::new();
+    let (mut tensor, mut von_mises, mut principal) = (Vec::new(), Vec::new(), Vec::new());
     let mut body_id: Vec<i32> = Vec::new();
     // First point of every body in the concatenated point list.
     let mut first = Vec::with_capacity(bodies.len());
@@ -53,7 +69,13 @@ pub fn vtu(reply: &SolveReply) -> Vec<u8> {
             } else {
                 VTK_TRIANGLE
             });
-            stress.extend_from_slice(&s.get(e).copied().unwrap_or_default());
+            let se = s.get(e).copied().unwrap_or_default();
+            stress.extend_from_slice(&se);
+            let zz = stress_zz.get(b).and_then(|z| z.get(e)).copied().unwrap_or_default();
+            let (t, vm, p) = invariants(se, zz);
+            tensor.extend_from_slice(&t);
+            von_mises.push(vm);
+            principal.extend_from_slice(&p);
             body_id.push(b as i32);
         }
     }
@@ -88,6 +110,9 @@ pub fn vtu(reply: &SolveReply) -> Vec<u8> {
     array(&mut x, "Float64", "contact_pressure", 1, &le(&pressure));
     x.push_str("</PointData>\n<CellData>\n");
     array(&mut x, "Float64", "stress", 3, &le(&stress));
+    array(&mut x, "Float64", "stress_tensor", 6, &le(&tensor));
+    array(&mut x, "Float64", "von_mises", 1, &le(&von_mises));
+    array(&mut x, "Float64", "principal_stress", 3, &le(&principal));
     array(&mut x, "Int32", "body", 1, &le(&body_id));
     x.push_str("</CellData>\n<Points>\n");
     array(&mut x, "Float64", "Points", 3, &le(&points));
@@ -157,7 +182,7 @@ mod tests {
     #[test]
     fn arrays_round_trip_and_offsets_end_at_the_connectivity_length() {
         let reply: SolveReply = serde_json::from_str(include_str!("testdata/two_triangles_reply.json")).unwrap();
-        let xml = String::from_utf8(vtu(&reply)).unwrap();
+        let xml = String::from_utf8(vtu(&reply, &[])).unwrap();
         assert!(xml.contains("NumberOfPoints=\"4\" NumberOfCells=\"2\""));
         let f64s =
             |b: Vec<u8>| -> Vec<f64> { b.chunks(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect() };
@@ -172,5 +197,18 @@ mod tests {
         assert_eq!(decode(&xml, "types"), vec![VTK_TRIANGLE, VTK_TRIANGLE]);
         let d = f64s(decode(&xml, "displacement"));
         assert_eq!(&d[3..6], &[0.5, -1.0, 0.0], "node 1's (ux, uy, 0)");
+    }
+
+    /// Uniaxial stress: von Mises is its magnitude and the principals are
+    /// (s, 0, 0); pure shear τ: von Mises √3 τ, principals (τ, 0, −τ).
+    #[test]
+    fn invariants_of_uniaxial_stress_and_pure_shear() {
+        let (t, vm, p) = invariants([-3.0, 0.0, 0.0], 0.0);
+        assert_eq!(t, [-3.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+        assert!((vm - 3.0).abs() < 1e-15);
+        assert_eq!(p, [0.0, 0.0, -3.0]);
+        let (_, vm, p) = invariants([0.0, 0.0, 2.0], 0.0);
+        assert!((vm - 2.0 * 3f64.sqrt()).abs() < 1e-14);
+        assert!((p[0] - 2.0).abs() < 1e-15 && p[1] == 0.0 && (p[2] + 2.0).abs() < 1e-15);
     }
 }

@@ -25,7 +25,9 @@ pub fn solve_bytes_cached(
     let run = || -> Result<SolveReply, CoreError> {
         let req = parse_request(bytes)?;
         let scene = Scene::try_new(&req, limits)?;
-        contact_core::solve(&scene, limits, cache).map(reply::reply)
+        let mut r = contact_core::solve(&scene, limits, cache).map(reply::reply)?;
+        r.units = req.units;
+        Ok(r)
     };
     run().map_err(|e| error_reply(&e).with_client_id_of(bytes))
 }

@@ -10,6 +10,12 @@ use contact_proto as p;
 /// The wire reply of `report`, with the VTU file attached when asked for.
 pub fn reply(report: Report) -> p::SolveReply {
     let outputs = report.outputs;
+    let stress_zz: Vec<Vec<f64>> = report
+        .bodies
+        .iter()
+        .flatten()
+        .map(|b| b.stress_zz.clone().unwrap_or_default())
+        .collect();
     let mut reply = p::SolveReply {
         version: p::PROTOCOL_VERSION.to_string(),
         client_id: report.client_id,
@@ -52,8 +58,9 @@ pub fn reply(report: Report) -> p::SolveReply {
             })
             .collect(),
         vtu: None,
+        units: None,
     };
-    crate::output::attach_vtu(&mut reply, outputs);
+    crate::output::attach_vtu(&mut reply, outputs, &stress_zz);
     reply
 }
 

@@ -113,6 +113,7 @@ impl Scene {
         };
         let (pairs, notes) = pairs::pairs(req, &survey, &names)?;
         let settings = settings::settings(req, scales, &bodies, survey.nodes.iter().sum(), limits)?;
+        settings::units(req)?;
         Ok(Scene {
             analysis: settings::analysis(req),
             scales,

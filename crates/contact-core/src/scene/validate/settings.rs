@@ -7,6 +7,23 @@ use super::{finite, invalid, positive, Limits};
 use crate::error::{CoreError, InvalidKind, InvalidKind as K};
 use crate::scene::{Analysis, Body, Formulation, GapMeasure, Method, Outputs, Scales, Settings, Traction};
 
+/// `units`: short printable names, if given.
+pub fn units(req: &SolveRequest) -> Result<(), CoreError> {
+    let Some(u) = &req.units else { return Ok(()) };
+    for (name, v) in [("length", &u.length), ("force", &u.force), ("stress", &u.stress)] {
+        if let Some(v) = v {
+            if v.chars().count() > 32 || v.chars().any(char::is_control) {
+                return Err(invalid(
+                    K::Request,
+                    format!("/units/{name}"),
+                    "a unit name is at most 32 printable characters",
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// `time_limit`: a positive number of seconds, if given.
 pub fn time_limit(req: &SolveRequest) -> Result<Option<f64>, CoreError> {
     if let Some(s) = req.time_limit.filter(|s| !(s.is_finite() && *s > 0.0)) {
