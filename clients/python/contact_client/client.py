@@ -478,24 +478,37 @@ def _decode(payload: zenoh.ZBytes) -> dict:
 STAGES = ("mesh", "assembly", "factorization", "condensation", "contact_solve", "post")
 
 
+def work_fraction(msg: dict) -> float | None:
+    """The fraction of the solve's predicted work behind a progress message
+    (``done / total``: predicted seconds, so a factorization that is most of the
+    time is most of the bar), or None when the service sent no plan."""
+    total = msg.get("total") or 0.0
+    return min(1.0, max(0.0, msg.get("done", 0.0) / total)) if total > 0 else None
+
+
 class _ProgressBar:
-    """A tqdm bar with one step per stage; the postfix shows the contact iteration and residual."""
+    """A tqdm bar over the solve's predicted work (percent), so its rate and
+    remaining-time estimate follow the real work; the description is the stage,
+    the postfix the contact iteration and residual."""
 
     def __init__(self):
         from tqdm.auto import tqdm  # optional dependency: pip install 'contact-client[progress]'
 
-        self.bar = tqdm(total=len(STAGES), unit="stage", desc="solve")
+        self.bar = tqdm(total=100.0, unit="%", desc="solve", bar_format="{desc}: {percentage:3.0f}%|{bar}| "
+                        "[{elapsed}<{remaining}{postfix}]")
 
     def __call__(self, msg: dict) -> None:
         stage = msg.get("stage")
         if stage in STAGES:
-            self.bar.update(max(0, STAGES.index(stage) - self.bar.n))  # stages before this one are done
-            self.bar.set_description(stage)
+            self.bar.set_description(stage, refresh=False)
+        f = work_fraction(msg)
+        if f is not None and 100.0 * f > self.bar.n:
+            self.bar.update(100.0 * f - self.bar.n)
         if msg.get("iteration") is not None:
             self.bar.set_postfix(iteration=msg["iteration"], residual=f"{msg.get('residual', 0.0):.2e}")
 
     def close(self) -> None:
-        self.bar.update(len(STAGES) - self.bar.n)
+        self.bar.update(100.0 - self.bar.n)
         self.bar.close()
 
 

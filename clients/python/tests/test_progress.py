@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from contact_client import scenes
-from contact_client.client import STAGES
+from contact_client.client import STAGES, work_fraction
 
 
 def test_a_large_solve_reports_its_stages_in_order(client):
@@ -23,6 +23,15 @@ def test_a_large_solve_reports_its_stages_in_order(client):
     assert [m["elapsed"] for m in seen] == sorted(m["elapsed"] for m in seen)
     iterations = [m for m in seen if "iteration" in m]
     assert iterations and all(m["stage"] == "contact_solve" and m["residual"] >= 0.0 for m in iterations)
+    # Progress in predicted work: it only moves forward, the factorization (most
+    # of the time at this size) is most of it, and the total predicted once its
+    # symbolic analysis is known is within 2x of the solve's real time.
+    work = [work_fraction(m) for m in seen]
+    assert all(w is not None for w in work) and work == sorted(work), work
+    at = {m["stage"]: work_fraction(m) for m in reversed(seen)}  # first report of each stage
+    assert at["condensation"] - at["factorization"] > 0.5, at
+    revised = [m for m in seen if m["stage"] == "factorization"][-1]  # after the symbolic analysis
+    assert 0.5 < revised["total"] / r["timings"]["total"] < 2.0
 
 
 def test_progress_bar_and_a_client_id_of_ones_own(client):

@@ -18,7 +18,7 @@ use crate::error::CoreError;
 use crate::fem::assembly::{assemble_loads, assemble_stiffness};
 use crate::methods::{self, full, Problem, PunchBlock};
 use crate::model::Model;
-use crate::observer::{Observer, Stage};
+use crate::observer::{self, Observer, Stage};
 use crate::scene::{Limits, Method, Scene};
 use crate::solution::compose::{self, Solved};
 use crate::solution::report::{CacheState, LoadStep, Report, Status, Timings};
@@ -65,11 +65,17 @@ pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
 }
 
 fn solve_once(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<Report, CoreError> {
+    let t6 = scene.bodies.iter().any(|b| b.is_t6());
+    crate::progress::plan(observer::predicted(scene.estimated_nodes, t6));
     let mut obs = Observer::new();
     obs.enter(Stage::Mesh);
     let meshes = crate::meshing::meshes(scene)?;
     obs.leave(Stage::Mesh)?;
     admit::meshes(&meshes, limits)?;
+    let nodes: usize = meshes.iter().map(|m| m.nodes.len()).sum();
+    let mut plan = observer::predicted(nodes as f64, t6);
+    plan[0] = obs.timings.mesh;
+    crate::progress::plan(plan);
 
     obs.enter(Stage::Assembly);
     let model = Model::build(scene, meshes)?;
@@ -88,7 +94,11 @@ fn solve_condensed(
 ) -> Result<Report, CoreError> {
     let key = cache::key(scene, &model.meshes, &model.dofs, &model.cons);
     let (op, cache_state) = match cache.and_then(|c| c.get(key)) {
-        Some(op) => (op, CacheState::Hit),
+        Some(op) => {
+            crate::progress::revise("factorization", 0.0);
+            crate::progress::revise("condensation", 0.0);
+            (op, CacheState::Hit)
+        }
         None => {
             let stiffness = Arc::new(assemble_stiffness(scene, &model.meshes, &model.dofs)?);
             obs.leave(Stage::Assembly)?;
@@ -134,6 +144,12 @@ fn solve_condensed(
 /// Exact methods on the whole system: no condensation, no cache (they are
 /// the comparison, and `auto`'s choice for many rows on few DOFs).
 fn solve_full(scene: &Scene, model: &Model, mut obs: Observer) -> Result<Report, CoreError> {
+    // No factorization stage of its own: the active set refactors a few times
+    // inside the contact solve.
+    let factor = observer::predicted(model.dofs.n_free as f64 / 2.0, false)[2];
+    crate::progress::revise("factorization", 0.0);
+    crate::progress::revise("condensation", 0.0);
+    crate::progress::revise("contact_solve", 3.0 * factor);
     let stiffness = assemble_stiffness(scene, &model.meshes, &model.dofs)?;
     let f = assemble_loads(&model.external, &model.dofs, &stiffness);
     obs.leave(Stage::Assembly)?;

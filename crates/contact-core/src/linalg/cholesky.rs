@@ -142,6 +142,11 @@ impl SymbolicFactor {
     pub fn key(&self) -> u64 {
         self.key
     }
+
+    /// The numeric factorization's predicted cost.
+    pub fn cost(&self) -> FactorCost {
+        self.cost
+    }
 }
 
 /// Identity of a sparsity pattern (lower triangle) and its trailing DOFs:

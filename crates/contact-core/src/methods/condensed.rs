@@ -37,6 +37,7 @@ pub fn prepare(
             s
         }
     };
+    crate::observer::revise_factorization(t0.elapsed().as_secs_f64(), symbolic.cost().predicted_secs(), cons.len());
     let chol = Cholesky::with_symbolic(symbolic, &stiffness.k)?;
     let t_factorization = t0.elapsed().as_secs_f64();
     crate::cancel::check("factorization")?;

@@ -31,6 +31,8 @@ pub struct Scene {
     pub client_id: Option<String>,
     /// Seconds the solve may take (the request's `time_limit`), if limited.
     pub time_limit: Option<f64>,
+    /// Nodes of all meshes as estimated before meshing (progress plans with it).
+    pub estimated_nodes: f64,
     /// What validation decided that the user should know (echoed in the reply's notes).
     pub notes: Vec<String>,
     /// Load multipliers to solve for (empty: the loads as given).
@@ -69,6 +71,16 @@ pub struct Outputs {
     pub stress: bool,
     /// The VTU file (needs all three of the above, computed for it).
     pub vtu: bool,
+}
+
+impl Body {
+    /// Whether the body's elements are quadratic.
+    pub fn is_t6(&self) -> bool {
+        match &self.mesh {
+            MeshSource::Rectangle { order, .. } | MeshSource::Disk { order, .. } => *order == Order::T6,
+            MeshSource::Inline(m) => m.order == Order::T6,
+        }
+    }
 }
 
 #[derive(Debug, Clone)]

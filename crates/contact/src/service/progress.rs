@@ -50,7 +50,7 @@ pub fn install(session: zenoh::Session, key: String, request_id: String) -> crat
             }
             last_iteration = Instant::now();
         }
-        let mut v = serde_json::json!({"stage": p.stage, "elapsed": p.elapsed});
+        let mut v = serde_json::json!({"stage": p.stage, "elapsed": p.elapsed, "done": p.done, "total": p.total});
         if let Some(k) = p.iteration {
             v["iteration"] = k.into();
         }

@@ -126,6 +126,7 @@ impl Scene {
             outputs: settings::outputs(req),
             client_id: req.client_id.clone(),
             time_limit,
+            estimated_nodes: survey.nodes.iter().sum(),
             notes,
             load_factors: req.load_factors.clone(),
         })
