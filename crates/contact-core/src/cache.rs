@@ -31,6 +31,11 @@ pub struct Prepared {
     pub stiffness: Arc<Stiffness>,
     pub chol: Cholesky,
     pub w: Mat<f64>,
+    /// The dense trailing block L_cc of the factor (the Schur complement's
+    /// Cholesky factor on the contact DOFs) and those DOFs in its order: one
+    /// forward and one backward sweep then make a whole solve.
+    pub lcc: Mat<f64>,
+    pub cdofs: Vec<usize>,
     /// `Cholesky::pivot_ratio` of the factor.
     pub pivot_ratio: f64,
     pub t_factorization: f64,
@@ -41,7 +46,7 @@ impl Prepared {
     /// Approximate memory held, for the cache bound.
     pub fn bytes(&self) -> usize {
         let k = self.stiffness.k.val().len() * 16 + self.stiffness.k_fd.len() * 24;
-        k + self.chol.nnz_factor() * 12 + self.w.nrows() * self.w.ncols() * 8
+        k + self.chol.nnz_factor() * 12 + (self.w.nrows() * self.w.ncols() + self.lcc.nrows() * self.lcc.ncols()) * 8
     }
 }
 

@@ -70,8 +70,9 @@ impl Timings {
 /// 2 cores) to the Hertz block, T3 73k to 2.1M DOF and T6 1.6M DOF: meshing
 /// 5.7e-7 to 8.2e-7 s per node, assembly 7e-7 (T6 1.05e-6), the factorization
 /// 7.5e-9 to 1.0e-8 n^1.5 for n DOFs, condensation 3.3e-9 to 4.0e-9 m^2.5
-/// for m rows (m about 2 √nodes on these scenes), the contact solve 6 % to
-/// 11 % of the factorization, post-processing 1.0e-7 to 1.3e-7 per node.
+/// for m rows (m about 2 √nodes on these scenes), the contact solve 4.7 % to
+/// 6.4 % of the factorization (one forward and one backward sweep),
+/// post-processing 1.0e-7 to 1.3e-7 per node.
 /// The factorization is 77 % to 87 % of the whole from 400k DOF on.
 pub fn predicted(nodes: f64, t6: bool) -> [f64; 6] {
     let n = 2.0 * nodes;
@@ -82,7 +83,7 @@ pub fn predicted(nodes: f64, t6: bool) -> [f64; 6] {
         if t6 { 1.05e-6 } else { 7e-7 } * nodes,
         factorization,
         3.8e-9 * m.powf(2.5),
-        0.08 * factorization,
+        0.05 * factorization,
         1.2e-7 * nodes,
     ]
 }
@@ -94,7 +95,7 @@ pub fn revise_factorization(symbolic_secs: f64, predicted_secs: f64, m: usize) {
     crate::progress::revise("factorization", symbolic_secs + predicted_secs);
     crate::progress::credit(symbolic_secs);
     crate::progress::revise("condensation", 3.8e-9 * (m as f64).powf(2.5));
-    crate::progress::revise("contact_solve", 0.08 * predicted_secs);
+    crate::progress::revise("contact_solve", 0.05 * predicted_secs);
     // Told at once: the factorization is most of a large solve, and the
     // estimate of what is left should not wait for its end.
     crate::progress::report();

@@ -7,7 +7,8 @@
 //! replies) or code, path and details (errors); timings, cache state, request
 //! ids, certificates and diagnostics are round-off or bookkeeping and are left
 //! out. Numbers must agree to 1e-12 of the largest magnitude under the same key
-//! in the recorded reply (so a pressure to 1e-12 of the peak): above the
+//! in the recorded reply (so a pressure to 1e-12 of the peak; forces, moments
+//! and gaps against their physical scale, `natural_scale`): above the
 //! round-off of these well-conditioned scenes (condition estimates ≤ 1e5, a
 //! dense LCP of at most a few hundred rows), far below any change of the
 //! discrete problem (a moved node or a changed row moves pressures by 1e-4 and
@@ -92,11 +93,28 @@ fn scales(v: &Value, key: &str, out: &mut HashMap<String, f64>) {
     }
 }
 
+/// The magnitude a number under `key` is judged against. Quantities that are
+/// zero up to round-off in a scene (fx and m of a symmetric load, the gaps of
+/// rows in contact) are judged against their physical scale, not against
+/// their own round-off: forces against the largest force component, moments
+/// against that force times the scene's size, gaps against the scene's size.
+fn natural_scale(key: &str, scale: &HashMap<String, f64>) -> f64 {
+    let get = |k: &str| scale.get(k).copied().unwrap_or(0.0);
+    let force = get("fx").max(get("fy"));
+    let length = get("x").max(get("y"));
+    match key {
+        "fx" | "fy" => force,
+        "m" => get("m").max(force * length),
+        "gap" | "max_penetration" => get(key).max(length),
+        _ => get(key),
+    }
+}
+
 fn compare(want: &Value, got: &Value, key: &str, at: &str, scale: &HashMap<String, f64>, diffs: &mut Vec<String>) {
     match (want, got) {
         (Value::Number(a), Value::Number(b)) => {
             let (a, b) = (a.as_f64().unwrap_or(f64::NAN), b.as_f64().unwrap_or(f64::NAN));
-            let tol = TOL * scale.get(key).copied().unwrap_or(0.0);
+            let tol = TOL * natural_scale(key, scale);
             if (a - b).abs() > tol {
                 diffs.push(format!("{at}: {a:e} recorded, {b:e} now (tolerance {tol:e})"));
             }

@@ -5,7 +5,7 @@
 
 use std::time::Instant;
 
-use faer::Mat;
+use faer::{Mat, Par};
 
 use super::{LcpResult, Problem, Solution};
 use crate::cache::{OperatorCache, Prepared};
@@ -53,18 +53,21 @@ pub fn prepare(
             bt[(pos[&d], i)] = v;
         }
     }
-    let w = dense::gram_of_lower_solve(&chol.trailing_factor(), bt);
+    let lcc = chol.trailing_factor();
+    let w = dense::gram_of_lower_solve(&lcc, bt);
     Ok(Prepared {
         pivot_ratio: chol.pivot_ratio(),
         stiffness,
         chol,
         w,
+        lcc,
+        cdofs,
         t_factorization,
         t_condensation: t1.elapsed().as_secs_f64(),
     })
 }
 
-/// q = g − B K⁻¹ f, the LCP, then u = K⁻¹ (f − Bᵀλ): two solves with the prepared factor.
+/// q = g − B K⁻¹ f, the LCP, then u = K⁻¹ (f − Bᵀλ): one forward and one backward sweep of the prepared factor.
 pub fn solve_condensed(
     p: &Problem,
     name: &'static str,
@@ -78,6 +81,14 @@ pub fn solve_condensed(
 
 /// As `solve_condensed`, with load-controlled punch motions β_F: a mixed LCP
 /// (equilibrium of the punches as equality constraints).
+///
+/// One solve with K costs one forward and one backward sweep: y = L⁻¹ P f
+/// before the LCP gives its right-hand side from the trailing block alone
+/// (the contact rows of K⁻¹ f are L_cc⁻ᵀ y_c, L being block lower
+/// triangular), and after it u = Pᵀ L⁻ᵀ (y − [0; L_cc⁻¹ (Bᵀλ)_c]). A K whose
+/// u leaves a residual above `REFINE_ABOVE` (ill-conditioned: nearly
+/// incompressible, extreme stiffness or aspect ratios) is solved again on
+/// the refined path, two refined solves with K.
 pub fn solve_condensed_mixed(
     p: &Problem,
     pb: &super::PunchBlock,
@@ -87,19 +98,62 @@ pub fn solve_condensed_mixed(
 ) -> Result<Solution, CoreError> {
     let t = Instant::now();
     let op = p.op;
-    let f_size = inf_norm(p.f);
-    let (u0, r0) = solve_refined(op, p.f, f_size);
-    let bu0 = p.cons.apply(&u0);
+    let y = op.chol.forward(p.f);
+    let (n, c) = (y.len(), op.cdofs.len());
+    let mut u0c = Mat::<f64>::from_fn(c, 1, |k, _| y[n - c + k]);
+    faer::linalg::triangular_solve::solve_upper_triangular_in_place(op.lcc.transpose(), u0c.as_mut(), Par::Seq);
+    let mut u0 = vec![0.0; n];
+    for (k, &d) in op.cdofs.iter().enumerate() {
+        u0[d] = u0c[(k, 0)];
+    }
+    let swept = |lambda: &[f64]| -> Option<Vec<f64>> {
+        let mut btl = vec![0.0; n];
+        p.cons.apply_transpose_into(lambda, &mut btl);
+        let mut z = Mat::<f64>::from_fn(c, 1, |k, _| btl[op.cdofs[k]]);
+        faer::linalg::triangular_solve::solve_lower_triangular_in_place(op.lcc.as_ref(), z.as_mut(), Par::Seq);
+        let mut yz = y.clone();
+        for k in 0..c {
+            yz[n - c + k] -= z[(k, 0)];
+        }
+        let u = op.chol.backward(&yz);
+        let kx = crate::linalg::sparse::sym_lower_matvec(&op.stiffness.k, &u);
+        let scale = inf_norm(p.f).max(inf_norm(&btl)).max(inf_norm(&kx));
+        let r = (0..n).fold(0.0f64, |a, i| a.max((p.f[i] - btl[i] - kx[i]).abs()));
+        (r <= REFINE_ABOVE * scale).then_some(u)
+    };
+    if let Some(sol) = contact_stage(p, pb, name, exact, mlcp, &u0, 0, &swept, t) {
+        return Ok(sol);
+    }
+    let (u0, r0) = solve_refined(op, p.f, inf_norm(p.f));
+    let refined = |lambda: &[f64]| Some(displacements(p, lambda).0);
+    Ok(contact_stage(p, pb, name, exact, mlcp, &u0, r0, &refined, t).expect("the refined path always answers"))
+}
+
+/// The LCP on q = g − B u0, then the displacements (`solve_u`; None sends the
+/// caller to the refined path) and the refinement of the contact forces.
+#[allow(clippy::too_many_arguments)]
+fn contact_stage(
+    p: &Problem,
+    pb: &super::PunchBlock,
+    name: &'static str,
+    exact: bool,
+    mlcp: super::MixedSolver,
+    u0: &[f64],
+    refinements: usize,
+    solve_u: &dyn Fn(&[f64]) -> Option<Vec<f64>>,
+    t: Instant,
+) -> Option<Solution> {
+    let bu0 = p.cons.apply(u0);
     let q: Vec<f64> = p.cons.candidates.iter().zip(&bu0).map(|(c, b)| c.g - b).collect();
     // Foundations add their compliance to the bodies' (per request: it is not
     // part of the cached operator).
     let with_foundation;
     let w = match p.compliance {
         Some(c) => {
-            with_foundation = &op.w + c;
+            with_foundation = &p.op.w + c;
             &with_foundation
         }
-        None => &op.w,
+        None => &p.op.w,
     };
     let (res, beta) = mlcp(w, &q);
     let wl = dense::matvec(w, &res.lambda);
@@ -109,7 +163,7 @@ pub fn solve_condensed_mixed(
             res.lambda[i] > 0.0 && res.lambda[i] * w[(i, i)] > wl[i] + q[i] + cb
         })
         .collect();
-    let (mut u, r1) = displacements(p, &res.lambda);
+    let mut u = solve_u(&res.lambda)?;
     let mut lambda = res.lambda;
     let mut beta = beta;
     let r2 = if exact && res.converged {
@@ -117,8 +171,8 @@ pub fn solve_condensed_mixed(
     } else {
         0
     };
-    Ok(Solution {
-        refinements: r0 + r1 + r2,
+    Some(Solution {
+        refinements: refinements + r2,
         u,
         lambda,
         beta,
