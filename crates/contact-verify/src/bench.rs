@@ -1,13 +1,13 @@
 //! The time-against-error benchmark: the Hertz scene (rigid cylinder into a
 //! block) at several mesh sizes, T3 and T6, with every method, each row timed
 //! per stage and compared with the closed form and with the physical floor of
-//! one symbolic + numeric Cholesky + one solve of the same K (faer's default
-//! AMD path). The harness returns rows; the CLI prints and writes them.
+//! one symbolic + numeric Cholesky + one solve of the same K (AMD order,
+//! sequential: the solver's own kernels and parallelism), the ratios per
+//! stage (`r_fact`: factorization, `r_cont`: condensation and contact solve
+//! against the floor's solve). The harness returns rows; the CLI prints and writes them.
 
 use std::time::Instant;
 
-use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
-use faer::Side;
 use serde_json::json;
 
 use crate::reference::hertz;
@@ -31,8 +31,11 @@ pub struct Row {
     pub t_contact: f64,
     pub t_post: f64,
     pub t_total: f64,
-    /// Symbolic + numeric Cholesky + one solve of K (faer AMD), same mesh.
+    /// Symbolic + numeric Cholesky + one solve of K (AMD, sequential), same mesh.
     pub t_floor: f64,
+    /// Its factorization and its solve.
+    pub t_floor_factor: f64,
+    pub t_floor_solve: f64,
     pub err_half_width: f64,
     pub err_peak: f64,
     pub err_l2: f64,
@@ -42,7 +45,18 @@ pub struct Row {
 }
 
 impl Row {
-    pub const HEADER: &'static str = "scene,element,h_min,dofs,candidates,method,iterations,t_mesh,t_assembly,t_factorization,t_condensation,t_contact,t_post,t_total,t_floor,ratio_solve_to_floor,ratio_total_to_floor,err_half_width,err_peak,err_l2,max_penetration,certificate,status";
+    pub const HEADER: &'static str = "scene,element,h_min,dofs,candidates,method,iterations,t_mesh,t_assembly,t_factorization,t_condensation,t_contact,t_post,t_total,t_floor,ratio_solve_to_floor,ratio_total_to_floor,err_half_width,err_peak,err_l2,max_penetration,certificate,status,t_floor_factor,t_floor_solve,ratio_factor,ratio_contact";
+
+    /// The factorization against the floor's (the fill the contact-last
+    /// order adds, and nothing else: same kernels, same parallelism).
+    pub fn ratio_factor(&self) -> f64 {
+        self.t_factorization / self.t_floor_factor
+    }
+
+    /// Condensation and contact solve against the floor's one solve.
+    pub fn ratio_contact(&self) -> f64 {
+        (self.t_condensation + self.t_contact) / self.t_floor_solve
+    }
 
     /// Time of the contact solve proper (factorization through recovery) over the floor.
     pub fn ratio(&self) -> f64 {
@@ -51,7 +65,7 @@ impl Row {
 
     pub fn csv(&self) -> String {
         format!(
-            "{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.3},{:.3},{:.3e},{:.3e},{:.3e},{:.3e},{:.1e},{}",
+            "{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.3},{:.3},{:.3e},{:.3e},{:.3e},{:.3e},{:.1e},{},{:.6},{:.6},{:.3},{:.3}",
             self.scene,
             self.element,
             self.h_min,
@@ -74,13 +88,17 @@ impl Row {
             self.err_l2,
             self.max_penetration,
             self.certificate,
-            self.status
+            self.status,
+            self.t_floor_factor,
+            self.t_floor_solve,
+            self.ratio_factor(),
+            self.ratio_contact()
         )
     }
 
     pub fn table_header() -> String {
         format!(
-            "{:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>9} {:>9} {:>9} {:>8}",
+            "{:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>6} {:>9} {:>9} {:>9} {:>8}",
             "element",
             "h_min",
             "dofs",
@@ -93,6 +111,8 @@ impl Row {
             "total",
             "floor",
             "ratio",
+            "r_fact",
+            "r_cont",
             "err_a",
             "err_p0",
             "err_L2",
@@ -102,7 +122,7 @@ impl Row {
 
     pub fn table_line(&self) -> String {
         format!(
-            "{:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8.3} {:>8.3} {:>8.4} {:>8.3} {:>8.3} {:>6.2} {:>+9.2e} {:>+9.2e} {:>9.2e} {:>8.1e}",
+            "{:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8.3} {:>8.3} {:>8.4} {:>8.3} {:>8.3} {:>6.2} {:>6.2} {:>6.2} {:>+9.2e} {:>+9.2e} {:>9.2e} {:>8.1e}",
             self.element,
             self.h_min,
             self.dofs,
@@ -115,6 +135,8 @@ impl Row {
             self.t_total,
             self.t_floor,
             self.ratio(),
+            self.ratio_factor(),
+            self.ratio_contact(),
             self.err_half_width,
             self.err_peak,
             self.err_l2,
@@ -162,29 +184,22 @@ pub fn hertz_errors(r: &Report, radius: f64, e_star: f64) -> (f64, f64, f64) {
     (a_fe / a - 1.0, p_fe / p0 - 1.0, (num / den).sqrt())
 }
 
-/// Floor: faer's own symbolic + numeric Cholesky and one solve of K_ff, the
-/// better of faer's sequential and default (parallel) settings.
-fn floor_time(scene: &Scene) -> (f64, usize) {
+/// Floor: one AMD-ordered supernodal Cholesky of K_ff (symbolic and numeric)
+/// and one solve with it, on the solver's own code path with no contact DOFs
+/// held last: the same faer kernels, the same (sequential) parallelism as the
+/// solve it is compared with, and faer's global setting left alone. Returns
+/// (factorization seconds, solve seconds, DOFs).
+fn floor_time(scene: &Scene) -> (f64, f64, usize) {
     let meshes = contact_core::meshing::meshes(scene).expect("the bench's scenes mesh");
     let dofs = contact_core::fem::assembly::dof_map(scene, &meshes).expect("benchmark scene is valid");
     let asm = contact_core::fem::assemble(scene, &meshes, dofs).expect("benchmark scene assembles");
     let k = &asm.stiffness.k;
-    let default = faer::get_global_parallelism();
-    let par = floor_once(k, &asm.f);
-    faer::set_global_parallelism(faer::Par::Seq);
-    let seq = floor_once(k, &asm.f);
-    faer::set_global_parallelism(default);
-    (par.min(seq), k.nrows())
-}
-
-fn floor_once(k: &faer::sparse::SparseColMat<usize, f64>, f: &[f64]) -> f64 {
     let t = Instant::now();
-    let sym = SymbolicLlt::try_new(k.symbolic(), Side::Lower).expect("symbolic");
-    let llt = Llt::try_new_with_symbolic(sym, k.as_ref(), Side::Lower).expect("numeric");
-    let b = faer::Col::<f64>::from_fn(f.len(), |i| f[i]);
-    let x = faer::linalg::solvers::Solve::solve(&llt, &b);
-    std::hint::black_box(x);
-    t.elapsed().as_secs_f64()
+    let chol = contact_core::linalg::Cholesky::try_new(k, &[]).expect("the bench's K is positive definite");
+    let factor = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    std::hint::black_box(chol.solve(&asm.f));
+    (factor, t.elapsed().as_secs_f64(), k.nrows())
 }
 
 /// Runs the benchmark; `quick` keeps to the two smallest meshes. Each timing is
@@ -213,9 +228,15 @@ pub fn run(quick: bool, repeat: usize, mut progress: impl FnMut(&Row)) -> Vec<Ro
             let h_el = if element == "t6" { 2.0 * h } else { h };
             let req0 = hertz_request(h_el, element, "auto");
             let scene0 = Scene::try_new(&serde_json::from_value(req0).unwrap(), &limits).unwrap();
-            let mut floors: Vec<(f64, usize)> = (0..repeat).map(|_| floor_time(&scene0)).collect();
-            floors.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let (t_floor, n_free) = floors[repeat / 2];
+            // Medians of `repeat` runs, as the solve's rows are.
+            let floors: Vec<(f64, f64, usize)> = (0..repeat).map(|_| floor_time(&scene0)).collect();
+            let median = |f: &dyn Fn(&(f64, f64, usize)) -> f64| {
+                let mut v: Vec<f64> = floors.iter().map(f).collect();
+                v.sort_by(f64::total_cmp);
+                v[repeat / 2]
+            };
+            let (t_floor_factor, t_floor_solve) = (median(&|f| f.0), median(&|f| f.1));
+            let (t_floor, n_free) = (t_floor_factor + t_floor_solve, floors[0].2);
             // (method, formulation, ζ); the full-system variants refactor per
             // iteration, so they run only where that takes seconds, not minutes.
             let mut runs: Vec<(MethodName, Formulation, Option<f64>)> = vec![
@@ -275,6 +296,8 @@ pub fn run(quick: bool, repeat: usize, mut progress: impl FnMut(&Row)) -> Vec<Ro
                     t_post: r.timings.post,
                     t_total: r.timings.total,
                     t_floor,
+                    t_floor_factor,
+                    t_floor_solve,
                     err_half_width: ea,
                     err_peak: ep,
                     err_l2: el2,
