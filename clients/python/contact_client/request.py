@@ -136,26 +136,25 @@ def rectangle(
     }
 
 
+def _disk(kind: str, center, radius, facing, size, element, grading) -> dict:
+    return {
+        kind: _given(center=list(center), radius=radius, facing=facing, size=size, element=element, grading=grading)
+    }
+
+
 def half_disk(
     center: list[float], radius: float, facing: str, size: float, element: str = "t3", grading: dict | None = None
 ) -> dict:
     """Generated half-disk with its arc ``facing`` "down" or "up"; edge sets arc and flat."""
-    return {
-        "half_disk": _given(
-            center=list(center), radius=radius, facing=facing, size=size, element=element, grading=grading
-        )
-    }
+    return _disk("half_disk", center, radius, facing, size, element, grading)
 
 
 def quarter_disk(
     center: list[float], radius: float, facing: str, size: float, element: str = "t3", grading: dict | None = None
 ) -> dict:
-    """Generated quarter-disk (the right half of ``half_disk``, for a symmetric scene)."""
-    return {
-        "quarter_disk": _given(
-            center=list(center), radius=radius, facing=facing, size=size, element=element, grading=grading
-        )
-    }
+    """Generated quarter-disk (the right half of ``half_disk``, for a symmetric
+    scene); edge sets arc, flat and axis."""
+    return _disk("quarter_disk", center, radius, facing, size, element, grading)
 
 
 def inline_mesh(nodes: list[list[float]], elements: list[list[int]], edge_sets: dict[str, list[list[int]]]) -> dict:

@@ -290,12 +290,21 @@ def footing_on_foundation(
     The footing's horizontal translation is not resisted by a frictionless
     foundation; the reply says so in ``notes``.
     """
-    mesh = rq.rectangle([-0.5 * width, 0.0], width, height, size, element)
+    return _footing(model, width, height, youngs_modulus, poisson_ratio, size, extent, element,
+                    tractions=[rq.pressure("top", pressure)])
+
+
+def _footing(model: dict, width: float, height: float, youngs_modulus: float, poisson_ratio: float, size: float,
+             extent: float, element: str, description: str | None = None, **loads) -> dict:
+    """An unsupported footing centred on x = 0 resting on the foundation ``soil``
+    along y = 0, x in [-extent, extent], with ``loads`` (tractions=, point_loads=)."""
+    footing = rq.body("footing", rq.material(youngs_modulus, poisson_ratio),
+                      rq.rectangle([-0.5 * width, 0.0], width, height, size, element), **loads)
     return rq.request(
-        bodies=[rq.body("footing", rq.material(youngs_modulus, poisson_ratio), mesh,
-                        tractions=[rq.pressure("top", pressure)])],
+        bodies=[footing],
         foundations=[rq.foundation("soil", model, -extent, extent)],
         contacts=[rq.contact("footing", "bottom", foundation="soil")],
+        description=description,
     )
 
 
@@ -478,15 +487,10 @@ def footing_with_eccentric_load(
         f = moment / width
         points += [rq.point_load("top", [half, height], [0.0, f]),
                    rq.point_load("top", [-half, height], [0.0, -f])]
-    footing = rq.body("footing", rq.material(youngs_modulus, poisson_ratio),
-                      rq.rectangle([-half, 0.0], width, height, size, element), point_loads=points)
-    return rq.request(
-        bodies=[footing],
-        foundations=[rq.foundation("soil", model, -extent, extent)],
-        contacts=[rq.contact("footing", "bottom", foundation="soil")],
-        description=f"footing {width} x {height} on a tensionless foundation, load {load} at x = {eccentricity}, "
-                    f"moment {moment}",
-    )
+    return _footing(model, width, height, youngs_modulus, poisson_ratio, size, extent, element,
+                    description=f"footing {width} x {height} on a tensionless foundation, load {load} at "
+                                f"x = {eccentricity}, moment {moment}",
+                    point_loads=points)
 
 
 def rigid_footing_pressure(x: float, load: float, eccentricity: float, width: float) -> float:

@@ -84,7 +84,6 @@ pub fn search_work(scene: &Scene, meshes: &[Mesh2d]) -> Result<(), CoreError> {
 /// `invalid_geometry` at the load's `at`.
 pub fn point_loads(scene: &Scene, meshes: &[Mesh2d]) -> Result<Vec<Vec<Located>>, CoreError> {
     crate::fem::loads::locate_all(scene, meshes)
-        .map_err(|(path, reason)| CoreError::invalid(InvalidKind::Geometry, path, reason))
 }
 
 /// Every pair has at least one contact row.

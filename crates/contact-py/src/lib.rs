@@ -18,7 +18,6 @@ fn solve(py: Python<'_>, payload: &[u8]) -> (bool, String) {
     py.detach(move || {
         let limits = contact::Limits::default();
         let answer = catch_unwind(AssertUnwindSafe(|| contact::solve_bytes(&payload, &limits)));
-        let json = |v: &dyn erased::Json| v.json();
         match answer {
             Ok(Ok(reply)) => (true, json(&reply)),
             Ok(Err(error)) => (false, json(&error)),
@@ -59,13 +58,6 @@ fn _contact(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-mod erased {
-    pub trait Json {
-        fn json(&self) -> String;
-    }
-    impl<T: serde::Serialize> Json for T {
-        fn json(&self) -> String {
-            serde_json::to_string(self).unwrap_or_default()
-        }
-    }
+fn json<T: serde::Serialize>(v: &T) -> String {
+    serde_json::to_string(v).unwrap_or_default()
 }

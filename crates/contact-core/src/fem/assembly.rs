@@ -297,8 +297,7 @@ pub fn assemble_loads(external: &[f64], dofs: &DofMap, stiffness: &Stiffness) ->
 /// Stiffness and loads together (no cache).
 pub fn assemble(scene: &Scene, meshes: &[Mesh2d], dofs: DofMap) -> Result<Assembled, CoreError> {
     let stiffness = assemble_stiffness(scene, meshes, &dofs)?;
-    let points = super::loads::locate_all(scene, meshes)
-        .map_err(|(path, reason)| CoreError::invalid(InvalidKind::Geometry, path, reason))?;
+    let points = super::loads::locate_all(scene, meshes)?;
     let f = assemble_loads(
         &super::loads::external(scene, meshes, &dofs, &points),
         &dofs,

@@ -11,6 +11,7 @@
 
 use super::assembly::DofMap;
 use super::element;
+use crate::error::{CoreError, InvalidKind};
 use crate::mesh::{boundary::edge_normal, Edge, Mesh2d};
 use crate::scene::{Scene, Traction};
 
@@ -23,8 +24,8 @@ pub type Located = Vec<(usize, f64)>;
 const ON_EDGE: f64 = 0.05;
 
 /// The point loads of every body on their meshes, per body in request order;
-/// a point off its edge set is `(path, reason)`.
-pub fn locate_all(scene: &Scene, meshes: &[Mesh2d]) -> Result<Vec<Vec<Located>>, (String, String)> {
+/// a point off its edge set is an `invalid_geometry` at the load's `at`.
+pub fn locate_all(scene: &Scene, meshes: &[Mesh2d]) -> Result<Vec<Vec<Located>>, CoreError> {
     scene
         .bodies
         .iter()
@@ -36,7 +37,8 @@ pub fn locate_all(scene: &Scene, meshes: &[Mesh2d]) -> Result<Vec<Vec<Located>>,
                     let edges = mesh.edge_sets.get(&pl.edges).map(|v| v.as_slice()).unwrap_or(&[]);
                     locate(mesh, edges, pl.at).map_err(|(distance, nearest)| {
                         let sc = scene.scales;
-                        (
+                        CoreError::invalid(
+                            InvalidKind::Geometry,
                             format!("{}/at", pl.path),
                             format!(
                                 "the point ({:.6e}, {:.6e}) is {:.3e} from edge set '{}' (nearest point ({:.6e}, {:.6e})): a point load must lie on its edge set",

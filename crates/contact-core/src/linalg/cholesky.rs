@@ -202,11 +202,6 @@ impl Cholesky {
         Ok(Self { analysis, values })
     }
 
-    /// The ordering and structure this factor was computed on.
-    pub fn symbolic(&self) -> &Arc<SymbolicFactor> {
-        &self.analysis
-    }
-
     pub fn dim(&self) -> usize {
         self.analysis.n
     }
@@ -270,11 +265,6 @@ impl Cholesky {
             .perm()
             .expect("the ordering is always given")
             .arrays()
-    }
-
-    /// Number of trailing DOFs (the Schur block).
-    pub fn n_trailing(&self) -> usize {
-        self.analysis.n_trailing
     }
 
     pub fn solve(&self, b: &[f64]) -> Vec<f64> {

@@ -106,9 +106,8 @@ pub fn solve_condensed_mixed(
     for (k, &d) in op.cdofs.iter().enumerate() {
         u0[d] = u0c[(k, 0)];
     }
-    let swept = |lambda: &[f64]| -> Option<Vec<f64>> {
-        let mut btl = vec![0.0; n];
-        p.cons.apply_transpose_into(lambda, &mut btl);
+    let swept = |lambda: &[f64]| -> Option<(Vec<f64>, usize)> {
+        let (rhs, btl, size) = load_less_contact(p, lambda);
         let mut z = Mat::<f64>::from_fn(c, 1, |k, _| btl[op.cdofs[k]]);
         faer::linalg::triangular_solve::solve_lower_triangular_in_place(op.lcc.as_ref(), z.as_mut(), Par::Seq);
         let mut yz = y.clone();
@@ -116,21 +115,24 @@ pub fn solve_condensed_mixed(
             yz[n - c + k] -= z[(k, 0)];
         }
         let u = op.chol.backward(&yz);
-        let kx = crate::linalg::sparse::sym_lower_matvec(&op.stiffness.k, &u);
-        let scale = inf_norm(p.f).max(inf_norm(&btl)).max(inf_norm(&kx));
-        let r = (0..n).fold(0.0f64, |a, i| a.max((p.f[i] - btl[i] - kx[i]).abs()));
-        (r <= REFINE_ABOVE * scale).then_some(u)
+        let (r, scale) = residual(op, &rhs, &u, size);
+        (inf_norm(&r) <= REFINE_ABOVE * scale).then_some((u, 0))
     };
     if let Some(sol) = contact_stage(p, pb, name, exact, mlcp, &u0, 0, &swept, t) {
         return Ok(sol);
     }
     let (u0, r0) = solve_refined(op, p.f, inf_norm(p.f));
-    let refined = |lambda: &[f64]| Some(displacements(p, lambda).0);
+    let refined = |lambda: &[f64]| Some(displacements(p, lambda));
     Ok(contact_stage(p, pb, name, exact, mlcp, &u0, r0, &refined, t).expect("the refined path always answers"))
 }
 
-/// The LCP on q = g − B u0, then the displacements (`solve_u`; None sends the
-/// caller to the refined path) and the refinement of the contact forces.
+/// u for the contact forces λ, and the refinement steps it took (None: the
+/// residual calls for the refined path).
+type Displacements<'a> = &'a dyn Fn(&[f64]) -> Option<(Vec<f64>, usize)>;
+
+/// The LCP on q = g − B u0, then the displacements and their refinement steps
+/// (`solve_u`; None sends the caller to the refined path) and the refinement
+/// of the contact forces.
 #[allow(clippy::too_many_arguments)]
 fn contact_stage(
     p: &Problem,
@@ -140,7 +142,7 @@ fn contact_stage(
     mlcp: super::MixedSolver,
     u0: &[f64],
     refinements: usize,
-    solve_u: &dyn Fn(&[f64]) -> Option<Vec<f64>>,
+    solve_u: Displacements,
     t: Instant,
 ) -> Option<Solution> {
     let bu0 = p.cons.apply(u0);
@@ -163,7 +165,7 @@ fn contact_stage(
             res.lambda[i] > 0.0 && res.lambda[i] * w[(i, i)] > wl[i] + q[i] + cb
         })
         .collect();
-    let mut u = solve_u(&res.lambda)?;
+    let (mut u, r1) = solve_u(&res.lambda)?;
     let mut lambda = res.lambda;
     let mut beta = beta;
     let r2 = if exact && res.converged {
@@ -172,7 +174,7 @@ fn contact_stage(
         0
     };
     Some(Solution {
-        refinements: refinements + r2,
+        refinements: refinements + r1 + r2,
         u,
         lambda,
         beta,
@@ -187,15 +189,31 @@ fn contact_stage(
     })
 }
 
+/// f − Bᵀλ and the size of its terms: f and Bᵀλ nearly cancel on a body held
+/// only by contact, so the round-off of the right-hand side is that of its
+/// terms, not of their small difference.
+/// Also returns Bᵀλ itself.
+fn load_less_contact(p: &Problem, lambda: &[f64]) -> (Vec<f64>, Vec<f64>, f64) {
+    let mut btl = vec![0.0; p.f.len()];
+    p.cons.apply_transpose_into(lambda, &mut btl);
+    let rhs: Vec<f64> = p.f.iter().zip(&btl).map(|(f, b)| f - b).collect();
+    let terms_size = inf_norm(p.f).max(inf_norm(&btl));
+    (rhs, btl, terms_size)
+}
+
 /// u = K⁻¹ (f − Bᵀλ), refined; returns u and the refinement steps.
 fn displacements(p: &Problem, lambda: &[f64]) -> (Vec<f64>, usize) {
-    let mut rhs = p.f.to_vec();
-    let neg: Vec<f64> = lambda.iter().map(|l| -l).collect();
-    p.cons.apply_transpose_into(&neg, &mut rhs);
-    // f and Bᵀλ nearly cancel on a body held only by contact: the round-off of
-    // the right-hand side is that of its terms, not of their small difference.
-    let terms_size = inf_norm(p.f).max(rhs.iter().zip(p.f).map(|(r, f)| (r - f).abs()).fold(0.0, f64::max));
+    let (rhs, _, terms_size) = load_less_contact(p, lambda);
     solve_refined(p.op, &rhs, terms_size)
+}
+
+/// b − K x and the scale it is judged against: the size of b's terms, of b
+/// and of K x.
+fn residual(op: &Prepared, b: &[f64], x: &[f64], size: f64) -> (Vec<f64>, f64) {
+    let kx = crate::linalg::sparse::sym_lower_matvec(&op.stiffness.k, x);
+    let r: Vec<f64> = b.iter().zip(&kx).map(|(bi, ki)| bi - ki).collect();
+    let scale = size.max(inf_norm(b)).max(inf_norm(&kx));
+    (r, scale)
 }
 
 /// The gaps g − B u + C β + F λ of the rows, from the sparse solution u.
@@ -286,12 +304,7 @@ const REFINE_ABOVE: f64 = 1e-10;
 /// `size`: the magnitude of the terms b was formed from (≥ ‖b‖∞), against which
 /// its round-off is judged.
 fn solve_refined(op: &Prepared, b: &[f64], size: f64) -> (Vec<f64>, usize) {
-    let residual = |x: &[f64]| {
-        let kx = crate::linalg::sparse::sym_lower_matvec(&op.stiffness.k, x);
-        let r: Vec<f64> = b.iter().zip(&kx).map(|(bi, ki)| bi - ki).collect();
-        let scale = size.max(inf_norm(b)).max(inf_norm(&kx));
-        (r, scale)
-    };
+    let residual = |x: &[f64]| residual(op, b, x, size);
     let mut x = op.chol.solve(b);
     let (mut r, scale) = residual(&x);
     for step in 0..3 {

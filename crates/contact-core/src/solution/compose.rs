@@ -271,8 +271,10 @@ fn body_outputs(scene: &Scene, meshes: &[Mesh2d], disp: &[Vec<[f64; 2]>]) -> Opt
                     elements: o_mesh.then(|| (0..mesh.n_elems()).map(|e| mesh.elem(e).to_vec()).collect()),
                     displacement: o_displacement
                         .then(|| disp.iter().map(|d| [sc.length(d[0]), sc.length(d[1])]).collect()),
+                    // Only the VTU file's tensor reads it.
                     stress_zz: stress
                         .as_ref()
+                        .filter(|_| o.vtu)
                         .map(|s| s.iter().map(|s| nu_zz * (s[0] + s[1])).collect()),
                     stress,
                 }

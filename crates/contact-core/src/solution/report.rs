@@ -196,7 +196,8 @@ pub struct BodyFields {
     pub displacement: Option<Vec<[f64; 2]>>,
     /// Element-centroid stress [σxx, σyy, σxy].
     pub stress: Option<Vec<[f64; 3]>>,
-    /// σzz at the same points (plane strain: ν (σxx + σyy); plane stress: 0).
+    /// σzz at the same points (plane strain: ν (σxx + σyy); plane stress: 0),
+    /// with the VTU output only.
     pub stress_zz: Option<Vec<f64>>,
 }
 

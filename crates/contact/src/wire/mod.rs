@@ -2,8 +2,7 @@
 //! core and the core's answer or refusal becomes a wire message.
 
 use contact_core::cache::OperatorCache;
-use contact_core::error::{CoreError, InvalidKind};
-use contact_core::linalg::LinalgError;
+use contact_core::error::CoreError;
 use contact_core::{Limits, Scene};
 use contact_proto::{ErrorCode, ErrorDetails, ErrorReply, LoadBound, SolveReply};
 
@@ -40,25 +39,11 @@ pub fn check_bytes(bytes: &[u8], limits: &Limits) -> Result<(), ErrorReply> {
     run().map_err(|e| error_reply(&e).with_client_id_of(bytes))
 }
 
-/// The wire form of a refusal: its code, message, pointer and details.
+/// The wire form of a refusal: its code (the core's name for it,
+/// `CoreError::code`), message, pointer and details.
 pub fn error_reply(e: &CoreError) -> ErrorReply {
-    let code = match e {
-        CoreError::Malformed { .. } => ErrorCode::MalformedJson,
-        CoreError::Invalid { kind, .. } => match kind {
-            InvalidKind::Request => ErrorCode::InvalidRequest,
-            InvalidKind::Version => ErrorCode::UnsupportedVersion,
-            InvalidKind::Material => ErrorCode::InvalidMaterial,
-            InvalidKind::Mesh => ErrorCode::InvalidMesh,
-            InvalidKind::Geometry => ErrorCode::InvalidGeometry,
-            InvalidKind::NoSupport => ErrorCode::NoSupport,
-            InvalidKind::NoContactCandidates => ErrorCode::NoContactCandidates,
-            InvalidKind::IncompatibleLoads => ErrorCode::IncompatibleLoads,
-        },
-        CoreError::TooLarge { .. } => ErrorCode::TooLarge,
-        CoreError::Linalg(LinalgError::Overrun { .. }) => ErrorCode::Timeout,
-        CoreError::Linalg(_) => ErrorCode::LinearAlgebra,
-        CoreError::Timeout { .. } => ErrorCode::Timeout,
-    };
+    let code: ErrorCode =
+        serde_json::from_value(serde_json::Value::String(e.code().into())).unwrap_or(ErrorCode::InternalError);
     let message = match e {
         CoreError::Invalid { reason, .. } | CoreError::TooLarge { reason, .. } => reason.clone(),
         other => other.to_string(),
@@ -85,11 +70,13 @@ pub fn error_reply(e: &CoreError) -> ErrorReply {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use contact_core::linalg::cholesky::FactorCost;
+    use contact_core::error::InvalidKind;
+    use contact_core::linalg::{cholesky::FactorCost, LinalgError};
 
     /// A factorization refused for want of time is a `timeout` (the user's
     /// remedy is a longer limit or a coarser mesh), not a linear-algebra failure.
-    /// The core's names of its refusals are the wire's error codes.
+    /// Every name the core gives a refusal is one of the wire's error codes
+    /// (an unknown one would be answered as internal_error).
     #[test]
     fn error_codes_are_the_cores_names() {
         use InvalidKind as K;
@@ -118,6 +105,7 @@ mod tests {
         for e in errors {
             let code = serde_json::to_value(error_reply(&e).code).unwrap();
             assert_eq!(code.as_str(), Some(e.code()), "{e:?}");
+            assert_ne!(error_reply(&e).code, ErrorCode::InternalError, "{e:?}");
         }
     }
 

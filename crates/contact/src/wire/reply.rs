@@ -8,13 +8,13 @@ use contact_core::solution::report::{
 use contact_proto as p;
 
 /// The wire reply of `report`, with the VTU file attached when asked for.
-pub fn reply(report: Report) -> p::SolveReply {
+pub fn reply(mut report: Report) -> p::SolveReply {
     let outputs = report.outputs;
     let stress_zz: Vec<Vec<f64>> = report
         .bodies
-        .iter()
+        .iter_mut()
         .flatten()
-        .map(|b| b.stress_zz.clone().unwrap_or_default())
+        .map(|b| b.stress_zz.take().unwrap_or_default())
         .collect();
     let mut reply = p::SolveReply {
         version: p::PROTOCOL_VERSION.to_string(),
