@@ -1,7 +1,7 @@
 //! Reuse of the expensive, load-independent part of a solve across requests.
 //!
-//! A `Prepared` operator holds K_ff and K_fd, the Cholesky factor of K_ff with
-//! the contact DOFs last, and the condensed operator W = B K⁻¹ Bᵀ. It depends
+//! A `Prepared` operator holds K_ff and K_fd, the Cholesky factor of K_ff and
+//! the condensed operator W = B K⁻¹ Bᵀ with the blocks of L⁻¹ P Bᵀ it came from. It depends
 //! on the meshes, materials, analysis, which DOFs are prescribed (not their
 //! values) and the contact rows B (not the gaps), so a request that changes only
 //! loads, prescribed values or obstacle positions (with the same candidates)
@@ -11,18 +11,17 @@
 //!
 //! Beside the operators it keeps the last few symbolic factorizations (the
 //! AMD ordering and the supernodal structure), keyed by the sparsity pattern
-//! of K and the contact DOFs only: a request that changes a material (E, ν)
+//! of K only: a request that changes a material (E, ν) or the contact rows
 //! misses the operator but reuses the ordering and redoes only the numeric
 //! factorization.
 
 use std::hash::{Hash, Hasher};
 use std::sync::{Arc, Mutex};
 
-use faer::Mat;
-
 use crate::contact::ConstraintSet;
 use crate::fem::assembly::{DofMap, Stiffness};
 use crate::linalg::cholesky::SymbolicFactor;
+use crate::linalg::schur::Condensed;
 use crate::linalg::Cholesky;
 use crate::mesh::Mesh2d;
 use crate::scene::Scene;
@@ -30,12 +29,9 @@ use crate::scene::Scene;
 pub struct Prepared {
     pub stiffness: Arc<Stiffness>,
     pub chol: Cholesky,
-    pub w: Mat<f64>,
-    /// The dense trailing block L_cc of the factor (the Schur complement's
-    /// Cholesky factor on the contact DOFs) and those DOFs in its order: one
-    /// forward and one backward sweep then make a whole solve.
-    pub lcc: Mat<f64>,
-    pub cdofs: Vec<usize>,
+    /// W and the blocks of X = L⁻¹ P Bᵀ: one forward and one backward sweep
+    /// then make a whole solve.
+    pub condensed: Condensed,
     /// `Cholesky::pivot_ratio` of the factor.
     pub pivot_ratio: f64,
     pub t_factorization: f64,
@@ -46,7 +42,7 @@ impl Prepared {
     /// Approximate memory held, for the cache bound.
     pub fn bytes(&self) -> usize {
         let k = self.stiffness.k.val().len() * 16 + self.stiffness.k_fd.len() * 24;
-        k + self.chol.nnz_factor() * 12 + (self.w.nrows() * self.w.ncols() + self.lcc.nrows() * self.lcc.ncols()) * 8
+        k + self.chol.nnz_factor() * 12 + self.condensed.len() * 8
     }
 }
 

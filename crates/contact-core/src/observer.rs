@@ -68,34 +68,37 @@ impl Timings {
 /// `nodes` nodes, T6 or not, before the factorization's symbolic analysis
 /// tells its cost (`revise_factorization`). Fitted on this machine (release,
 /// 2 cores) to the Hertz block, T3 73k to 2.1M DOF and T6 1.6M DOF: meshing
-/// 5.7e-7 to 8.2e-7 s per node, assembly 7e-7 (T6 1.05e-6), the factorization
-/// 7.5e-9 to 1.0e-8 n^1.5 for n DOFs, condensation 3.3e-9 to 4.0e-9 m^2.5
-/// for m rows (m about 2 √nodes on these scenes), the contact solve 4.7 % to
-/// 6.4 % of the factorization (one forward and one backward sweep),
-/// post-processing 1.0e-7 to 1.3e-7 per node.
-/// The factorization is 77 % to 87 % of the whole from 400k DOF on.
+/// 5.7e-7 to 8.2e-7 s per node, assembly 7e-7 (T6 1.05e-6),
+/// post-processing 1.0e-7 to 1.3e-7 per node; and on T3 66k to 1.2M DOF
+/// (`contact bench --floor`): the factorization 4.0e-9 to 6.4e-9 n^1.5 for n
+/// DOFs, the condensation 14 % to 16 % of it and the contact solve 9 % (one
+/// forward and one backward sweep and the LCP).
 pub fn predicted(nodes: f64, t6: bool) -> [f64; 6] {
     let n = 2.0 * nodes;
-    let factorization = 8e-9 * n.powf(1.5);
-    let m = 2.0 * nodes.sqrt();
+    let factorization = 4.5e-9 * n.powf(1.5);
     [
         7e-7 * nodes,
         if t6 { 1.05e-6 } else { 7e-7 } * nodes,
         factorization,
-        3.8e-9 * m.powf(2.5),
-        0.05 * factorization,
+        0.15 * factorization,
+        0.09 * factorization,
         1.2e-7 * nodes,
     ]
 }
 
+/// Seconds per multiply–add of the condensation (`linalg::schur`), measured
+/// on the Hertz block (release, one thread): 2.2e-11 at 1.2M DOF, 2.3e-11 at
+/// 615k.
+const SECS_PER_CONDENSATION_FLOP: f64 = 2.3e-11;
+
 /// The factorization's cost once its symbolic analysis (which took
 /// `symbolic_secs`, done) is known, and what follows from it (condensation of
-/// `m` rows, the contact solve).
-pub fn revise_factorization(symbolic_secs: f64, predicted_secs: f64, m: usize) {
+/// `condensation_flops` multiply–adds, the contact solve).
+pub fn revise_factorization(symbolic_secs: f64, predicted_secs: f64, condensation_flops: f64) {
     crate::progress::revise("factorization", symbolic_secs + predicted_secs);
     crate::progress::credit(symbolic_secs);
-    crate::progress::revise("condensation", 3.8e-9 * (m as f64).powf(2.5));
-    crate::progress::revise("contact_solve", 0.05 * predicted_secs);
+    crate::progress::revise("condensation", SECS_PER_CONDENSATION_FLOP * condensation_flops);
+    crate::progress::revise("contact_solve", 0.09 * predicted_secs);
     // Told at once: the factorization is most of a large solve, and the
     // estimate of what is left should not wait for its end.
     crate::progress::report();

@@ -42,13 +42,15 @@ pub struct Row {
     pub max_penetration: f64,
     pub certificate: f64,
     pub status: String,
+    /// Threads of the factorization and sweeps (`--threads`), the floor's too.
+    pub threads: usize,
 }
 
 impl Row {
-    pub const HEADER: &'static str = "scene,element,h_min,dofs,candidates,method,iterations,t_mesh,t_assembly,t_factorization,t_condensation,t_contact,t_post,t_total,t_floor,ratio_solve_to_floor,ratio_total_to_floor,err_half_width,err_peak,err_l2,max_penetration,certificate,status,t_floor_factor,t_floor_solve,ratio_factor,ratio_contact";
+    pub const HEADER: &'static str = "scene,element,h_min,dofs,candidates,method,iterations,t_mesh,t_assembly,t_factorization,t_condensation,t_contact,t_post,t_total,t_floor,ratio_solve_to_floor,ratio_total_to_floor,err_half_width,err_peak,err_l2,max_penetration,certificate,status,t_floor_factor,t_floor_solve,ratio_factor,ratio_contact,threads";
 
-    /// The factorization against the floor's (the fill the contact-last
-    /// order adds, and nothing else: same kernels, same parallelism).
+    /// The factorization against the floor's: the same factor of K on the same
+    /// kernels and parallelism, so 1 up to run-to-run spread.
     pub fn ratio_factor(&self) -> f64 {
         self.t_factorization / self.t_floor_factor
     }
@@ -65,7 +67,7 @@ impl Row {
 
     pub fn csv(&self) -> String {
         format!(
-            "{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.3},{:.3},{:.3e},{:.3e},{:.3e},{:.3e},{:.1e},{},{:.6},{:.6},{:.3},{:.3}",
+            "{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.3},{:.3},{:.3e},{:.3e},{:.3e},{:.3e},{:.1e},{},{:.6},{:.6},{:.3},{:.3},{}",
             self.scene,
             self.element,
             self.h_min,
@@ -92,7 +94,8 @@ impl Row {
             self.t_floor_factor,
             self.t_floor_solve,
             self.ratio_factor(),
-            self.ratio_contact()
+            self.ratio_contact(),
+            self.threads
         )
     }
 
@@ -195,28 +198,41 @@ fn floor_time(scene: &Scene) -> (f64, f64, usize) {
     let asm = contact_core::fem::assemble(scene, &meshes, dofs).expect("benchmark scene assembles");
     let k = &asm.stiffness.k;
     let t = Instant::now();
-    let chol = contact_core::linalg::Cholesky::try_new(k, &[]).expect("the bench's K is positive definite");
+    let chol = contact_core::linalg::Cholesky::try_new(k).expect("the bench's K is positive definite");
     let factor = t.elapsed().as_secs_f64();
     let t = Instant::now();
     std::hint::black_box(chol.solve(&asm.f));
     (factor, t.elapsed().as_secs_f64(), k.nrows())
 }
 
-/// Runs the benchmark; `quick` keeps to the two smallest meshes. Each timing is
-/// the median of `repeat` runs (the floor too), since run-to-run spread on this
-/// machine reaches ±30 % for the same factorization.
-pub fn run(quick: bool, repeat: usize, mut progress: impl FnMut(&Row)) -> Vec<Row> {
+/// Which rows the benchmark runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    /// Every method at five mesh sizes, T3 and T6.
+    Full,
+    /// The two smallest meshes (for CI).
+    Quick,
+    /// `auto` alone, T3, at the three sizes the floor is judged at (about
+    /// 75k, 612k and 1.19M DOF).
+    Floor,
+}
+
+/// Runs the benchmark. Each timing is the median of `repeat` runs (the floor
+/// too), since run-to-run spread on this machine reaches ±30 % for the same
+/// factorization.
+pub fn run(mode: Mode, repeat: usize, mut progress: impl FnMut(&Row)) -> Vec<Row> {
     let repeat = repeat.max(1);
     // Node spacing at the contact (T6 elements are twice as long): ~3k to ~1M DOF.
-    let sizes: &[f64] = if quick {
-        &[0.16, 0.04]
-    } else {
-        &[0.16, 0.04, 0.01, 0.0025, 0.0017]
+    let sizes: &[f64] = match mode {
+        Mode::Quick => &[0.16, 0.04],
+        Mode::Full => &[0.16, 0.04, 0.01, 0.0025, 0.0017],
+        Mode::Floor => &[0.0062, 0.00186, 0.00132],
     };
+    let elements: &[&str] = if mode == Mode::Floor { &["t3"] } else { &["t3", "t6"] };
     let e_star = 200.0 / (1.0 - 0.09);
     let mut rows = Vec::new();
     let limits = Limits::default();
-    for element in ["t3", "t6"] {
+    for &element in elements {
         // The finest T6 mesh would be ~1.8M DOF; T3 alone reaches ~1.2M.
         let sizes = if element == "t6" && sizes.len() > 4 {
             &sizes[..4]
@@ -239,19 +255,23 @@ pub fn run(quick: bool, repeat: usize, mut progress: impl FnMut(&Row)) -> Vec<Ro
             let (t_floor, n_free) = (t_floor_factor + t_floor_solve, floors[0].2);
             // (method, formulation, ζ); the full-system variants refactor per
             // iteration, so they run only where that takes seconds, not minutes.
-            let mut runs: Vec<(MethodName, Formulation, Option<f64>)> = vec![
-                (MethodName::ActiveSet, Formulation::Condensed, None),
-                (MethodName::InteriorPoint, Formulation::Condensed, None),
-                (MethodName::AugmentedLagrangian, Formulation::Condensed, Some(1e-5)),
-                (MethodName::Penalty, Formulation::Condensed, Some(1e-4)),
-                (MethodName::Penalty, Formulation::Condensed, Some(1e-6)),
-                (MethodName::Penalty, Formulation::Condensed, Some(1e-8)),
-                (MethodName::Barrier, Formulation::Condensed, Some(1e-4)),
-                (MethodName::Barrier, Formulation::Condensed, Some(1e-6)),
-            ];
+            let mut runs: Vec<(MethodName, Formulation, Option<f64>)> = if mode == Mode::Floor {
+                vec![(MethodName::Auto, Formulation::Condensed, None)]
+            } else {
+                vec![
+                    (MethodName::ActiveSet, Formulation::Condensed, None),
+                    (MethodName::InteriorPoint, Formulation::Condensed, None),
+                    (MethodName::AugmentedLagrangian, Formulation::Condensed, Some(1e-5)),
+                    (MethodName::Penalty, Formulation::Condensed, Some(1e-4)),
+                    (MethodName::Penalty, Formulation::Condensed, Some(1e-6)),
+                    (MethodName::Penalty, Formulation::Condensed, Some(1e-8)),
+                    (MethodName::Barrier, Formulation::Condensed, Some(1e-4)),
+                    (MethodName::Barrier, Formulation::Condensed, Some(1e-6)),
+                ]
+            };
             // T6 contact rows are mortar rows over three nodes, which the full
             // formulation does not take (it rotates one node per row).
-            let nodal = element == "t3";
+            let nodal = element == "t3" && mode != Mode::Floor;
             if nodal && n_free < 200_000 {
                 runs.push((MethodName::ActiveSet, Formulation::Full, None));
             }
@@ -304,6 +324,7 @@ pub fn run(quick: bool, repeat: usize, mut progress: impl FnMut(&Row)) -> Vec<Ro
                     max_penetration: r.pairs[0].max_penetration,
                     certificate: r.certificate.worst(),
                     status: format!("{:?}", r.status).to_lowercase(),
+                    threads: contact_core::linalg::threads(),
                 };
                 progress(&row);
                 rows.push(row);

@@ -109,6 +109,13 @@ enum Cmd {
         /// Meshes up to ~100k DOF only (for CI).
         #[arg(long)]
         quick: bool,
+        /// `auto` alone against the floor, T3, at about 75k, 612k and 1.19M DOF.
+        #[arg(long, conflicts_with = "quick")]
+        floor: bool,
+        /// Threads of the sparse factorization and sweeps, for the solve and
+        /// the floor alike (default 1).
+        #[arg(long, default_value_t = 1)]
+        threads: usize,
         /// CSV output path.
         #[arg(long, default_value = DEFAULT_BENCH_CSV)]
         csv: PathBuf,
@@ -267,6 +274,8 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
         }
         Cmd::Bench {
             quick,
+            floor,
+            threads,
             csv,
             repeat,
             stability,
@@ -298,7 +307,13 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
                 )
             } else {
                 println!("{}", contact_verify::bench::Row::table_header());
-                let rows = contact_verify::bench::run(quick, repeat, |r| println!("{}", r.table_line()));
+                let mode = match (quick, floor) {
+                    (true, _) => contact_verify::bench::Mode::Quick,
+                    (_, true) => contact_verify::bench::Mode::Floor,
+                    _ => contact_verify::bench::Mode::Full,
+                };
+                contact_core::linalg::set_threads(threads);
+                let rows = contact_verify::bench::run(mode, repeat, |r| println!("{}", r.table_line()));
                 (
                     contact_verify::bench::Row::HEADER,
                     rows.iter().map(|r| r.csv()).collect(),

@@ -97,13 +97,19 @@ fn scales(v: &Value, key: &str, out: &mut HashMap<String, f64>) {
 /// zero up to round-off in a scene (fx and m of a symmetric load, the gaps of
 /// rows in contact) are judged against their physical scale, not against
 /// their own round-off: forces against the largest force component, moments
-/// against that force times the scene's size, gaps against the scene's size.
+/// against that force times the scene's size, gaps against the scene's size,
+/// a punch's translations against its largest one and its rotation against
+/// that over the scene's size (a punch's undetermined motions, reported as 0,
+/// are 0 to round-off).
 fn natural_scale(key: &str, scale: &HashMap<String, f64>) -> f64 {
     let get = |k: &str| scale.get(k).copied().unwrap_or(0.0);
-    let force = get("fx").max(get("fy"));
+    let force = get("fx").max(get("fy")).max(get("p1")).max(get("p2"));
     let length = get("x").max(get("y"));
+    let translation = get("alpha1").max(get("alpha2"));
     match key {
-        "fx" | "fy" => force,
+        "fx" | "fy" | "p1" | "p2" => force,
+        "alpha1" | "alpha2" => translation,
+        "theta" if length > 0.0 => get("theta").max(translation / length),
         "m" => get("m").max(force * length),
         "gap" | "max_penetration" => get(key).max(length),
         _ => get(key),

@@ -1,11 +1,11 @@
-//! The condensed path: one sparse Cholesky of K with the contact DOFs ordered
-//! last, W from the trailing block of the factor (see `linalg::cholesky`) —
+//! The condensed path: one sparse Cholesky of K in its fill-reducing order,
+//! W = B K⁻¹ Bᵀ from the reach of the contact rows (see `linalg::schur`) —
 //! both cacheable (`cache::Prepared`) — then per request an LCP solve on the
 //! candidates and u = K⁻¹(f − Bᵀλ).
 
 use std::time::Instant;
 
-use faer::{Mat, Par};
+use faer::Mat;
 
 use super::{LcpResult, Problem, Solution};
 use crate::cache::{OperatorCache, Prepared};
@@ -13,6 +13,7 @@ use crate::contact::ConstraintSet;
 use crate::error::CoreError;
 use crate::fem::assembly::Stiffness;
 use crate::linalg::cholesky::{pattern_key, SymbolicFactor};
+use crate::linalg::schur::Reach;
 use crate::linalg::{dense, Cholesky};
 use std::sync::Arc;
 
@@ -25,43 +26,35 @@ pub fn prepare(
     cache: Option<&OperatorCache>,
 ) -> Result<Prepared, CoreError> {
     let t0 = Instant::now();
-    let cdofs = cons.dofs();
-    let pattern = pattern_key(&stiffness.k, &cdofs);
+    let pattern = pattern_key(&stiffness.k);
     let symbolic = match cache.and_then(|c| c.get_symbolic(pattern)) {
         Some(s) => s,
         None => {
-            let s = Arc::new(SymbolicFactor::try_new(&stiffness.k, &cdofs)?);
+            let s = Arc::new(SymbolicFactor::try_new(&stiffness.k)?);
             if let Some(c) = cache {
                 c.insert_symbolic(s.clone());
             }
             s
         }
     };
-    crate::observer::revise_factorization(t0.elapsed().as_secs_f64(), symbolic.cost().predicted_secs(), cons.len());
+    let rows: Vec<&[(usize, f64)]> = cons.candidates.iter().map(|c| c.row.as_slice()).collect();
+    let reach = Reach::new(&symbolic, &rows);
+    crate::observer::revise_factorization(
+        t0.elapsed().as_secs_f64(),
+        symbolic.cost().predicted_secs(),
+        reach.flops(),
+    );
     let chol = Cholesky::with_symbolic(symbolic, &stiffness.k)?;
     let t_factorization = t0.elapsed().as_secs_f64();
     crate::cancel::check("factorization")?;
     crate::progress::stage("condensation");
     let t1 = Instant::now();
-    let mut pos = std::collections::HashMap::with_capacity(cdofs.len());
-    for (k, &d) in cdofs.iter().enumerate() {
-        pos.insert(d, k);
-    }
-    let mut bt = Mat::<f64>::zeros(cdofs.len(), cons.len());
-    for (i, c) in cons.candidates.iter().enumerate() {
-        for &(d, v) in &c.row {
-            bt[(pos[&d], i)] = v;
-        }
-    }
-    let lcc = chol.trailing_factor();
-    let w = dense::gram_of_lower_solve(&lcc, bt);
+    let condensed = reach.condense(&chol)?;
     Ok(Prepared {
         pivot_ratio: chol.pivot_ratio(),
         stiffness,
         chol,
-        w,
-        lcc,
-        cdofs,
+        condensed,
         t_factorization,
         t_condensation: t1.elapsed().as_secs_f64(),
     })
@@ -83,10 +76,9 @@ pub fn solve_condensed(
 /// (equilibrium of the punches as equality constraints).
 ///
 /// One solve with K costs one forward and one backward sweep: y = L⁻¹ P f
-/// before the LCP gives its right-hand side from the trailing block alone
-/// (the contact rows of K⁻¹ f are L_cc⁻ᵀ y_c, L being block lower
-/// triangular), and after it u = Pᵀ L⁻ᵀ (y − [0; L_cc⁻¹ (Bᵀλ)_c]). A K whose
-/// u leaves a residual above `REFINE_ABOVE` (ill-conditioned: nearly
+/// before the LCP gives its right-hand side B K⁻¹ f = Xᵀ y, and after it
+/// u = Pᵀ L⁻ᵀ (y − X λ), X = L⁻¹ P Bᵀ being kept from the condensation. A K
+/// whose u leaves a residual above `REFINE_ABOVE` (ill-conditioned: nearly
 /// incompressible, extreme stiffness or aspect ratios) is solved again on
 /// the refined path, two refined solves with K.
 pub fn solve_condensed_mixed(
@@ -99,38 +91,29 @@ pub fn solve_condensed_mixed(
     let t = Instant::now();
     let op = p.op;
     let y = op.chol.forward(p.f);
-    let (n, c) = (y.len(), op.cdofs.len());
-    let mut u0c = Mat::<f64>::from_fn(c, 1, |k, _| y[n - c + k]);
-    faer::linalg::triangular_solve::solve_upper_triangular_in_place(op.lcc.transpose(), u0c.as_mut(), Par::Seq);
-    let mut u0 = vec![0.0; n];
-    for (k, &d) in op.cdofs.iter().enumerate() {
-        u0[d] = u0c[(k, 0)];
-    }
+    let bu0 = op.condensed.rows_of(&y);
     let swept = |lambda: &[f64]| -> Option<(Vec<f64>, usize)> {
-        let (rhs, btl, size) = load_less_contact(p, lambda);
-        let mut z = Mat::<f64>::from_fn(c, 1, |k, _| btl[op.cdofs[k]]);
-        faer::linalg::triangular_solve::solve_lower_triangular_in_place(op.lcc.as_ref(), z.as_mut(), Par::Seq);
+        let (rhs, _, size) = load_less_contact(p, lambda);
         let mut yz = y.clone();
-        for k in 0..c {
-            yz[n - c + k] -= z[(k, 0)];
-        }
+        op.condensed.subtract(lambda, &mut yz);
         let u = op.chol.backward(&yz);
         let (r, scale) = residual(op, &rhs, &u, size);
         (inf_norm(&r) <= REFINE_ABOVE * scale).then_some((u, 0))
     };
-    if let Some(sol) = contact_stage(p, pb, name, exact, mlcp, &u0, 0, &swept, t) {
+    if let Some(sol) = contact_stage(p, pb, name, exact, mlcp, &bu0, 0, &swept, t) {
         return Ok(sol);
     }
     let (u0, r0) = solve_refined(op, p.f, inf_norm(p.f));
     let refined = |lambda: &[f64]| Some(displacements(p, lambda));
-    Ok(contact_stage(p, pb, name, exact, mlcp, &u0, r0, &refined, t).expect("the refined path always answers"))
+    let bu0 = p.cons.apply(&u0);
+    Ok(contact_stage(p, pb, name, exact, mlcp, &bu0, r0, &refined, t).expect("the refined path always answers"))
 }
 
 /// u for the contact forces λ, and the refinement steps it took (None: the
 /// residual calls for the refined path).
 type Displacements<'a> = &'a dyn Fn(&[f64]) -> Option<(Vec<f64>, usize)>;
 
-/// The LCP on q = g − B u0, then the displacements and their refinement steps
+/// The LCP on q = g − B u0 (`bu0` = B u0), then the displacements and their refinement steps
 /// (`solve_u`; None sends the caller to the refined path) and the refinement
 /// of the contact forces.
 #[allow(clippy::too_many_arguments)]
@@ -140,22 +123,21 @@ fn contact_stage(
     name: &'static str,
     exact: bool,
     mlcp: super::MixedSolver,
-    u0: &[f64],
+    bu0: &[f64],
     refinements: usize,
     solve_u: Displacements,
     t: Instant,
 ) -> Option<Solution> {
-    let bu0 = p.cons.apply(u0);
-    let q: Vec<f64> = p.cons.candidates.iter().zip(&bu0).map(|(c, b)| c.g - b).collect();
+    let q: Vec<f64> = p.cons.candidates.iter().zip(bu0).map(|(c, b)| c.g - b).collect();
     // Foundations add their compliance to the bodies' (per request: it is not
     // part of the cached operator).
     let with_foundation;
     let w = match p.compliance {
         Some(c) => {
-            with_foundation = &p.op.w + c;
+            with_foundation = &p.op.condensed.w + c;
             &with_foundation
         }
-        None => &p.op.w,
+        None => &p.op.condensed.w,
     };
     let (res, beta) = mlcp(w, &q);
     let wl = dense::matvec(w, &res.lambda);

@@ -20,8 +20,9 @@ pub struct Limits {
     /// Largest number of degrees of freedom (2 per node, before supports).
     pub max_dofs: usize,
     /// Largest number of contact candidates over all pairs. The condensed
-    /// operator is dense: about 56·m² bytes (W, the trailing factor and Bᵀ), so
-    /// 4000 candidates take about 0.9 GB.
+    /// operator is dense: 16·m² bytes (W and its Gram product), so 4000
+    /// candidates take 0.26 GB, beside the blocks of L⁻¹ P Bᵀ (82 kB per
+    /// candidate at 1.2M DOF, growing with the depth of the elimination tree).
     pub max_candidates: usize,
     /// Longest `load_factors` list: each factor is a full contact solve and,
     /// with `outputs`, a full set of fields in the reply.
