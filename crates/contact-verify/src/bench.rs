@@ -226,7 +226,7 @@ pub fn run(mode: Mode, repeat: usize, mut progress: impl FnMut(&Row)) -> Vec<Row
     let sizes: &[f64] = match mode {
         Mode::Quick => &[0.16, 0.04],
         Mode::Full => &[0.16, 0.04, 0.01, 0.0025, 0.0017],
-        Mode::Floor => &[0.0062, 0.00186, 0.00132],
+        Mode::Floor => &[0.0058, 0.00186, 0.00132],
     };
     let elements: &[&str] = if mode == Mode::Floor { &["t3"] } else { &["t3", "t6"] };
     let e_star = 200.0 / (1.0 - 0.09);

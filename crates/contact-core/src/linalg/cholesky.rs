@@ -2,9 +2,6 @@
 //! order: P K Pᵀ = L Lᵀ, supernodal. The contact operator is formed on this
 //! factor by `linalg::schur` from the reach of the contact rows, so the
 //! factor is the same as for K alone (the floor of any direct method).
-//!
-//! Length: about 330 lines of factorization (ordering, symbolic analysis and
-//! its cost, numeric factor, sweeps) and its tests.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
