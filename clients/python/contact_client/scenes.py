@@ -39,15 +39,20 @@ __all__ = [
     "hertz_pressure",
     "hertz_measure",
     "effective_modulus",
+    "ball_on_flat",
+    "hertz_sphere_reference",
+    "flat_punch_of_revolution",
+    "boussinesq_pressure",
+    "boussinesq_settlement",
 ]
 
 def effective_modulus(youngs_modulus: float, poisson_ratio: float, analysis: str = "plane_strain") -> float:
     """E* of an elastic body against a rigid one."""
-    if analysis == "plane_strain":
+    if analysis in ("plane_strain", "axisymmetric"):
         return youngs_modulus / (1.0 - poisson_ratio ** 2)
     if analysis == "plane_stress":
         return youngs_modulus
-    raise ValueError(f"analysis must be 'plane_strain' or 'plane_stress', not {analysis!r}")
+    raise ValueError(f"analysis must be 'plane_strain', 'plane_stress' or 'axisymmetric', not {analysis!r}")
 
 
 def hertz_reference(P: float, R: float, E: float, nu: float, analysis: str = "plane_strain") -> tuple[float, float]:
@@ -514,3 +519,88 @@ def punch_from_polyline(points: list[list[float]], load: float = 10.0, **block) 
     low = min(y for _, y in points)
     shifted = [[float(x), float(y) - low] for x, y in points]
     return punch_on_block({"polyline": {"points": shifted}}, load=load, **block)
+
+
+# Bodies of revolution (analysis "axisymmetric"): the r-z half-section, x = r >= 0,
+# y the axis; forces are totals over the circumference.
+
+
+def hertz_sphere_reference(P: float, R: float, E: float, nu: float) -> tuple[float, float]:
+    """(a, p0) of an elastic sphere of radius R on a rigid flat under the total load P
+    (3D Hertz): a = (3 P R / (4 E*))^(1/3), p0 = 3 P / (2 pi a^2), E* = E / (1 - nu^2);
+    p(r) = p0 sqrt(1 - r^2 / a^2) (``hertz_pressure``)."""
+    if P < 0 or R <= 0 or E <= 0:
+        raise ValueError("need P >= 0, R > 0, E > 0")
+    a = (3.0 * P * R / (4.0 * E / (1.0 - nu * nu))) ** (1.0 / 3.0)
+    return a, (3.0 * P / (2.0 * math.pi * a * a) if a > 0 else 0.0)
+
+
+def ball_on_flat(
+    radius: float = 10.0,
+    approach: float = 0.04,
+    youngs_modulus: float = 200.0,
+    poisson_ratio: float = 0.3,
+    h_min: float = 0.015,
+    extent: float = 1.5,
+    element: str = "t3",
+    method: str = "auto",
+) -> dict:
+    """An elastic ball on a rigid flat (proto/examples/axisymmetric_ball_on_flat.json).
+
+    The lower quarter of the ball's section (centre (0, ``radius``), the axis x = 0)
+    touches the flat y = 0 at the origin; its equator plane is moved down by
+    ``approach``. The mesh is ``h_min`` within ``extent`` of the contact point,
+    graded by 1.1 up to ``radius`` / 8. Reference: ``hertz_sphere_reference`` with
+    P = resultant.fy (a total over the circumference); the contact zone is
+    [0, a] on the section.
+    """
+    mesh = rq.quarter_disk([0.0, radius], radius, "down", radius / 8.0, element, rq.grading(h_min, 1.1, extent))
+    return rq.request(
+        bodies=[rq.body("ball", rq.material(youngs_modulus, poisson_ratio), mesh, [rq.support("flat", None, -approach)])],
+        obstacles=[rq.obstacle("floor", rq.line([0.0, 0.0], [0.0, 1.0]))],
+        contacts=[rq.contact("ball", "arc", obstacle="floor")],
+        analysis="axisymmetric",
+        method=method,
+        description=f"elastic ball R={radius} pressed {approach} onto a rigid flat (axisymmetric)",
+    )
+
+
+def flat_punch_of_revolution(
+    load: float = 100.0,
+    punch_radius: float = 1.0,
+    youngs_modulus: float = 200.0,
+    poisson_ratio: float = 0.3,
+    body_radius: float = 80.0,
+    h_min: float = 0.01,
+    extent: float = 1.2,
+    element: str = "t3",
+    method: str = "auto",
+) -> dict:
+    """A rigid flat cylindrical punch of radius ``punch_radius`` pressed with the total
+    ``load`` into an elastic cylinder of radius and height ``body_radius``, bottom
+    fixed (proto/examples/axisymmetric_flat_punch.json). A punch of revolution moves
+    along the axis only. References: ``boussinesq_pressure`` and
+    ``boussinesq_settlement`` (half-space; the finite cylinder settles about
+    a / body_radius less).
+    """
+    mesh = rq.rectangle([0.0, -body_radius], body_radius, body_radius, body_radius / 20.0, element,
+                        rq.grading(h_min, 1.1, extent, [0.0, 0.0]))
+    controls = rq.punch(vertical=rq.load(-load))
+    return rq.request(
+        bodies=[rq.body("block", rq.material(youngs_modulus, poisson_ratio), mesh, [rq.support("bottom", 0.0, 0.0)])],
+        obstacles=[rq.obstacle("punch", rq.profile({"flat": {"half_width": punch_radius}}), controls)],
+        contacts=[rq.contact("block", "top", obstacle="punch")],
+        analysis="axisymmetric",
+        method=method,
+        description=f"rigid flat punch of radius {punch_radius} pressed with P = {load} (axisymmetric)",
+    )
+
+
+def boussinesq_pressure(r: float, P: float, a: float) -> float:
+    """Pressure under a rigid flat cylindrical punch of radius a with the total load P (r < a)."""
+    return P / (2.0 * math.pi * a * math.sqrt(a * a - r * r)) if abs(r) < a else 0.0
+
+
+def boussinesq_settlement(P: float, a: float, E: float, nu: float) -> float:
+    """Settlement of that punch on an elastic half-space: P (1 - nu^2) / (2 a E)."""
+    return P * (1.0 - nu * nu) / (2.0 * a * E)

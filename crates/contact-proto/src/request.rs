@@ -78,6 +78,13 @@ pub enum Analysis {
     #[default]
     PlaneStrain,
     PlaneStress,
+    /// A body of revolution under loads of revolution, computed on its r–z
+    /// half-section: x is the radius r ≥ 0, y the axis z. Nodes on the axis
+    /// (r = 0) have u_r = 0. Forces (resultants, point loads, punch loads,
+    /// contact forces) are totals over the whole circumference; a point load
+    /// at radius r is a ring load. Radial resultants and moments vanish by
+    /// symmetry and are reported as 0; punches move along the axis only.
+    Axisymmetric,
 }
 
 /// One elastic body.

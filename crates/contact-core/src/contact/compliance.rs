@@ -65,6 +65,8 @@ enum LineKind {
 /// The foundations of a scene with rows on them.
 pub struct Foundations {
     lines: Vec<Line>,
+    /// Panels are annuli of a body of revolution (x = r).
+    axisymmetric: bool,
 }
 
 impl Foundations {
@@ -111,11 +113,29 @@ impl Foundations {
                 kind,
             });
         }
-        Ok(Self { lines })
+        Ok(Self {
+            lines,
+            axisymmetric: scene.analysis == crate::scene::Analysis::Axisymmetric,
+        })
     }
 
     pub fn is_empty(&self) -> bool {
         self.lines.is_empty()
+    }
+
+    /// What a Winkler row's springs spread its force over: its panel's
+    /// length, or in axisymmetry its ring area ∫ N_i 2πr ds projected on the
+    /// foundation (the row's own weight, so that a uniform pressure gives a
+    /// uniform deflection also at the axis, where the panel's annulus
+    /// π (h/2)² would miss the hat's π h²/3).
+    fn spring_area(&self, cons: &ConstraintSet, i: usize) -> f64 {
+        let c = &cons.candidates[i];
+        let fr = c.foundation().expect("foundation row");
+        if self.axisymmetric {
+            c.weight * fr.proj.abs()
+        } else {
+            fr.panel[1] - fr.panel[0]
+        }
     }
 
     /// D F D over all candidates (m × m), in the rows' force units.
@@ -129,7 +149,7 @@ impl Foundations {
                 LineKind::Winkler { k } => {
                     for &i in r {
                         let fr = row(i);
-                        w[(i, i)] += fr.proj * fr.proj / (k * (fr.panel[1] - fr.panel[0]));
+                        w[(i, i)] += fr.proj * fr.proj / (k * self.spring_area(cons, i));
                     }
                 }
                 LineKind::Pasternak {
@@ -176,10 +196,7 @@ impl Foundations {
                         let mut pts: Vec<(f64, f64)> = line
                             .rows
                             .iter()
-                            .map(|&i| {
-                                let p = row(i).panel;
-                                (cons.candidates[i].x[0], load(i) / (k * (p[1] - p[0])))
-                            })
+                            .map(|&i| (cons.candidates[i].x[0], load(i) / (k * self.spring_area(cons, i))))
                             .collect();
                         let first = row(line.rows[0]).panel[0];
                         let last = line.rows.iter().map(|&i| row(i).panel[1]).fold(f64::MIN, f64::max);

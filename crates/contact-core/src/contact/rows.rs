@@ -47,6 +47,19 @@ pub struct Surface<'a> {
     pub body: usize,
     pub mesh: &'a Mesh2d,
     pub edges: &'a [Edge],
+    /// The section of a body of revolution (x = r): weights are areas 2πr ds.
+    pub axisymmetric: bool,
+}
+
+impl Surface<'_> {
+    /// The measure of a surface point: 2πr, or 1 (unit thickness).
+    fn measure(&self, x: [f64; 2]) -> f64 {
+        if self.axisymmetric {
+            std::f64::consts::TAU * x[0]
+        } else {
+            1.0
+        }
+    }
 }
 
 /// What a surface point sees of its target.
@@ -70,7 +83,8 @@ pub struct Row {
     pub node: usize,
     /// The row's direction (weighted mean over a mortar row's support).
     pub normal: [f64; 2],
-    /// Tributary length: ∫ N_i ds (nodal) or ∫ Φ_i ds over the part that sees the target.
+    /// Tributary length: ∫ N_i ds (nodal) or ∫ Φ_i ds over the part that sees
+    /// the target (areas, with 2πr ds, in axisymmetry).
     pub weight: f64,
     pub terms: Vec<Term>,
     pub gap: f64,
@@ -116,7 +130,7 @@ pub fn nodal(surface: &Surface, see: &See, limit: f64) -> Rows {
         rows: Vec::new(),
         pruned: 0,
     };
-    for bn in boundary_nodes(surface.mesh, surface.edges) {
+    for bn in boundary_nodes(surface.mesh, surface.edges, surface.axisymmetric) {
         let x = surface.mesh.nodes[bn.node];
         let Some(seen) = see(x, bn.normal).filter(|s| s.gap <= limit) else {
             out.pruned += 1;
@@ -166,6 +180,19 @@ fn mult01(n_nodes: usize, xi: f64) -> ([f64; 3], [f64; 3]) {
     } else {
         ([phi[0], 0.0, phi[1]], [psi[0], 0.0, psi[1]])
     }
+}
+
+/// The dual partners Ψ = C Φ of the hats Φ on an edge whose measure is
+/// linear in ξ, ρ = r_a (1 − ξ) + r_b ξ (the 2πr of a body of revolution):
+/// C = D M⁻¹ with M_ij = ∫ Φ_i Φ_j ρ and D = diag(∫ Φ_i ρ), so that
+/// ∫ Ψ_i Φ_j ρ = δ_ij ∫ Φ_j ρ. The plain Ψ (2 − 3ξ, 3ξ − 1) is the case
+/// r_a = r_b; on an edge touching the axis (r_a = 0) Ψ_a = 3 − 4ξ, whose
+/// plain counterpart would integrate to 0 there.
+fn weighted_dual(ra: f64, rb: f64) -> [[f64; 2]; 2] {
+    let (m11, m12, m22) = (ra / 4.0 + rb / 12.0, (ra + rb) / 12.0, ra / 12.0 + rb / 4.0);
+    let (d1, d2) = (m11 + m12, m12 + m22);
+    let det = m11 * m22 - m12 * m12;
+    [[d1 * m22 / det, -d1 * m12 / det], [-d2 * m12 / det, d2 * m11 / det]]
 }
 
 /// Point and tangent of an edge at ξ.
@@ -237,6 +264,9 @@ pub fn mortar(surface: &Surface, see: &See, limit: f64, breaks: &dyn Fn(&[[f64; 
     for e in surface.edges {
         let nodes: Vec<usize> = e.nodes().collect();
         let pts: Vec<[f64; 2]> = nodes.iter().map(|&i| surface.mesh.nodes[i]).collect();
+        let dual = surface
+            .axisymmetric
+            .then(|| weighted_dual(pts[0][0], pts[pts.len() - 1][0]));
         for w in breaks(&pts).windows(2) {
             let (x0, x1) = (w[0], w[1]);
             for g in &GAUSS4 {
@@ -247,9 +277,13 @@ pub fn mortar(surface: &Surface, see: &See, limit: f64, breaks: &dyn Fn(&[[f64; 
                 let Some(seen) = see(x, n).filter(|s| s.gap <= limit) else {
                     continue;
                 };
-                let omega = 0.5 * g[1] * (x1 - x0) * jac;
+                let omega = 0.5 * g[1] * (x1 - x0) * jac * surface.measure(x);
                 let (sn, _) = shape01(nodes.len(), xi);
-                let (phi, psi) = mult01(nodes.len(), xi);
+                let (phi, mut psi) = mult01(nodes.len(), xi);
+                if let Some(c) = dual {
+                    let (a, b) = (0, nodes.len() - 1);
+                    (psi[a], psi[b]) = (c[0][0] * phi[a] + c[0][1] * phi[b], c[1][0] * phi[a] + c[1][1] * phi[b]);
+                }
                 for (i, &node) in nodes.iter().enumerate() {
                     let (wi, ti) = (omega * phi[i], omega * psi[i]);
                     if wi == 0.0 {
@@ -267,7 +301,7 @@ pub fn mortar(surface: &Surface, see: &See, limit: f64, breaks: &dyn Fn(&[[f64; 
             }
         }
     }
-    let full: HashMap<usize, f64> = boundary_nodes(surface.mesh, surface.edges)
+    let full: HashMap<usize, f64> = boundary_nodes(surface.mesh, surface.edges, surface.axisymmetric)
         .into_iter()
         .map(|b| (b.node, b.weight))
         .collect();

@@ -5,12 +5,12 @@
 
 use faer::sparse::SparseColMat;
 
-use super::element;
 use super::material::d_matrix;
 use super::rigid_modes::{self, free_modes, mode_row, virtual_supports, RigidModes};
+use super::{axisymmetric, element};
 use crate::error::{CoreError, InvalidKind};
 use crate::mesh::Mesh2d;
-use crate::scene::Scene;
+use crate::scene::{Analysis, Scene};
 
 pub const FIXED: usize = usize::MAX;
 
@@ -93,6 +93,13 @@ pub fn dof_map(scene: &Scene, meshes: &[Mesh2d]) -> Result<DofMap, CoreError> {
                     }
                 }
             }
+        }
+        if scene.analysis == Analysis::Axisymmetric {
+            axis_conditions(body, mesh, node_offset[b], &mut fixed, &mut prescribed)?;
+            // A body of revolution has one rigid motion, along the axis: a
+            // radial "translation" or a rotation of the section strains the hoops.
+            rows.push([1.0, 0.0, 0.0]);
+            rows.push([0.0, 0.0, 1.0]);
         }
         let basis = free_modes(&rows);
         if basis.is_empty() {
@@ -218,6 +225,46 @@ fn pattern(meshes: &[Mesh2d], dofs: &DofMap) -> (Vec<usize>, Vec<usize>) {
     (col_ptr, row_idx)
 }
 
+/// Axisymmetry: no node may lie at r < 0, and a node on the axis (r = 0 to
+/// 1e-9 of the body's size) has u_r = 0.
+fn axis_conditions(
+    body: &crate::scene::Body,
+    mesh: &Mesh2d,
+    offset: usize,
+    fixed: &mut [bool],
+    prescribed: &mut [f64],
+) -> Result<(), CoreError> {
+    let tol = 1e-9 * mesh.size();
+    for (node, p) in mesh.nodes.iter().enumerate() {
+        if p[0] < -tol {
+            return Err(CoreError::invalid(
+                InvalidKind::Geometry,
+                format!("{}/mesh", body.path),
+                format!(
+                    "body '{}' has node {node} at x = {} < 0: in axisymmetry x is the radius, and the section must lie at x ≥ 0",
+                    body.name, p[0]
+                ),
+            ));
+        }
+        if p[0] <= tol {
+            let d = 2 * (offset + node);
+            if fixed[d] && prescribed[d] != 0.0 {
+                return Err(CoreError::invalid(
+                    InvalidKind::Request,
+                    format!("{}/supports", body.path),
+                    format!(
+                        "body '{}' prescribes u_x = {} at node {node} on the axis, where the radial displacement of a body of revolution is 0",
+                        body.name, prescribed[d]
+                    ),
+                ));
+            }
+            fixed[d] = true;
+            prescribed[d] = 0.0;
+        }
+    }
+    Ok(())
+}
+
 /// Assembles K_ff and K_fd of all bodies: the pattern once from the node graph,
 /// then element matrices added in place (no triplet sort).
 pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Result<Stiffness, CoreError> {
@@ -228,10 +275,13 @@ pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Re
     let mut ke = [0.0; 144];
     for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
         let d = d_matrix(body.youngs_modulus, body.poisson_ratio, scene.analysis);
-        // Nearly incompressible plane strain on T6: P2–P0 (see element::stiffness_selective).
         let (e, nu) = (body.youngs_modulus, body.poisson_ratio);
+        let d4 = axisymmetric::d_matrix(e, nu);
+        let axi = scene.analysis == Analysis::Axisymmetric;
+        // Nearly incompressible plane strain or axisymmetry on T6: P2–P0 (see
+        // element::stiffness_selective).
         let selective = (mesh.order == crate::mesh::Order::T6
-            && scene.analysis == crate::scene::Analysis::PlaneStrain
+            && scene.analysis != Analysis::PlaneStress
             && nu >= NEARLY_INCOMPRESSIBLE)
             .then(|| e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)));
         let k = mesh.order.nodes_per_element();
@@ -245,9 +295,11 @@ pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Re
                 gd[2 * i] = dofs.dof(b, node, 0);
                 gd[2 * i + 1] = dofs.dof(b, node, 1);
             }
-            match selective {
-                Some(lambda) => element::stiffness_selective(mesh.order, &x[..k], &d, lambda, &mut ke),
-                None => element::stiffness(mesh.order, &x[..k], &d, &mut ke),
+            match (axi, selective) {
+                (false, Some(lambda)) => element::stiffness_selective(mesh.order, &x[..k], &d, lambda, &mut ke),
+                (false, None) => element::stiffness(mesh.order, &x[..k], &d, &mut ke),
+                (true, Some(lambda)) => axisymmetric::stiffness_selective(mesh.order, &x[..k], &d4, lambda, &mut ke),
+                (true, None) => axisymmetric::stiffness(mesh.order, &x[..k], &d4, &mut ke),
             }
             for a in 0..nd {
                 let fa = dofs.free[gd[a]];

@@ -8,8 +8,8 @@
 use crate::mesh::Order;
 
 /// (ξ, η, weight) of the triangle rules; weights sum to the reference area 1/2.
-const RULE1: [[f64; 3]; 1] = [[1.0 / 3.0, 1.0 / 3.0, 0.5]];
-const RULE3: [[f64; 3]; 3] = [
+pub(crate) const RULE1: [[f64; 3]; 1] = [[1.0 / 3.0, 1.0 / 3.0, 0.5]];
+pub(crate) const RULE3: [[f64; 3]; 3] = [
     [1.0 / 6.0, 1.0 / 6.0, 1.0 / 6.0],
     [2.0 / 3.0, 1.0 / 6.0, 1.0 / 6.0],
     [1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0],
@@ -125,7 +125,7 @@ pub fn stiffness_selective(order: Order, x: &[[f64; 2]], d: &[[f64; 3]; 3], lamb
     symmetrize(nd, ke);
 }
 
-fn symmetrize(nd: usize, ke: &mut [f64; 144]) {
+pub(crate) fn symmetrize(nd: usize, ke: &mut [f64; 144]) {
     for a in 0..nd {
         for b in 0..a {
             ke[a * nd + b] = ke[b * nd + a];
@@ -167,16 +167,20 @@ fn add_stiffness(order: Order, x: &[[f64; 2]], d: &[[f64; 3]; 3], points: &[[f64
     }
 }
 
-/// Consistent nodal forces of a body force b over the element (into `fe`, 2k entries).
-pub fn body_load(order: Order, x: &[[f64; 2]], b: [f64; 2], fe: &mut [f64; 12]) {
+/// Consistent nodal forces of a body force b over the element (into `fe`, 2k
+/// entries), with the measure of a point of the section (`Analysis::measure`:
+/// 2πr for a body of revolution, 1 otherwise).
+pub fn body_load(order: Order, x: &[[f64; 2]], b: [f64; 2], measure: &dyn Fn([f64; 2]) -> f64, fe: &mut [f64; 12]) {
     let k = order_len(order);
     fe[..2 * k].iter_mut().for_each(|v| *v = 0.0);
     let (mut n, mut dx, mut dy) = ([0.0; 6], [0.0; 6], [0.0; 6]);
     for q in &RULE3 {
         let det = gradients(order, x, q[0], q[1], &mut n, &mut dx, &mut dy);
+        let at = (0..k).fold([0.0; 2], |p, i| [p[0] + n[i] * x[i][0], p[1] + n[i] * x[i][1]]);
+        let w = q[2] * det * measure(at);
         for i in 0..k {
-            fe[2 * i] += q[2] * det * n[i] * b[0];
-            fe[2 * i + 1] += q[2] * det * n[i] * b[1];
+            fe[2 * i] += w * n[i] * b[0];
+            fe[2 * i + 1] += w * n[i] * b[1];
         }
     }
 }

@@ -153,7 +153,13 @@ pub fn external(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap, points: &[Vec<L
                 for (i, &node) in conn.iter().enumerate() {
                     x[i] = mesh.nodes[node];
                 }
-                element::body_load(mesh.order, &x[..k], body.body_force, &mut fe);
+                element::body_load(
+                    mesh.order,
+                    &x[..k],
+                    body.body_force,
+                    &|p| scene.analysis.measure(p),
+                    &mut fe,
+                );
                 for (i, &node) in conn.iter().enumerate() {
                     for c in 0..2 {
                         f[dofs.dof(b, node, c)] += fe[2 * i + c];
@@ -181,11 +187,15 @@ pub fn external(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap, points: &[Vec<L
                         s0 + half * (g[0] + 1.0)
                     };
                     let (nn, dn) = element::edge_shape(nodes.len(), s);
-                    let (mut tx, mut ty) = (0.0, 0.0);
+                    let (mut tx, mut ty, mut at) = (0.0, 0.0, [0.0; 2]);
                     for (i, &node) in nodes.iter().enumerate() {
                         tx += dn[i] * mesh.nodes[node][0];
                         ty += dn[i] * mesh.nodes[node][1];
+                        at[0] += nn[i] * mesh.nodes[node][0];
+                        at[1] += nn[i] * mesh.nodes[node][1];
                     }
+                    // 2πr in axisymmetry: the nodal forces are ring totals.
+                    let measure = scene.analysis.measure(at);
                     let jac = (tx * tx + ty * ty).sqrt();
                     // Pressure acts against the local outward normal (−t⊥ of the tangent).
                     let tr = vector.unwrap_or_else(|| {
@@ -198,7 +208,7 @@ pub fn external(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap, points: &[Vec<L
                     });
                     for (i, &node) in nodes.iter().enumerate() {
                         for (c, tc) in tr.iter().enumerate() {
-                            f[dofs.dof(b, node, c)] += g[1] * half * jac * nn[i] * tc;
+                            f[dofs.dof(b, node, c)] += g[1] * half * jac * measure * nn[i] * tc;
                         }
                     }
                 }

@@ -7,7 +7,9 @@ use crate::scene::Analysis;
 
 pub fn d_matrix(e: f64, nu: f64, analysis: Analysis) -> [[f64; 3]; 3] {
     match analysis {
-        Analysis::PlaneStrain => {
+        // In axisymmetry the (rr, zz, rz) block of D is plane strain's; the
+        // hoop row is `fem::axisymmetric::d_matrix`'s.
+        Analysis::PlaneStrain | Analysis::Axisymmetric => {
             let c = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
             [
                 [c * (1.0 - nu), c * nu, 0.0],

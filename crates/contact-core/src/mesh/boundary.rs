@@ -2,7 +2,8 @@
 //!
 //! The weight of node i is w_i = ∫_Γ N_i ds (h/2 per adjacent T3 edge; h/6 at the
 //! corners and 2h/3 at the midside of a T6 edge), so a nodal contact force λ_i
-//! corresponds to the pressure p_i = λ_i / w_i. The normal at a node is that of
+//! corresponds to the pressure p_i = λ_i / w_i. On the section of a body of
+//! revolution it is the area w_i = ∫_Γ N_i 2πr ds (r linear along the chord). The normal at a node is that of
 //! the circle through it and its two neighbours where the boundary turns gently,
 //! else (corners, ends) the length-weighted mean of its edges' outward normals.
 
@@ -25,16 +26,32 @@ pub fn edge_normal(mesh: &Mesh2d, e: &Edge) -> ([f64; 2], f64) {
     ([dy / len, -dx / len], len)
 }
 
-/// Boundary nodes of an edge set, each once, in order of first appearance.
-pub fn boundary_nodes(mesh: &Mesh2d, edges: &[Edge]) -> Vec<BoundaryNode> {
+/// Boundary nodes of an edge set, each once, in order of first appearance;
+/// `axisymmetric`: x is the radius and the weights are areas.
+pub fn boundary_nodes(mesh: &Mesh2d, edges: &[Edge], axisymmetric: bool) -> Vec<BoundaryNode> {
     let mut index: HashMap<usize, usize> = HashMap::new();
     let mut out: Vec<BoundaryNode> = Vec::new();
     let mut nsum: Vec<[f64; 2]> = Vec::new();
     for e in edges {
         let (n, len) = edge_normal(mesh, e);
-        let shares: &[(usize, f64)] = &match e.mid {
-            None => [(e.a, 0.5), (e.b, 0.5), (usize::MAX, 0.0)],
-            Some(m) => [(e.a, 1.0 / 6.0), (m, 2.0 / 3.0), (e.b, 1.0 / 6.0)],
+        let shares: &[(usize, f64)] = &match (e.mid, axisymmetric) {
+            (None, false) => [(e.a, 0.5), (e.b, 0.5), (usize::MAX, 0.0)],
+            (Some(m), false) => [(e.a, 1.0 / 6.0), (m, 2.0 / 3.0), (e.b, 1.0 / 6.0)],
+            // ∫ N_i 2πr ds / len with r = r_a (1 − ξ) + r_b ξ.
+            (None, true) => {
+                let (ra, rb) = (mesh.nodes[e.a][0], mesh.nodes[e.b][0]);
+                let c = std::f64::consts::TAU / 6.0;
+                [
+                    (e.a, c * (2.0 * ra + rb)),
+                    (e.b, c * (ra + 2.0 * rb)),
+                    (usize::MAX, 0.0),
+                ]
+            }
+            (Some(m), true) => {
+                let (ra, rb) = (mesh.nodes[e.a][0], mesh.nodes[e.b][0]);
+                let c = std::f64::consts::TAU / 6.0;
+                [(e.a, c * ra), (m, 2.0 * c * (ra + rb)), (e.b, c * rb)]
+            }
         };
         for &(node, share) in shares {
             if node == usize::MAX {

@@ -6,6 +6,20 @@
 pub enum Analysis {
     PlaneStrain,
     PlaneStress,
+    /// r–z half-section of a body of revolution (x = r ≥ 0, y = z).
+    Axisymmetric,
+}
+
+impl Analysis {
+    /// The measure of a point of the section: 2πr in axisymmetry (forces
+    /// and areas are totals over the circumference), 1 (unit thickness)
+    /// otherwise.
+    pub fn measure(self, x: [f64; 2]) -> f64 {
+        match self {
+            Analysis::Axisymmetric => std::f64::consts::TAU * x[0],
+            _ => 1.0,
+        }
+    }
 }
 
 /// The contact method asked for.

@@ -55,12 +55,19 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
         .unwrap_or_default();
     let mut notes = scene.notes.clone();
     for (body, mesh) in scene.bodies.iter().zip(&m.meshes) {
-        if mesh.order == crate::mesh::Order::T3
-            && scene.analysis == Analysis::PlaneStrain
-            && body.poisson_ratio >= fem::assembly::NEARLY_INCOMPRESSIBLE
-        {
+        if scene.analysis == Analysis::PlaneStress || body.poisson_ratio < fem::assembly::NEARLY_INCOMPRESSIBLE {
+            continue;
+        }
+        if mesh.order == crate::mesh::Order::T3 {
             notes.push(format!(
-                "body '{}' is nearly incompressible (ν = {}) on linear triangles, which lock in plane strain: its pressures may be too stiff and oscillate (measured 31 % L2 error on Hertz at ν = 0.4999); use T6 elements, which switch to selective reduced integration from ν = {}",
+                "body '{}' is nearly incompressible (ν = {}) on linear triangles, which lock in plane strain and axisymmetry: its pressures may be too stiff and oscillate (measured 31 % L2 error on Hertz at ν = 0.4999 in plane strain, 19 % on a sphere into a block at ν = 0.499 in axisymmetry); use T6 elements, which switch to selective reduced integration from ν = {}",
+                body.name,
+                body.poisson_ratio,
+                fem::assembly::NEARLY_INCOMPRESSIBLE
+            ));
+        } else {
+            notes.push(format!(
+                "body '{}' ran the P2–P0 element (T6, volumetric part at the centroid: locking-free) since ν = {} ≥ {}",
                 body.name,
                 body.poisson_ratio,
                 fem::assembly::NEARLY_INCOMPRESSIBLE
@@ -248,23 +255,37 @@ fn body_outputs(scene: &Scene, meshes: &[Mesh2d], disp: &[Vec<[f64; 2]>]) -> Opt
             .zip(meshes)
             .zip(disp)
             .map(|((body, mesh), disp)| {
-                let stress: Option<Vec<[f64; 3]>> = o_stress.then(|| {
+                // (xx, yy, xy, zz): in plane strain ε_zz = 0, σ_zz = ν (σ_xx + σ_yy);
+                // 0 in plane stress; in axisymmetry (rr, zz, rz, θθ), the hoop
+                // stress from u_r / r.
+                let stress4: Option<Vec<[f64; 4]>> = o_stress.then(|| {
                     let dm = d_matrix(body.youngs_modulus, body.poisson_ratio, scene.analysis);
+                    let d4 = crate::fem::axisymmetric::d_matrix(body.youngs_modulus, body.poisson_ratio);
                     (0..mesh.n_elems())
                         .map(|e| {
                             let conn = mesh.elem(e);
                             let x: Vec<[f64; 2]> = conn.iter().map(|&n| mesh.nodes[n]).collect();
                             let ue: Vec<f64> = conn.iter().flat_map(|&n| disp[n]).collect();
-                            let s = element::centroid_stress(mesh.order, &x, &dm, &ue);
-                            [sc.stress(s[0]), sc.stress(s[1]), sc.stress(s[2])]
+                            let s = match scene.analysis {
+                                Analysis::Axisymmetric => {
+                                    crate::fem::axisymmetric::centroid_stress(mesh.order, &x, &d4, &ue)
+                                }
+                                Analysis::PlaneStrain | Analysis::PlaneStress => {
+                                    let s = element::centroid_stress(mesh.order, &x, &dm, &ue);
+                                    let nu_zz = if scene.analysis == Analysis::PlaneStrain {
+                                        body.poisson_ratio
+                                    } else {
+                                        0.0
+                                    };
+                                    [s[0], s[1], s[2], nu_zz * (s[0] + s[1])]
+                                }
+                            };
+                            s.map(|v| sc.stress(v))
                         })
                         .collect()
                 });
-                // ε_zz = 0 in plane strain: σ_zz = ν (σ_xx + σ_yy); 0 in plane stress.
-                let nu_zz = match scene.analysis {
-                    Analysis::PlaneStrain => body.poisson_ratio,
-                    Analysis::PlaneStress => 0.0,
-                };
+                let stress: Option<Vec<[f64; 3]>> =
+                    stress4.as_ref().map(|s| s.iter().map(|s| [s[0], s[1], s[2]]).collect());
                 BodyFields {
                     name: body.name.clone(),
                     nodes: o_mesh.then(|| mesh.nodes.iter().map(|p| [sc.length(p[0]), sc.length(p[1])]).collect()),
@@ -272,10 +293,10 @@ fn body_outputs(scene: &Scene, meshes: &[Mesh2d], disp: &[Vec<[f64; 2]>]) -> Opt
                     displacement: o_displacement
                         .then(|| disp.iter().map(|d| [sc.length(d[0]), sc.length(d[1])]).collect()),
                     // Only the VTU file's tensor reads it.
-                    stress_zz: stress
+                    stress_zz: stress4
                         .as_ref()
                         .filter(|_| o.vtu)
-                        .map(|s| s.iter().map(|s| nu_zz * (s[0] + s[1])).collect()),
+                        .map(|s| s.iter().map(|s| s[3]).collect()),
                     stress,
                 }
             })

@@ -100,7 +100,7 @@ pub fn pairs(
                 gap: sc.length(gaps[i]),
                 pressure: sc.stress(l / c.weight),
                 force: sc.force(l),
-                weight: sc.length(c.weight),
+                weight: sc.weight(c.weight),
                 node: c.node,
                 normal: c.normal,
             });
@@ -108,10 +108,13 @@ pub fn pairs(
         if let Some(z) = open {
             zones.push(z);
         }
+        // The radial forces of a body of revolution and their moments cancel
+        // over the circumference.
+        let axisymmetric = scene.analysis == crate::scene::Analysis::Axisymmetric;
         let to_user = |r: Resultant| Resultant {
-            fx: sc.force(r.fx),
+            fx: if axisymmetric { 0.0 } else { sc.force(r.fx) },
             fy: sc.force(r.fy),
-            m: sc.moment(r.m),
+            m: if axisymmetric { 0.0 } else { sc.moment(r.m) },
         };
         let res = to_user(resultant_of(
             &nodal_forces(cons, lambda, p, pair.body),
@@ -121,7 +124,8 @@ pub fn pairs(
             Target::Obstacle(_) | Target::Foundation(_) => None,
             Target::Body { body, edges, .. } => {
                 let (mesh, forces) = (&meshes[*body], nodal_forces(cons, lambda, p, *body));
-                let mut pts: Vec<CounterPoint> = boundary_nodes(mesh, &mesh.edge_sets[edges])
+                let axisymmetric = scene.analysis == crate::scene::Analysis::Axisymmetric;
+                let mut pts: Vec<CounterPoint> = boundary_nodes(mesh, &mesh.edge_sets[edges], axisymmetric)
                     .into_iter()
                     .map(|bn| {
                         let f = forces.get(&bn.node).copied().unwrap_or([0.0; 2]);
@@ -131,9 +135,10 @@ pub fn pairs(
                         CounterPoint {
                             x: sc.length(x[0]),
                             y: sc.length(x[1]),
-                            pressure: sc.stress(fn_ / bn.weight),
+                            // A T6 corner on the axis has no area of its own.
+                            pressure: sc.stress(if bn.weight > 0.0 { fn_ / bn.weight } else { 0.0 }),
                             force: sc.force(fn_),
-                            weight: sc.length(bn.weight),
+                            weight: sc.weight(bn.weight),
                             node: bn.node,
                         }
                     })

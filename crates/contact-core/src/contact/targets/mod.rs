@@ -22,6 +22,7 @@ use crate::scene::{Scene, Target};
 /// The contact rows of every pair of the scene.
 pub fn build(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> ConstraintSet {
     let mut set = ConstraintSet::default();
+    let axisymmetric = scene.analysis == crate::scene::Analysis::Axisymmetric;
     for (p, pair) in scene.pairs.iter().enumerate() {
         // Relative to the pair's own bodies, not to the scene's length scale, so
         // that an unrelated body elsewhere changes nothing.
@@ -34,6 +35,7 @@ pub fn build(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> ConstraintSet {
             body: pair.body,
             mesh: &meshes[pair.body],
             edges: &meshes[pair.body].edge_sets[&pair.edges],
+            axisymmetric,
         };
         let out = &mut set.candidates;
         let pruned = match &pair.target {
@@ -48,6 +50,7 @@ pub fn build(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> ConstraintSet {
                     body: *body,
                     mesh: &meshes[*body],
                     edges: &meshes[*body].edge_sets[edges],
+                    axisymmetric,
                 };
                 body::rows(scene, p, &slave, &master, *discretization, limit, dofs, out)
             }

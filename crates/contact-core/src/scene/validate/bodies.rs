@@ -64,7 +64,11 @@ pub fn survey(req: &SolveRequest, limits: &Limits) -> Result<Survey, CoreError> 
     }
 
     Ok(Survey {
-        scales: Scales { length, modulus },
+        scales: Scales {
+            length,
+            modulus,
+            axisymmetric: req.analysis == proto::Analysis::Axisymmetric,
+        },
         nodes,
         parsed,
     })
@@ -72,7 +76,8 @@ pub fn survey(req: &SolveRequest, limits: &Limits) -> Result<Survey, CoreError> 
 
 /// The bodies, nondimensional, and their names (for the pairs).
 pub fn bodies(req: &SolveRequest, survey: &Survey) -> Result<(Vec<String>, Vec<Body>), CoreError> {
-    let Scales { length, modulus } = survey.scales;
+    let Scales { length, modulus, .. } = survey.scales;
+    let force_unit = survey.scales.force_unit();
     let parsed = &survey.parsed;
     let l = |x: f64| x / length;
     let lp = |p: [f64; 2]| [p[0] / length, p[1] / length];
@@ -217,7 +222,7 @@ pub fn bodies(req: &SolveRequest, survey: &Survey) -> Result<(Vec<String>, Vec<B
             point_loads.push(PointLoad {
                 edges: pl.edges.clone(),
                 at: lp(pl.at),
-                force: [pl.force[0] / (modulus * length), pl.force[1] / (modulus * length)],
+                force: [pl.force[0] / force_unit, pl.force[1] / force_unit],
                 path: pp,
             });
         }

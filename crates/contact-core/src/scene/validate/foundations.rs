@@ -9,7 +9,7 @@ use crate::scene::{Foundation, FoundationModel, Scales};
 
 /// The foundations and their names (for the pairs).
 pub fn foundations(req: &SolveRequest, scales: Scales) -> Result<(Vec<String>, Vec<Foundation>), CoreError> {
-    let Scales { length, modulus } = scales;
+    let Scales { length, modulus, .. } = scales;
     let mut foundation_names = Vec::new();
     let mut foundations = Vec::new();
     for (i, f) in req.foundations.iter().enumerate() {
@@ -34,6 +34,20 @@ pub fn foundations(req: &SolveRequest, scales: Scales) -> Result<(Vec<String>, V
             ));
         }
         let mp = format!("{fp}/model");
+        if req.analysis == proto::Analysis::Axisymmetric {
+            let kind = match &f.model {
+                proto::FoundationModel::Winkler { .. } => None,
+                proto::FoundationModel::Pasternak { .. } => Some("a Pasternak layer (its shear term in axisymmetry, −(1/r)(r μ w′)′, is not built yet)"),
+                proto::FoundationModel::HalfPlane { .. } => Some("the elastic half-plane (a body of revolution rests on a half-space, whose ring-load kernel is not built yet)"),
+            };
+            if let Some(kind) = kind {
+                return Err(invalid(
+                    K::Request,
+                    mp,
+                    format!("{kind} is not available in axisymmetry; a Winkler foundation is"),
+                ));
+            }
+        }
         let model = match &f.model {
             proto::FoundationModel::Winkler { stiffness } => FoundationModel::Winkler {
                 k: positive(

@@ -9,7 +9,7 @@ use crate::scene::{Control, Obstacle, Psi, Punch, Scales, Shape};
 
 /// The obstacles and their names (for the pairs).
 pub fn obstacles(req: &SolveRequest, scales: Scales) -> Result<(Vec<String>, Vec<Obstacle>), CoreError> {
-    let Scales { length, modulus } = scales;
+    let Scales { length, modulus, .. } = scales;
     let l = |x: f64| x / length;
     let lp = |p: [f64; 2]| [p[0] / length, p[1] / length];
     let mut obstacle_names = Vec::new();
@@ -144,16 +144,38 @@ pub fn obstacles(req: &SolveRequest, scales: Scales) -> Result<(Vec<String>, Vec
                         (false, 2) => Control::Displacement(v),
                         (false, _) => Control::Displacement(v / length),
                         (true, 2) => Control::Load(v / (modulus * length * length)),
-                        (true, _) => Control::Load(v / (modulus * length)),
+                        (true, _) => Control::Load(v / scales.force_unit()),
                     })
                 };
+                if req.analysis == proto::Analysis::Axisymmetric {
+                    for (c, name) in [(pp.horizontal, "horizontal"), (pp.rotation, "rotation")] {
+                        let (v, kind) = match c {
+                            proto::Control::Displacement(v) => (v, "displacement"),
+                            proto::Control::Load(v) => (v, "load"),
+                        };
+                        if v != 0.0 {
+                            return Err(invalid(
+                                K::Request,
+                                format!("{pth}/{name}/{kind}"),
+                                format!("a punch of revolution moves along the axis only: its {name} {kind} must be 0 (left out), got {v}"),
+                            ));
+                        }
+                    }
+                }
+                let mut controls = [
+                    scale(pp.horizontal, 0, "horizontal")?,
+                    scale(pp.vertical, 1, "vertical")?,
+                    scale(pp.rotation, 2, "rotation")?,
+                ];
+                if req.analysis == proto::Analysis::Axisymmetric {
+                    // Held, not left free under a zero load: no row of a body
+                    // of revolution resists them.
+                    controls[0] = Control::Displacement(0.0);
+                    controls[2] = Control::Displacement(0.0);
+                }
                 Some(Punch {
                     reference: lp(pp.reference),
-                    controls: [
-                        scale(pp.horizontal, 0, "horizontal")?,
-                        scale(pp.vertical, 1, "vertical")?,
-                        scale(pp.rotation, 2, "rotation")?,
-                    ],
+                    controls,
                 })
             }
         };

@@ -83,7 +83,9 @@ pub fn pairs(req: &SolveRequest, survey: &Survey, n: &Names) -> Result<(Vec<Pair
         let stiffness = |b: usize| {
             let m = &req.bodies[b].material;
             match req.analysis {
-                proto::Analysis::PlaneStrain => m.youngs_modulus / (1.0 - m.poisson_ratio * m.poisson_ratio),
+                proto::Analysis::PlaneStrain | proto::Analysis::Axisymmetric => {
+                    m.youngs_modulus / (1.0 - m.poisson_ratio * m.poisson_ratio)
+                }
                 proto::Analysis::PlaneStress => m.youngs_modulus,
             }
         };

@@ -105,7 +105,7 @@ pub fn settings(
             None => Settings::default().penalty,
         },
         barrier: match s.barrier {
-            Some(z) => positive(z, "/settings/barrier", K::Request, "barrier")? / (scales.modulus * scales.length),
+            Some(z) => positive(z, "/settings/barrier", K::Request, "barrier")? / scales.force_unit(),
             None => Settings::default().barrier,
         },
     })
@@ -115,6 +115,7 @@ pub fn analysis(req: &SolveRequest) -> Analysis {
     match req.analysis {
         proto::Analysis::PlaneStrain => Analysis::PlaneStrain,
         proto::Analysis::PlaneStress => Analysis::PlaneStress,
+        proto::Analysis::Axisymmetric => Analysis::Axisymmetric,
     }
 }
 

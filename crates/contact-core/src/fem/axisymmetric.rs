@@ -1,0 +1,163 @@
+//! T3/T6 kernels of a body of revolution on its r–z half-section (x = r,
+//! y = z): strains (ε_rr, ε_zz, γ_rz, ε_θθ) with the hoop strain
+//! ε_θθ = u_r / r, and the measure 2πr dA, so that stiffness, loads and
+//! forces are totals over the circumference (Zienkiewicz & Taylor, The Finite
+//! Element Method, vol. 1, ch. 5). Every quadrature point is inside the
+//! element, where r > 0 even for an element touching the axis: the hoop term
+//! N_i / r stays finite (an axis node's u_r is held at 0 by the DOF map).
+
+use super::element::{gradients, order_len, rule, symmetrize, RULE1};
+use crate::mesh::Order;
+
+/// Voigt order of the axisymmetric strains and stresses.
+pub type D4 = [[f64; 4]; 4];
+
+/// Isotropic D for (rr, zz, rz, θθ) with engineering shear strain.
+pub fn d_matrix(e: f64, nu: f64) -> D4 {
+    let c = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    let (a, b) = (c * (1.0 - nu), c * nu);
+    [
+        [a, b, 0.0, b],
+        [b, a, 0.0, b],
+        [0.0, 0.0, c * (1.0 - 2.0 * nu) / 2.0, 0.0],
+        [b, b, 0.0, a],
+    ]
+}
+
+/// Element stiffness (2k × 2k, row-major into `ke`), DOF order u0r, u0z, u1r, ...
+pub fn stiffness(order: Order, x: &[[f64; 2]], d: &D4, ke: &mut [f64; 144]) {
+    let nd = 2 * order_len(order);
+    ke[..nd * nd].iter_mut().for_each(|v| *v = 0.0);
+    add_stiffness(order, x, d, rule(order), ke);
+    symmetrize(nd, ke);
+}
+
+/// The P2–P0 element of `element::stiffness_selective` in axisymmetry: the
+/// volumetric part λ m mᵀ, m = (1, 1, 0, 1) (the hoop strain is part of the
+/// volume change), at the centroid only, the deviatoric part with the full
+/// rule.
+pub fn stiffness_selective(order: Order, x: &[[f64; 2]], d: &D4, lambda: f64, ke: &mut [f64; 144]) {
+    let nd = 2 * order_len(order);
+    ke[..nd * nd].iter_mut().for_each(|v| *v = 0.0);
+    let m = [1.0, 1.0, 0.0, 1.0];
+    let mut dev = *d;
+    let mut vol = [[0.0; 4]; 4];
+    for i in 0..4 {
+        for j in 0..4 {
+            dev[i][j] -= lambda * m[i] * m[j];
+            vol[i][j] = lambda * m[i] * m[j];
+        }
+    }
+    add_stiffness(order, x, &dev, rule(order), ke);
+    add_stiffness(order, x, &vol, &RULE1, ke);
+    symmetrize(nd, ke);
+}
+
+/// The strain columns of DOF a (component a % 2 of node a / 2).
+fn b_column(a: usize, n: &[f64; 6], dx: &[f64; 6], dy: &[f64; 6], r: f64) -> [f64; 4] {
+    let i = a / 2;
+    if a % 2 == 0 {
+        [dx[i], 0.0, dy[i], n[i] / r]
+    } else {
+        [0.0, dy[i], dx[i], 0.0]
+    }
+}
+
+/// Adds Σ_q w_q det J_q 2π r_q B_qᵀ D B_q over `points` to the upper triangle of `ke`.
+fn add_stiffness(order: Order, x: &[[f64; 2]], d: &D4, points: &[[f64; 3]], ke: &mut [f64; 144]) {
+    let k = order_len(order);
+    let nd = 2 * k;
+    let (mut n, mut dx, mut dy) = ([0.0; 6], [0.0; 6], [0.0; 6]);
+    for q in points {
+        let det = gradients(order, x, q[0], q[1], &mut n, &mut dx, &mut dy);
+        let r: f64 = (0..k).map(|i| n[i] * x[i][0]).sum();
+        let w = q[2] * det * std::f64::consts::TAU * r;
+        for a in 0..nd {
+            let ba = b_column(a, &n, &dx, &dy, r);
+            let dba: [f64; 4] = std::array::from_fn(|i| (0..4).map(|j| d[i][j] * ba[j]).sum());
+            for b in a..nd {
+                let bb = b_column(b, &n, &dx, &dy, r);
+                ke[a * nd + b] += w * (0..4).map(|i| bb[i] * dba[i]).sum::<f64>();
+            }
+        }
+    }
+}
+
+/// Centroid stress (rr, zz, rz, θθ).
+pub fn centroid_stress(order: Order, x: &[[f64; 2]], d: &D4, ue: &[f64]) -> [f64; 4] {
+    let k = order_len(order);
+    let (mut n, mut dx, mut dy) = ([0.0; 6], [0.0; 6], [0.0; 6]);
+    gradients(order, x, 1.0 / 3.0, 1.0 / 3.0, &mut n, &mut dx, &mut dy);
+    let r: f64 = (0..k).map(|i| n[i] * x[i][0]).sum();
+    let mut eps = [0.0; 4];
+    for (a, &u) in ue.iter().enumerate().take(2 * k) {
+        let b = b_column(a, &n, &dx, &dy, r);
+        for i in 0..4 {
+            eps[i] += b[i] * u;
+        }
+    }
+    std::array::from_fn(|i| (0..4).map(|j| d[i][j] * eps[j]).sum())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A uniform radial expansion u_r = ε r, u_z = ε z is a state of uniform
+    /// strain ε in every direction (hoop included): K u is the nodal force of
+    /// the uniform stress σ = 3Kε on the element's boundary, and the element's
+    /// strain energy is ½ uᵀ K u = ½ σ:ε V with V = 2π r̄ A (Pappus). Holds
+    /// for T3 (one point at the centroid) and for T6 (affine element, the
+    /// 3-point rule integrates r exactly).
+    #[test]
+    fn uniform_dilatation_has_the_exact_energy() {
+        let (e, nu, eps) = (200.0, 0.3, 1e-3);
+        let d = d_matrix(e, nu);
+        let corners = [[0.5, 0.0], [2.0, 0.3], [0.9, 1.4]];
+        let area = 0.5
+            * ((corners[1][0] - corners[0][0]) * (corners[2][1] - corners[0][1])
+                - (corners[2][0] - corners[0][0]) * (corners[1][1] - corners[0][1]));
+        let rbar = (corners[0][0] + corners[1][0] + corners[2][0]) / 3.0;
+        let volume = std::f64::consts::TAU * rbar * area;
+        let bulk = e / (3.0 * (1.0 - 2.0 * nu));
+        let exact = 0.5 * 9.0 * bulk * eps * eps * volume;
+        let mid = |a: [f64; 2], b: [f64; 2]| [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+        let t6 = [
+            corners[0],
+            corners[1],
+            corners[2],
+            mid(corners[0], corners[1]),
+            mid(corners[1], corners[2]),
+            mid(corners[2], corners[0]),
+        ];
+        for (order, x) in [(Order::T3, &corners[..]), (Order::T6, &t6[..])] {
+            let mut ke = [0.0; 144];
+            stiffness(order, x, &d, &mut ke);
+            let nd = 2 * x.len();
+            let u: Vec<f64> = x.iter().flat_map(|p| [eps * p[0], eps * p[1]]).collect();
+            let energy: f64 = 0.5
+                * (0..nd)
+                    .map(|a| (0..nd).map(|b| u[a] * ke[a * nd + b] * u[b]).sum::<f64>())
+                    .sum::<f64>();
+            assert!((energy / exact - 1.0).abs() < 1e-12, "{order:?}: {energy} vs {exact}");
+        }
+    }
+
+    /// A translation along the axis is the one rigid motion of a body of
+    /// revolution: K u = 0 for u_z = const, not for u_r = const (which
+    /// stretches the hoops).
+    #[test]
+    fn axial_translation_is_free_and_radial_is_not() {
+        let d = d_matrix(1.0, 0.25);
+        let x = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+        let mut ke = [0.0; 144];
+        stiffness(Order::T3, &x, &d, &mut ke);
+        let apply = |u: [f64; 6]| -> f64 {
+            (0..6)
+                .map(|a| (0..6).map(|b| ke[a * 6 + b] * u[b]).sum::<f64>().abs())
+                .fold(0.0, f64::max)
+        };
+        assert!(apply([0.0, 1.0, 0.0, 1.0, 0.0, 1.0]) < 1e-14);
+        assert!(apply([1.0, 0.0, 1.0, 0.0, 1.0, 0.0]) > 0.1);
+    }
+}
