@@ -83,6 +83,21 @@ pub fn search_work(scene: &Scene, meshes: &[Mesh2d]) -> Result<(), CoreError> {
 /// Where every point load falls on its edge set; a point off it is an
 /// `invalid_geometry` at the load's `at`.
 pub fn point_loads(scene: &Scene, meshes: &[Mesh2d]) -> Result<Vec<Vec<Located>>, CoreError> {
+    if scene.analysis == crate::scene::Analysis::Axisymmetric {
+        // A ring of radius 0 has no radial direction: the axis node's u_r is
+        // held, so a radial force there would vanish into it unseen.
+        for (body, mesh) in scene.bodies.iter().zip(meshes) {
+            for pl in &body.point_loads {
+                if pl.at[0] <= 1e-9 * mesh.size() && pl.force[0] != 0.0 {
+                    return Err(CoreError::invalid(
+                        InvalidKind::Request,
+                        format!("{}/force/0", pl.path),
+                        "a point load on the axis of a body of revolution is axial: its radial component must be 0",
+                    ));
+                }
+            }
+        }
+    }
     crate::fem::loads::locate_all(scene, meshes)
 }
 

@@ -18,6 +18,11 @@
 //!   Hertz; the same mesh with `gap = body_normal` gives −0.18 % and +0.20 %.
 //! - `hertz_block_bn`: that scene with `gap = body_normal`, the reference that
 //!   shows the discretization converging to Hertz's own model.
+//! - `ball_on_flat`: the disk scene's section as a body of revolution
+//!   (`analysis: axisymmetric`): an elastic ball pressed 0.004 R onto a rigid
+//!   flat, against 3D Hertz (a ≈ R/15.6). Weights are ring areas; the field
+//!   L2 and the moment radius are taken over the disk r < a with dA = 2πr dr
+//!   (for Hertz ∫p r² dA / ∫p dA = 2a²/5).
 //!
 //! Errors are against Hertz at the reply's own load: the nodal L2 error of the
 //! pressure (Σ w_i (p_i − p(x_i))² / Σ w_i p(x_i)²), the L2 error of the
@@ -147,7 +152,8 @@ pub fn disk_request(h_min: f64, element: &str) -> Value {
 }
 
 /// A Hertz scene: (request at a level, radius, E*, load factor of the model
-/// to the full contact: 2 for a symmetric half).
+/// to the full contact: 2 for a symmetric half; `sphere`: a body of
+/// revolution against 3D Hertz).
 struct Scene {
     name: &'static str,
     h0: f64,
@@ -155,9 +161,10 @@ struct Scene {
     radius: f64,
     e_star: f64,
     symmetry: f64,
+    sphere: bool,
 }
 
-const SCENES: [Scene; 3] = [
+const SCENES: [Scene; 4] = [
     Scene {
         name: "disk_on_flat",
         h0: 0.0088,
@@ -165,6 +172,7 @@ const SCENES: [Scene; 3] = [
         radius: 1.0,
         e_star: 1.0 / (1.0 - 0.09),
         symmetry: 2.0,
+        sphere: false,
     },
     Scene {
         name: "hertz_block",
@@ -173,6 +181,7 @@ const SCENES: [Scene; 3] = [
         radius: 8.0,
         e_star: 200.0 / (1.0 - 0.09),
         symmetry: 1.0,
+        sphere: false,
     },
     Scene {
         name: "hertz_block_bn",
@@ -181,8 +190,27 @@ const SCENES: [Scene; 3] = [
         radius: 8.0,
         e_star: 200.0 / (1.0 - 0.09),
         symmetry: 1.0,
+        sphere: false,
+    },
+    Scene {
+        name: "ball_on_flat",
+        h0: 0.0088,
+        request: ball_request,
+        radius: 1.0,
+        e_star: 1.0 / (1.0 - 0.09),
+        symmetry: 1.0,
+        sphere: true,
     },
 ];
+
+/// The disk scene's quarter section as a ball (axisymmetric), pressed 0.004 R.
+pub fn ball_request(h_min: f64, element: &str) -> Value {
+    let mut req = disk_request(h_min, element);
+    req["analysis"] = json!("axisymmetric");
+    req["bodies"][0]["supports"] = json!([{ "edges": "flat", "uy": -0.004 }]);
+    req["description"] = json!("convergence: elastic ball (axisymmetric section) pressed 0.004 R onto a rigid flat");
+    req
+}
 
 fn block_request(h_min: f64, element: &str) -> Value {
     crate::bench::hertz_request(h_min, element, "auto")
@@ -212,10 +240,17 @@ pub struct Errors {
     pub alternation: f64,
 }
 
-/// Hertz errors of a reply against the closed form at the reply's own load.
-pub fn errors(r: &Report, radius: f64, e_star: f64, symmetry: f64) -> Errors {
+/// Hertz errors of a reply against the closed form at the reply's own load
+/// (`sphere`: 3D Hertz on the section of a body of revolution).
+pub fn errors(r: &Report, radius: f64, e_star: f64, symmetry: f64, sphere: bool) -> Errors {
     let load = r.resultant.fy.abs() * symmetry;
-    let (a, p0) = crate::reference::hertz(load, radius, e_star);
+    let (a, p0) = if sphere {
+        crate::reference::hertz_sphere(load, radius, e_star)
+    } else {
+        crate::reference::hertz(load, radius, e_star)
+    };
+    // The measure along the section: the ring's 2πr, or 1.
+    let ring = |x: f64| if sphere { std::f64::consts::TAU * x } else { 1.0 };
     let exact = |x: f64| p0 * (1.0 - (x / a).powi(2)).max(0.0).sqrt();
     let mut pts: Vec<(f64, f64, f64)> = r.pairs[0].points.iter().map(|q| (q.x, q.pressure, q.weight)).collect();
     pts.sort_by(|p, q| p.0.total_cmp(&q.0));
@@ -243,20 +278,28 @@ pub fn errors(r: &Report, radius: f64, e_star: f64, symmetry: f64) -> Errors {
                 for g in GAUSS4 {
                     let x = 0.5 * (s0 + s1) + 0.5 * (s1 - s0) * g[0];
                     let ph = p0_ + (p1 - p0_) * (x - x0) / (x1 - x0);
-                    field += 0.5 * (s1 - s0) * g[1] * (ph - exact(x)).powi(2);
+                    field += 0.5 * (s1 - s0) * g[1] * ring(x) * (ph - exact(x)).powi(2);
                 }
             }
         }
     }
-    // ∫ p² over the covered part of the zone (all of it, or half by symmetry).
+    // ∫ p² over the covered part of the zone (all of it, or half by symmetry;
+    // the disk r < a, π p0² a² / 2, on a section).
     let full = p0 * p0 * 4.0 * a / 3.0;
-    let covered = if pts.first().is_some_and(|p| p.0 > -0.5 * a) {
+    let covered = if sphere {
+        std::f64::consts::PI * p0 * p0 * a * a / 2.0
+    } else if pts.first().is_some_and(|p| p.0 > -0.5 * a) {
         0.5 * full
     } else {
         full
     };
     let peak = pts.iter().map(|p| p.1).fold(0.0, f64::max);
-    let moment = 2.0 * (m2 / m0).sqrt();
+    // Hertz's ∫p x² / ∫p: a²/4 on a line, 2a²/5 over a disk.
+    let moment = if sphere {
+        (2.5 * m2 / m0).sqrt()
+    } else {
+        2.0 * (m2 / m0).sqrt()
+    };
     let err: Vec<f64> = pts
         .iter()
         .filter(|q| q.0.abs() < a)
@@ -303,7 +346,7 @@ pub fn run(quick: bool, mut progress: impl FnMut(&Row)) -> Vec<Row> {
                     Ok(r) => r,
                     Err(e) => panic!("convergence scene {} rejected: {e:?}", sc.name),
                 };
-                let e = errors(&r, sc.radius, sc.e_star, sc.symmetry);
+                let e = errors(&r, sc.radius, sc.e_star, sc.symmetry, sc.sphere);
                 let row = Row {
                     scene: sc.name,
                     element: if element == "t3" { "T3" } else { "T6" },

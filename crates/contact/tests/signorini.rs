@@ -414,7 +414,7 @@ fn t6_pressure_converges_without_ringing() {
     let req = contact_verify::convergence::disk_request(0.0044, "t6");
     assert_kkt(&solved(&req), 1e-8);
     let r = contact_verify::run::solve(&req, &Default::default()).unwrap();
-    let e = contact_verify::convergence::errors(&r, 1.0, 1.0 / (1.0 - 0.09), 2.0);
+    let e = contact_verify::convergence::errors(&r, 1.0, 1.0 / (1.0 - 0.09), 2.0, false);
     assert!(e.l2 < 5e-3, "nodal L2 error {:e}", e.l2);
     assert!(e.alternation < 3e-3, "alternation {:e} of p0", e.alternation);
 }
@@ -484,4 +484,33 @@ fn the_active_set_solves_a_body_held_sideways_by_contact() {
     // The disk is pushed down: the floor pushes it up, with no net sideways force.
     assert!(active.resultant.fy > 0.0);
     assert!(active.resultant.fx.abs() < 1e-8 * active.resultant.fy);
+}
+
+/// The Hertz cylinder at ν = 0.4999 (plane strain): T6 runs the P2–P0
+/// element and stays within 2 % of Hertz in L2 (measured 0.87 %; 1.2 % at
+/// ν = 0.3 on the same mesh), while plain T3 locks (measured 65 %) and the
+/// reply says so.
+#[test]
+fn hertz_at_nu_4999_is_locking_free_on_t6() {
+    let l2 = |r: &contact::proto::SolveReply| {
+        let nu = 0.4999;
+        let (a, p0) = hertz(r.resultant.fy.abs(), 8.0, 200.0, nu);
+        let (mut num, mut den) = (0.0, 0.0);
+        for q in &r.pairs[0].points {
+            let exact = p0 * (1.0 - (q.x / a).powi(2)).max(0.0).sqrt();
+            num += q.weight * (q.pressure - exact).powi(2);
+            den += q.weight * exact * exact;
+        }
+        (num / den).sqrt()
+    };
+    let mut t6 = example("signorini_hertz_cylinder_t6.json");
+    t6["bodies"][0]["material"]["poisson_ratio"] = serde_json::json!(0.4999);
+    let r6 = solved(&t6);
+    assert!(l2(&r6) < 0.02, "T6 L2 {}", l2(&r6));
+    assert!(r6.notes.iter().any(|n| n.contains("P2–P0")), "{:?}", r6.notes);
+    let mut t3 = example("signorini_hertz_cylinder.json");
+    t3["bodies"][0]["material"]["poisson_ratio"] = serde_json::json!(0.4999);
+    let r3 = solved(&t3);
+    assert!(l2(&r3) > 0.2, "T3 L2 {}", l2(&r3));
+    assert!(r3.notes.iter().any(|n| n.contains("lock")), "{:?}", r3.notes);
 }

@@ -86,7 +86,17 @@ impl Foundations {
                 FoundationModel::Pasternak { k, mu } => {
                     let panels: Vec<[f64; 2]> = rows.iter().map(|&i| panel(i)).collect();
                     let centres: Vec<f64> = rows.iter().map(|&i| cons.candidates[i].x[0]).collect();
-                    layer(fnd.x_min, fnd.x_max, &panels, &centres, k, mu)
+                    // In axisymmetry a row's springs act on its ring area (as for Winkler).
+                    let ring_areas: Option<Vec<f64>> =
+                        (scene.analysis == crate::scene::Analysis::Axisymmetric).then(|| {
+                            rows.iter()
+                                .map(|&i| {
+                                    cons.candidates[i].weight
+                                        * cons.candidates[i].foundation().expect("foundation row").proj.abs()
+                                })
+                                .collect()
+                        });
+                    layer(fnd.x_min, fnd.x_max, &panels, &centres, ring_areas.as_deref(), k, mu)
                 }
                 FoundationModel::HalfPlane { e_star, d } => {
                     let (lo, hi) = (
@@ -277,7 +287,17 @@ fn log_double_integral(p: [f64; 2], q: [f64; 2]) -> f64 {
 /// The Pasternak layer on [x_min, x_max]: the rows' panels as cells (their nodes
 /// at the rows' x), and graded cells filling the rest so that the decay length
 /// √(μ/k) is resolved (cells no longer than a fifth of it).
-fn layer(x_min: f64, x_max: f64, panels: &[[f64; 2]], centres: &[f64], k: f64, mu: f64) -> LineKind {
+/// `ring_areas`: the rows' ring areas of a body of revolution (x = r ≥ 0);
+/// the layer is then the annular plate ∫ (μ w′ v′ + k w v) 2πr dr.
+fn layer(
+    x_min: f64,
+    x_max: f64,
+    panels: &[[f64; 2]],
+    centres: &[f64],
+    ring_areas: Option<&[f64]>,
+    k: f64,
+    mu: f64,
+) -> LineKind {
     let decay = if mu > 0.0 { (mu / k).sqrt() } else { f64::INFINITY };
     // Cells resolve the decay length, but never finer than 1e-4 of the layer:
     // a shear layer thinner than that acts as Winkler springs anyway, and an
@@ -328,14 +348,26 @@ fn layer(x_min: f64, x_max: f64, panels: &[[f64; 2]], centres: &[f64], k: f64, m
         cells[n - 1].1 = x_max;
     }
     let x: Vec<f64> = cells.iter().map(|c| c.1).collect();
-    let mut diag: Vec<f64> = cells.iter().map(|c| k * (c.0[1] - c.0[0])).collect();
+    let mut diag: Vec<f64> = cells
+        .iter()
+        .map(|c| match (ring_areas, c.2) {
+            (None, _) => k * (c.0[1] - c.0[0]),
+            (Some(areas), Some(r)) => k * areas[r],
+            (Some(_), None) => k * std::f64::consts::PI * (c.0[1] * c.0[1] - c.0[0] * c.0[0]),
+        })
+        .collect();
     let mut off = vec![0.0; n.saturating_sub(1)];
     for i in 0..n.saturating_sub(1) {
         let h = x[i + 1] - x[i];
         if h > 0.0 && mu > 0.0 {
-            diag[i] += mu / h;
-            diag[i + 1] += mu / h;
-            off[i] = -mu / h;
+            // Linear elements: μ/h, or μ 2π r̄ / h with r̄ the element's mid-radius.
+            let s = match ring_areas {
+                None => mu / h,
+                Some(_) => mu * std::f64::consts::PI * (x[i] + x[i + 1]) / h,
+            };
+            diag[i] += s;
+            diag[i + 1] += s;
+            off[i] = -s;
         }
     }
     let mut node_of_row = vec![0; panels.len()];

@@ -35,16 +35,18 @@ pub fn foundations(req: &SolveRequest, scales: Scales) -> Result<(Vec<String>, V
         }
         let mp = format!("{fp}/model");
         if req.analysis == proto::Analysis::Axisymmetric {
-            let kind = match &f.model {
-                proto::FoundationModel::Winkler { .. } => None,
-                proto::FoundationModel::Pasternak { .. } => Some("a Pasternak layer (its shear term in axisymmetry, −(1/r)(r μ w′)′, is not built yet)"),
-                proto::FoundationModel::HalfPlane { .. } => Some("the elastic half-plane (a body of revolution rests on a half-space, whose ring-load kernel is not built yet)"),
-            };
-            if let Some(kind) = kind {
+            if let proto::FoundationModel::HalfPlane { .. } = &f.model {
                 return Err(invalid(
                     K::Request,
                     mp,
-                    format!("{kind} is not available in axisymmetry; a Winkler foundation is"),
+                    "the elastic half-plane is not available in axisymmetry (a body of revolution rests on a half-space, whose ring-load kernel is not built yet); Winkler and Pasternak foundations are",
+                ));
+            }
+            if x_min < 0.0 {
+                return Err(invalid(
+                    K::Geometry,
+                    format!("{fp}/x_min"),
+                    format!("in axisymmetry x is the radius: the foundation must start at x_min ≥ 0, got {x_min}"),
                 ));
             }
         }
