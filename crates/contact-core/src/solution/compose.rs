@@ -136,6 +136,7 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
         notes,
         warnings,
         outputs: scene.outputs,
+        axisymmetric: scene.analysis == Analysis::Axisymmetric,
     }
 }
 

@@ -36,6 +36,9 @@ pub struct Report {
     pub warnings: Vec<Warning>,
     /// What the request asked to be returned (the reply layer writes the VTU file).
     pub outputs: Outputs,
+    /// The bodies are sections of bodies of revolution about the y axis
+    /// (the VTU file says so).
+    pub axisymmetric: bool,
 }
 
 /// Whether the answer can be used.

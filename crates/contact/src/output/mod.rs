@@ -11,12 +11,13 @@ use contact_core::scene::Outputs;
 
 /// With `vtu` requested: sets the reply's `vtu` (base64 of the file) and drops
 /// the per-body fields it needed that the request did not list. `stress_zz`:
-/// each body's σzz per element (plane strain), which the reply does not carry.
-pub fn attach_vtu(reply: &mut SolveReply, asked: Outputs, stress_zz: &[Vec<f64>]) {
+/// each body's σzz per element (plane strain; the hoop stress in axisymmetry),
+/// which the reply does not carry; `axisymmetric`: the file states the axis.
+pub fn attach_vtu(reply: &mut SolveReply, asked: Outputs, stress_zz: &[Vec<f64>], axisymmetric: bool) {
     if !asked.vtu {
         return;
     }
-    reply.vtu = Some(base64::engine::general_purpose::STANDARD.encode(vtu::vtu(reply, stress_zz)));
+    reply.vtu = Some(base64::engine::general_purpose::STANDARD.encode(vtu::vtu(reply, stress_zz, axisymmetric)));
     if !(asked.mesh || asked.displacement || asked.stress) {
         reply.bodies = None;
         return;

@@ -37,7 +37,7 @@ fn invariants(s: [f64; 3], zz: f64) -> ([f64; 6], f64, [f64; 3]) {
 /// The VTU file of a reply whose `bodies` carry nodes, elements, displacement
 /// and stress (the core computes them when `outputs` lists `vtu`); `stress_zz`
 /// holds each body's σzz per element (empty: 0).
-pub fn vtu(reply: &SolveReply, stress_zz: &[Vec<f64>]) -> Vec<u8> {
+pub fn vtu(reply: &SolveReply, stress_zz: &[Vec<f64>], axisymmetric: bool) -> Vec<u8> {
     let bodies = reply.bodies.as_deref().unwrap_or_default();
     let mut points = Vec::new();
     let mut disp = Vec::new();
@@ -102,6 +102,11 @@ pub fn vtu(reply: &SolveReply, stress_zz: &[Vec<f64>]) -> Vec<u8> {
         "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n",
     );
     x.push_str("<UnstructuredGrid>\n");
+    if axisymmetric {
+        // The section of a body of revolution: the axis is the y axis through
+        // the origin (a point and a direction); zz of the tensors is the hoop.
+        x.push_str("<FieldData>\n<DataArray type=\"Float64\" Name=\"revolution_axis\" NumberOfComponents=\"3\" NumberOfTuples=\"2\" format=\"ascii\">0 0 0 0 1 0</DataArray>\n</FieldData>\n");
+    }
     x.push_str(&format!(
         "<Piece NumberOfPoints=\"{n_points}\" NumberOfCells=\"{n_cells}\">\n"
     ));
@@ -180,9 +185,20 @@ mod tests {
     }
 
     #[test]
+    fn a_section_of_revolution_states_its_axis() {
+        let reply: SolveReply = serde_json::from_str(include_str!("testdata/two_triangles_reply.json")).unwrap();
+        let axi = String::from_utf8(vtu(&reply, &[], true)).unwrap();
+        assert!(axi.contains(
+            "Name=\"revolution_axis\" NumberOfComponents=\"3\" NumberOfTuples=\"2\" format=\"ascii\">0 0 0 0 1 0<"
+        ));
+        let plane = String::from_utf8(vtu(&reply, &[], false)).unwrap();
+        assert!(!plane.contains("FieldData"));
+    }
+
+    #[test]
     fn arrays_round_trip_and_offsets_end_at_the_connectivity_length() {
         let reply: SolveReply = serde_json::from_str(include_str!("testdata/two_triangles_reply.json")).unwrap();
-        let xml = String::from_utf8(vtu(&reply, &[])).unwrap();
+        let xml = String::from_utf8(vtu(&reply, &[], false)).unwrap();
         assert!(xml.contains("NumberOfPoints=\"4\" NumberOfCells=\"2\""));
         let f64s =
             |b: Vec<u8>| -> Vec<f64> { b.chunks(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect() };

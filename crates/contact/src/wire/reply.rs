@@ -10,6 +10,7 @@ use contact_proto as p;
 /// The wire reply of `report`, with the VTU file attached when asked for.
 pub fn reply(mut report: Report) -> p::SolveReply {
     let outputs = report.outputs;
+    let axisymmetric = report.axisymmetric;
     let stress_zz: Vec<Vec<f64>> = report
         .bodies
         .iter_mut()
@@ -60,7 +61,7 @@ pub fn reply(mut report: Report) -> p::SolveReply {
         vtu: None,
         units: None,
     };
-    crate::output::attach_vtu(&mut reply, outputs, &stress_zz);
+    crate::output::attach_vtu(&mut reply, outputs, &stress_zz, axisymmetric);
     reply
 }
 
