@@ -287,9 +287,12 @@ pub struct BodyOutput {
     /// Nodal displacement [ux, uy].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub displacement: Option<Vec<[f64; 2]>>,
-    /// Element-centroid stress [σxx, σyy, σxy].
+    /// Element-centroid stress [σxx, σyy, σxy] (in axisymmetry [σrr, σzz, σrz]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stress: Option<Vec<[f64; 3]>>,
+    /// Axisymmetry: the element-centroid hoop stress σθθ, with `stress`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stress_hoop: Option<Vec<f64>>,
 }
 
 /// A foundation's surface deflection w(x) (downward positive) along its whole

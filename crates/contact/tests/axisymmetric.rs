@@ -166,6 +166,28 @@ fn press_fit_matches_lame() {
         r.resultant
     );
     assert_kkt(&r, 1e-8);
+    // In the shaft σ_rr = σ_θθ = −p (uniform compression): the reply's hoop
+    // stress beside `stress` says so, within 2 % away from the ends.
+    let mut with_stress = req.clone();
+    with_stress["outputs"] = json!(["stress", "mesh"]);
+    let r = solved(&with_stress);
+    let shaft = &r.bodies.as_ref().expect("bodies")[0];
+    let (stress, hoop) = (
+        shaft.stress.as_ref().unwrap(),
+        shaft.stress_hoop.as_ref().expect("hoop stress"),
+    );
+    let (nodes, elements) = (shaft.nodes.as_ref().unwrap(), shaft.elements.as_ref().unwrap());
+    for (e, conn) in elements.iter().enumerate() {
+        let z = conn.iter().map(|&n| nodes[n][1]).sum::<f64>() / conn.len() as f64;
+        if (0.25..0.75).contains(&z) {
+            assert!((hoop[e] / -lame - 1.0).abs() < 0.02, "σθθ {} at z {z}", hoop[e]);
+            assert!(
+                (stress[e][0] / -lame - 1.0).abs() < 0.02,
+                "σrr {} at z {z}",
+                stress[e][0]
+            );
+        }
+    }
 }
 
 /// A uniform pressure q on a stiff disk of radius R resting on a Winkler

@@ -296,7 +296,7 @@ fn body_outputs(scene: &Scene, meshes: &[Mesh2d], disp: &[Vec<[f64; 2]>]) -> Opt
                     // Only the VTU file's tensor reads it.
                     stress_zz: stress4
                         .as_ref()
-                        .filter(|_| o.vtu)
+                        .filter(|_| o.vtu || (o.stress && scene.analysis == Analysis::Axisymmetric))
                         .map(|s| s.iter().map(|s| s[3]).collect()),
                     stress,
                 }

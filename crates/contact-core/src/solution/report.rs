@@ -199,8 +199,9 @@ pub struct BodyFields {
     pub displacement: Option<Vec<[f64; 2]>>,
     /// Element-centroid stress [σxx, σyy, σxy].
     pub stress: Option<Vec<[f64; 3]>>,
-    /// σzz at the same points (plane strain: ν (σxx + σyy); plane stress: 0),
-    /// with the VTU output only.
+    /// σzz at the same points (plane strain: ν (σxx + σyy); plane stress: 0;
+    /// axisymmetry: the hoop stress), with the VTU output or, in axisymmetry,
+    /// with the stress.
     pub stress_zz: Option<Vec<f64>>,
 }
 

@@ -17,6 +17,12 @@ pub fn reply(mut report: Report) -> p::SolveReply {
         .flatten()
         .map(|b| b.stress_zz.take().unwrap_or_default())
         .collect();
+    // In axisymmetry σzz of the section's tensor is the hoop stress, which the
+    // reply carries beside `stress`.
+    let hoop: Vec<Option<Vec<f64>>> = stress_zz
+        .iter()
+        .map(|s| (axisymmetric && outputs.stress).then(|| s.clone()))
+        .collect();
     let mut reply = p::SolveReply {
         version: p::PROTOCOL_VERSION.to_string(),
         client_id: report.client_id,
@@ -45,7 +51,9 @@ pub fn reply(mut report: Report) -> p::SolveReply {
         },
         steps: report.steps.map(|s| s.into_iter().map(step).collect()),
         punches: report.punches.into_iter().map(punch).collect(),
-        bodies: report.bodies.map(|b| b.into_iter().map(body).collect()),
+        bodies: report
+            .bodies
+            .map(|b| b.into_iter().zip(hoop).map(|(b, h)| body(b, h)).collect()),
         foundations: report.foundations.into_iter().map(foundation).collect(),
         notes: report.notes,
         warnings: report
@@ -181,13 +189,14 @@ fn punch(pu: r::PunchReport) -> p::PunchResult {
     }
 }
 
-fn body(b: r::BodyFields) -> p::BodyOutput {
+fn body(b: r::BodyFields, stress_hoop: Option<Vec<f64>>) -> p::BodyOutput {
     p::BodyOutput {
         name: b.name,
         nodes: b.nodes,
         elements: b.elements,
         displacement: b.displacement,
         stress: b.stress,
+        stress_hoop,
     }
 }
 
