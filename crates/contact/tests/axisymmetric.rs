@@ -104,6 +104,32 @@ fn flat_punch_matches_boussinesq() {
     assert_kkt(&r, 1e-8);
 }
 
+/// An axial point load on the axis (a ring of radius 0: a point force) on
+/// top of a cylinder standing on a rigid flat: the floor carries it exactly.
+#[test]
+fn an_axial_point_load_on_the_axis_is_a_point_force() {
+    let req = json!({
+        "version": "1",
+        "analysis": "axisymmetric",
+        "bodies": [{
+            "name": "post",
+            "material": { "youngs_modulus": 100.0, "poisson_ratio": 0.25 },
+            "mesh": { "rectangle": { "corner": [0.0, 0.0], "width": 1.0, "height": 2.0, "size": 0.05 } },
+            "point_loads": [{ "edges": "top", "at": [0.0, 2.0], "force": [0.0, -3.0] }]
+        }],
+        "obstacles": [{ "name": "floor", "shape": { "line": { "point": [0.0, 0.0], "normal": [0.0, 1.0] } } }],
+        "contacts": [{ "body": "post", "edges": "bottom", "obstacle": "floor" }]
+    });
+    let r = solved(&req);
+    assert!((r.resultant.fy / 3.0 - 1.0).abs() < 1e-9, "{}", r.resultant.fy);
+    // Two diameters below the load the pressure has spread: the highest is at
+    // the axis, all of the base bears.
+    let pts = &r.pairs[0].points;
+    assert!(pts.iter().all(|p| p.pressure > 0.0));
+    assert!(pts[0].pressure >= pts.iter().map(|p| p.pressure).fold(0.0, f64::max) - 1e-12);
+    assert_kkt(&r, 1e-8);
+}
+
 /// Two elastic balls (R1 = 8, E1 = 200, ν1 = 0.3 on R2 = 12, E2 = 100,
 /// ν2 = 0.25; dual mortar rows on non-matching meshes) against 3D Hertz with
 /// 1/R = 1/R1 + 1/R2 and 1/E* = Σ (1 − ν²)/E: measured peak −0.24 %, L2
