@@ -1,7 +1,7 @@
 //! The operator cache: a repeated scene reuses the factorization and gives the
 //! identical answer; a change of loads or prescribed motion reuses it too (and
-//! the answer follows the physics); a change of material does not reuse it,
-//! but reuses its ordering and symbolic analysis.
+//! the answer follows the physics); a change of material or of the contact
+//! rows does not reuse it, but reuses its ordering and symbolic analysis.
 
 mod common;
 use common::*;
@@ -67,6 +67,16 @@ fn repeated_and_reloaded_scenes_hit_the_cache() {
     let fresh = solved(&other);
     let peak = peak_pressure(&fresh);
     assert!(max_pressure_diff(&reused, &fresh) <= 1e-12 * peak);
+    // Other contact rows on the same K (far candidates pruned): another
+    // operator, but the factor's analysis depends on K's pattern alone.
+    let mut fewer = other.clone();
+    fewer["settings"] = json!({ "prune_gap_ratio": 0.01 });
+    let hits = cache.symbolic_hits();
+    let pruned = solve_with(&cache, &fewer);
+    assert_eq!(pruned.cache, CacheState::Miss);
+    assert!(pruned.size.candidates < reused.size.candidates, "rows were pruned");
+    assert_eq!(cache.symbolic_hits(), hits + 1, "the symbolic analysis is reused");
+    assert!(max_pressure_diff(&pruned, &solved(&fewer)) <= 1e-12 * peak);
 }
 
 #[test]
