@@ -42,7 +42,7 @@ impl Prepared {
     /// Approximate memory held, for the cache bound.
     pub fn bytes(&self) -> usize {
         let k = self.stiffness.k.val().len() * 16 + self.stiffness.k_fd.len() * 24;
-        k + self.chol.nnz_factor() * 12 + self.condensed.len() * 8
+        k + self.chol.nnz_factor() * 12 + self.condensed.stored_values() * 8
     }
 }
 

@@ -87,15 +87,8 @@ impl Foundations {
                     let panels: Vec<[f64; 2]> = rows.iter().map(|&i| panel(i)).collect();
                     let centres: Vec<f64> = rows.iter().map(|&i| cons.candidates[i].x[0]).collect();
                     // In axisymmetry a row's springs act on its ring area (as for Winkler).
-                    let ring_areas: Option<Vec<f64>> =
-                        (scene.analysis == crate::scene::Analysis::Axisymmetric).then(|| {
-                            rows.iter()
-                                .map(|&i| {
-                                    cons.candidates[i].weight
-                                        * cons.candidates[i].foundation().expect("foundation row").proj.abs()
-                                })
-                                .collect()
-                        });
+                    let ring_areas: Option<Vec<f64>> = (scene.analysis == crate::scene::Analysis::Axisymmetric)
+                        .then(|| rows.iter().map(|&i| ring_area(cons, i)).collect());
                     layer(fnd.x_min, fnd.x_max, &panels, &centres, ring_areas.as_deref(), k, mu)
                 }
                 FoundationModel::HalfPlane { e_star, d } => {
@@ -139,12 +132,11 @@ impl Foundations {
     /// uniform deflection also at the axis, where the panel's annulus
     /// π (h/2)² would miss the hat's π h²/3).
     fn spring_area(&self, cons: &ConstraintSet, i: usize) -> f64 {
-        let c = &cons.candidates[i];
-        let fr = c.foundation().expect("foundation row");
         if self.axisymmetric {
-            c.weight * fr.proj.abs()
+            ring_area(cons, i)
         } else {
-            fr.panel[1] - fr.panel[0]
+            let p = cons.candidates[i].foundation().expect("foundation row").panel;
+            p[1] - p[0]
         }
     }
 
@@ -282,6 +274,13 @@ fn big_g(s: f64) -> f64 {
 fn log_double_integral(p: [f64; 2], q: [f64; 2]) -> f64 {
     // ∫ ln|x − t| dt over q = F(x − q0) − F(x − q1); then ∫ F(x − c) dx = G(x − c).
     (big_g(p[1] - q[0]) - big_g(p[0] - q[0])) - (big_g(p[1] - q[1]) - big_g(p[0] - q[1]))
+}
+
+/// A foundation row's ring area on the foundation: ∫ N_i 2πr ds projected
+/// on it (`spring_area`).
+fn ring_area(cons: &ConstraintSet, i: usize) -> f64 {
+    let c = &cons.candidates[i];
+    c.weight * c.foundation().expect("foundation row").proj.abs()
 }
 
 /// The Pasternak layer on [x_min, x_max]: the rows' panels as cells (their nodes

@@ -146,19 +146,6 @@ impl ConstraintSet {
     pub fn is_empty(&self) -> bool {
         self.candidates.is_empty()
     }
-    /// Distinct free DOFs touched by any row, in first-use order.
-    pub fn dofs(&self) -> Vec<usize> {
-        let mut seen = std::collections::HashSet::new();
-        let mut out = Vec::new();
-        for c in &self.candidates {
-            for &(d, _) in &c.row {
-                if seen.insert(d) {
-                    out.push(d);
-                }
-            }
-        }
-        out
-    }
     /// Whether every row acts on one node along a unit direction and no two rows
     /// share a DOF: what the full-system active set needs to turn each row into
     /// one rotated coordinate. Mortar rows (T6) and two-body rows are not.

@@ -32,6 +32,7 @@
 use std::collections::HashMap;
 
 use crate::mesh::{boundary::boundary_nodes, Edge, Mesh2d};
+use crate::scene::Analysis;
 
 /// One node's share of a candidate row; the contact force the row's
 /// multiplier λ puts on that node is −λ · coef.
@@ -47,18 +48,14 @@ pub struct Surface<'a> {
     pub body: usize,
     pub mesh: &'a Mesh2d,
     pub edges: &'a [Edge],
-    /// The section of a body of revolution (x = r): weights are areas 2πr ds.
-    pub axisymmetric: bool,
+    /// Its kinematics: on the section of a body of revolution the weights
+    /// are areas 2πr ds (`Analysis::measure`).
+    pub analysis: Analysis,
 }
 
 impl Surface<'_> {
-    /// The measure of a surface point: 2πr, or 1 (unit thickness).
-    fn measure(&self, x: [f64; 2]) -> f64 {
-        if self.axisymmetric {
-            std::f64::consts::TAU * x[0]
-        } else {
-            1.0
-        }
+    pub fn axisymmetric(&self) -> bool {
+        self.analysis == Analysis::Axisymmetric
     }
 }
 
@@ -130,7 +127,7 @@ pub fn nodal(surface: &Surface, see: &See, limit: f64) -> Rows {
         rows: Vec::new(),
         pruned: 0,
     };
-    for bn in boundary_nodes(surface.mesh, surface.edges, surface.axisymmetric) {
+    for bn in boundary_nodes(surface.mesh, surface.edges, surface.axisymmetric()) {
         let x = surface.mesh.nodes[bn.node];
         let Some(seen) = see(x, bn.normal).filter(|s| s.gap <= limit) else {
             out.pruned += 1;
@@ -265,7 +262,7 @@ pub fn mortar(surface: &Surface, see: &See, limit: f64, breaks: &dyn Fn(&[[f64; 
         let nodes: Vec<usize> = e.nodes().collect();
         let pts: Vec<[f64; 2]> = nodes.iter().map(|&i| surface.mesh.nodes[i]).collect();
         let dual = surface
-            .axisymmetric
+            .axisymmetric()
             .then(|| weighted_dual(pts[0][0], pts[pts.len() - 1][0]));
         for w in breaks(&pts).windows(2) {
             let (x0, x1) = (w[0], w[1]);
@@ -277,7 +274,7 @@ pub fn mortar(surface: &Surface, see: &See, limit: f64, breaks: &dyn Fn(&[[f64; 
                 let Some(seen) = see(x, n).filter(|s| s.gap <= limit) else {
                     continue;
                 };
-                let omega = 0.5 * g[1] * (x1 - x0) * jac * surface.measure(x);
+                let omega = 0.5 * g[1] * (x1 - x0) * jac * surface.analysis.measure(x);
                 let (sn, _) = shape01(nodes.len(), xi);
                 let (phi, mut psi) = mult01(nodes.len(), xi);
                 if let Some(c) = dual {
@@ -301,7 +298,7 @@ pub fn mortar(surface: &Surface, see: &See, limit: f64, breaks: &dyn Fn(&[[f64; 
             }
         }
     }
-    let full: HashMap<usize, f64> = boundary_nodes(surface.mesh, surface.edges, surface.axisymmetric)
+    let full: HashMap<usize, f64> = boundary_nodes(surface.mesh, surface.edges, surface.axisymmetric())
         .into_iter()
         .map(|b| (b.node, b.weight))
         .collect();

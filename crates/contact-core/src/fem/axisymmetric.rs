@@ -6,7 +6,7 @@
 //! element, where r > 0 even for an element touching the axis: the hoop term
 //! N_i / r stays finite (an axis node's u_r is held at 0 by the DOF map).
 
-use super::element::{gradients, order_len, rule, symmetrize, RULE1};
+use super::element::{self, gradients, order_len};
 use crate::mesh::Order;
 
 /// Voigt order of the axisymmetric strains and stresses.
@@ -26,10 +26,7 @@ pub fn d_matrix(e: f64, nu: f64) -> D4 {
 
 /// Element stiffness (2k × 2k, row-major into `ke`), DOF order u0r, u0z, u1r, ...
 pub fn stiffness(order: Order, x: &[[f64; 2]], d: &D4, ke: &mut [f64; 144]) {
-    let nd = 2 * order_len(order);
-    ke[..nd * nd].iter_mut().for_each(|v| *v = 0.0);
-    add_stiffness(order, x, d, rule(order), ke);
-    symmetrize(nd, ke);
+    element::stiffness_of(order, x, d, b_column, true, ke);
 }
 
 /// The P2–P0 element of `element::stiffness_selective` in axisymmetry: the
@@ -37,49 +34,16 @@ pub fn stiffness(order: Order, x: &[[f64; 2]], d: &D4, ke: &mut [f64; 144]) {
 /// volume change), at the centroid only, the deviatoric part with the full
 /// rule.
 pub fn stiffness_selective(order: Order, x: &[[f64; 2]], d: &D4, lambda: f64, ke: &mut [f64; 144]) {
-    let nd = 2 * order_len(order);
-    ke[..nd * nd].iter_mut().for_each(|v| *v = 0.0);
-    let m = [1.0, 1.0, 0.0, 1.0];
-    let mut dev = *d;
-    let mut vol = [[0.0; 4]; 4];
-    for i in 0..4 {
-        for j in 0..4 {
-            dev[i][j] -= lambda * m[i] * m[j];
-            vol[i][j] = lambda * m[i] * m[j];
-        }
-    }
-    add_stiffness(order, x, &dev, rule(order), ke);
-    add_stiffness(order, x, &vol, &RULE1, ke);
-    symmetrize(nd, ke);
+    element::selective_of(order, x, d, lambda, [1.0, 1.0, 0.0, 1.0], b_column, true, ke);
 }
 
-/// The strain columns of DOF a (component a % 2 of node a / 2).
+/// The strain columns of DOF a (component a % 2 of node a / 2) at radius r.
 fn b_column(a: usize, n: &[f64; 6], dx: &[f64; 6], dy: &[f64; 6], r: f64) -> [f64; 4] {
     let i = a / 2;
     if a % 2 == 0 {
         [dx[i], 0.0, dy[i], n[i] / r]
     } else {
         [0.0, dy[i], dx[i], 0.0]
-    }
-}
-
-/// Adds Σ_q w_q det J_q 2π r_q B_qᵀ D B_q over `points` to the upper triangle of `ke`.
-fn add_stiffness(order: Order, x: &[[f64; 2]], d: &D4, points: &[[f64; 3]], ke: &mut [f64; 144]) {
-    let k = order_len(order);
-    let nd = 2 * k;
-    let (mut n, mut dx, mut dy) = ([0.0; 6], [0.0; 6], [0.0; 6]);
-    for q in points {
-        let det = gradients(order, x, q[0], q[1], &mut n, &mut dx, &mut dy);
-        let r: f64 = (0..k).map(|i| n[i] * x[i][0]).sum();
-        let w = q[2] * det * std::f64::consts::TAU * r;
-        for a in 0..nd {
-            let ba = b_column(a, &n, &dx, &dy, r);
-            let dba: [f64; 4] = std::array::from_fn(|i| (0..4).map(|j| d[i][j] * ba[j]).sum());
-            for b in a..nd {
-                let bb = b_column(b, &n, &dx, &dy, r);
-                ke[a * nd + b] += w * (0..4).map(|i| bb[i] * dba[i]).sum::<f64>();
-            }
-        }
     }
 }
 

@@ -8,7 +8,7 @@
 use crate::mesh::Order;
 
 /// (ξ, η, weight) of the triangle rules; weights sum to the reference area 1/2.
-pub(crate) const RULE1: [[f64; 3]; 1] = [[1.0 / 3.0, 1.0 / 3.0, 0.5]];
+const RULE1: [[f64; 3]; 1] = [[1.0 / 3.0, 1.0 / 3.0, 0.5]];
 pub(crate) const RULE3: [[f64; 3]; 3] = [
     [1.0 / 6.0, 1.0 / 6.0, 1.0 / 6.0],
     [2.0 / 3.0, 1.0 / 6.0, 1.0 / 6.0],
@@ -97,10 +97,7 @@ pub fn order_len(order: Order) -> usize {
 
 /// Element stiffness (2k × 2k, row-major into `ke`), DOF order u0x, u0y, u1x, ...
 pub fn stiffness(order: Order, x: &[[f64; 2]], d: &[[f64; 3]; 3], ke: &mut [f64; 144]) {
-    let nd = 2 * order_len(order);
-    ke[..nd * nd].iter_mut().for_each(|v| *v = 0.0);
-    add_stiffness(order, x, d, rule(order), ke);
-    symmetrize(nd, ke);
+    stiffness_of(order, x, d, plane_column, false, ke);
 }
 
 /// Selective reduced integration for nearly incompressible plane strain on T6:
@@ -111,21 +108,73 @@ pub fn stiffness(order: Order, x: &[[f64; 2]], d: &[[f64; 3]; 3], ke: &mut [f64;
 /// (measured on Hertz at ν = 0.4999: node-to-node oscillation 0.51 of the peak
 /// with full integration).
 pub fn stiffness_selective(order: Order, x: &[[f64; 2]], d: &[[f64; 3]; 3], lambda: f64, ke: &mut [f64; 144]) {
+    selective_of(order, x, d, lambda, [1.0, 1.0, 0.0], plane_column, false, ke);
+}
+
+/// The S strains of one DOF a (component a % 2 of node a / 2) from the shape
+/// functions, their x and y derivatives and the point's radius. A generic
+/// parameter, not a fn pointer: the kernel inlines it in its inner loop.
+pub(crate) trait Column<const S: usize>:
+    Fn(usize, &[f64; 6], &[f64; 6], &[f64; 6], f64) -> [f64; S] + Copy
+{
+}
+impl<const S: usize, F: Fn(usize, &[f64; 6], &[f64; 6], &[f64; 6], f64) -> [f64; S] + Copy> Column<S> for F {}
+
+/// Plane strains (xx, yy, xy): u_x gives (∂x, 0, ∂y), u_y gives (0, ∂y, ∂x).
+fn plane_column(a: usize, _n: &[f64; 6], dx: &[f64; 6], dy: &[f64; 6], _r: f64) -> [f64; 3] {
+    let i = a / 2;
+    if a % 2 == 0 {
+        [dx[i], 0.0, dy[i]]
+    } else {
+        [0.0, dy[i], dx[i]]
+    }
+}
+
+/// Σ_q w_q det J_q Bᵀ D B over the element's rule, for strains `column`;
+/// `ring`: the measure 2πr of a body of revolution.
+pub(crate) fn stiffness_of<const S: usize>(
+    order: Order,
+    x: &[[f64; 2]],
+    d: &[[f64; S]; S],
+    column: impl Column<S>,
+    ring: bool,
+    ke: &mut [f64; 144],
+) {
     let nd = 2 * order_len(order);
     ke[..nd * nd].iter_mut().for_each(|v| *v = 0.0);
-    let mut dev = *d;
-    for row in dev.iter_mut().take(2) {
-        for v in row.iter_mut().take(2) {
-            *v -= lambda;
-        }
-    }
-    let vol = [[lambda, lambda, 0.0], [lambda, lambda, 0.0], [0.0, 0.0, 0.0]];
-    add_stiffness(order, x, &dev, rule(order), ke);
-    add_stiffness(order, x, &vol, &RULE1, ke);
+    add_stiffness(order, x, d, rule(order), column, ring, ke);
     symmetrize(nd, ke);
 }
 
-pub(crate) fn symmetrize(nd: usize, ke: &mut [f64; 144]) {
+/// The P2–P0 split of `stiffness_selective` for strains `column`, with m the
+/// strains that change the volume.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn selective_of<const S: usize>(
+    order: Order,
+    x: &[[f64; 2]],
+    d: &[[f64; S]; S],
+    lambda: f64,
+    m: [f64; S],
+    column: impl Column<S>,
+    ring: bool,
+    ke: &mut [f64; 144],
+) {
+    let nd = 2 * order_len(order);
+    ke[..nd * nd].iter_mut().for_each(|v| *v = 0.0);
+    let mut dev = *d;
+    let mut vol = [[0.0; S]; S];
+    for i in 0..S {
+        for j in 0..S {
+            dev[i][j] -= lambda * m[i] * m[j];
+            vol[i][j] = lambda * m[i] * m[j];
+        }
+    }
+    add_stiffness(order, x, &dev, rule(order), column, ring, ke);
+    add_stiffness(order, x, &vol, &RULE1, column, ring, ke);
+    symmetrize(nd, ke);
+}
+
+fn symmetrize(nd: usize, ke: &mut [f64; 144]) {
     for a in 0..nd {
         for b in 0..a {
             ke[a * nd + b] = ke[b * nd + a];
@@ -133,38 +182,46 @@ pub(crate) fn symmetrize(nd: usize, ke: &mut [f64; 144]) {
     }
 }
 
-/// Adds Σ_q w_q det J_q B_qᵀ D B_q over `points` to the upper triangle of `ke`.
-fn add_stiffness(order: Order, x: &[[f64; 2]], d: &[[f64; 3]; 3], points: &[[f64; 3]], ke: &mut [f64; 144]) {
+/// Adds Σ_q w_q det J_q B_qᵀ D B_q (times 2π r_q with `ring`) over `points` to
+/// the upper triangle of `ke`.
+fn add_stiffness<const S: usize>(
+    order: Order,
+    x: &[[f64; 2]],
+    d: &[[f64; S]; S],
+    points: &[[f64; 3]],
+    column: impl Column<S>,
+    ring: bool,
+    ke: &mut [f64; 144],
+) {
     let k = order_len(order);
     let nd = 2 * k;
     let (mut n, mut dx, mut dy) = ([0.0; 6], [0.0; 6], [0.0; 6]);
     for q in points {
         let det = gradients(order, x, q[0], q[1], &mut n, &mut dx, &mut dy);
-        let w = q[2] * det;
-        // DB columns for each DOF: B column of ux_i = (dx, 0, dy), of uy_i = (0, dy, dx).
+        let (w, r) = if ring {
+            let r: f64 = (0..k).map(|i| n[i] * x[i][0]).sum();
+            (q[2] * det * std::f64::consts::TAU * r, r)
+        } else {
+            (q[2] * det, 1.0)
+        };
         for a in 0..nd {
-            let (ia, ca) = (a / 2, a % 2);
-            let ba = if ca == 0 {
-                [dx[ia], 0.0, dy[ia]]
-            } else {
-                [0.0, dy[ia], dx[ia]]
-            };
-            let dba = [
-                d[0][0] * ba[0] + d[0][1] * ba[1] + d[0][2] * ba[2],
-                d[1][0] * ba[0] + d[1][1] * ba[1] + d[1][2] * ba[2],
-                d[2][0] * ba[0] + d[2][1] * ba[1] + d[2][2] * ba[2],
-            ];
+            let ba = column(a, &n, &dx, &dy, r);
+            let dba: [f64; S] = std::array::from_fn(|i| dot(&d[i], &ba));
             for b in a..nd {
-                let (ib, cb) = (b / 2, b % 2);
-                let bb = if cb == 0 {
-                    [dx[ib], 0.0, dy[ib]]
-                } else {
-                    [0.0, dy[ib], dx[ib]]
-                };
-                ke[a * nd + b] += w * (bb[0] * dba[0] + bb[1] * dba[1] + bb[2] * dba[2]);
+                let bb = column(b, &n, &dx, &dy, r);
+                ke[a * nd + b] += w * dot(&bb, &dba);
             }
         }
     }
+}
+
+/// u · v summed from the first term on (the order the plane kernel always had).
+fn dot<const S: usize>(u: &[f64; S], v: &[f64; S]) -> f64 {
+    let mut s = u[0] * v[0];
+    for i in 1..S {
+        s += u[i] * v[i];
+    }
+    s
 }
 
 /// Consistent nodal forces of a body force b over the element (into `fe`, 2k

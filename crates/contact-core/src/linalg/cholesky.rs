@@ -199,10 +199,6 @@ impl Cholesky {
         Ok(Self { analysis, values })
     }
 
-    pub fn dim(&self) -> usize {
-        self.analysis.n
-    }
-
     /// The numeric factorization's cost as predicted before it ran.
     pub fn cost(&self) -> FactorCost {
         self.analysis.cost

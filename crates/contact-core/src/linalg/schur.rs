@@ -198,7 +198,8 @@ impl Reach {
                 par,
             );
         }
-        // W = Eᵀ G E (E: parts to rows), exactly symmetric.
+        // W = Eᵀ G E (E: parts to rows) from G's lower half: every term goes
+        // to both W_ij and W_ji in the same order, so W is exactly symmetric.
         let mut w = Mat::<f64>::zeros(self.rows, self.rows);
         for b in 0..np {
             for a in b..np {
@@ -208,13 +209,6 @@ impl Reach {
                 if a != b {
                     w[(j, i)] += v;
                 }
-            }
-        }
-        for j in 0..self.rows {
-            for i in j + 1..self.rows {
-                let v = 0.5 * (w[(i, j)] + w[(j, i)]);
-                w[(i, j)] = v;
-                w[(j, i)] = v;
             }
         }
         let blocks = x
@@ -304,12 +298,8 @@ impl Condensed {
     }
 
     /// Values held (X's blocks and W), for the cache's bound.
-    pub fn len(&self) -> usize {
+    pub fn stored_values(&self) -> usize {
         self.w.nrows() * self.w.ncols() + self.blocks.iter().map(|(_, _, x)| x.nrows() * x.ncols()).sum::<usize>()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
     }
 }
 

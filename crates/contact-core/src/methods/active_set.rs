@@ -25,12 +25,7 @@ pub fn solve_lcp(w: &Mat<f64>, q: &[f64], s: &Settings) -> LcpResult {
 pub fn solve_lcp_from(w: &Mat<f64>, q: &[f64], s: &Settings, mut active: Vec<bool>) -> LcpResult {
     let m = q.len();
     if m == 0 {
-        return LcpResult {
-            lambda: vec![],
-            iterations: 0,
-            converged: true,
-            breakdown: false,
-        };
+        return LcpResult::at_rest(0);
     }
     let diag_mean = (0..m).map(|i| w[(i, i)]).sum::<f64>() / m as f64;
     let c = 1.0 / diag_mean;

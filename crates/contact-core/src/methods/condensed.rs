@@ -93,7 +93,7 @@ pub fn solve_condensed_mixed(
     let y = op.chol.forward(p.f);
     let bu0 = op.condensed.rows_of(&y);
     let swept = |lambda: &[f64]| -> Option<(Vec<f64>, usize)> {
-        let (rhs, _, size) = load_less_contact(p, lambda);
+        let (rhs, size) = load_less_contact(p, lambda);
         let mut yz = y.clone();
         op.condensed.subtract(lambda, &mut yz);
         let u = op.chol.backward(&yz);
@@ -174,18 +174,17 @@ fn contact_stage(
 /// f − Bᵀλ and the size of its terms: f and Bᵀλ nearly cancel on a body held
 /// only by contact, so the round-off of the right-hand side is that of its
 /// terms, not of their small difference.
-/// Also returns Bᵀλ itself.
-fn load_less_contact(p: &Problem, lambda: &[f64]) -> (Vec<f64>, Vec<f64>, f64) {
+fn load_less_contact(p: &Problem, lambda: &[f64]) -> (Vec<f64>, f64) {
     let mut btl = vec![0.0; p.f.len()];
     p.cons.apply_transpose_into(lambda, &mut btl);
     let rhs: Vec<f64> = p.f.iter().zip(&btl).map(|(f, b)| f - b).collect();
     let terms_size = inf_norm(p.f).max(inf_norm(&btl));
-    (rhs, btl, terms_size)
+    (rhs, terms_size)
 }
 
 /// u = K⁻¹ (f − Bᵀλ), refined; returns u and the refinement steps.
 fn displacements(p: &Problem, lambda: &[f64]) -> (Vec<f64>, usize) {
-    let (rhs, _, terms_size) = load_less_contact(p, lambda);
+    let (rhs, terms_size) = load_less_contact(p, lambda);
     solve_refined(p.op, &rhs, terms_size)
 }
 

@@ -24,23 +24,11 @@ use crate::scene::Settings;
 
 pub fn solve_lcp(w: &Mat<f64>, q: &[f64], s: &Settings) -> LcpResult {
     let m = q.len();
-    if m == 0 {
-        return LcpResult {
-            lambda: vec![],
-            iterations: 0,
-            converged: true,
-            breakdown: false,
-        };
-    }
     let dmax = (0..m).map(|i| w[(i, i)]).fold(0.0f64, f64::max);
     let qmax = q.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    // No rows, or q = 0: λ = 0 (and no scale to normalize by).
     if qmax == 0.0 {
-        return LcpResult {
-            lambda: vec![0.0; m],
-            iterations: 0,
-            converged: true,
-            breakdown: false,
-        };
+        return LcpResult::at_rest(m);
     }
     let sigma = qmax / dmax;
     let p = upper_triangle(w);
@@ -51,12 +39,7 @@ pub fn solve_lcp(w: &Mat<f64>, q: &[f64], s: &Settings) -> LcpResult {
     settings.tol_ktratio = 1e-8;
     let cones = [NonnegativeConeT(m)];
     let Ok(mut solver) = DefaultSolver::new(&p, &qs, &a, &b, &cones, settings) else {
-        return LcpResult {
-            lambda: vec![0.0; m],
-            iterations: 0,
-            converged: false,
-            breakdown: true,
-        };
+        return LcpResult::broke_down(m);
     };
     solver.solve();
     let sol = &solver.solution;
@@ -155,17 +138,7 @@ pub fn solve_mlcp(w: &Mat<f64>, q: &[f64], c: &Mat<f64>, r: &[f64], s: &Settings
     let settings = clarabel_settings(s);
     let cones = [ZeroConeT(k), NonnegativeConeT(m)];
     // Clarabel refusing to set up, or stopping early (the status decides).
-    let failed = || {
-        (
-            LcpResult {
-                lambda: vec![0.0; m],
-                iterations: 0,
-                converged: false,
-                breakdown: true,
-            },
-            vec![0.0; k],
-        )
-    };
+    let failed = || (LcpResult::broke_down(m), vec![0.0; k]);
     let Ok(mut solver) = DefaultSolver::new(&p, &qs, &a, &b, &cones, settings) else {
         return failed();
     };

@@ -61,6 +61,29 @@ pub struct LcpResult {
     pub breakdown: bool,
 }
 
+impl LcpResult {
+    /// λ = 0, converged at once: the answer of an LCP with q ≥ 0 (nothing
+    /// pressed, or no rows at all).
+    pub fn at_rest(m: usize) -> Self {
+        Self {
+            lambda: vec![0.0; m],
+            iterations: 0,
+            converged: true,
+            breakdown: false,
+        }
+    }
+
+    /// The solver broke down before an answer (λ = 0, not converged).
+    pub fn broke_down(m: usize) -> Self {
+        Self {
+            lambda: vec![0.0; m],
+            iterations: 0,
+            converged: false,
+            breakdown: true,
+        }
+    }
+}
+
 pub struct Solution {
     pub u: Vec<f64>,
     pub lambda: Vec<f64>,

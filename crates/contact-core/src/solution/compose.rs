@@ -293,7 +293,8 @@ fn body_outputs(scene: &Scene, meshes: &[Mesh2d], disp: &[Vec<[f64; 2]>]) -> Opt
                     elements: o_mesh.then(|| (0..mesh.n_elems()).map(|e| mesh.elem(e).to_vec()).collect()),
                     displacement: o_displacement
                         .then(|| disp.iter().map(|d| [sc.length(d[0]), sc.length(d[1])]).collect()),
-                    // Only the VTU file's tensor reads it.
+                    // The VTU file's tensor reads it, and in axisymmetry the
+                    // reply's `stress_hoop`.
                     stress_zz: stress4
                         .as_ref()
                         .filter(|_| o.vtu || (o.stress && scene.analysis == Analysis::Axisymmetric))

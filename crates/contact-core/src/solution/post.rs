@@ -51,6 +51,7 @@ pub fn pairs(
     gaps: &[f64],
 ) -> (Vec<PairReport>, Resultant, usize) {
     let sc = scene.scales;
+    let axisymmetric = scene.analysis == crate::scene::Analysis::Axisymmetric;
     let mut total = Resultant::default();
     let mut n_active = 0;
     let mut out = Vec::with_capacity(scene.pairs.len());
@@ -110,7 +111,6 @@ pub fn pairs(
         }
         // The radial forces of a body of revolution and their moments cancel
         // over the circumference.
-        let axisymmetric = scene.analysis == crate::scene::Analysis::Axisymmetric;
         let to_user = |r: Resultant| Resultant {
             fx: if axisymmetric { 0.0 } else { sc.force(r.fx) },
             fy: sc.force(r.fy),
@@ -124,7 +124,6 @@ pub fn pairs(
             Target::Obstacle(_) | Target::Foundation(_) => None,
             Target::Body { body, edges, .. } => {
                 let (mesh, forces) = (&meshes[*body], nodal_forces(cons, lambda, p, *body));
-                let axisymmetric = scene.analysis == crate::scene::Analysis::Axisymmetric;
                 let mut pts: Vec<CounterPoint> = boundary_nodes(mesh, &mesh.edge_sets[edges], axisymmetric)
                     .into_iter()
                     .map(|bn| {

@@ -137,7 +137,7 @@ const END_SLACK: f64 = 1e-9;
 
 impl<'a> Projection<'a> {
     pub fn new(master: &'a Surface<'a>) -> Self {
-        let normals = boundary_nodes(master.mesh, master.edges, master.axisymmetric)
+        let normals = boundary_nodes(master.mesh, master.edges, master.axisymmetric())
             .into_iter()
             .map(|b| (b.node, b.normal))
             .collect();

@@ -58,7 +58,7 @@ pub fn rows(scene: &Scene, p: usize, f: usize, meshes: &[Mesh2d], dofs: &DofMap,
         body: pair.body,
         mesh,
         edges: &mesh.edge_sets[&pair.edges],
-        axisymmetric: scene.analysis == crate::scene::Analysis::Axisymmetric,
+        analysis: scene.analysis,
     };
     let panels = node_panels(mesh, surface.edges);
     let limit = scene.settings.prune_gap_ratio * mesh.size();

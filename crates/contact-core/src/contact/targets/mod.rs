@@ -22,7 +22,6 @@ use crate::scene::{Scene, Target};
 /// The contact rows of every pair of the scene.
 pub fn build(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> ConstraintSet {
     let mut set = ConstraintSet::default();
-    let axisymmetric = scene.analysis == crate::scene::Analysis::Axisymmetric;
     for (p, pair) in scene.pairs.iter().enumerate() {
         // Relative to the pair's own bodies, not to the scene's length scale, so
         // that an unrelated body elsewhere changes nothing.
@@ -35,7 +34,7 @@ pub fn build(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> ConstraintSet {
             body: pair.body,
             mesh: &meshes[pair.body],
             edges: &meshes[pair.body].edge_sets[&pair.edges],
-            axisymmetric,
+            analysis: scene.analysis,
         };
         let out = &mut set.candidates;
         let pruned = match &pair.target {
@@ -50,7 +49,7 @@ pub fn build(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> ConstraintSet {
                     body: *body,
                     mesh: &meshes[*body],
                     edges: &meshes[*body].edge_sets[edges],
-                    axisymmetric,
+                    analysis: scene.analysis,
                 };
                 body::rows(scene, p, &slave, &master, *discretization, limit, dofs, out)
             }

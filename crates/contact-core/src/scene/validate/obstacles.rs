@@ -147,8 +147,13 @@ pub fn obstacles(req: &SolveRequest, scales: Scales) -> Result<(Vec<String>, Vec
                         (true, _) => Control::Load(v / scales.force_unit()),
                     })
                 };
+                let mut controls = [
+                    scale(pp.horizontal, 0, "horizontal")?,
+                    scale(pp.vertical, 1, "vertical")?,
+                    scale(pp.rotation, 2, "rotation")?,
+                ];
                 if req.analysis == proto::Analysis::Axisymmetric {
-                    for (c, name) in [(pp.horizontal, "horizontal"), (pp.rotation, "rotation")] {
+                    for (k, c, name) in [(0, pp.horizontal, "horizontal"), (2, pp.rotation, "rotation")] {
                         let (v, kind) = match c {
                             proto::Control::Displacement(v) => (v, "displacement"),
                             proto::Control::Load(v) => (v, "load"),
@@ -160,18 +165,10 @@ pub fn obstacles(req: &SolveRequest, scales: Scales) -> Result<(Vec<String>, Vec
                                 format!("a punch of revolution moves along the axis only: its {name} {kind} must be 0 (left out), got {v}"),
                             ));
                         }
+                        // Held, not left free under a zero load: no row of a
+                        // body of revolution resists it.
+                        controls[k] = Control::Displacement(0.0);
                     }
-                }
-                let mut controls = [
-                    scale(pp.horizontal, 0, "horizontal")?,
-                    scale(pp.vertical, 1, "vertical")?,
-                    scale(pp.rotation, 2, "rotation")?,
-                ];
-                if req.analysis == proto::Analysis::Axisymmetric {
-                    // Held, not left free under a zero load: no row of a body
-                    // of revolution resists them.
-                    controls[0] = Control::Displacement(0.0);
-                    controls[2] = Control::Displacement(0.0);
                 }
                 Some(Punch {
                     reference: lp(pp.reference),
