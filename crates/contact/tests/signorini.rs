@@ -269,7 +269,7 @@ fn penalty_converges_linearly_and_augmented_lagrangian_is_exact() {
         assert!(
             (pen / (zeta * peak_pressure(&r)) - 1.0).abs() < 1e-8,
             "penetration {pen} vs ζ·p0 {}",
-            zeta * peak
+            zeta * peak_pressure(&r)
         );
         for p in &r.pairs[0].points {
             if p.pressure > 0.0 {
