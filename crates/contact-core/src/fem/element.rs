@@ -202,12 +202,7 @@ fn add_mean_dilatation<const S: usize>(
     let mut volume = 0.0;
     for q in rule(order) {
         let det = gradients(order, x, q[0], q[1], &mut n, &mut dx, &mut dy);
-        let (w, r) = if ring {
-            let r: f64 = (0..k).map(|i| n[i] * x[i][0]).sum();
-            (q[2] * det * std::f64::consts::TAU * r, r)
-        } else {
-            (q[2] * det, 1.0)
-        };
+        let (w, r) = measure(k, x, &n, q[2] * det, ring);
         volume += w;
         for (a, b) in bbar.iter_mut().enumerate().take(nd) {
             *b += w * dot(&m, &column(a, &n, &dx, &dy, r));
@@ -247,12 +242,7 @@ fn add_stiffness<const S: usize>(
     let (mut n, mut dx, mut dy) = ([0.0; 6], [0.0; 6], [0.0; 6]);
     for q in points {
         let det = gradients(order, x, q[0], q[1], &mut n, &mut dx, &mut dy);
-        let (w, r) = if ring {
-            let r: f64 = (0..k).map(|i| n[i] * x[i][0]).sum();
-            (q[2] * det * std::f64::consts::TAU * r, r)
-        } else {
-            (q[2] * det, 1.0)
-        };
+        let (w, r) = measure(k, x, &n, q[2] * det, ring);
         for a in 0..nd {
             let ba = column(a, &n, &dx, &dy, r);
             let dba: [f64; S] = std::array::from_fn(|i| dot(&d[i], &ba));
@@ -261,6 +251,17 @@ fn add_stiffness<const S: usize>(
                 ke[a * nd + b] += w * dot(&bb, &dba);
             }
         }
+    }
+}
+
+/// (weight, radius) of a quadrature point of weight w·det J: times 2πr with
+/// `ring` (r interpolated from the nodes' x), radius 1 otherwise.
+fn measure(k: usize, x: &[[f64; 2]], n: &[f64; 6], w: f64, ring: bool) -> (f64, f64) {
+    if ring {
+        let r: f64 = (0..k).map(|i| n[i] * x[i][0]).sum();
+        (w * std::f64::consts::TAU * r, r)
+    } else {
+        (w, 1.0)
     }
 }
 
