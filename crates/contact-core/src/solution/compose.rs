@@ -67,7 +67,7 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
             ));
         } else {
             notes.push(format!(
-                "body '{}' ran the P2–P0 element (T6, volumetric part at the centroid: locking-free) since ν = {} ≥ {}",
+                "body '{}' ran the P2–P0 element (T6, the volume change constrained by its mean over each element: locking-free) since ν = {} ≥ {}",
                 body.name,
                 body.poisson_ratio,
                 fem::assembly::NEARLY_INCOMPRESSIBLE
