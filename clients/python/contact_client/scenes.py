@@ -74,10 +74,11 @@ def hertz_cylinder(
     radius: float = 8.0,
     youngs_modulus: float = 200.0,
     poisson_ratio: float = 0.3,
-    depth: float = 0.12,
+    depth: float | None = None,
     h_min: float = 0.01,
     element: str = "t3",
     *,
+    load: float | None = None,
     width: float = 40.0,
     height: float = 20.0,
     size: float = 1.0,
@@ -89,7 +90,17 @@ def hertz_cylinder(
     outputs: list[str] | None = None,
     mesh: dict | None = None,
 ) -> dict:
-    """Request: a rigid circle of ``radius`` pressed ``depth`` into an elastic block.
+    """Request: a rigid circle of ``radius`` pressed ``depth`` (default 0.12) into an
+    elastic block, or with ``load`` instead: the block held only by contact and ``load``
+    [force per unit thickness].
+
+    With ``load``, the circle touches the top face at the origin and the block's bottom,
+    clamped in the displacement version, carries the uniform pressure load / width
+    upward instead, and keeps only ux = 0: the vertical translation is left to the
+    contact, and the rotation about the bottom's centre that ux = 0 leaves free is
+    resisted by the contact zone (the loads have no moment about it, so it carries
+    none). Hertz's P is ``load`` exactly: the body's equilibrium makes the contact
+    resultant equal to it.
 
     ``mesh`` replaces the generated rectangle, e.g. ``gmsh_mesh(text, ["block"])``
     with ``gmsh_meshes.hertz_block()``; it needs edge sets "top" and "bottom".
@@ -117,7 +128,15 @@ def hertz_cylinder(
     """
     if element not in ("t3", "t6"):
         raise ValueError("element must be 't3' or 't6'")
-    if not 0.0 < depth < radius:
+    if load is not None:
+        depth = _load_or_motion(load, depth, "depth")
+        if extent is None:
+            # Twice Hertz's half-width for this load: the zone, and a margin for a
+            # finite block's slightly wider one, is meshed at h_min.
+            extent = 2.0 * hertz_reference(load, radius, youngs_modulus, poisson_ratio, analysis)[0]
+    elif depth is None:
+        depth = 0.12
+    if not 0.0 <= depth < radius or (load is None and depth == 0.0):
         raise ValueError("need 0 < depth < radius")
     if extent is None:
         # Half-chord of the circle's overlap with the undeformed face: the surface
@@ -127,10 +146,16 @@ def hertz_cylinder(
         mesh = rq.rectangle(
             [-width / 2.0, -height], width, height, size, element, rq.grading(h_min, ratio, extent, focus=[0.0, 0.0])
         )
+    if load is None:
+        held = {"supports": [rq.support("bottom", 0.0, 0.0)]}
+        how = f"pressed {depth} into"
+        bottom = "fixed bottom"
+    else:
+        held = {"supports": [rq.support("bottom", ux=0.0)], "tractions": [rq.pressure("bottom", load / width)]}
+        how = f"pressed with P={load} onto"
+        bottom = "bottom pushed up by P/width, held by contact"
     return rq.request(
-        bodies=[
-            rq.body("block", rq.material(youngs_modulus, poisson_ratio), mesh, [rq.support("bottom", 0.0, 0.0)])
-        ],
+        bodies=[rq.body("block", rq.material(youngs_modulus, poisson_ratio), mesh, **held)],
         obstacles=[rq.obstacle("cylinder", rq.circle([0.0, radius - depth], radius))],
         contacts=[rq.contact("block", "top", obstacle="cylinder")],
         analysis=analysis,
@@ -138,10 +163,19 @@ def hertz_cylinder(
         client_id=client_id,
         outputs=outputs,
         description=(
-            f"Hertz: rigid cylinder R={radius} pressed {depth} into an elastic block "
-            f"{width} x {height} (E={youngs_modulus}, nu={poisson_ratio}, {analysis}), fixed bottom"
+            f"Hertz: rigid cylinder R={radius} {how} an elastic block "
+            f"{width} x {height} (E={youngs_modulus}, nu={poisson_ratio}, {analysis}), {bottom}"
         ),
     )
+
+
+def _load_or_motion(load: float, motion: float | None, name: str) -> float:
+    """The body's initial position under load control: touching (0), after checks."""
+    if motion is not None:
+        raise ValueError(f"give either {name} (displacement control) or load (load control), not both")
+    if not (isinstance(load, (int, float)) and math.isfinite(load) and load > 0.0):
+        raise ValueError(f"load must be a positive number (force pressing the bodies together), not {load!r}")
+    return 0.0
 
 
 def hertz_measure(reply: dict, pair: int = 0) -> dict:
@@ -332,7 +366,7 @@ def gmsh_mesh(msh: str, surfaces: list[str] | None = None) -> dict:
 
 def roller_on_floor(
     radius: float = 8.0,
-    approach: float = 0.05,
+    approach: float | None = None,
     youngs_modulus: float = 200.0,
     poisson_ratio: float = 0.3,
     h_min: float = 0.01,
@@ -340,24 +374,54 @@ def roller_on_floor(
     extent: float = 1.2,
     element: str = "t3",
     analysis: str = "plane_strain",
+    *,
+    load: float | None = None,
 ) -> dict:
     """An elastic roller on a rigid floor (proto/examples/signorini_roller_on_flat.json).
 
     A half-disk of ``radius`` [length], arc down, touching the rigid line y = 0 at the
-    origin; its flat top face is clamped and moved down by ``approach`` [length].
-    Material ``youngs_modulus`` [force/length^2] and ``poisson_ratio``. The mesh is
-    ``h_min`` [length] within ``extent`` of the apex, graded by 1.1 up to ``size``.
-    Hertz (elastic cylinder on a rigid flat) with P = |resultant.fy|: ``hertz_reference``.
+    origin; its flat top face is clamped and moved down by ``approach`` [length]
+    (default 0.05), or, with ``load`` [force per unit thickness] instead, pushed
+    down by the uniform pressure load / (2 radius) and held only by the floor (see
+    ``_held_by_contact``). Material ``youngs_modulus`` [force/length^2] and
+    ``poisson_ratio``. The mesh is ``h_min`` [length] within ``extent`` of the apex,
+    graded by 1.1 up to ``size``. Hertz (elastic cylinder on a rigid flat) with P =
+    |resultant.fy|, which is ``load`` under load control: ``hertz_reference``.
     """
     mesh = rq.half_disk([0.0, radius], radius, "down", size, element, rq.grading(h_min, 1.1, extent))
+    held, how = _held_by_contact("flat", 2.0 * radius, approach, load, 0.05)
     return rq.request(
-        bodies=[rq.body("roller", rq.material(youngs_modulus, poisson_ratio), mesh,
-                        [rq.support("flat", 0.0, -approach)])],
+        bodies=[rq.body("roller", rq.material(youngs_modulus, poisson_ratio), mesh, **held)],
         obstacles=[rq.obstacle("floor", rq.line([0.0, 0.0], [0.0, 1.0]))],
         contacts=[rq.contact("roller", "arc", obstacle="floor")],
         analysis=analysis,
-        description=f"elastic roller R={radius} pressed {approach} onto a rigid floor",
+        description=f"elastic roller R={radius} {how} onto a rigid floor",
     )
+
+
+def _held_by_contact(face: str, face_width: float, approach: float | None, load: float | None,
+                     default_approach: float, axisymmetric: bool = False) -> tuple[dict, str]:
+    """The supports and loads of a body pressed down through its clamped top ``face``.
+
+    Displacement control: ``face`` clamped and moved down by ``approach``.
+    Load control: ``face`` carries the uniform pressure that sums to ``load`` (over
+    ``face_width``, or over the disk of that radius in axisymmetry) and keeps only
+    ux = 0: the vertical translation is left to the contact (Fichera: it balances
+    ``load``), ux = 0 fixes the sideways slide that a frictionless contact cannot
+    resist (a support that carries no net load: nothing pushes sideways), and the
+    rotation about the face's centre that it leaves free is resisted by the contact
+    zone and carries no load either (the loads have no moment about that point).
+    In axisymmetry the face is free: u_r = 0 on the axis already, and the
+    axial translation is the only rigid motion.
+    """
+    if load is None:
+        approach = default_approach if approach is None else approach
+        return ({"supports": [rq.support(face, None if axisymmetric else 0.0, -approach)]},
+                f"pressed {approach}")
+    _load_or_motion(load, approach, "approach")
+    area = math.pi * face_width ** 2 if axisymmetric else face_width
+    supports = [] if axisymmetric else [rq.support(face, ux=0.0)]
+    return {"supports": supports, "tractions": [rq.pressure(face, load / area)]}, f"pressed with P={load}"
 
 
 def _block(width: float, height: float, size: float, element: str) -> dict:
@@ -422,19 +486,24 @@ def roller_on_plate(
     poisson_ratio: float = 0.3,
     plate_modulus: float = 70.0,
     plate_poisson: float = 0.33,
-    approach: float = 0.05,
+    approach: float | None = None,
     plate_width: float = 40.0,
     plate_depth: float = 20.0,
     h_min: float = 0.01,
     extent: float = 1.2,
     element: str = "t3",
     discretization: str = "mortar",
+    *,
+    load: float | None = None,
 ) -> dict:
     """An elastic roller on an elastic plate (two deformable bodies, any materials).
 
     A half-disk of ``radius`` (arc down, touching the plate's top face y = 0 at
-    the origin) with its flat top clamped and moved down by ``approach``; the
-    plate ``plate_width`` x ``plate_depth`` below it is fixed at its bottom.
+    the origin) with its flat top clamped and moved down by ``approach`` (default
+    0.05), or, with ``load`` instead, pushed down by the pressure load / (2 radius)
+    on its flat and held only by the plate (ux = 0 on the flat, see
+    ``_held_by_contact``); the plate ``plate_width`` x ``plate_depth`` below it is
+    fixed at its bottom.
     Both meshes are ``h_min`` within ``extent`` of the contact point (not
     matching: the plate's is 1.3 h_min), graded by 1.1 elsewhere. The softer
     body carries the pressure (the service turns the pair round when needed).
@@ -442,10 +511,11 @@ def roller_on_plate(
     nu_plate)`` with P = |resultant.fy| of the pair (a flat is a cylinder of
     infinite radius), while a is small against the radius and the plate.
     """
+    held, how = _held_by_contact("flat", 2.0 * radius, approach, load, 0.05)
     roller = rq.body("roller", rq.material(youngs_modulus, poisson_ratio),
                      rq.half_disk([0.0, radius], radius, "down", radius / 16.0, element,
                                   rq.grading(h_min, 1.1, extent)),
-                     [rq.support("flat", 0.0, -approach)])
+                     **held)
     plate = rq.body("plate", rq.material(plate_modulus, plate_poisson),
                     rq.rectangle([-0.5 * plate_width, -plate_depth], plate_width, plate_depth, plate_depth / 16.0,
                                  element, rq.grading(1.3 * h_min, 1.1, extent, focus=[0.0, 0.0])),
@@ -453,7 +523,7 @@ def roller_on_plate(
     return rq.request(
         bodies=[roller, plate],
         contacts=[rq.contact("roller", "arc", against=("plate", "top"), discretization=discretization)],
-        description=f"elastic roller R={radius} (E={youngs_modulus}) pressed {approach} onto an elastic plate "
+        description=f"elastic roller R={radius} (E={youngs_modulus}) {how} onto an elastic plate "
                     f"(E={plate_modulus})",
     )
 
@@ -537,31 +607,37 @@ def hertz_sphere_reference(P: float, R: float, E: float, nu: float) -> tuple[flo
 
 def ball_on_flat(
     radius: float = 10.0,
-    approach: float = 0.04,
+    approach: float | None = None,
     youngs_modulus: float = 200.0,
     poisson_ratio: float = 0.3,
     h_min: float = 0.015,
     extent: float = 1.5,
     element: str = "t3",
     method: str = "auto",
+    *,
+    load: float | None = None,
 ) -> dict:
     """An elastic ball on a rigid flat (proto/examples/axisymmetric_ball_on_flat.json).
 
     The lower quarter of the ball's section (centre (0, ``radius``), the axis x = 0)
     touches the flat y = 0 at the origin; its equator plane is moved down by
-    ``approach``. The mesh is ``h_min`` within ``extent`` of the contact point,
+    ``approach`` (default 0.04), or, with ``load`` (a total over the circumference)
+    instead, pushed down by the pressure load / (pi radius^2) on the equator plane
+    and held only by the flat (no support: the axial translation is the ball's only
+    rigid motion). The mesh is ``h_min`` within ``extent`` of the contact point,
     graded by 1.1 up to ``radius`` / 8. Reference: ``hertz_sphere_reference`` with
-    P = resultant.fy (a total over the circumference); the contact zone is
-    [0, a] on the section.
+    P = resultant.fy (``load`` under load control); the contact zone is [0, a] on
+    the section.
     """
     mesh = rq.quarter_disk([0.0, radius], radius, "down", radius / 8.0, element, rq.grading(h_min, 1.1, extent))
+    held, how = _held_by_contact("flat", radius, approach, load, 0.04, axisymmetric=True)
     return rq.request(
-        bodies=[rq.body("ball", rq.material(youngs_modulus, poisson_ratio), mesh, [rq.support("flat", None, -approach)])],
+        bodies=[rq.body("ball", rq.material(youngs_modulus, poisson_ratio), mesh, **held)],
         obstacles=[rq.obstacle("floor", rq.line([0.0, 0.0], [0.0, 1.0]))],
         contacts=[rq.contact("ball", "arc", obstacle="floor")],
         analysis="axisymmetric",
         method=method,
-        description=f"elastic ball R={radius} pressed {approach} onto a rigid flat (axisymmetric)",
+        description=f"elastic ball R={radius} {how} onto a rigid flat (axisymmetric)",
     )
 
 
