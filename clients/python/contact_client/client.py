@@ -46,7 +46,10 @@ from typing import Any, Callable, Union
 
 import zenoh
 
+from .reply import Reply
+
 __all__ = [
+    "Reply",
     "DEFAULT_CONNECT",
     "KEY_INSTANCES",
     "KEY_SOLVE",
@@ -289,8 +292,9 @@ class Client:
         return self._session
 
     def solve(self, request: Request, timeout: float | None = None, retries: int = DEFAULT_RETRIES,
-              progress: bool | Callable[[dict], Any] = False, check: bool = True) -> dict:
-        """Solve one request; returns the reply dict.
+              progress: bool | Callable[[dict], Any] = False, check: bool = True) -> Reply:
+        """Solve one request; returns the reply (a :class:`Reply`: the reply's
+        dict, whose ``repr`` is its summary).
 
         Raises :class:`ContactError` for a structured error reply,
         :class:`NotSolved` (a ContactError) when the reply's status is not
@@ -314,10 +318,8 @@ class Client:
         (``progress-<uuid>``) and set in the request, so it comes back in the reply.
         """
         if self.local:
-            if progress:
-                raise ValueError("progress is published by the service; an in-process solve has none")
             return solve_local(request if timeout is None else _with_time_limit(request, float(timeout)),
-                               check=check)
+                               check=check, progress=progress)
         if progress:
             request, key = _with_progress_key(request)
             sink = progress if callable(progress) else _ProgressBar()
@@ -334,9 +336,9 @@ class Client:
         for attempt in range(retries + 1):
             key = self._solve_key()
             try:
-                reply = _query(self.session, key, payload, timeout)
-                if check and reply.get("status", "solved") != "solved":
-                    raise NotSolved(reply)
+                reply = Reply(_query(self.session, key, payload, timeout))
+                if check:
+                    reply.raise_for_status()
                 return reply
             except TransportError:
                 self._forget(key)
@@ -406,15 +408,24 @@ class Client:
         self.close()
 
 
-def solve_local(request: Request, check: bool = True) -> dict:
+def solve_local(request: Request, check: bool = True,
+                progress: bool | Callable[[dict], Any] = False) -> Reply:
     """Solve one request in this process with the solver built into the
     package; the reply is the service's (same fields, same numbers; no
-    ``request_id``, and the timings and ``cache`` of this run).
+    ``request_id``, and the timings and ``cache`` of this run), as a
+    :class:`Reply` (a dict whose ``repr`` is the ``--summary`` text).
 
     Raises :class:`ContactError` for a refusal (the service's error reply) and
     :class:`NotSolved` when the status is not ``solved`` (unless
     ``check=False``). The solve holds no lock on the interpreter: other threads
     go on while it runs.
+
+    ``progress=True`` shows a tqdm bar over the solve's predicted work, as
+    :meth:`Client.solve` does for a service (needs ``pip install
+    'contact-client[progress]'``); a callable instead receives every progress
+    message ``{stage, elapsed, done, total, iteration?, residual?}`` (the
+    service's messages, without ``request_id``), called on the solving thread;
+    an exception it raises stops the messages and is raised after the solve.
     """
     try:
         from ._contact import solve as _solve
@@ -424,19 +435,29 @@ def solve_local(request: Request, check: bool = True) -> dict:
             "with a Rust toolchain (`pip install ./clients/python`) or from a wheel made with "
             "`maturin build --release`, or use a service (Client(connect))"
         ) from e
-    ok, text = _solve(encode_request(request))
+    payload = encode_request(request)
+    if progress:
+        sink = progress if callable(progress) else _ProgressBar()
+        try:
+            ok, text = _solve(payload, sink)
+        finally:
+            if isinstance(sink, _ProgressBar):
+                sink.close()
+    else:
+        ok, text = _solve(payload)
     value = json.loads(text)
     if not ok:
         raise ContactError(value["code"], value["message"], value.get("path", ""),
                            version=value.get("version"), reply=value)
-    if check and value.get("status", "solved") != "solved":
-        raise NotSolved(value)
-    return value
+    reply = Reply(value)
+    if check:
+        reply.raise_for_status()
+    return reply
 
 
 def solve(request: Request, connect: str = DEFAULT_CONNECT, timeout: float = DEFAULT_TIMEOUT_S,
           progress: bool | Callable[[dict], Any] = False, retries: int = DEFAULT_RETRIES,
-          check: bool = True) -> dict:
+          check: bool = True) -> Reply:
     """Solve one request on a session opened for this call. See :meth:`Client.solve`."""
     with Client(connect, timeout) as c:
         return c.solve(request, progress=progress, retries=retries, check=check)

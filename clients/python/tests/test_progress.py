@@ -43,3 +43,42 @@ def test_progress_bar_and_a_client_id_of_ones_own(client):
     assert client.solve(req, progress=True)["status"] == "solved"
     with pytest.raises(ValueError):
         client.solve(scenes.hertz_cylinder(h_min=0.04, client_id="a/b"), progress=True)
+
+
+def test_an_in_process_solve_reports_the_stages_as_the_service_does():
+    from contact_client import solve_local
+
+    # The Hertz example's mesh (about 75k DOF), solved once in this process: a new
+    # mesh for this process's cache, so every stage runs.
+    req = scenes.hertz_cylinder(h_min=0.0105, client_id="in-process")
+    seen: list[dict] = []
+    r = solve_local(req, progress=seen.append)
+    stages = [m["stage"] for m in seen]
+    order = [s for i, s in enumerate(stages) if i == 0 or stages[i - 1] != s]
+    assert order == list(STAGES), order
+    assert [m["elapsed"] for m in seen] == sorted(m["elapsed"] for m in seen)
+    assert all(m["elapsed"] <= r["timings"]["total"] + 0.05 for m in seen)
+    # The same plan as the service's: predicted work that only moves forward.
+    work = [work_fraction(m) for m in seen]
+    assert all(w is not None for w in work) and work == sorted(work), work
+    iterations = [m for m in seen if "iteration" in m]
+    assert iterations and all(m["stage"] == "contact_solve" and m["residual"] >= 0.0 for m in iterations)
+
+
+def test_an_in_process_progress_bar_and_a_failing_callback():
+    from contact_client import solve_local
+
+    pytest.importorskip("tqdm")
+    req = scenes.hertz_cylinder(h_min=0.04)
+    assert solve_local(req, progress=True)["status"] == "solved"
+
+    calls = []
+
+    def broken(msg):
+        calls.append(msg)
+        raise RuntimeError("a callback that fails")
+
+    # Its exception stops the messages and comes out of the solve, as Python's would.
+    with pytest.raises(RuntimeError, match="a callback that fails"):
+        solve_local(req, progress=broken)
+    assert len(calls) == 1
