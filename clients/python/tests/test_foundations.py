@@ -53,3 +53,27 @@ def test_footing_pulled_off_its_foundation_is_refused(client):
         client.solve(req)
     assert err.value.code == "incompatible_loads"
     assert err.value.path == "/bodies/0/tractions"
+
+
+@pytest.mark.parametrize("length, stress", [(1.0, 1.0), (1000.0, 1e-6)])
+def test_an_upward_pull_is_reported_as_the_force_it_is_in_the_request_units(client, length, stress):
+    # The same footing in m and Pa, then in mm and MPa: a pull of pressure q on the
+    # top of width B is the upward force q B per unit thickness (B q: length x stress),
+    # and a foundation that only pushes must carry it as a force <= 0 along +y.
+    B, q = 2.0 * length, 1.0 * stress
+    req = scenes.footing_on_foundation({"winkler": {"stiffness": 100.0 * stress / length}}, width=B,
+                                       height=0.5 * length, pressure=-q, youngs_modulus=1000.0 * stress,
+                                       size=0.05 * length, extent=5.0 * length)
+    with pytest.raises(ContactError) as err:
+        client.solve(req)
+    e = err.value
+    assert e.code == "incompatible_loads" and e.path == "/bodies/0/tractions"
+    (load,) = e.details["loads"]
+    force = q * B
+    # The value is the load itself (1e-9: the request's numbers scaled in and out).
+    assert load["value"] == pytest.approx(force, rel=1e-9)
+    # Admissible: no upward force at all. The LP's bound is run to a gap of 1e-13 of
+    # its nondimensional scale; measured 6e-11 of the pull: 1e-6 of it is loose.
+    assert load.get("min") is None and abs(load["max"]) < 1e-6 * force
+    assert "translation in y" in e.message and f"the load {force:g} along" in e.message
+    assert "moment" not in e.message and "nondimensional" not in e.message
