@@ -336,7 +336,7 @@ class Client:
         for attempt in range(retries + 1):
             key = self._solve_key()
             try:
-                reply = Reply(_query(self.session, key, payload, timeout))
+                reply = Reply(_query(self.session, key, payload, timeout), _as_dict(request))
                 if check:
                     reply.raise_for_status()
                 return reply
@@ -449,10 +449,22 @@ def solve_local(request: Request, check: bool = True,
     if not ok:
         raise ContactError(value["code"], value["message"], value.get("path", ""),
                            version=value.get("version"), reply=value)
-    reply = Reply(value)
+    reply = Reply(value, _as_dict(request))
     if check:
         reply.raise_for_status()
     return reply
+
+
+def _as_dict(request: Request) -> dict | None:
+    """The request as a dict, for the reply to keep (a JSON text is parsed; None
+    when it is not a JSON object)."""
+    if isinstance(request, dict):
+        return request
+    try:
+        value = json.loads(request)
+    except (TypeError, ValueError):
+        return None
+    return value if isinstance(value, dict) else None
 
 
 def solve(request: Request, connect: str = DEFAULT_CONNECT, timeout: float = DEFAULT_TIMEOUT_S,

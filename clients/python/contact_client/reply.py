@@ -69,7 +69,13 @@ class Reply(dict):
     points of every pair as a table.
     """
 
-    __slots__ = ()
+    __slots__ = ("request",)
+
+    def __init__(self, reply: dict = (), request: dict | None = None):
+        super().__init__(reply)
+        #: The request this reply answers, when it was a dict or JSON (``plot_pressure``
+        #: reads the analysis and the closed form's scene from it); None otherwise.
+        self.request = request
 
     def summary(self) -> str:
         """The ``contact solve --summary`` text of this reply."""
@@ -136,4 +142,4 @@ class Reply(dict):
         return pd.DataFrame(self.points(), columns=list(POINT_COLUMNS))
 
     def __reduce__(self) -> tuple[Any, ...]:
-        return (Reply, (dict(self),))
+        return (Reply, (dict(self), self.request))

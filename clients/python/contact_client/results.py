@@ -40,18 +40,75 @@ def to_numpy(result: dict) -> list[dict]:
     return out
 
 
-def _hertz_overlay(request: dict, result: dict, pair: int) -> tuple[Callable[[float], float], str]:
-    """Hertz's p(x) for a rigid circle on one elastic body (``scenes.hertz_cylinder``), for the reply's load."""
-    body = request["bodies"][0]["material"]
-    circles = [o["shape"]["circle"] for o in request.get("obstacles", []) if "circle" in o["shape"]]
-    if len(request["bodies"]) != 1 or len(circles) != 1:
-        raise ValueError("reference='hertz' needs the request of a Hertz scene: one body and one rigid circle")
-    R = circles[0]["radius"]
-    P = abs(result["pairs"][pair]["resultant"]["fy"])
-    a, p0 = scenes.hertz_reference(P, R, body["youngs_modulus"], body["poisson_ratio"],
-                                   request.get("analysis", "plane_strain"))
-    cx = circles[0]["center"][0]
-    return (lambda x: scenes.hertz_pressure(x - cx, a, p0)), f"Hertz (P = {P:.4g}, a = {a:.4g}, p0 = {p0:.4g})"
+def _curvature_radius(mesh: dict, edges: str) -> float:
+    """The radius of a generated disk's arc (``edges`` "arc"), or inf for a flat face
+    of a rectangle or of a disk; anything else has no closed form here."""
+    for kind in ("half_disk", "quarter_disk"):
+        if kind in mesh:
+            return mesh[kind]["radius"] if edges == "arc" else math.inf
+    if "rectangle" in mesh:
+        return math.inf
+    raise ValueError("the closed form needs generated meshes (rectangle, half_disk, quarter_disk)")
+
+
+def _closed_form(request: dict, result: dict, pair: int) -> tuple[Callable[[float], float], str]:
+    """The closed-form pressure of the scene ``request`` describes, for the load the
+    reply reports on ``pair``: Hertz for a cylinder (or, in axisymmetry, a ball) on a
+    flat, rigid or elastic, whatever body is curved (``scenes.hertz_cylinder``,
+    ``roller_on_floor``, ``roller_on_plate``, ``two_cylinders``, ``ball_on_flat``,
+    ``punch_on_block`` with a circle); Sadowsky (Boussinesq in axisymmetry) for a
+    centred flat punch (``punch_on_block``, ``flat_punch_of_revolution``). These are
+    half-space theories: they hold while the zone is small against the bodies."""
+    analysis = request.get("analysis", "plane_strain")
+    axi = analysis == "axisymmetric"
+    bodies = {b["name"]: b for b in request["bodies"]}
+    contact = request["contacts"][pair]
+    body = bodies[contact["body"]]
+    mat = body["material"]
+    E, nu = mat["youngs_modulus"], mat["poisson_ratio"]
+    pr = result["pairs"][pair]
+    P = abs(pr["resultant"]["fy"])
+    if "against" in contact:
+        if axi:
+            raise ValueError("no closed form for two bodies of revolution here")
+        other = bodies[contact["against"]["body"]]
+        R1 = _curvature_radius(body["mesh"], contact["edges"])
+        R2 = _curvature_radius(other["mesh"], contact["against"]["edges"])
+        m2 = other["material"]
+        a, p0 = scenes.hertz_two_cylinders(P, R1, R2, E, nu, m2["youngs_modulus"], m2["poisson_ratio"], analysis)
+        disk = body["mesh"].get("half_disk") or other["mesh"].get("half_disk") or {"center": [0.0, 0.0]}
+        cx = disk["center"][0]
+        return (lambda x: scenes.hertz_pressure(x - cx, a, p0)), f"Hertz (P = {P:.4g}, a = {a:.4g}, p0 = {p0:.4g})"
+    if "obstacle" not in contact:
+        raise ValueError("no closed form for a foundation pair here: give reference= a callable p(x)")
+    obstacle = next(o for o in request.get("obstacles", []) if o["name"] == contact["obstacle"])
+    shape = obstacle["shape"]
+    if "circle" in shape or ("profile" in shape and "circle" in shape["profile"]["psi"]):
+        if "circle" in shape:
+            R, cx = shape["circle"]["radius"], shape["circle"]["center"][0]
+        else:
+            R, cx = shape["profile"]["psi"]["circle"]["radius"], shape["profile"]["reference"][0]
+    elif "line" in shape:
+        R = _curvature_radius(body["mesh"], contact["edges"])
+        if not math.isfinite(R):
+            raise ValueError("a flat face on a flat obstacle has no Hertz pressure")
+        disk = body["mesh"].get("half_disk") or body["mesh"].get("quarter_disk")
+        cx = disk["center"][0]
+    elif "profile" in shape and "flat" in shape["profile"]["psi"]:
+        b = shape["profile"]["psi"]["flat"]["half_width"]
+        cx = shape["profile"]["reference"][0]
+        if axi:
+            return (lambda x: scenes.boussinesq_pressure(x - cx, P, b)), f"Boussinesq (P = {P:.4g}, a = {b:.4g})"
+        return (lambda x: scenes.sadowsky_pressure(x - cx, P, b)), f"Sadowsky (P = {P:.4g}, b = {b:.4g})"
+    else:
+        raise ValueError(f"no closed form known for obstacle {obstacle['name']!r}: give reference= a callable p(x)")
+    if axi:
+        a, p0 = scenes.hertz_sphere_reference(P, R, E, nu)
+        label = "Hertz, sphere"
+    else:
+        a, p0 = scenes.hertz_reference(P, R, E, nu, analysis)
+        label = "Hertz"
+    return (lambda x: scenes.hertz_pressure(x - cx, a, p0)), f"{label} (P = {P:.4g}, a = {a:.4g}, p0 = {p0:.4g})"
 
 
 def _unit(result: dict, kind: str) -> str:
@@ -60,9 +117,32 @@ def _unit(result: dict, kind: str) -> str:
     return f" [{name}]" if name else ""
 
 
-def plot_pressure(result: dict, ax=None, reference: str | Callable[[float], float] | None = None,
-                  request: dict | None = None, pairs: list[int] | None = None, title: str | None = None):
-    """Contact pressure against x, one line per pair, contact zones shaded; returns the axes.
+#: The contact zone is zoomed on by default when it is narrower than this share
+#: of the contact surface's candidates' x-extent.
+ZOOM_BELOW = 0.1
+
+
+def _zoom_range(zones: list, x_min: float, x_max: float) -> tuple[float, float] | None:
+    """The x-range shown when zoomed: the zones' extent and half its width on
+    either side (so the pressure's fall to zero and some of the open gap show),
+    within the surface."""
+    if not zones:
+        return None
+    z0, z1 = min(z[0] for z in zones), max(z[1] for z in zones)
+    w = max(z1 - z0, 1e-12 * max(abs(x_min), abs(x_max), 1.0))
+    return max(x_min, z0 - 0.5 * w), min(x_max, z1 + 0.5 * w)
+
+
+def plot_pressure(result: dict, ax=None, reference: str | bool | Callable[[float], float] | None = None,
+                  request: dict | None = None, pairs: list[int] | None = None, title: str | None = None,
+                  zoom: bool | None = None):
+    """Contact pressure against x (r in axisymmetry), one line per pair, contact zones
+    shaded; returns the axes.
+
+    ``request`` is the request the reply answers; a :class:`~contact_client.Reply`
+    from ``solve_local`` or ``Client.solve`` knows its own (``result.request``), so it
+    need not be given. From it come the axis (``r`` for a body of revolution) and the
+    closed form.
 
     The axes are labelled with the request's ``units`` when it names them (echoed in
     the reply); the title is ``title``, else the request's ``description``, else
@@ -70,13 +150,24 @@ def plot_pressure(result: dict, ax=None, reference: str | Callable[[float], floa
     different marker per pair) and the reference is a black dashed line, so the
     figure reads in grey-scale print.
 
-    ``reference``: ``"hertz"`` overlays Hertz's p0 sqrt(1 - x^2/a^2) for the load the reply
-    reports (|resultant.fy| of the pair), computed from ``request`` (a rigid circle on one
-    elastic body, e.g. ``scenes.hertz_cylinder``: radius, E, nu and the analysis are read
-    from it; it is the half-plane theory, valid while a << R and a << the body); or any
-    callable p(x) in the reply's units, drawn as given. No overlay is guessed: without
+    ``zoom``: show the contact zones and half their width on either side instead of
+    the whole contact surface; by default (None) when the zones span less than a
+    tenth of the surface (``ZOOM_BELOW``), where the whole surface would show the
+    zone as a spike.
+
+    ``reference``: ``True`` (or ``"closed_form"``) overlays the closed form of the
+    scene the request describes, for the load the reply reports (|resultant.fy| of
+    the first pair drawn): Hertz for a cylinder or, in axisymmetry, a ball on a flat
+    (rigid or elastic: ``scenes.hertz_cylinder``, ``roller_on_floor``,
+    ``roller_on_plate``, ``two_cylinders``, ``ball_on_flat``, a circular punch),
+    Sadowsky or Boussinesq for a centred flat punch (``punch_on_block``,
+    ``flat_punch_of_revolution``); a scene without one raises ValueError.
+    ``"hertz"`` is the same where the scene is a Hertz scene. They are half-space
+    theories, valid while the zone is small against the bodies. Or any callable p(x)
+    in the reply's units, drawn as given. No overlay is guessed: without
     ``reference`` only the solver's pressures are drawn.
     """
+    import textwrap
     import warnings
 
     import matplotlib.pyplot as plt
@@ -85,40 +176,58 @@ def plot_pressure(result: dict, ax=None, reference: str | Callable[[float], floa
     if result.get("status", "solved") != "solved":
         warnings.warn(f"plotting a reply whose status is {result.get('status')!r}: its pressures are not an answer",
                       stacklevel=2)
+    if request is None:
+        request = getattr(result, "request", None)
+    axi = (request or {}).get("analysis") == "axisymmetric"
     if ax is None:
         _, ax = plt.subplots(figsize=(6.4, 4.0))
     ax.axhline(0.0, color="0.6", lw=0.5)
     arrays = to_numpy(result)
-    chosen = range(len(arrays)) if pairs is None else pairs
-    xs_all = []
+    chosen = list(range(len(arrays)) if pairs is None else pairs)
+    xs_all, zones_all = [], []
     for k in chosen:
         d = arrays[k]
         order = np.argsort(d["x"])
         target = d.get("obstacle") or d.get("against") or d.get("foundation") or "?"
         marker = "osD^v"[k % 5]
-        line, = ax.plot(d["x"][order], d["pressure"][order], "-", marker=marker, ms=3.5, lw=1,
-                        markerfacecolor="none", label=f"FE, pair {k}: {d['body']} / {target}")
+        ax.plot(d["x"][order], d["pressure"][order], "-", marker=marker, ms=3.5, lw=1,
+                markerfacecolor="none", label=f"FE, pair {k}: {d['body']} / {target}")
         for i, (x0, x1) in enumerate(d["zones"]):
             ax.axvspan(x0, x1, color="0.5", alpha=0.12, lw=0,
-                       label="contact zone" if i == 0 and k == next(iter(chosen)) else None)
+                       label="contact zone" if i == 0 and k == chosen[0] else None)
+            zones_all.append((x0, x1))
         xs_all.append(d["x"])
-    if reference is not None:
-        if reference == "hertz":
+    x_min = min((v.min() for v in xs_all if v.size), default=0.0)
+    x_max = max((v.max() for v in xs_all if v.size), default=1.0)
+    shown = (x_min, x_max)
+    window = _zoom_range(zones_all, x_min, x_max)
+    if zoom is None:
+        zoom = window is not None and window[1] - window[0] < 2.0 * ZOOM_BELOW * (x_max - x_min)
+    if zoom and window is not None:
+        shown = window
+        ax.set_xlim(*shown)
+        # Pressures of the shown points set the height (the rest is zero or off-screen).
+        visible = [d["pressure"][(d["x"] >= shown[0]) & (d["x"] <= shown[1])] for d in (arrays[k] for k in chosen)]
+        top = max((v.max() for v in visible if v.size), default=0.0)
+        if top > 0.0:
+            ax.set_ylim(-0.05 * top, 1.15 * top)
+    if reference is not None and reference is not False:
+        if reference is True or reference in ("closed_form", "hertz"):
             if request is None:
-                raise ValueError("reference='hertz' needs request=<the Hertz scene's request>")
-            p_ref, label = _hertz_overlay(request, result, next(iter(chosen)))
+                raise ValueError("a closed-form reference needs request=<the request the reply answers>")
+            p_ref, label = _closed_form(request, result, chosen[0])
+            if reference == "hertz" and not label.startswith("Hertz"):
+                raise ValueError(f"reference='hertz' on a scene whose closed form is {label.split(' (')[0]}")
         elif callable(reference):
             p_ref, label = reference, "reference"
         else:
-            raise ValueError(f"reference must be 'hertz' or a callable p(x), not {reference!r}")
-        x = np.linspace(min(v.min() for v in xs_all), max(v.max() for v in xs_all), 801)
+            raise ValueError(f"reference must be True, 'closed_form', 'hertz' or a callable p(x), not {reference!r}")
+        x = np.linspace(shown[0], shown[1], 801)
         ax.plot(x, [p_ref(v) for v in x], "k--", lw=1, label=label)
-    ax.set_xlabel("x" + _unit(result, "length"))
+    ax.set_xlabel(("r" if axi else "x") + _unit(result, "length"))
     ax.set_ylabel("contact pressure" + _unit(result, "stress"))
     if title is None:
         title = (request or {}).get("description") or "Contact pressure"
-    import textwrap
-
     ax.set_title(textwrap.fill(title, 80), fontsize=8)
     ax.legend(fontsize=8)
     return ax

@@ -89,7 +89,7 @@ def test_plot_pressure_draws_the_pressures_and_the_hertz_overlay(hertz_reply, he
     ax.figure.savefig(out)
     assert out.read_bytes()[:8] == PNG_MAGIC
     with pytest.raises(ValueError):
-        plot_pressure(hertz_reply, reference="hertz")
+        plot_pressure(dict(hertz_reply), reference="hertz")  # a plain dict does not know its request
 
 
 def test_plot_labels_carry_the_request_units_and_read_in_grey_scale(tmp_path):
@@ -110,3 +110,85 @@ def test_plot_labels_carry_the_request_units_and_read_in_grey_scale(tmp_path):
     # Told apart without colour: markers and a solid line against a dashed one.
     assert fe.get_marker() not in (None, "None", "") and fe.get_linestyle() == "-"
     assert ref.get_linestyle() == "--" and ref.get_marker() in (None, "None", "")
+
+
+def _agg():
+    pytest.importorskip("matplotlib")
+    import matplotlib
+
+    matplotlib.use("Agg")
+
+
+def test_a_body_of_revolution_is_plotted_against_r_with_the_3d_hertz_overlay():
+    _agg()
+    from contact_client import solve_local
+
+    P = 7.7
+    reply = solve_local(scenes.ball_on_flat(load=P, h_min=0.03))
+    ax = plot_pressure(reply, reference=True)  # the Reply knows its request
+    assert ax.get_xlabel() == "r"
+    a, p0 = scenes.hertz_sphere_reference(P, 10.0, 200.0, 0.3)
+    ref = ax.lines[-1]
+    assert ref.get_label().startswith("Hertz, sphere")
+    assert max(ref.get_ydata()) == pytest.approx(p0, rel=1e-3)  # 801 samples over 1.5 a: the peak at r = 0
+    # The zone [0, a] is a small part of the 10-long arc: zoomed to [0, 1.5 a].
+    lo, hi = ax.get_xlim()
+    zone = reply["pairs"][0]["zones"][0]
+    assert lo == pytest.approx(0.0, abs=1e-12) and hi == pytest.approx(1.5 * zone[1], rel=1e-9)
+
+
+def test_a_narrow_zone_is_zoomed_on_and_a_wide_one_is_not():
+    _agg()
+    from contact_client import solve_local
+
+    narrow = solve_local(scenes.roller_on_floor(load=5.0, h_min=0.02))
+    (z0, z1), = narrow["pairs"][0]["zones"]
+    ax = plot_pressure(narrow)
+    assert ax.get_xlabel() == "x"
+    w = z1 - z0
+    assert ax.get_xlim() == pytest.approx((z0 - 0.5 * w, z1 + 0.5 * w), rel=1e-9)
+    whole = plot_pressure(narrow, zoom=False).get_xlim()
+    assert whole[1] - whole[0] > 16.0, "the whole arc, 2 R = 16 wide"
+    # A block held by contact touches along its whole bottom: nothing to zoom on.
+    wide = solve_local(scenes.block_held_by_contact())
+    lo, hi = plot_pressure(wide).get_xlim()
+    assert lo <= -1.0 and hi >= 1.0
+
+
+@pytest.mark.parametrize("build, closed_form", [
+    (lambda: scenes.roller_on_floor(load=5.0, h_min=0.02),
+     lambda P: scenes.hertz_reference(P, 8.0, 200.0, 0.3)[1]),
+    (lambda: scenes.roller_on_plate(load=1.0, h_min=0.02),
+     lambda P: scenes.hertz_two_cylinders(P, 8.0, float("inf"), 200.0, 0.3, 70.0, 0.33)[1]),
+    (lambda: scenes.hertz_cylinder(load=10.0, h_min=0.02),
+     lambda P: scenes.hertz_reference(P, 8.0, 200.0, 0.3)[1]),
+])
+def test_the_closed_form_overlay_is_hertz_for_the_scene_and_its_load(build, closed_form):
+    _agg()
+    from contact_client import solve_local
+
+    reply = solve_local(build())
+    P = abs(reply["pairs"][0]["resultant"]["fy"])
+    ref = plot_pressure(reply, reference="hertz").lines[-1]
+    # The overlay's peak is p0 of the scene's closed form (801 samples over twice the
+    # zone: the sample nearest the centre is within 1e-5 a of it).
+    assert max(ref.get_ydata()) == pytest.approx(closed_form(P), rel=1e-6)
+    # And it agrees with the solver's peak as the load-control tests measure it.
+    assert max(ref.get_ydata()) == pytest.approx(max(p["pressure"] for p in reply["pairs"][0]["points"]), rel=0.03)
+
+
+def test_a_flat_punch_overlay_is_sadowsky_and_a_foundation_has_none():
+    _agg()
+    from contact_client import request as rq, solve_local
+
+    reply = solve_local(scenes.punch_on_block({"flat": {"half_width": 1.0}}, load=10.0, h_min=0.02))
+    ref = plot_pressure(reply, reference=True).lines[-1]
+    assert ref.get_label().startswith("Sadowsky")
+    x = ref.get_xdata()
+    inside = abs(x) < 0.5
+    assert ref.get_ydata()[inside] == pytest.approx([scenes.sadowsky_pressure(v, 10.0, 1.0) for v in x[inside]])
+    with pytest.raises(ValueError, match="Sadowsky"):
+        plot_pressure(reply, reference="hertz")
+    footing = solve_local(scenes.footing_on_foundation(rq.winkler(100.0)))
+    with pytest.raises(ValueError, match="callable"):
+        plot_pressure(footing, reference=True)
