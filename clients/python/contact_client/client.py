@@ -525,7 +525,11 @@ class _ProgressBar:
     the postfix the contact iteration and residual."""
 
     def __init__(self):
-        from tqdm.auto import tqdm  # optional dependency: pip install 'contact-client[progress]'
+        try:
+            from tqdm.auto import tqdm  # optional dependency: pip install 'contact-client[progress]'
+        except ImportError as e:
+            raise ImportError("progress=True draws a tqdm bar: pip install tqdm (or 'contact-client[progress]'); "
+                              "progress=<callable> needs nothing") from e
 
         self.bar = tqdm(total=100.0, unit="%", desc="solve", bar_format="{desc}: {percentage:3.0f}%|{bar}| "
                         "[{elapsed}<{remaining}{postfix}]")

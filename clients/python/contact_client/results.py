@@ -210,7 +210,7 @@ def plot_pressure(result: dict, ax=None, reference: str | bool | Callable[[float
         visible = [d["pressure"][(d["x"] >= shown[0]) & (d["x"] <= shown[1])] for d in (arrays[k] for k in chosen)]
         top = max((v.max() for v in visible if v.size), default=0.0)
         if top > 0.0:
-            ax.set_ylim(-0.05 * top, 1.15 * top)
+            ax.set_ylim(-0.05 * top, 1.4 * top)  # room for the legend above the peak
     if reference is not None and reference is not False:
         if reference is True or reference in ("closed_form", "hertz"):
             if request is None:
@@ -229,7 +229,8 @@ def plot_pressure(result: dict, ax=None, reference: str | bool | Callable[[float
     if title is None:
         title = (request or {}).get("description") or "Contact pressure"
     ax.set_title(textwrap.fill(title, 80), fontsize=8)
-    ax.legend(fontsize=8)
+    # Zoomed, the upper corners are beside the zone, where the pressure is zero.
+    ax.legend(fontsize=8, loc="upper right" if zoom else "best")
     return ax
 
 
