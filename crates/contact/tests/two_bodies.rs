@@ -319,7 +319,7 @@ fn floating_cylinder_on_a_cylinder() {
 /// is all but taken by the half-disks' own departure from Hertz's
 /// half-planes, which no node spacing removes: their moment half-width
 /// √(4 Σ F x² / Σ F) is 0.48 % below a on this mesh, and on finer ones
-/// (h = a/146 and a/194) the first open node itself lies 0.23 % and 0.38 %
+/// (h = a/136 and a/195) the first open node itself lies 0.23 % and 0.38 %
 /// below a.
 /// The zone along the arc is the same zone: its ends are the same nodes, its
 /// length the arc length between them.
