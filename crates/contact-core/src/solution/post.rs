@@ -159,7 +159,7 @@ pub fn pairs(
 /// the edges chained head to tail (a, midside, b; the body on the left), from
 /// the start of the chain (a node no edge ends at; on a closed loop, the first
 /// edge's first node); further chains follow in the order of their edges, the
-/// arc length running on.
+/// arc length running on. Every node of the set is listed once.
 fn along(mesh: &Mesh2d, edges: &[Edge]) -> Vec<(usize, f64)> {
     let mut next: HashMap<usize, usize> = HashMap::new();
     let mut ends: HashSet<usize> = HashSet::new();
@@ -182,6 +182,12 @@ fn along(mesh: &Mesh2d, edges: &[Edge]) -> Vec<(usize, f64)> {
             let (a, b) = (mesh.nodes[n], mesh.nodes[m]);
             s += (b[0] - a[0]).hypot(b[1] - a[1]);
             n = m;
+        }
+    }
+    // A node no walk reached (an edge set that branches) still has a place.
+    for n in edges.iter().flat_map(|e| e.nodes().collect::<Vec<_>>()) {
+        if seen.insert(n) {
+            out.push((n, s));
         }
     }
     out
