@@ -318,9 +318,9 @@ fn floating_cylinder_on_a_cylinder() {
 /// zone end; the mortar zone used to reach the open node: +1.2 %). The 0.5 %
 /// is all but taken by the half-disks' own departure from Hertz's
 /// half-planes, which no node spacing removes: their moment half-width
-/// √(4 Σ F x² / Σ F) is 0.48 % below a on this mesh, and on finer ones
-/// (h = a/136 and a/195) the first open node itself lies 0.23 % and 0.38 %
-/// below a.
+/// √(4 Σ F x² / Σ F) is 0.48 % below a on this mesh and on meshes 2 and 2.8
+/// times finer (0.45 % with T6), and on those finer meshes (h = a/136 and
+/// a/195) the first open node itself lies 0.23 % and 0.38 % below a.
 /// The zone along the arc is the same zone: its ends are the same nodes, its
 /// length the arc length between them.
 #[test]
