@@ -159,8 +159,9 @@ pub fn pairs(
 /// the edges chained head to tail (a, midside, b; the body on the left), from
 /// the start of the chain (a node no edge ends at; on a closed loop, the first
 /// edge's first node); further chains follow in the order of their edges, the
-/// arc length running on. Every node of the set is listed once.
-fn along(mesh: &Mesh2d, edges: &[Edge]) -> Vec<(usize, f64)> {
+/// arc length running on. Every node of the set is listed once, with the
+/// number of its chain.
+fn along(mesh: &Mesh2d, edges: &[Edge]) -> Vec<Station> {
     let mut next: HashMap<usize, usize> = HashMap::new();
     let mut ends: HashSet<usize> = HashSet::new();
     for e in edges {
@@ -171,44 +172,59 @@ fn along(mesh: &Mesh2d, edges: &[Edge]) -> Vec<(usize, f64)> {
         }
     }
     let starts = edges.iter().map(|e| e.a).filter(|a| !ends.contains(a));
-    let mut out: Vec<(usize, f64)> = Vec::new();
+    let mut out: Vec<Station> = Vec::new();
     let mut seen: HashSet<usize> = HashSet::new();
     let mut s = 0.0;
-    for start in starts.chain(edges.iter().map(|e| e.a)) {
+    for (chain, start) in starts.chain(edges.iter().map(|e| e.a)).enumerate() {
         let mut n = start;
         while seen.insert(n) {
-            out.push((n, s));
+            out.push(Station { node: n, s, chain });
             let Some(&m) = next.get(&n) else { break };
             let (a, b) = (mesh.nodes[n], mesh.nodes[m]);
             s += (b[0] - a[0]).hypot(b[1] - a[1]);
             n = m;
         }
     }
-    // A node no walk reached (an edge set that branches) still has a place.
+    // A node no walk reached (an edge set that branches) still has a place,
+    // on a chain of its own.
     for n in edges.iter().flat_map(|e| e.nodes().collect::<Vec<_>>()) {
         if seen.insert(n) {
-            out.push((n, s));
+            let chain = out.last().map_or(0, |t| t.chain + 1);
+            out.push(Station { node: n, s, chain });
         }
     }
     out
+}
+
+/// A node along an edge set: its arc length and the number of its chain.
+struct Station {
+    node: usize,
+    s: f64,
+    chain: usize,
 }
 
 /// The point at abscissa `x` of the surface `chain` next to its `k`-th node,
 /// on the side `dir` (±1), and its arc length; the node itself when no edge
 /// on that side reaches `x` (the foundation panels are parts of the edges
 /// next to their node).
-fn at_x(mesh: &Mesh2d, chain: &[(usize, f64)], k: usize, dir: isize, x: f64) -> (f64, [f64; 2]) {
+fn at_x(mesh: &Mesh2d, chain: &[Station], k: usize, dir: isize, x: f64) -> (f64, [f64; 2]) {
     let mut j = k;
-    while let Some(i) = j.checked_add_signed(dir).filter(|&i| i < chain.len()) {
-        let (p, q) = (mesh.nodes[chain[j].0], mesh.nodes[chain[i].0]);
+    while let Some(i) = neighbour(chain, j, dir) {
+        let (p, q) = (mesh.nodes[chain[j].node], mesh.nodes[chain[i].node]);
         if (x - p[0]) * (x - q[0]) <= 0.0 && p[0] != q[0] {
             let t = (x - p[0]) / (q[0] - p[0]);
-            let s = chain[j].1 + t * (chain[i].1 - chain[j].1);
+            let s = chain[j].s + t * (chain[i].s - chain[j].s);
             return (s, [x, p[1] + t * (q[1] - p[1])]);
         }
         j = i;
     }
-    (chain[k].1, mesh.nodes[chain[k].0])
+    (chain[k].s, mesh.nodes[chain[k].node])
+}
+
+/// The station next to the `k`-th on the side `dir` (±1), on the same chain.
+fn neighbour(chain: &[Station], k: usize, dir: isize) -> Option<usize> {
+    k.checked_add_signed(dir)
+        .filter(|&i| i < chain.len() && chain[i].chain == chain[k].chain)
 }
 
 /// The contact zones of one pair: runs of consecutive candidates in contact
@@ -222,13 +238,13 @@ fn at_x(mesh: &Mesh2d, chain: &[(usize, f64)], k: usize, dir: isize, x: f64) -> 
 /// along the surface (in its order), lengths scaled by `length`.
 fn zones(
     mesh: &Mesh2d,
-    chain: &[(usize, f64)],
+    chain: &[Station],
     cons: &ConstraintSet,
     idx: &[usize],
     in_contact: &[bool],
     length: impl Fn(f64) -> f64,
 ) -> (Vec<[f64; 2]>, Vec<ZoneAlong>) {
-    let at: HashMap<usize, usize> = chain.iter().enumerate().map(|(k, &(n, _))| (n, k)).collect();
+    let at: HashMap<usize, usize> = chain.iter().enumerate().map(|(k, t)| (t.node, k)).collect();
     let mut order: Vec<(usize, usize)> = idx
         .iter()
         .filter_map(|&i| at.get(&cons.candidates[i].node).map(|&k| (k, i)))
@@ -239,13 +255,10 @@ fn zones(
     let end = |k: usize, i: usize, dir: isize| -> (f64, [f64; 2]) {
         let c = &cons.candidates[i];
         let Some(fr) = c.foundation() else {
-            return (chain[k].1, c.x);
+            return (chain[k].s, c.x);
         };
         let x = c.x[0];
-        let toward = k
-            .checked_add_signed(dir)
-            .and_then(|j| chain.get(j))
-            .map_or(x, |&(n, _)| mesh.nodes[n][0]);
+        let toward = neighbour(chain, k, dir).map_or(x, |j| mesh.nodes[chain[j].node][0]);
         let outer = if toward < x { fr.panel[0] } else { fr.panel[1] };
         at_x(mesh, chain, k, dir, outer)
     };
@@ -259,8 +272,12 @@ fn zones(
     let mut runs: Vec<Run> = Vec::new();
     let mut open: Option<Run> = None;
     for &(k, i) in &order {
-        if !in_contact[i] {
+        // A zone ends at an open candidate and at the end of its chain.
+        let next_chain = open.as_ref().is_some_and(|r| chain[r.last.0].chain != chain[k].chain);
+        if !in_contact[i] || next_chain {
             runs.extend(open.take());
+        }
+        if !in_contact[i] {
             continue;
         }
         let c = &cons.candidates[i];
