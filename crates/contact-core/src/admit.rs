@@ -15,7 +15,8 @@ use crate::contact::{compliance::Foundations, free_motions::FreeMotions, Constra
 use crate::error::{CoreError, InvalidKind};
 use crate::fem::{loads::Located, DofMap};
 use crate::mesh::Mesh2d;
-use crate::scene::{Discretization, Formulation, Limits, Method, Scene, Target};
+use crate::scene::scaling::shown;
+use crate::scene::{Discretization, Formulation, Limits, Method, Scene, Target, Traction};
 
 /// Where the contact problem is solved.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -99,6 +100,43 @@ pub fn point_loads(scene: &Scene, meshes: &[Mesh2d]) -> Result<Vec<Vec<Located>>
         }
     }
     crate::fem::loads::locate_all(scene, meshes)
+}
+
+/// Every surface load with an `x_range` loads some part of its edge set: a
+/// range that misses the set would load nothing, and the solve would answer
+/// a different question without a word.
+pub fn traction_ranges(scene: &Scene, meshes: &[Mesh2d]) -> Result<(), CoreError> {
+    for (body, mesh) in scene.bodies.iter().zip(meshes) {
+        for (k, t) in body.tractions.iter().enumerate() {
+            let (edges, range) = match t {
+                Traction::Vector { edges, x_range, .. } | Traction::Pressure { edges, x_range, .. } => (edges, x_range),
+            };
+            let (Some(range), Some(set)) = (range, mesh.edge_sets.get(edges)) else {
+                continue;
+            };
+            if set
+                .iter()
+                .any(|e| crate::fem::loads::clip(mesh, e, Some(*range)).is_some())
+            {
+                continue;
+            }
+            let xs = set.iter().flat_map(|e| [mesh.nodes[e.a][0], mesh.nodes[e.b][0]]);
+            let (lo, hi) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)));
+            let l = |x: f64| scene.scales.length(x);
+            return Err(CoreError::invalid(
+                InvalidKind::Request,
+                format!("{}/tractions/{k}/x_range", body.path),
+                format!(
+                    "x_range [{}, {}] meets no edge of set '{edges}', whose x spans [{}, {}]: the load would act nowhere",
+                    shown(l(range[0])),
+                    shown(l(range[1])),
+                    shown(l(lo)),
+                    shown(l(hi))
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Every pair has at least one contact row.

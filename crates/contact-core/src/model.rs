@@ -39,6 +39,7 @@ impl Model {
         let cons = contact::build(scene, &meshes, &dofs);
         admit::candidates(scene, &cons)?;
         let points = admit::point_loads(scene, &meshes)?;
+        admit::traction_ranges(scene, &meshes)?;
         let external = fem::loads::external(scene, &meshes, &dofs, &points);
         let free = FreeMotions::try_new(scene, &cons, &dofs, &meshes, &external)?;
         let foundations = Foundations::try_new(scene, &cons)?;

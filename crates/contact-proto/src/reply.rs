@@ -73,21 +73,30 @@ pub struct SolveReply {
     pub units: Option<crate::Units>,
 }
 
-/// A violated assumption of the model, with the measured value and the limit
-/// (both dimensionless).
+/// A violated assumption of the model, or a discretization too coarse to
+/// trust, with the measured value, the limit (both dimensionless) and what
+/// it means.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Warning {
-    /// `large_strain` (largest principal strain), `large_rotation` (largest
+    /// `large_strain` (largest principal strain, mean over patches a tenth of
+    /// the body's narrowest contact zone wide), `large_rotation` (largest
     /// material or punch rotation, radian), `large_displacement` (largest
-    /// displacement over the body's size), `large_contact_zone` (contact
-    /// half-width over the obstacle's radius), `gap_linearization` (largest
-    /// displacement of a contact point over the obstacle's radius).
+    /// displacement over the body's size), `large_contact_zone` (how far the
+    /// zone reaches onto the obstacle's curved part, over its radius of
+    /// curvature), `gap_linearization` (largest displacement of a contact
+    /// point over the obstacle's radius): each fires when value > limit;
+    /// `coarse_contact_zone` (element edges across a contact zone) fires when
+    /// value < limit.
     pub code: String,
     pub value: f64,
     pub limit: f64,
     /// JSON pointer of the body, obstacle or contact pair concerned.
     pub location: String,
+    /// What was measured, what it means and what to do (numbers in the
+    /// request's units).
+    #[serde(default)]
+    pub message: String,
 }
 
 /// A punch's rigid motion and the loads on it (prescribed or reactions).

@@ -130,14 +130,7 @@ pub fn reply(r: &SolveReply) -> String {
         let _ = writeln!(o, "load steps   {} (the lines above are the last)", steps.len());
     }
     for w in &r.warnings {
-        let _ = writeln!(
-            o,
-            "WARNING      {} at {}: {} > {}",
-            w.code,
-            w.location,
-            num(w.value),
-            num(w.limit)
-        );
+        let _ = writeln!(o, "WARNING      {} at {}: {}", w.code, w.location, w.message);
     }
     for n in &r.notes {
         let _ = writeln!(o, "note         {n}");

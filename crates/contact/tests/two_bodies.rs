@@ -302,7 +302,7 @@ fn floating_cylinder_on_a_cylinder() {
     assert!(
         r.notes
             .iter()
-            .any(|n| n.contains("rotation about (0, -1.2") && n.contains("'upper'")),
+            .any(|n| n.contains("rotation about (0, -12)") && n.contains("'upper'")),
         "{:?}",
         r.notes
     );

@@ -127,3 +127,74 @@ pub fn check(c: &Mat<f64>, rhs: &[f64]) -> Result<(), Vec<LoadRange>> {
     }
     Err(bad)
 }
+
+/// Fraction of the largest possible opening below which a motion is taken
+/// to close as much as it opens: the LP runs to 1e-12, and a real escape
+/// opens its candidates by O(1) of the normalized motion.
+const ESCAPE: f64 = 1e-7;
+
+/// A free motion that moves every candidate away from its target (or along
+/// it) while the loads do no work against it, if there is one: then nothing
+/// decides where the bodies rest, and contact, which only pushes, carries
+/// nothing. Fichera's condition holds (λ = 0 balances zero work), but the
+/// solution is not determined: the commonest cause is a forgotten support.
+///
+/// The rows read B u − C β ≤ g, so a motion β opens row i by (Cβ)_i and the
+/// loads' work on it is −rhsᵀβ (rhs = −VᵀP). The LP is
+/// max 1ᵀCβ s.t. Cβ ≥ 0, rhsᵀβ ≤ 0 (the loads do not resist it),
+/// 1ᵀCβ ≤ 1, β free; a value near 1 is an escape.
+pub fn escape(c: &Mat<f64>, rhs: &[f64]) -> Option<Vec<f64>> {
+    let (m, k) = (c.nrows(), c.ncols());
+    if k == 0 || m == 0 {
+        return None;
+    }
+    let big = rhs.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let (mut rows, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
+    // −Cβ ≤ 0 (rows 0..m), rhsᵀβ ≤ 0 (row m), 1ᵀCβ ≤ 1 (row m + 1).
+    for j in 0..k {
+        let mut sum = 0.0;
+        for i in 0..m {
+            let v = c[(i, j)];
+            if v != 0.0 {
+                rows.push(i);
+                cols.push(j);
+                vals.push(-v);
+                sum += v;
+            }
+        }
+        // Load components at round-off of the largest are no load at all.
+        if rhs[j].abs() > 1e-12 * big {
+            rows.push(m);
+            cols.push(j);
+            vals.push(rhs[j]);
+        }
+        if sum != 0.0 {
+            rows.push(m + 1);
+            cols.push(j);
+            vals.push(sum);
+        }
+    }
+    let a = CscMatrix::new_from_triplets(m + 2, k, rows, cols, vals);
+    let mut b = vec![0.0; m + 2];
+    b[m + 1] = 1.0;
+    let q: Vec<f64> = (0..k).map(|j| -(0..m).map(|i| c[(i, j)]).sum::<f64>()).collect();
+    let p = CscMatrix::zeros((k, k));
+    let settings = DefaultSettingsBuilder::default()
+        .verbose(false)
+        .tol_gap_abs(1e-12)
+        .tol_gap_rel(1e-12)
+        .tol_feas(1e-12)
+        .max_iter(200)
+        .build()
+        .expect("static settings");
+    let mut solver = DefaultSolver::new(&p, &q, &a, &b, &[NonnegativeConeT(m + 2)], settings).ok()?;
+    solver.solve();
+    // Undecided: leave it to the solve, whose certificate judges the answer.
+    if !matches!(
+        solver.solution.status,
+        SolverStatus::Solved | SolverStatus::AlmostSolved
+    ) {
+        return None;
+    }
+    (-solver.solution.obj_val > ESCAPE).then(|| solver.solution.x.clone())
+}

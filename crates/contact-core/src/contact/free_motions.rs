@@ -23,6 +23,7 @@ use crate::error::{CoreError, InvalidKind};
 use crate::fem::{rigid_modes::RigidModes, DofMap};
 use crate::linalg::dense::sym_eigen_small;
 use crate::mesh::Mesh2d;
+use crate::scene::scaling::shown;
 use crate::scene::Control;
 use crate::scene::Scene;
 
@@ -281,7 +282,63 @@ impl FreeMotions {
             unresisted,
         };
         fm.check_compatibility(scene, dofs)?;
+        fm.check_held(scene, dofs)?;
         Ok(fm)
+    }
+
+    /// Some free motion must not be able to leave every contact without the
+    /// loads resisting it (`fichera::escape`): a body pressed from one side
+    /// and held by nothing else, or left with no load by a forgotten support.
+    fn check_held(&self, scene: &Scene, dofs: &DofMap) -> Result<(), CoreError> {
+        if self.is_empty() {
+            return Ok(());
+        }
+        let Some(gamma) = fichera::escape(&self.c, &self.rhs) else {
+            return Ok(());
+        };
+        let beta = self.motion(&gamma);
+        let biggest = beta.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let moving: Vec<usize> = (0..beta.len()).filter(|&k| beta[k].abs() > 1e-6 * biggest).collect();
+        // Each body's share of the escape as one rigid motion, in words.
+        let (mut parts, mut seen, mut path) = (Vec::new(), Vec::new(), None);
+        for &k in &moving {
+            match self.motions[k].0 {
+                Motion::Punch { obstacle, component } => {
+                    path.get_or_insert_with(|| format!("/obstacles/{obstacle}/punch/{}", COMPONENT[component]));
+                    parts.push(format!(
+                        "{} motion of punch '{}'",
+                        COMPONENT[component], scene.obstacles[obstacle].name
+                    ));
+                }
+                Motion::Body { set, .. } if !seen.contains(&set) => {
+                    seen.push(set);
+                    let mut dir = [0.0; 3];
+                    for &j in &moving {
+                        if let Motion::Body { set: other, dir: d } = self.motions[j].0 {
+                            if other == set {
+                                (0..3).for_each(|q| dir[q] += beta[j] * d[q]);
+                            }
+                        }
+                    }
+                    let body = &scene.bodies[dofs.rigid[set].body];
+                    path.get_or_insert_with(|| format!("{}/supports", body.path));
+                    parts.push(format!(
+                        "{} of body '{}'",
+                        dofs.rigid[set].describe(dir, scene.scales.length(1.0)),
+                        body.name
+                    ));
+                }
+                Motion::Body { .. } => {}
+            }
+        }
+        Err(CoreError::invalid(
+            InvalidKind::NoSupport,
+            path.unwrap_or_default(),
+            format!(
+                "nothing holds the {}: it moves away from every contact and no load resists it, so contact, which can only push, carries nothing and the position is not determined; add a support that stops this motion (supports with ux and/or uy on an edge set), or load the body against its contact",
+                parts.join(" together with the ")
+            ),
+        ))
     }
 
     /// Fichera's condition as an LP; on failure, the admissible range of each
@@ -305,15 +362,16 @@ impl FreeMotions {
             .filter_map(|r| {
                 let k = original(r.component)?;
                 let (mo, load) = self.motions[k];
+                let (min, max) = load_range(scene, mo, r.min, r.max);
                 let b = LoadBound {
                     path: motion_path(scene, dofs, mo),
                     value: load_value(scene, mo, load),
-                    min: r.min.map(|v| load_value(scene, mo, v)),
-                    max: r.max.map(|v| load_value(scene, mo, v)),
+                    min,
+                    max,
                 };
                 bounds.push((outside(b.value, b.min, b.max), b));
                 let fmt =
-                    |v: Option<f64>, inf: &str| v.map(|x| load_words(scene, mo, x)).unwrap_or_else(|| inf.to_string());
+                    |v: Option<f64>, inf: &str| v.map(|x| load_words_user(mo, x)).unwrap_or_else(|| inf.to_string());
                 let what = match mo {
                     Motion::Punch { obstacle, component } => format!(
                         "{} load {} on punch '{}'",
@@ -329,8 +387,8 @@ impl FreeMotions {
                 };
                 Some(format!(
                     "the {what} must lie in [{}, {}]",
-                    fmt(r.min, "-inf"),
-                    fmt(r.max, "+inf")
+                    fmt(min, "-inf"),
+                    fmt(max, "+inf")
                 ))
             })
             .collect();
@@ -396,28 +454,48 @@ pub fn describe_motion(scene: &Scene, dofs: &DofMap, mo: Motion) -> String {
     }
 }
 
-/// A load on a motion in the caller's units, with its kind.
-/// A load of a motion in the request's units (a force, a moment, or for a
-/// body's mixed rigid mode the nondimensional generalized load).
+/// A load of a motion in the request's units: a force, or a moment. A body's
+/// rigid motion (b0, b1, θ) with θ ≠ 0 is a rotation θ about its fixed point
+/// (`rigid_modes::describe` names it), and the loads' work on it is θ times
+/// their moment about that point; a translation (b0, b1) of length t does
+/// work t times the force along it. The divisor's sign can reverse a range.
 fn load_value(scene: &Scene, mo: Motion, v: f64) -> f64 {
     let sc = scene.scales;
     match mo {
         Motion::Punch { component: 2, .. } => sc.moment(v),
         Motion::Punch { .. } => sc.force(v),
-        Motion::Body { dir: b, .. } if b[2] == 0.0 => sc.force(v),
-        Motion::Body { dir: b, .. } if b[0] == 0.0 && b[1] == 0.0 => sc.moment(v),
-        Motion::Body { .. } => v,
+        Motion::Body { dir: b, .. } if b[2] == 0.0 => sc.force(v / b[0].hypot(b[1])),
+        Motion::Body { dir: b, .. } => sc.moment(v / b[2]),
     }
 }
 
+/// [min, max] of a load in the request's units (`load_value` may reverse it).
+fn load_range(scene: &Scene, mo: Motion, min: Option<f64>, max: Option<f64>) -> (Option<f64>, Option<f64>) {
+    let (a, b) = (
+        min.map(|v| load_value(scene, mo, v)),
+        max.map(|v| load_value(scene, mo, v)),
+    );
+    match mo {
+        Motion::Body { dir, .. } if dir[2] < 0.0 => (b, a),
+        _ => (a, b),
+    }
+}
+
+/// A nondimensional load `v` on motion `mo`, in words and the request's units.
 fn load_words(scene: &Scene, mo: Motion, v: f64) -> String {
-    let x = load_value(scene, mo, v);
+    load_words_user(mo, load_value(scene, mo, v))
+}
+
+/// A load `x` already in the request's units, with what it is.
+fn load_words_user(mo: Motion, x: f64) -> String {
     match mo {
         Motion::Body { dir: b, .. } if b[2] != 0.0 && b[0] == 0.0 && b[1] == 0.0 => {
-            format!("{x:.6e} (moment about the body's centroid)")
+            format!("{} (moment about the body's centroid)", shown(x))
         }
-        Motion::Body { dir: b, .. } if b[2] != 0.0 => format!("{x:.6e} (nondimensional generalized load)"),
-        _ => format!("{x:.6e}"),
+        Motion::Body { dir: b, .. } if b[2] != 0.0 => {
+            format!("{} (moment about the centre of that rotation)", shown(x))
+        }
+        _ => shown(x),
     }
 }
 

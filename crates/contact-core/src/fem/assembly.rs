@@ -10,6 +10,7 @@ use super::rigid_modes::{self, free_modes, mode_row, virtual_supports, RigidMode
 use super::{axisymmetric, element};
 use crate::error::{CoreError, InvalidKind};
 use crate::mesh::Mesh2d;
+use crate::scene::scaling::shown;
 use crate::scene::{Analysis, Scene};
 
 pub const FIXED: usize = usize::MAX;
@@ -95,7 +96,7 @@ pub fn dof_map(scene: &Scene, meshes: &[Mesh2d]) -> Result<DofMap, CoreError> {
             }
         }
         if scene.analysis == Analysis::Axisymmetric {
-            axis_conditions(body, mesh, node_offset[b], &mut fixed, &mut prescribed)?;
+            axis_conditions(body, mesh, &scene.scales, node_offset[b], &mut fixed, &mut prescribed)?;
             // A body of revolution has one rigid motion, along the axis: a
             // radial "translation" or a rotation of the section strains the hoops.
             rows.push([1.0, 0.0, 0.0]);
@@ -230,6 +231,7 @@ fn pattern(meshes: &[Mesh2d], dofs: &DofMap) -> (Vec<usize>, Vec<usize>) {
 fn axis_conditions(
     body: &crate::scene::Body,
     mesh: &Mesh2d,
+    scales: &crate::scene::scaling::Scales,
     offset: usize,
     fixed: &mut [bool],
     prescribed: &mut [f64],
@@ -242,7 +244,8 @@ fn axis_conditions(
                 format!("{}/mesh", body.path),
                 format!(
                     "body '{}' has node {node} at x = {} < 0: in axisymmetry x is the radius, and the section must lie at x ≥ 0",
-                    body.name, p[0]
+                    body.name,
+                    shown(scales.length(p[0]))
                 ),
             ));
         }
@@ -254,7 +257,8 @@ fn axis_conditions(
                     format!("{}/supports", body.path),
                     format!(
                         "body '{}' prescribes u_x = {} at node {node} on the axis, where the radial displacement of a body of revolution is 0",
-                        body.name, prescribed[d]
+                        body.name,
+                        shown(scales.length(prescribed[d]))
                     ),
                 ));
             }

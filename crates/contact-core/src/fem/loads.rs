@@ -122,7 +122,7 @@ fn nearest_parameter(mesh: &Mesh2d, e: &Edge, p: [f64; 2]) -> f64 {
 }
 
 /// The part [s0, s1] of an edge with x in `range` (the chord's map), or None.
-fn clip(mesh: &Mesh2d, e: &Edge, range: Option<[f64; 2]>) -> Option<(f64, f64)> {
+pub(crate) fn clip(mesh: &Mesh2d, e: &Edge, range: Option<[f64; 2]>) -> Option<(f64, f64)> {
     let Some([lo, hi]) = range else {
         return Some((-1.0, 1.0));
     };

@@ -63,7 +63,7 @@ pub fn describe(b: [f64; 3], center: [f64; 2], length: f64) -> String {
             if v.abs() <= 1e-9 * size {
                 "0".to_string()
             } else {
-                format!("{v:.6e}")
+                crate::scene::scaling::shown(v)
             }
         };
         format!("rotation about ({}, {})", short(px), short(py))

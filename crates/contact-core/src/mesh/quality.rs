@@ -111,7 +111,11 @@ pub fn try_build(
         if area.abs() <= MIN_SHAPE_RATIO * longest {
             return Err(bad(
                 Item::Element(e),
-                format!("degenerate element (area {area:.3e} against longest edge² {longest:.3e})"),
+                // Ratios, not lengths: the coordinates here are nondimensional.
+                format!(
+                    "degenerate element: its area is {:.3e} of its longest edge squared (at least {MIN_SHAPE_RATIO:.0e} is needed)",
+                    area.abs() / longest.max(f64::MIN_POSITIVE)
+                ),
             ));
         }
         if area < 0.0 {
@@ -130,7 +134,7 @@ pub fn try_build(
                 let off = ((m[0] - mid[0]).powi(2) + (m[1] - mid[1]).powi(2)).sqrt();
                 let len = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
                 if off > 0.25 * len {
-                    return Err(bad(Item::ElementNode(e, 3 + k), format!("midside node is {off:.3e} from the edge midpoint (edge length {len:.3e}); the element map would fold")));
+                    return Err(bad(Item::ElementNode(e, 3 + k), format!("midside node is {:.3} edge lengths from the edge midpoint (at most 0.25); the element map would fold", off / len)));
                 }
             }
         }

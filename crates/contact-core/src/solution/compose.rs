@@ -67,7 +67,7 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
             ));
         } else {
             notes.push(format!(
-                "body '{}' ran the P2–P0 element (T6, volumetric part at the centroid: locking-free) since ν = {} ≥ {}",
+                "body '{}' ran the P2–P0 element (T6, the volume change constrained by its mean over each element: locking-free) since ν = {} ≥ {}",
                 body.name,
                 body.poisson_ratio,
                 fem::assembly::NEARLY_INCOMPRESSIBLE
@@ -96,20 +96,11 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
         .filter(|&o| scene.obstacles[o].punch.is_some())
         .map(|o| (o, free_motions::punch_motion(scene, &m.free, &beta, o)[2]))
         .collect();
-    let zones: Vec<Vec<[f64; 2]>> = pairs
-        .iter()
-        .map(|pr| {
-            pr.zones
-                .iter()
-                .map(|z| [z[0] / scene.scales.length, z[1] / scene.scales.length])
-                .collect()
-        })
-        .collect();
-    let warnings = validity::check(scene, &m.meshes, &disp, &m.cons, &punch_rotations, &zones);
+    let warnings = validity::check(scene, &m.meshes, &disp, &m.cons, &punch_rotations, &pairs);
     let bodies = body_outputs(scene, &m.meshes, &disp);
     // The post stage has no deadline check: its answer is ready.
     let _ = obs.leave(Stage::Post);
-    Report {
+    let mut report = Report {
         client_id: scene.client_id.clone(),
         status,
         method: sol.method.to_string(),
@@ -137,7 +128,14 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
         warnings,
         outputs: scene.outputs,
         axisymmetric: scene.analysis == Analysis::Axisymmetric,
+    };
+    if let Some(at) = report.first_non_finite() {
+        report.status = Status::NumericalError;
+        report.notes.push(format!(
+            "the answer holds a value that is not a finite number (first at {at}; JSON writes it as null): it must not be used"
+        ));
     }
+    report
 }
 
 /// Motion and loads of every punch, in the caller's units.
@@ -149,6 +147,7 @@ fn punch_results(
     lambda: &[f64],
 ) -> Vec<PunchReport> {
     let sc = scene.scales;
+    let axisymmetric = scene.analysis == Analysis::Axisymmetric;
     let mut out = Vec::new();
     for (o, ob) in scene.obstacles.iter().enumerate() {
         if ob.punch.is_none() {
@@ -182,9 +181,12 @@ fn punch_results(
             alpha1: sc.length(motion[0]),
             alpha2: sc.length(motion[1]),
             theta: motion[2],
-            p1: sc.force(load[0]),
+            // A punch of revolution feels no net radial force and no moment:
+            // the ring forces cancel round the circumference (Σλ r is a
+            // first moment of the rows, not a moment).
+            p1: if axisymmetric { 0.0 } else { sc.force(load[0]) },
             p2: sc.force(load[1]),
-            m: sc.moment(load[2]),
+            m: if axisymmetric { 0.0 } else { sc.moment(load[2]) },
             unique: undetermined.is_empty(),
             note: (!undetermined.is_empty()).then(|| {
                 format!(

@@ -41,6 +41,80 @@ pub struct Report {
     pub axisymmetric: bool,
 }
 
+impl Report {
+    /// The first number of the answer that is not finite, named by where it
+    /// sits (`pairs/0/points/3/pressure`), or None. However it arose (an
+    /// overflow in the user's units, a NaN the certificate did not see), such
+    /// an answer must not be `solved`: JSON would write it as null.
+    pub fn first_non_finite(&self) -> Option<String> {
+        let mut bad: Option<String> = None;
+        let mut check = |name: &dyn Fn() -> String, values: &[f64]| {
+            if bad.is_none() && values.iter().any(|v| !v.is_finite()) {
+                bad = Some(name());
+            }
+        };
+        check(
+            &|| "resultant".into(),
+            &[self.resultant.fx, self.resultant.fy, self.resultant.m],
+        );
+        let c = &self.certificate;
+        check(
+            &|| "certificate".into(),
+            &[c.primal, c.dual, c.complementarity, c.equilibrium],
+        );
+        let steps = self.steps.iter().flatten().map(|s| &s.pairs);
+        for (step, pairs) in std::iter::once(&self.pairs).chain(steps).enumerate() {
+            let at = |rest: String| {
+                if step == 0 {
+                    rest
+                } else {
+                    format!("steps/{}/{rest}", step - 1)
+                }
+            };
+            for (i, p) in pairs.iter().enumerate() {
+                let r = &p.resultant;
+                check(
+                    &|| at(format!("pairs/{i}/resultant")),
+                    &[r.fx, r.fy, r.m, p.max_penetration],
+                );
+                for z in &p.zones {
+                    check(&|| at(format!("pairs/{i}/zones")), z);
+                }
+                for (k, q) in p.points.iter().enumerate() {
+                    let v = [q.x, q.y, q.gap, q.pressure, q.force, q.weight, q.normal[0], q.normal[1]];
+                    check(&|| at(format!("pairs/{i}/points/{k}")), &v);
+                }
+                for (k, q) in p.other_points.iter().flatten().enumerate() {
+                    let v = [q.x, q.y, q.pressure, q.force, q.weight];
+                    check(&|| at(format!("pairs/{i}/other_points/{k}")), &v);
+                }
+                if let Some(r) = &p.other_resultant {
+                    check(&|| at(format!("pairs/{i}/other_resultant")), &[r.fx, r.fy, r.m]);
+                }
+            }
+        }
+        for (i, p) in self.punches.iter().enumerate() {
+            let v = [p.alpha1, p.alpha2, p.theta, p.p1, p.p2, p.m];
+            check(&|| format!("punches/{i}"), &v);
+        }
+        for (i, f) in self.foundations.iter().enumerate() {
+            check(&|| format!("foundations/{i}/w"), &f.w);
+            check(&|| format!("foundations/{i}/load"), &[f.load]);
+        }
+        for (i, b) in self.bodies.iter().flatten().enumerate() {
+            let flat = |v: &Option<Vec<[f64; 2]>>| v.iter().flatten().flatten().copied().collect::<Vec<f64>>();
+            check(&|| format!("bodies/{i}/displacement"), &flat(&b.displacement));
+            let stress: Vec<f64> = b.stress.iter().flatten().flatten().copied().collect();
+            check(&|| format!("bodies/{i}/stress"), &stress);
+            check(
+                &|| format!("bodies/{i}/stress_zz"),
+                b.stress_zz.as_deref().unwrap_or(&[]),
+            );
+        }
+        bad
+    }
+}
+
 /// Whether the answer can be used.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Status {
@@ -92,7 +166,8 @@ pub struct Resultant {
     pub m: f64,
 }
 
-/// A violated assumption of the model: the measured value and the limit.
+/// A violated assumption of the model, or a discretization too coarse to
+/// trust: the measured value and the limit.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Warning {
     pub code: &'static str,
@@ -100,6 +175,8 @@ pub struct Warning {
     pub limit: f64,
     /// JSON pointer of the body, obstacle or pair concerned.
     pub location: String,
+    /// What was measured, what it means and what to do, in the request's units.
+    pub message: String,
 }
 
 /// A punch's rigid motion and the loads on it.

@@ -64,6 +64,7 @@ pub fn reply(mut report: Report) -> p::SolveReply {
                 value: w.value,
                 limit: w.limit,
                 location: w.location,
+                message: w.message,
             })
             .collect(),
         vtu: None,

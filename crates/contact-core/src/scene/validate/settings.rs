@@ -84,7 +84,7 @@ pub fn settings(
                 .collect::<Vec<f64>>()
         })
         .fold(0.0f64, |a, v| a.max(v.abs()));
-    check_load_factors(&req.load_factors, load_size, limits)?;
+    check_load_factors(&req.load_factors, load_size, scales, limits)?;
     check_output_size(&req.outputs, req.load_factors.len(), nodes, limits)?;
 
     Ok(Settings {
@@ -144,6 +144,13 @@ pub fn outputs(req: &SolveRequest) -> Outputs {
 /// and a strain of 1e150 is meaningless long before.
 const MAX_SCALED_LOAD: f64 = 1e150;
 
+/// Largest force, moment or stress the reply may carry in the request's units
+/// (nondimensional size × E·L or E·L²): far beyond any physical scene, and far
+/// enough below f64::MAX (1.8e308) that sums, squares of the certificate's
+/// scales and unit conversions stay finite. E = 1e300 with a load factor of
+/// 1e100 came back with every force infinite.
+const MAX_REPLY_MAGNITUDE: f64 = 1e200;
+
 /// The requested fields over all load steps, against `max_output_values`
 /// (`nodes`: the estimated node count of all bodies).
 fn check_output_size(outputs: &[OutputKind], steps: usize, nodes: f64, limits: &Limits) -> Result<(), CoreError> {
@@ -178,9 +185,27 @@ fn check_output_size(outputs: &[OutputKind], steps: usize, nodes: f64, limits: &
     })
 }
 
+/// The reply's forces, moments and stresses for nondimensional loads of
+/// `size` stay representable in the request's units.
+fn check_reply_magnitude(size: f64, scales: Scales, path: &str) -> Result<(), CoreError> {
+    let unit = scales.force_unit().max(scales.moment(1.0)).max(scales.modulus);
+    let reach = size * unit;
+    if reach.is_finite() && reach <= MAX_REPLY_MAGNITUDE {
+        return Ok(());
+    }
+    Err(invalid(
+        InvalidKind::Request,
+        path,
+        format!(
+            "the reply's forces would reach about {reach:.1e} in the request's units (loads of {size:.1e} E·L with E = {:e} and L = {:e}), beyond the {MAX_REPLY_MAGNITUDE:e} that double precision carries through the solve: choose units in which the numbers are moderate (MPa and mm rather than Pa and m), or smaller load factors",
+            scales.modulus, scales.length
+        ),
+    ))
+}
+
 /// `load_factors`: a bounded list of finite factors whose scaled loads stay
 /// representable. `size`: the largest nondimensional load or prescribed motion.
-fn check_load_factors(factors: &[f64], size: f64, limits: &Limits) -> Result<(), CoreError> {
+fn check_load_factors(factors: &[f64], size: f64, scales: Scales, limits: &Limits) -> Result<(), CoreError> {
     if factors.len() > limits.max_load_steps {
         return Err(CoreError::TooLarge {
             path: "/load_factors".into(),
@@ -190,6 +215,9 @@ fn check_load_factors(factors: &[f64], size: f64, limits: &Limits) -> Result<(),
                 limits.max_load_steps
             ),
         });
+    }
+    if factors.is_empty() {
+        check_reply_magnitude(size, scales, "/bodies")?;
     }
     for (k, &f) in factors.iter().enumerate() {
         let path = format!("/load_factors/{k}");
@@ -203,6 +231,7 @@ fn check_load_factors(factors: &[f64], size: f64, limits: &Limits) -> Result<(),
                 ),
             ));
         }
+        check_reply_magnitude(f.abs() * size, scales, &path)?;
     }
     Ok(())
 }

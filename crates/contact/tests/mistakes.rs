@@ -1,0 +1,212 @@
+//! The mistakes people make most get an answer that names them: a forgotten
+//! support, a load range that loads nothing, a mesh too coarse for its contact
+//! zone, numbers that overflow; and the warnings fire only where their
+//! assumption really fails.
+
+mod common;
+use common::*;
+use contact::proto::{ErrorCode, SolveReply};
+use serde_json::{json, Value};
+
+/// The Hertz example on a coarser mesh (h_min 0.05, a/h ≈ 14): fast, and still
+/// a zone of about 27 element edges.
+fn hertz_coarse() -> Value {
+    let mut req = example("signorini_hertz_cylinder.json");
+    req["bodies"][0]["mesh"]["rectangle"]["grading"]["h_min"] = json!(0.05);
+    req
+}
+
+fn codes(r: &SolveReply) -> Vec<&str> {
+    r.warnings.iter().map(|w| w.code.as_str()).collect()
+}
+
+fn refused(req: &Value, code: ErrorCode, path: &str) -> String {
+    let e = solve(req).expect_err("request must be refused");
+    assert_eq!((e.code, e.path.as_str()), (code, path), "{e:?}");
+    e.message
+}
+
+/// A body pressed from one side and held by nothing else is not in
+/// equilibrium with any pressure but zero: before, the block under a fixed
+/// cylinder with no supports, the same block supported in x only and a plate
+/// left unsupported under an elastic roller each came back `numerical_error`.
+/// Each is `no_support` at the body's supports, naming the body and the
+/// motion nothing holds.
+#[test]
+fn a_forgotten_support_is_named_with_the_motion_it_leaves_free() {
+    let mut none = hertz_coarse();
+    none["bodies"][0]["supports"] = json!([]);
+    let mut ux_only = hertz_coarse();
+    ux_only["bodies"][0]["supports"] = json!([{"edges": "bottom", "ux": 0.0}]);
+    let mut lower_free = example("two_bodies_cylinders.json");
+    lower_free["bodies"][1]["supports"] = json!([]);
+    for (req, path, body) in [
+        (&none, "/bodies/0/supports", "'block'"),
+        (&ux_only, "/bodies/0/supports", "'block'"),
+        (&lower_free, "/bodies/1/supports", "'lower'"),
+    ] {
+        let message = refused(req, ErrorCode::NoSupport, path);
+        assert!(
+            message.contains(body) && message.contains("translation in y") && message.contains("support"),
+            "{message}"
+        );
+    }
+    // Supported in y only, the block is held: the cylinder's normals resist x
+    // on both sides of the axis, and symmetry leaves no sideways force.
+    let mut uy_only = hertz_coarse();
+    uy_only["bodies"][0]["supports"] = json!([{"edges": "bottom", "uy": 0.0}]);
+    let r = solved(&uy_only);
+    assert_kkt(&r, 1e-8);
+    assert!(r.resultant.fx.abs() <= 1e-9 * r.resultant.fy.abs(), "{:?}", r.resultant);
+}
+
+/// A surface load whose x_range misses its edge set would load nothing and
+/// the reply would be a solved scene without that load.
+#[test]
+fn a_load_range_that_meets_no_edge_is_refused_with_the_sets_extent() {
+    let mut req = example("signorini_inline_block_on_vee.json");
+    req["bodies"][0]["tractions"] = json!([{"edges": "top", "pressure": 1.0, "x_range": [5.0, 6.0]}]);
+    let message = refused(&req, ErrorCode::InvalidRequest, "/bodies/0/tractions/0/x_range");
+    assert!(
+        message.contains("[5, 6]") && message.contains("'top'") && message.contains("[-1, 1]"),
+        "{message}"
+    );
+    // A range reaching into the set loads its part and is accepted.
+    req["bodies"][0]["tractions"][0]["x_range"] = json!([0.5, 6.0]);
+    assert!(solve(&req).is_ok());
+}
+
+/// A unit slip (E in Pa with lengths in mm: E a million times too large)
+/// leaves a load-controlled punch's zone narrower than one element. The
+/// indentation that carries the same load on a block 1000 and 10 000 times
+/// stiffer (0.12 / factor) leaves a zone of 2 edges and of one node, both
+/// `solved`. Each carries `coarse_contact_zone` with the measured count, the
+/// limit and an element size to refine to; the 20-edge zone of the stiffer block under 0.12/√1000 do not.
+#[test]
+fn a_zone_a_few_elements_wide_is_never_answered_without_a_warning() {
+    let hertz = |factor: f64, depth: f64| {
+        let mut req = example("signorini_hertz_cylinder.json");
+        req["bodies"][0]["material"]["youngs_modulus"] = json!(200.0 * factor);
+        req["obstacles"][0]["shape"]["circle"]["center"][1] = json!(8.0 - depth);
+        solved(&req)
+    };
+    for (factor, edges) in [(1e3_f64, 2.0), (1e4, 0.0)] {
+        let r = hertz(factor, 0.12 / factor);
+        let w = r
+            .warnings
+            .iter()
+            .find(|w| w.code == "coarse_contact_zone")
+            .unwrap_or_else(|| panic!("no coarse_contact_zone at E × {factor}: {:?}", r.warnings));
+        assert_eq!(
+            (w.location.as_str(), w.limit, w.value),
+            ("/contacts/0", 8.0, edges),
+            "{w:?}"
+        );
+        assert!(w.message.contains("refine"), "{}", w.message);
+    }
+    let resolved = hertz(1e3, 0.12 / 1e3_f64.sqrt());
+    assert!(
+        !codes(&resolved).contains(&"coarse_contact_zone"),
+        "{:?}",
+        resolved.warnings
+    );
+    // Load-controlled: the load stays, the zone shrinks as 1/√E.
+    let mut req = example("indentation_circular_punch.json");
+    req["bodies"][0]["material"]["youngs_modulus"] = json!(200.0e6);
+    let r = solve(&req).expect("answered");
+    assert!(codes(&r).contains(&"coarse_contact_zone"), "{:?}", r.warnings);
+}
+
+/// Each warning fires where its assumption fails and stays silent where it
+/// holds. The flat punch's sharp corners make the element-wise strain grow
+/// without bound under refinement (the linear theory's r^(−1/2)); measured on
+/// patches a tenth of the zone wide it stays at the load's level, so the
+/// Sadowsky example raises nothing. A flat punch with rounded corners (0.3)
+/// under the same load keeps its zone on the flat: no `large_contact_zone`
+/// (it used to report 4.05, the half-width over the corner radius); pressed
+/// 50 times harder its zone runs well onto the rounding and the warning fires.
+#[test]
+fn each_warning_fires_only_where_its_assumption_fails() {
+    let hertz = solved(&example("signorini_hertz_cylinder.json"));
+    assert!(hertz.warnings.is_empty(), "{:?}", hertz.warnings);
+    let sadowsky = solve(&example("indentation_flat_punch.json")).expect("answered");
+    assert!(sadowsky.warnings.is_empty(), "{:?}", sadowsky.warnings);
+
+    let mut deep = example("signorini_hertz_cylinder.json");
+    deep["obstacles"][0]["shape"]["circle"]["center"][1] = json!(5.0);
+    let deep = solve(&deep).expect("answered");
+    for code in ["large_strain", "large_contact_zone", "gap_linearization"] {
+        assert!(codes(&deep).contains(&code), "{code} missing: {:?}", deep.warnings);
+    }
+
+    let vee = solve(&example("signorini_inline_block_on_vee.json")).expect("answered");
+    assert!(codes(&vee).contains(&"large_displacement"), "{:?}", vee.warnings);
+
+    let rounded = |load: f64| {
+        let mut req = example("indentation_flat_punch.json");
+        req["obstacles"][0]["shape"]["profile"]["psi"]["flat"]["corner_radius"] = json!(0.3);
+        req["obstacles"][0]["punch"]["vertical"]["load"] = json!(load);
+        solve(&req).expect("answered")
+    };
+    let light = rounded(-10.0);
+    assert!(!codes(&light).contains(&"large_contact_zone"), "{:?}", light.warnings);
+    let heavy = rounded(-500.0);
+    let w = heavy
+        .warnings
+        .iter()
+        .find(|w| w.code == "large_contact_zone")
+        .unwrap_or_else(|| panic!("{:?}", heavy.warnings));
+    // How far the zone reaches beyond the flat (0.7), over the corner radius.
+    let z = heavy.pairs[0].zones[0];
+    let reach = (z[1].abs().max(z[0].abs()) - 0.7) / 0.3;
+    assert!((w.value - reach).abs() < 1e-9, "{w:?} against {reach}");
+
+    // Every warning says what it measured, in words.
+    for w in deep.warnings.iter().chain(&vee.warnings).chain(&heavy.warnings) {
+        assert!(w.message.len() > 40, "{w:?}");
+    }
+}
+
+/// E = 1e300 with a load factor of 1e100 came back `solved` with every force
+/// null (infinite in the user's units): it is refused before the solve, and
+/// any non-finite number in an answer makes it `numerical_error`.
+#[test]
+fn numbers_that_overflow_are_never_solved() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/nonfinite_E_1e300_load_factor_1e100.json"
+    );
+    let req: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let message = refused(&req, ErrorCode::InvalidRequest, "/load_factors/0");
+    assert!(message.contains("units"), "{message}");
+
+    let report = contact_verify::run::solve(&hertz_coarse(), &Default::default()).unwrap();
+    assert_eq!(report.first_non_finite(), None);
+    let mut broken = report.clone();
+    broken.pairs[0].points[3].pressure = f64::NAN;
+    assert_eq!(broken.first_non_finite().as_deref(), Some("pairs/0/points/3"));
+    let mut broken = report;
+    broken.resultant.fy = f64::INFINITY;
+    assert_eq!(broken.first_non_finite().as_deref(), Some("resultant"));
+}
+
+/// Numbers in messages are the request's: a node at x = −1 of a block whose
+/// length scale is 2 used to be reported at −0.5.
+#[test]
+fn messages_speak_the_requests_units() {
+    let mut req = example("signorini_inline_block_on_vee.json");
+    req["analysis"] = json!("axisymmetric");
+    let message = refused(&req, ErrorCode::InvalidGeometry, "/bodies/0/mesh");
+    assert!(message.contains("x = -1 <"), "{message}");
+}
+
+/// A punch of revolution feels no moment and no radial force: the ring forces
+/// cancel round the circumference. It used to report −Σ F r / L as `m`.
+#[test]
+fn a_punch_of_revolution_reports_no_moment() {
+    let r = solved(&example("axisymmetric_flat_punch.json"));
+    let punch = &r.punches[0];
+    assert_eq!((punch.m, punch.p1, punch.theta, punch.alpha1), (0.0, 0.0, 0.0, 0.0));
+    assert!((punch.p2 + 100.0).abs() < 1e-9 * 100.0, "{punch:?}");
+    assert_eq!((r.resultant.m, r.resultant.fx), (0.0, 0.0));
+}
