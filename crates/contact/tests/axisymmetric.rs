@@ -215,6 +215,15 @@ fn press_fit_matches_lame() {
         r.resultant
     );
     assert_kkt(&r, 1e-8);
+    // The interface is vertical: the whole of the ring's bore touches, its
+    // zone read along the bore (which runs down from the ring's top corner)
+    // over its full height; its x-interval is only the bore's radius.
+    let [z] = r.pairs[0].zones_along[..] else {
+        panic!("one zone along the bore: {:?}", r.pairs[0].zones_along)
+    };
+    assert!(z.s_start == 0.0 && (z.s_end - 1.0).abs() < 1e-12, "{z:?}");
+    assert_eq!((z.start, z.end), ([0.999, 1.0], [0.999, 0.0]), "{z:?}");
+    assert_eq!(r.pairs[0].zones, vec![[0.999, 0.999]]);
     // In the shaft σ_rr = σ_θθ = −p (uniform compression): the reply's hoop
     // stress beside `stress` says so, within 2 % away from the ends.
     let mut with_stress = req.clone();
