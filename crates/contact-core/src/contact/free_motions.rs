@@ -20,7 +20,8 @@ use faer::Mat;
 use super::{fichera, ConstraintSet};
 use crate::error::LoadBound;
 use crate::error::{CoreError, InvalidKind};
-use crate::fem::{rigid_modes::RigidModes, DofMap};
+use crate::fem::rigid_modes::{self, Kind, RigidModes};
+use crate::fem::DofMap;
 use crate::linalg::dense::sym_eigen_small;
 use crate::mesh::Mesh2d;
 use crate::scene::scaling::shown;
@@ -362,10 +363,14 @@ impl FreeMotions {
             .filter_map(|r| {
                 let k = original(r.component)?;
                 let (mo, load) = self.motions[k];
+                let value = load_value(scene, mo, load);
+                // A bound of 0 comes out of the LP (run to 1e-13) as a few 1e-10 of the load.
+                let snap = |v: Option<f64>| v.map(|v| if v.abs() <= 1e-8 * value.abs() { 0.0 } else { v });
                 let (min, max) = load_range(scene, mo, r.min, r.max);
+                let (min, max) = (snap(min), snap(max));
                 let b = LoadBound {
                     path: motion_path(scene, dofs, mo),
-                    value: load_value(scene, mo, load),
+                    value,
                     min,
                     max,
                 };
@@ -458,25 +463,37 @@ pub fn describe_motion(scene: &Scene, dofs: &DofMap, mo: Motion) -> String {
 /// rigid motion (b0, b1, θ) with θ ≠ 0 is a rotation θ about its fixed point
 /// (`rigid_modes::describe` names it), and the loads' work on it is θ times
 /// their moment about that point; a translation (b0, b1) of length t does
-/// work t times the force along it. The divisor's sign can reverse a range.
+/// work t times the force along it (along x or y: the signed component, so
+/// that the value is F_x or F_y as `describe` names the motion).
 fn load_value(scene: &Scene, mo: Motion, v: f64) -> f64 {
     let sc = scene.scales;
     match mo {
         Motion::Punch { component: 2, .. } => sc.moment(v),
         Motion::Punch { .. } => sc.force(v),
-        Motion::Body { dir: b, .. } if b[2] == 0.0 => sc.force(v / b[0].hypot(b[1])),
-        Motion::Body { dir: b, .. } => sc.moment(v / b[2]),
+        Motion::Body { dir: b, .. } => match rigid_modes::kind(b) {
+            Kind::Rotation(theta) => sc.moment(v / theta),
+            _ => sc.force(v / unit_of(b)),
+        },
     }
 }
 
-/// [min, max] of a load in the request's units (`load_value` may reverse it).
+/// The amplitude of a body's motion per unit of what names its load
+/// (`rigid_modes::kind`).
+fn unit_of(b: [f64; 3]) -> f64 {
+    match rigid_modes::kind(b) {
+        Kind::X(u) | Kind::Y(u) | Kind::Along(u) | Kind::Rotation(u) => u,
+    }
+}
+
+/// [min, max] of a load in the request's units: a negative `unit_of`
+/// reverses the range.
 fn load_range(scene: &Scene, mo: Motion, min: Option<f64>, max: Option<f64>) -> (Option<f64>, Option<f64>) {
     let (a, b) = (
         min.map(|v| load_value(scene, mo, v)),
         max.map(|v| load_value(scene, mo, v)),
     );
     match mo {
-        Motion::Body { dir, .. } if dir[2] < 0.0 => (b, a),
+        Motion::Body { dir, .. } if unit_of(dir) < 0.0 => (b, a),
         _ => (a, b),
     }
 }
@@ -489,10 +506,7 @@ fn load_words(scene: &Scene, mo: Motion, v: f64) -> String {
 /// A load `x` already in the request's units, with what it is.
 fn load_words_user(mo: Motion, x: f64) -> String {
     match mo {
-        Motion::Body { dir: b, .. } if b[2] != 0.0 && b[0] == 0.0 && b[1] == 0.0 => {
-            format!("{} (moment about the body's centroid)", shown(x))
-        }
-        Motion::Body { dir: b, .. } if b[2] != 0.0 => {
+        Motion::Body { dir: b, .. } if matches!(rigid_modes::kind(b), Kind::Rotation(_)) => {
             format!("{} (moment about the centre of that rotation)", shown(x))
         }
         _ => shown(x),
