@@ -21,7 +21,9 @@ def to_numpy(result: dict) -> list[dict]:
 
     Keys: ``x``, ``y``, ``gap``, ``pressure``, ``force``, ``weight`` (float arrays over the
     pair's candidates, in the reply's order along the boundary), ``node`` (int array),
-    ``normal`` (n x 2), ``zones`` (k x 2 intervals of x) and ``body`` plus the pair's target
+    ``normal`` (n x 2), ``zones`` (k x 2 intervals of x), ``zones_along`` (k x 2: each zone's
+    arc length [s_start, s_end] along the pair's edge set, in its order) with ``zone_ends``
+    (k x 2 x 2: the [x, y] of each zone's start and end), and ``body`` plus the pair's target
     (``obstacle``, ``against`` or ``foundation``) as strings. Units are the request's.
     """
     import numpy as np
@@ -33,6 +35,9 @@ def to_numpy(result: dict) -> list[dict]:
         d["node"] = np.array([p["node"] for p in pts], dtype=int)
         d["normal"] = np.array([p["normal"] for p in pts], dtype=float).reshape(-1, 2)
         d["zones"] = np.array(pair["zones"], dtype=float).reshape(-1, 2)
+        along = pair.get("zones_along", [])
+        d["zones_along"] = np.array([[z["s_start"], z["s_end"]] for z in along], dtype=float).reshape(-1, 2)
+        d["zone_ends"] = np.array([[z["start"], z["end"]] for z in along], dtype=float).reshape(-1, 2, 2)
         for k in ("body", "obstacle", "against", "foundation"):
             if k in pair:
                 d[k] = pair[k]

@@ -72,6 +72,12 @@ def test_to_numpy_gives_the_pairs_forces_and_zones(hertz_reply):
     assert d["zones"].shape == (1, 2)
     inside = (d["x"] >= d["zones"][0, 0]) & (d["x"] <= d["zones"][0, 1])
     assert np.all(d["pressure"][~inside] <= 1e-9 * d["pressure"].max())
+    # The block's top is flat: the zone along it is the same interval, its
+    # length along the surface that along x.
+    assert d["zones_along"].shape == (1, 2) and d["zone_ends"].shape == (1, 2, 2)
+    assert sorted(d["zone_ends"][0, :, 0]) == list(d["zones"][0])
+    s0, s1 = d["zones_along"][0]
+    assert s1 - s0 == pytest.approx(d["zones"][0, 1] - d["zones"][0, 0], rel=1e-12)
 
 
 def test_plot_pressure_draws_the_pressures_and_the_hertz_overlay(hertz_reply, hertz_example, tmp_path):

@@ -22,7 +22,7 @@ def test_two_cylinders_match_hertz_from_both_sides(client):
     P = pair["resultant"]["fy"]
     a, p0 = scenes.hertz_two_cylinders(P, 8.0, 12.0, 200.0, 0.3, 100.0, 0.25)
     # 2 %: the zone ends are quantized by the node spacing (h/a about 2.3 %,
-    # the mortar zone reaching the first open node), a/R is about 0.09.
+    # the zone ending at the last node in contact), a/R is about 0.09.
     zone = pair["zones"][0]
     assert abs(0.5 * (zone[1] - zone[0]) / a - 1.0) < 0.02
     assert abs(_peak(pair["points"]) / p0 - 1.0) < 0.02

@@ -170,12 +170,19 @@ pub struct PairResult {
     /// Discretization of a two-body pair.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub discretization: Option<crate::Discretization>,
-    /// Intervals [x_start, x_end] along x1 where the body touches, from the
-    /// first to the last node of each run of consecutive active candidates
-    /// (mortar: the support of the interpolated pressure Σ p_i N_i, which
-    /// reaches the neighbouring open nodes; foundation: the union of the active
-    /// nodes' panels, on which the foundation pressure is constant).
+    /// Intervals [x_start, x_end] along x1 where the body touches, in
+    /// increasing x: the x-extent of each zone of `zones_along`, from its
+    /// first to its last node in contact (the last node whose pressure is
+    /// positive, for every discretization; foundation: the union of the
+    /// active nodes' panels, on which the foundation pressure is constant).
+    /// Where the pair's surface is not a graph over x (a vertical or
+    /// re-entrant face) this is only the zones' shadow on x: read `zones_along`.
     pub zones: Vec<[f64; 2]>,
+    /// The same zones along the pair's own surface, in the order of its edge
+    /// set: arc length from the edge set's first node and the coordinates of
+    /// both ends. Absent from replies written before it existed.
+    #[serde(default)]
+    pub zones_along: Vec<ZoneAlong>,
     /// Every contact candidate of the pair, ordered along the boundary.
     pub points: Vec<ContactPoint>,
     /// Contact force and moment about the origin on the body from this pair.
@@ -192,6 +199,23 @@ pub struct PairResult {
     /// (equal and opposite to `resultant`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub other_resultant: Option<Resultant>,
+}
+
+/// A contact zone along the surface of the pair's edge set.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ZoneAlong {
+    /// Arc length of the zone's start from the edge set's first node,
+    /// measured along its edges (chained head to tail, the body on their
+    /// left; the start of the chain holding them, further chains following
+    /// with the arc length running on) [length].
+    pub s_start: f64,
+    /// Arc length of the zone's end, ≥ `s_start` [length].
+    pub s_end: f64,
+    /// Undeformed position [x, y] of the zone's start.
+    pub start: [f64; 2],
+    /// Undeformed position [x, y] of the zone's end.
+    pub end: [f64; 2],
 }
 
 /// A node of the other body of a two-body pair.

@@ -49,11 +49,34 @@ pub fn reply(r: &SolveReply) -> String {
             .or_else(|| p.foundation.as_ref().map(|f| format!("foundation '{f}'")))
             .unwrap_or_default();
         let peak = p.points.iter().max_by(|a, b| a.pressure.total_cmp(&b.pressure));
-        let zones: Vec<String> = p
-            .zones
+        // x-intervals where the touching surface runs along x (its x-extent at
+        // least 90 % of its length: slopes under 25°), else the zones along the
+        // surface, which a vertical face needs.
+        let flat = p
+            .zones_along
             .iter()
-            .map(|z| format!("[{}, {}]", num(z[0]), num(z[1])))
-            .collect();
+            .all(|z| (z.end[0] - z.start[0]).abs() >= 0.9 * (z.s_end - z.s_start));
+        let zones: Vec<String> = if flat {
+            p.zones
+                .iter()
+                .map(|z| format!("[{}, {}]", num(z[0]), num(z[1])))
+                .collect()
+        } else {
+            p.zones_along
+                .iter()
+                .map(|z| {
+                    format!(
+                        "s [{}, {}] from ({}, {}) to ({}, {})",
+                        num(z.s_start),
+                        num(z.s_end),
+                        num(z.start[0]),
+                        num(z.start[1]),
+                        num(z.end[0]),
+                        num(z.end[1])
+                    )
+                })
+                .collect()
+        };
         let _ = writeln!(
             o,
             "pair {k}       body '{}' against {target}: zones {}; peak pressure {}{}",

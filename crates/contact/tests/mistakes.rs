@@ -210,3 +210,28 @@ fn a_punch_of_revolution_reports_no_moment() {
     assert!((punch.p2 + 100.0).abs() < 1e-9 * 100.0, "{punch:?}");
     assert_eq!((r.resultant.m, r.resultant.fx), (0.0, 0.0));
 }
+
+/// A block held only by its floor and pulled upward: the refusal gives the
+/// load in the request's units (F_y = 5 × 2 = 10 along the translation in y,
+/// which must be ≤ 0), not a nondimensional generalized load, and the bound
+/// the LP reaches to 1e-10 is the 0 it means.
+#[test]
+fn a_body_pulled_off_its_support_is_told_its_load_in_its_units() {
+    let mut req = example("signorini_inline_block_on_vee.json");
+    req["bodies"][0]["supports"] = json!([]);
+    req["bodies"][0]["tractions"] = json!([{"edges": "top", "traction": [0.0, 5.0]}]);
+    let e = solve(&req).expect_err("refused");
+    assert_eq!(
+        (e.code, e.path.as_str()),
+        (ErrorCode::IncompatibleLoads, "/bodies/0/tractions"),
+        "{e:?}"
+    );
+    let bound = &e.details.as_ref().expect("details").loads[0];
+    assert!((bound.value - 10.0).abs() < 1e-9 * 10.0, "{bound:?}");
+    assert_eq!((bound.min, bound.max), (None, Some(0.0)), "{bound:?}");
+    assert!(
+        e.message.contains("load 10 along the translation in y") && e.message.contains("[-inf, 0]"),
+        "{}",
+        e.message
+    );
+}

@@ -514,3 +514,33 @@ fn hertz_at_nu_4999_is_locking_free_on_t6() {
     assert!(l2(&r3) > 0.2, "T3 L2 {}", l2(&r3));
     assert!(r3.notes.iter().any(|n| n.contains("lock")), "{:?}", r3.notes);
 }
+
+/// A contact edge set in two pieces, listed right piece first: the inline
+/// block of the V example (2 × 1, top pushed down by 0.01) on a flat floor,
+/// with only the outer quarters of its bottom as candidates. The whole
+/// bottom comes down uniformly, so every candidate touches; the zones are the
+/// two pieces, not the span between them (the middle half of the bottom is
+/// no contact surface), and their arc length runs along the listed edges:
+/// [0, 0.5] on the right piece, [0.5, 1] on the left.
+#[test]
+fn an_edge_set_in_two_pieces_has_a_zone_on_each() {
+    let mut req = example("signorini_inline_block_on_vee.json");
+    req["bodies"][0]["mesh"]["inline"]["edge_sets"]["bottom"] = json!([[3, 4], [0, 1]]);
+    req["obstacles"] = json!([{ "name": "vee", "shape": { "line": { "point": [0.0, 0.0], "normal": [0.0, 1.0] } } }]);
+    let r = solved(&req);
+    let pair = &r.pairs[0];
+    assert!(pair.points.iter().all(|q| q.pressure > 0.0), "{:?}", pair.points);
+    assert_eq!(pair.zones, vec![[-1.0, -0.5], [0.5, 1.0]]);
+    let along: Vec<([f64; 2], [f64; 2], [f64; 2])> = pair
+        .zones_along
+        .iter()
+        .map(|z| ([z.s_start, z.s_end], z.start, z.end))
+        .collect();
+    assert_eq!(
+        along,
+        vec![
+            ([0.0, 0.5], [0.5, 0.0], [1.0, 0.0]),
+            ([0.5, 1.0], [-1.0, 0.0], [-0.5, 0.0])
+        ]
+    );
+}

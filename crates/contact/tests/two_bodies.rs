@@ -307,3 +307,130 @@ fn floating_cylinder_on_a_cylinder() {
         r.notes
     );
 }
+
+/// Two equal elastic cylinders (R = 8, E = 200, ν = 0.3; plane strain) pressed
+/// together by P = 10 per unit thickness, the upper one's flat face loaded by
+/// P / 16 and held only in x: Hertz's 1/R = 2/8, 1/E* = 2 (1 − ν²)/E give
+/// a = 0.6808, p0 = 9.351. The zone ends at its last node in contact, as
+/// against a rigid obstacle: the true edge lies between that node and the
+/// next, open one, so the reported end must not pass a, and the open node
+/// must not fall short of it, both within 0.5 % of a (here h = a/68 at the
+/// zone end; the mortar zone used to reach the open node: +1.2 %). The 0.5 %
+/// is all but taken by the half-disks' own departure from Hertz's
+/// half-planes, which no node spacing removes: their moment half-width
+/// √(4 Σ F x² / Σ F) is 0.48 % below a on this mesh and on meshes 2 and 2.8
+/// times finer (0.45 % with T6), and on those finer meshes (h = a/136 and
+/// a/195) the first open node itself lies 0.23 % and 0.38 % below a.
+/// The zone along the arc is the same zone: its ends are the same nodes, its
+/// length the arc length between them.
+#[test]
+fn two_cylinders_zone_ends_at_the_last_node_in_contact() {
+    let disk = |name: &str, cy: f64, facing: &str, h_min: f64| {
+        json!({
+            "name": name,
+            "material": { "youngs_modulus": 200.0, "poisson_ratio": 0.3 },
+            "mesh": { "half_disk": {
+                "center": [0.0, cy], "radius": 8.0, "facing": facing, "size": 0.5,
+                "grading": { "h_min": h_min, "ratio": 1.1, "extent": 1.2 }
+            } }
+        })
+    };
+    let (p, radius, e_star) = (10.0, 4.0, 200.0 / (2.0 * (1.0 - 0.09)));
+    let mut upper = disk("upper", 8.0, "down", 0.01);
+    upper["supports"] = json!([{ "edges": "flat", "ux": 0.0 }]);
+    upper["tractions"] = json!([{ "edges": "flat", "pressure": p / 16.0 }]);
+    let mut lower = disk("lower", -8.0, "up", 0.013);
+    lower["supports"] = json!([{ "edges": "flat", "ux": 0.0, "uy": 0.0 }]);
+    let req = json!({
+        "version": "1",
+        "bodies": [upper, lower],
+        "obstacles": [],
+        "contacts": [{ "body": "upper", "edges": "arc", "against": { "body": "lower", "edges": "arc" } }]
+    });
+    let r = solved(&req);
+    let pair = &r.pairs[0];
+    assert!((pair.resultant.fy - p).abs() < 1e-9 * p, "{:?}", pair.resultant);
+    let (a, _) = contact_verify::reference::hertz(p, radius, e_star);
+    assert!((a - 0.6808).abs() < 1e-4, "a = {a}");
+    assert_eq!(pair.zones.len(), 1, "{:?}", pair.zones);
+    let end = pair.zones[0][1];
+    let pts = &pair.points;
+    let k = pts
+        .iter()
+        .position(|q| q.x == end)
+        .expect("the zone ends at a candidate");
+    assert!(pts[k].pressure > 0.0, "the zone's end node is in contact: {:?}", pts[k]);
+    let open = &pts[k + 1];
+    assert_eq!(open.pressure, 0.0, "the next node is open: {open:?}");
+    assert!(end <= 1.005 * a, "zone end {end} beyond a = {a}: {:+.4}", end / a - 1.0);
+    assert!(
+        open.x >= 0.995 * a,
+        "the first open node {} falls short of a = {a}: {:+.4}",
+        open.x,
+        open.x / a - 1.0
+    );
+    let [z] = pair.zones_along[..] else {
+        panic!("one zone along the arc: {:?}", pair.zones_along)
+    };
+    let xs = [z.start[0].min(z.end[0]), z.start[0].max(z.end[0])];
+    assert_eq!(xs, pair.zones[0], "{z:?}");
+    let arc: f64 = pts
+        .windows(2)
+        .filter(|w| w[0].x >= pair.zones[0][0] && w[1].x <= end)
+        .map(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y))
+        .sum();
+    assert!(
+        ((z.s_end - z.s_start) - arc).abs() < 1e-12 * arc,
+        "{z:?} vs the arc length {arc}"
+    );
+}
+
+/// Two blocks side by side (plane strain, E = 200, ν = 0.3), the right one
+/// overlapping the left by δ = 0.001 and each held at its far side (ux = 0)
+/// and on a roller below: the interface is vertical, x = 0.999. Each block
+/// takes δ/2 of uniaxial strain with σ_yy = 0 (a linear field the elements
+/// hold exactly), so the pressure is E δ / (2 (1 − ν²)) everywhere on the
+/// overlap. The zones are reported along the right block's left edge, which
+/// runs down from its top corner: with the blocks side by side the whole face
+/// touches (s from 0 to its height 1), with the right block raised by 0.5 its
+/// lower half (s from 0.5 to 1, the left block's height); `zones` keeps the
+/// x-interval form, here only the zones' shadow [0.999, 0.999].
+#[test]
+fn a_vertical_interface_reports_its_zone_along_the_surface() {
+    let block = |name: &str, x0: f64, y0: f64, held: &str| {
+        json!({
+            "name": name,
+            "material": { "youngs_modulus": 200.0, "poisson_ratio": 0.3 },
+            "mesh": { "rectangle": { "corner": [x0, y0], "width": 1.0, "height": 1.0, "size": 0.05 } },
+            "supports": [{ "edges": "bottom", "uy": 0.0 }, { "edges": held, "ux": 0.0 }]
+        })
+    };
+    let p = 200.0 * 0.001 / (2.0 * (1.0 - 0.09));
+    for (raised, s, y) in [(0.0, [0.0, 1.0], [1.0, 0.0]), (0.5, [0.5, 1.0], [1.0, 0.5])] {
+        let req = json!({
+            "version": "1",
+            "bodies": [block("left", 0.0, 0.0, "left"), block("right", 0.999, raised, "right")],
+            "contacts": [{ "body": "right", "edges": "left", "against": { "body": "left", "edges": "right" } }]
+        });
+        let r = solved(&req);
+        let pair = &r.pairs[0];
+        let [z] = pair.zones_along[..] else {
+            panic!("raised {raised}: one zone along the face: {:?}", pair.zones_along)
+        };
+        for (got, want) in [(z.s_start, s[0]), (z.s_end, s[1]), (z.start[1], y[0]), (z.end[1], y[1])] {
+            assert!((got - want).abs() < 1e-12, "raised {raised}: {z:?}");
+        }
+        assert_eq!((z.start[0], z.end[0]), (0.999, 0.999), "{z:?}");
+        assert_eq!(pair.zones, vec![[0.999, 0.999]]);
+        if raised == 0.0 {
+            for q in &pair.points {
+                assert!(
+                    (q.pressure / p - 1.0).abs() < 1e-9,
+                    "p({}) = {} vs {p}",
+                    q.y,
+                    q.pressure
+                );
+            }
+        }
+    }
+}

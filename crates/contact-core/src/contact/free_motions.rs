@@ -20,7 +20,8 @@ use faer::Mat;
 use super::{fichera, ConstraintSet};
 use crate::error::LoadBound;
 use crate::error::{CoreError, InvalidKind};
-use crate::fem::{rigid_modes::RigidModes, DofMap};
+use crate::fem::rigid_modes::{self, Kind, RigidModes};
+use crate::fem::DofMap;
 use crate::linalg::dense::sym_eigen_small;
 use crate::mesh::Mesh2d;
 use crate::scene::scaling::shown;
@@ -362,10 +363,14 @@ impl FreeMotions {
             .filter_map(|r| {
                 let k = original(r.component)?;
                 let (mo, load) = self.motions[k];
+                let value = load_value(scene, mo, load);
+                // A bound of 0 comes out of the LP (run to 1e-13) as a few 1e-10 of the load.
+                let snap = |v: Option<f64>| v.map(|v| if v.abs() <= 1e-8 * value.abs() { 0.0 } else { v });
                 let (min, max) = load_range(scene, mo, r.min, r.max);
+                let (min, max) = (snap(min), snap(max));
                 let b = LoadBound {
                     path: motion_path(scene, dofs, mo),
-                    value: load_value(scene, mo, load),
+                    value,
                     min,
                     max,
                 };
@@ -458,50 +463,37 @@ pub fn describe_motion(scene: &Scene, dofs: &DofMap, mo: Motion) -> String {
 /// rigid motion (b0, b1, θ) with θ ≠ 0 is a rotation θ about its fixed point
 /// (`rigid_modes::describe` names it), and the loads' work on it is θ times
 /// their moment about that point; a translation (b0, b1) of length t does
-/// work t times the force along it. The divisor's sign can reverse a range.
+/// work t times the force along it (along x or y: the signed component, so
+/// that the value is F_x or F_y as `describe` names the motion).
 fn load_value(scene: &Scene, mo: Motion, v: f64) -> f64 {
     let sc = scene.scales;
     match mo {
         Motion::Punch { component: 2, .. } => sc.moment(v),
         Motion::Punch { .. } => sc.force(v),
-        Motion::Body { dir: b, .. } if translation(b) => sc.force(v / divisor(b)),
-        Motion::Body { dir: b, .. } => sc.moment(v / b[2]),
+        Motion::Body { dir: b, .. } => match rigid_modes::kind(b) {
+            Kind::Rotation(theta) => sc.moment(v / theta),
+            _ => sc.force(v / unit_of(b)),
+        },
     }
 }
 
-/// What a body motion's load is divided by to be a force or a moment: θ for a
-/// rotation (the moment, CCW); for a translation its length, signed along +x
-/// or +y when `describe` calls it a translation in x or in y (so that the value
-/// is the force along the axis the message names).
-fn divisor(b: [f64; 3]) -> f64 {
-    let t = b[0].hypot(b[1]);
-    if !translation(b) {
-        b[2]
-    } else if b[1].abs() <= 1e-9 * t {
-        b[0]
-    } else if b[0].abs() <= 1e-9 * t {
-        b[1]
-    } else {
-        t
+/// The amplitude of a body's motion per unit of what names its load
+/// (`rigid_modes::kind`).
+fn unit_of(b: [f64; 3]) -> f64 {
+    match rigid_modes::kind(b) {
+        Kind::X(u) | Kind::Y(u) | Kind::Along(u) | Kind::Rotation(u) => u,
     }
 }
 
-/// Whether a body's motion is a translation, as `rigid_modes::describe` names
-/// it: a free-mode basis from an eigensolver carries a rotation of round-off
-/// size, which divided into the load made the upward pull of 2 on an
-/// unsupported footing read as a moment of -7.1e13 (measured).
-fn translation(b: [f64; 3]) -> bool {
-    b[2].abs() <= 1e-9 * b[0].hypot(b[1])
-}
-
-/// [min, max] of a load in the request's units (`load_value` may reverse it).
+/// [min, max] of a load in the request's units: a negative `unit_of`
+/// reverses the range.
 fn load_range(scene: &Scene, mo: Motion, min: Option<f64>, max: Option<f64>) -> (Option<f64>, Option<f64>) {
     let (a, b) = (
         min.map(|v| load_value(scene, mo, v)),
         max.map(|v| load_value(scene, mo, v)),
     );
     match mo {
-        Motion::Body { dir, .. } if divisor(dir) < 0.0 => (b, a),
+        Motion::Body { dir, .. } if unit_of(dir) < 0.0 => (b, a),
         _ => (a, b),
     }
 }
@@ -514,10 +506,7 @@ fn load_words(scene: &Scene, mo: Motion, v: f64) -> String {
 /// A load `x` already in the request's units, with what it is.
 fn load_words_user(mo: Motion, x: f64) -> String {
     match mo {
-        Motion::Body { dir: b, .. } if !translation(b) && b[0] == 0.0 && b[1] == 0.0 => {
-            format!("{} (moment about the body's centroid)", shown(x))
-        }
-        Motion::Body { dir: b, .. } if !translation(b) => {
+        Motion::Body { dir: b, .. } if matches!(rigid_modes::kind(b), Kind::Rotation(_)) => {
             format!("{} (moment about the centre of that rotation)", shown(x))
         }
         _ => shown(x),
@@ -705,25 +694,4 @@ fn body_directions(
         });
     }
     Ok(out)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_translation_with_a_round_off_rotation_is_a_force_along_the_named_axis() {
-        // A vertical mode as an eigensolver returns it: its sign is arbitrary and its
-        // rotation of the order of the machine epsilon.
-        let b = [1e-17, -1.0, 3e-16];
-        assert!(translation(b));
-        assert_eq!(divisor(b), -1.0, "the force along +y, the axis describe() names");
-        assert_eq!(divisor([0.6, 0.8, 0.0]), 1.0, "along an oblique direction: its length");
-        assert!(!translation([0.0, 1.0, 1e-3]));
-        assert_eq!(
-            divisor([0.0, 1.0, -2.0]),
-            -2.0,
-            "a rotation: θ, whose sign reverses a range"
-        );
-    }
 }

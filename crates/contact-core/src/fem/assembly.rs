@@ -269,6 +269,15 @@ fn axis_conditions(
     Ok(())
 }
 
+/// Lamé's λ of a body that runs the P2–P0 element (nearly incompressible
+/// plane strain or axisymmetry on T6; see `element::stiffness_selective`),
+/// None for the others.
+pub fn selective_lambda(body: &crate::scene::Body, order: crate::mesh::Order, analysis: Analysis) -> Option<f64> {
+    let (e, nu) = (body.youngs_modulus, body.poisson_ratio);
+    (order == crate::mesh::Order::T6 && analysis != Analysis::PlaneStress && nu >= NEARLY_INCOMPRESSIBLE)
+        .then(|| e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)))
+}
+
 /// Assembles K_ff and K_fd of all bodies: the pattern once from the node graph,
 /// then element matrices added in place (no triplet sort).
 pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Result<Stiffness, CoreError> {
@@ -284,10 +293,7 @@ pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Re
         let axi = scene.analysis == Analysis::Axisymmetric;
         // Nearly incompressible plane strain or axisymmetry on T6: P2–P0 (see
         // element::stiffness_selective).
-        let selective = (mesh.order == crate::mesh::Order::T6
-            && scene.analysis != Analysis::PlaneStress
-            && nu >= NEARLY_INCOMPRESSIBLE)
-            .then(|| e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)));
+        let selective = selective_lambda(body, mesh.order, scene.analysis);
         let k = mesh.order.nodes_per_element();
         let nd = 2 * k;
         let mut x = [[0.0; 2]; 6];

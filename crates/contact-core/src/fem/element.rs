@@ -195,6 +195,23 @@ fn add_mean_dilatation<const S: usize>(
     ring: bool,
     ke: &mut [f64; 144],
 ) {
+    let nd = 2 * order_len(order);
+    let (bbar, volume) = mean_dilatation(order, x, m, column, ring);
+    for a in 0..nd {
+        for b in a..nd {
+            ke[a * nd + b] += lambda * volume * bbar[a] * bbar[b];
+        }
+    }
+}
+
+/// b̄ (θ̄ = b̄·u_e) and the volume V of `add_mean_dilatation`.
+pub(crate) fn mean_dilatation<const S: usize>(
+    order: Order,
+    x: &[[f64; 2]],
+    m: [f64; S],
+    column: impl Column<S>,
+    ring: bool,
+) -> ([f64; 12], f64) {
     let k = order_len(order);
     let nd = 2 * k;
     let (mut n, mut dx, mut dy) = ([0.0; 6], [0.0; 6], [0.0; 6]);
@@ -211,11 +228,7 @@ fn add_mean_dilatation<const S: usize>(
     for b in bbar.iter_mut().take(nd) {
         *b /= volume;
     }
-    for a in 0..nd {
-        for b in a..nd {
-            ke[a * nd + b] += lambda * volume * bbar[a] * bbar[b];
-        }
-    }
+    (bbar, volume)
 }
 
 fn symmetrize(nd: usize, ke: &mut [f64; 144]) {

@@ -43,17 +43,41 @@ impl RigidModes {
     }
 }
 
+/// What a rigid motion (ux, uy, rotation) is, components below 1e-9 of the
+/// translation counting as round-off, with its amplitude per unit of the
+/// quantity that names it: the signed ux or uy of an axis translation, the
+/// length of any other, θ of a rotation (so that a load's work divided by it
+/// is F_x, F_y, the force along the motion or the moment about its centre).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Kind {
+    X(f64),
+    Y(f64),
+    Along(f64),
+    Rotation(f64),
+}
+
+pub fn kind(b: [f64; 3]) -> Kind {
+    let t = b[0].hypot(b[1]);
+    if b[2].abs() > 1e-9 * t {
+        Kind::Rotation(b[2])
+    } else if b[1].abs() <= 1e-9 * t {
+        Kind::X(b[0])
+    } else if b[0].abs() <= 1e-9 * t {
+        Kind::Y(b[1])
+    } else {
+        Kind::Along(t)
+    }
+}
+
 /// Words for the rigid motion (ux, uy, rotation about `center`): a translation
 /// and its direction, or a rotation and the point it turns about.
 pub fn describe(b: [f64; 3], center: [f64; 2], length: f64) -> String {
     let t = b[0].hypot(b[1]);
-    if b[2].abs() <= 1e-9 * t {
-        if b[1].abs() <= 1e-9 * t {
-            "translation in x".into()
-        } else if b[0].abs() <= 1e-9 * t {
-            "translation in y".into()
-        } else {
-            format!("translation along ({:.3}, {:.3})", b[0] / t, b[1] / t)
+    if !matches!(kind(b), Kind::Rotation(_)) {
+        match kind(b) {
+            Kind::X(_) => "translation in x".into(),
+            Kind::Y(_) => "translation in y".into(),
+            _ => format!("translation along ({:.3}, {:.3})", b[0] / t, b[1] / t),
         }
     } else {
         // The fixed point of u(x) = (b0 − θ (y − c_y), b1 + θ (x − c_x)).

@@ -264,15 +264,19 @@ fn body_outputs(scene: &Scene, meshes: &[Mesh2d], disp: &[Vec<[f64; 2]>]) -> Opt
                 let stress4: Option<Vec<[f64; 4]>> = o_stress.then(|| {
                     let dm = d_matrix(body.youngs_modulus, body.poisson_ratio, scene.analysis);
                     let d4 = crate::fem::axisymmetric::d_matrix(body.youngs_modulus, body.poisson_ratio);
+                    let selective = crate::fem::assembly::selective_lambda(body, mesh.order, scene.analysis);
                     (0..mesh.n_elems())
                         .map(|e| {
                             let conn = mesh.elem(e);
                             let x: Vec<[f64; 2]> = conn.iter().map(|&n| mesh.nodes[n]).collect();
                             let ue: Vec<f64> = conn.iter().flat_map(|&n| disp[n]).collect();
                             let s = match scene.analysis {
-                                Analysis::Axisymmetric => {
-                                    crate::fem::axisymmetric::centroid_stress(mesh.order, &x, &d4, &ue)
-                                }
+                                Analysis::Axisymmetric => match selective {
+                                    Some(lambda) => crate::fem::axisymmetric::centroid_stress_selective(
+                                        mesh.order, &x, &d4, lambda, &ue,
+                                    ),
+                                    None => crate::fem::axisymmetric::centroid_stress(mesh.order, &x, &d4, &ue),
+                                },
                                 Analysis::PlaneStrain | Analysis::PlaneStress => {
                                     let s = element::centroid_stress(mesh.order, &x, &dm, &ue);
                                     let nu_zz = if scene.analysis == Analysis::PlaneStrain {

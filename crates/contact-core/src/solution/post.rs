@@ -2,18 +2,19 @@
 //!
 //! Pressure at a candidate p_i = λ_i / w_i (w_i its tributary length), positive
 //! in compression. Which candidates are in contact is the method's verdict
-//! (`methods::Solution::in_contact`); zones are the x1-extents of runs of
-//! consecutive contact candidates ordered by x1. Forces on nodes come from the
+//! (`methods::Solution::in_contact`); zones are the runs of consecutive
+//! contact candidates along the pair's surface, reported along it (arc length
+//! and end points) and as their x1-extents. Forces on nodes come from the
 //! rows' nodal terms (−λ · coef), so resultants hold for every discretization,
 //! and for two bodies the other side's pressure is its nodal force over its
 //! tributary length.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap, HashSet};
 
 use crate::contact::ConstraintSet;
-use crate::mesh::{boundary::boundary_nodes, Mesh2d};
-use crate::scene::{Discretization, Scene, Target};
-use crate::solution::report::{ContactPoint, CounterPoint, PairReport, PairTarget, Resultant};
+use crate::mesh::{boundary::boundary_nodes, Edge, Mesh2d};
+use crate::scene::{Scene, Target};
+use crate::solution::report::{ContactPoint, CounterPoint, PairReport, PairTarget, Resultant, ZoneAlong};
 
 /// Nodal contact forces of pair `p` on `body`: node → force.
 fn nodal_forces(cons: &ConstraintSet, lambda: &[f64], p: usize, body: usize) -> BTreeMap<usize, [f64; 2]> {
@@ -62,41 +63,16 @@ pub fn pairs(
             xa[0].total_cmp(&xb[0]).then(xa[1].total_cmp(&xb[1]))
         });
         let mut points = Vec::with_capacity(idx.len());
-        let mut zones: Vec<[f64; 2]> = Vec::new();
-        let mut open: Option<[f64; 2]> = None;
         let mut max_pen: f64 = 0.0;
-        // The mortar pressure is the field Σ p_i N_i: it is positive up to the
-        // neighbouring nodes of the active ones, so its zone reaches them.
-        let field = matches!(
-            pair.target,
-            Target::Body {
-                discretization: Discretization::Mortar,
-                ..
-            }
-        );
-        let mut prev: Option<f64> = None;
         for &i in &idx {
             let c = &cons.candidates[i];
             let l = lambda[i];
             max_pen = max_pen.max(-gaps[i]);
-            let x = sc.length(c.x[0]);
-            // A foundation's pressure is constant on each row's panel.
-            let (lo, hi) = match c.foundation() {
-                Some(fr) => (sc.length(fr.panel[0]), sc.length(fr.panel[1])),
-                None => (x, x),
-            };
             if in_contact[i] {
                 n_active += 1;
-                open = Some(match open {
-                    Some(z) => [z[0], hi],
-                    None => [if field { prev.unwrap_or(x) } else { lo }, hi],
-                });
-            } else if let Some(z) = open.take() {
-                zones.push(if field { [z[0], x] } else { z });
             }
-            prev = Some(x);
             points.push(ContactPoint {
-                x,
+                x: sc.length(c.x[0]),
                 y: sc.length(c.x[1]),
                 gap: sc.length(gaps[i]),
                 pressure: sc.stress(l / c.weight),
@@ -106,9 +82,15 @@ pub fn pairs(
                 normal: c.normal,
             });
         }
-        if let Some(z) = open {
-            zones.push(z);
-        }
+        let mesh = &meshes[pair.body];
+        let (zones, zones_along) = zones(
+            mesh,
+            &along(mesh, &mesh.edge_sets[&pair.edges]),
+            cons,
+            &idx,
+            in_contact,
+            |v| sc.length(v),
+        );
         // The radial forces of a body of revolution and their moments cancel
         // over the circumference.
         let to_user = |r: Resultant| Resultant {
@@ -163,6 +145,7 @@ pub fn pairs(
             other_points,
             other_resultant,
             zones,
+            zones_along,
             points,
             resultant: res,
             max_penetration: sc.length(max_pen),
@@ -170,4 +153,162 @@ pub fn pairs(
         });
     }
     (out, total, n_active)
+}
+
+/// The nodes of an edge set in order along its surface, with their arc length:
+/// the edges chained head to tail (a, midside, b; the body on the left), from
+/// the start of the chain (a node no edge ends at; on a closed loop, the first
+/// edge's first node); further chains follow in the order of their edges, the
+/// arc length running on. Every node of the set is listed once, with the
+/// number of its chain.
+fn along(mesh: &Mesh2d, edges: &[Edge]) -> Vec<Station> {
+    let mut next: HashMap<usize, usize> = HashMap::new();
+    let mut ends: HashSet<usize> = HashSet::new();
+    for e in edges {
+        let seq: Vec<usize> = e.nodes().collect();
+        for w in seq.windows(2) {
+            next.insert(w[0], w[1]);
+            ends.insert(w[1]);
+        }
+    }
+    let starts = edges.iter().map(|e| e.a).filter(|a| !ends.contains(a));
+    let mut out: Vec<Station> = Vec::new();
+    let mut seen: HashSet<usize> = HashSet::new();
+    let mut s = 0.0;
+    for (chain, start) in starts.chain(edges.iter().map(|e| e.a)).enumerate() {
+        let mut n = start;
+        while seen.insert(n) {
+            out.push(Station { node: n, s, chain });
+            let Some(&m) = next.get(&n) else { break };
+            let (a, b) = (mesh.nodes[n], mesh.nodes[m]);
+            s += (b[0] - a[0]).hypot(b[1] - a[1]);
+            n = m;
+        }
+    }
+    // A node no walk reached (an edge set that branches) still has a place,
+    // on a chain of its own.
+    for n in edges.iter().flat_map(|e| e.nodes().collect::<Vec<_>>()) {
+        if seen.insert(n) {
+            let chain = out.last().map_or(0, |t| t.chain + 1);
+            out.push(Station { node: n, s, chain });
+        }
+    }
+    out
+}
+
+/// A node along an edge set: its arc length and the number of its chain.
+struct Station {
+    node: usize,
+    s: f64,
+    chain: usize,
+}
+
+/// The point at abscissa `x` of the surface `chain` next to its `k`-th node,
+/// on the side `dir` (±1), and its arc length; the node itself when no edge
+/// on that side reaches `x` (the foundation panels are parts of the edges
+/// next to their node).
+fn at_x(mesh: &Mesh2d, chain: &[Station], k: usize, dir: isize, x: f64) -> (f64, [f64; 2]) {
+    let mut j = k;
+    while let Some(i) = neighbour(chain, j, dir) {
+        let (p, q) = (mesh.nodes[chain[j].node], mesh.nodes[chain[i].node]);
+        if (x - p[0]) * (x - q[0]) <= 0.0 && p[0] != q[0] {
+            let t = (x - p[0]) / (q[0] - p[0]);
+            let s = chain[j].s + t * (chain[i].s - chain[j].s);
+            return (s, [x, p[1] + t * (q[1] - p[1])]);
+        }
+        j = i;
+    }
+    (chain[k].s, mesh.nodes[chain[k].node])
+}
+
+/// The station next to the `k`-th on the side `dir` (±1), on the same chain.
+fn neighbour(chain: &[Station], k: usize, dir: isize) -> Option<usize> {
+    k.checked_add_signed(dir)
+        .filter(|&i| i < chain.len() && chain[i].chain == chain[k].chain)
+}
+
+/// The contact zones of one pair: runs of consecutive candidates in contact
+/// along the surface (`chain`), each from its first to its last candidate (a
+/// foundation row: to the outer ends of their panels, on which the
+/// foundation's pressure is constant). A zone ends at its last node in
+/// contact, where the nodal pressure last is positive, also for mortar rows:
+/// the interpolated pressure Σ p_i N_i reaches the next, open node, which
+/// placed the zone end of two elastic cylinders about one element beyond
+/// Hertz's a. Returns the zones' x-extents (in increasing x) and the zones
+/// along the surface (in its order), lengths scaled by `length`.
+fn zones(
+    mesh: &Mesh2d,
+    chain: &[Station],
+    cons: &ConstraintSet,
+    idx: &[usize],
+    in_contact: &[bool],
+    length: impl Fn(f64) -> f64,
+) -> (Vec<[f64; 2]>, Vec<ZoneAlong>) {
+    let at: HashMap<usize, usize> = chain.iter().enumerate().map(|(k, t)| (t.node, k)).collect();
+    let mut order: Vec<(usize, usize)> = idx
+        .iter()
+        .filter_map(|&i| at.get(&cons.candidates[i].node).map(|&k| (k, i)))
+        .collect();
+    order.sort_unstable();
+    // One end of a run: the candidate's node, or the outer end of its panel
+    // on the side `dir` along the surface.
+    let end = |k: usize, i: usize, dir: isize| -> (f64, [f64; 2]) {
+        let c = &cons.candidates[i];
+        let Some(fr) = c.foundation() else {
+            return (chain[k].s, c.x);
+        };
+        let x = c.x[0];
+        let toward = neighbour(chain, k, dir).map_or(x, |j| mesh.nodes[chain[j].node][0]);
+        let outer = if toward < x { fr.panel[0] } else { fr.panel[1] };
+        at_x(mesh, chain, k, dir, outer)
+    };
+    // Runs of candidates in contact: (position along the chain, candidate)
+    // of the first and the last, and the x-extent.
+    struct Run {
+        first: (usize, usize),
+        last: (usize, usize),
+        x: [f64; 2],
+    }
+    let mut runs: Vec<Run> = Vec::new();
+    let mut open: Option<Run> = None;
+    for &(k, i) in &order {
+        // A zone ends at an open candidate and at the end of its chain.
+        let next_chain = open.as_ref().is_some_and(|r| chain[r.last.0].chain != chain[k].chain);
+        if !in_contact[i] || next_chain {
+            runs.extend(open.take());
+        }
+        if !in_contact[i] {
+            continue;
+        }
+        let c = &cons.candidates[i];
+        let (lo, hi) = c.foundation().map_or((c.x[0], c.x[0]), |fr| (fr.panel[0], fr.panel[1]));
+        open = Some(match open {
+            Some(r) => Run {
+                last: (k, i),
+                x: [r.x[0].min(lo), r.x[1].max(hi)],
+                ..r
+            },
+            None => Run {
+                first: (k, i),
+                last: (k, i),
+                x: [lo, hi],
+            },
+        });
+    }
+    runs.extend(open);
+    let mut xs: Vec<[f64; 2]> = runs.iter().map(|r| r.x.map(&length)).collect();
+    let along = runs
+        .iter()
+        .map(|r| {
+            let (s0, p0) = end(r.first.0, r.first.1, -1);
+            let (s1, p1) = end(r.last.0, r.last.1, 1);
+            ZoneAlong {
+                s: [length(s0), length(s1)],
+                start: p0.map(&length),
+                end: p1.map(&length),
+            }
+        })
+        .collect();
+    xs.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    (xs, along)
 }

@@ -217,8 +217,11 @@ pub enum PairTarget {
 pub struct PairReport {
     pub body: String,
     pub target: PairTarget,
-    /// Intervals [x_start, x_end] along x1 where the body touches.
+    /// Intervals [x_start, x_end] along x1 where the body touches: the
+    /// x-extent of each zone of `zones_along`, in increasing x.
     pub zones: Vec<[f64; 2]>,
+    /// The same zones along the pair's own surface, in the order of its edge set.
+    pub zones_along: Vec<ZoneAlong>,
     pub points: Vec<ContactPoint>,
     pub resultant: Resultant,
     pub max_penetration: f64,
@@ -226,6 +229,16 @@ pub struct PairReport {
     /// Two bodies: the pressure at the other body's nodes, and its resultant.
     pub other_points: Option<Vec<CounterPoint>>,
     pub other_resultant: Option<Resultant>,
+}
+
+/// A contact zone along the surface of its edge set: arc length from the
+/// set's first node (along its edges, chain after chain) and the coordinates
+/// of its two ends.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ZoneAlong {
+    pub s: [f64; 2],
+    pub start: [f64; 2],
+    pub end: [f64; 2],
 }
 
 /// A node of the other body of a two-body pair.

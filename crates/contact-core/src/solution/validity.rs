@@ -88,7 +88,7 @@ pub fn check(
             .iter()
             .enumerate()
             .filter(|(_, p)| p.body == b || matches!(p.target, Target::Body { body, .. } if body == b))
-            .flat_map(|(k, _)| zones[k].iter().map(|z| z[1] - z[0]))
+            .flat_map(|(k, _)| pairs[k].zones_along.iter().map(|z| (z.s[1] - z.s[0]) * to_scene))
             .filter(|w| *w > 0.0)
             .fold(f64::INFINITY, f64::min);
         let patch = if narrowest.is_finite() {
@@ -139,8 +139,8 @@ pub fn check(
     for (p, pair) in scene.pairs.iter().enumerate() {
         let edges = zone_edges(&pairs[p]);
         if let Some((k, n)) = edges.iter().copied().enumerate().min_by(|a, b| a.1.total_cmp(&b.1)) {
-            let z = pairs[p].zones[k];
-            let width = z[1] - z[0];
+            let z = &pairs[p].zones_along[k];
+            let width = z.s[1] - z.s[0];
             let hint = if width > 0.0 {
                 format!(
                     "refine near the zone to an element size of at most {} (a rectangle's or disk's grading: h_min about the zone's width / 16, extent a little beyond the zone)",
@@ -157,9 +157,11 @@ pub fn check(
                     limit: MIN_ZONE_EDGES,
                     location: pair.path.clone(),
                     message: format!(
-                        "the contact zone [{}, {}] spans {n} element edge(s), fewer than {MIN_ZONE_EDGES}: its pressure and extent are resolved only to about an element; {hint}. A zone this narrow is also what a unit slip gives (a modulus in Pa with lengths in mm)",
-                        shown(z[0]),
-                        shown(z[1])
+                        "the contact zone from ({}, {}) to ({}, {}) spans {n} element edge(s), fewer than {MIN_ZONE_EDGES}: its pressure and extent are resolved only to about an element; {hint}. A zone this narrow is also what a unit slip gives (a modulus in Pa with lengths in mm)",
+                        shown(z.start[0]),
+                        shown(z.start[1]),
+                        shown(z.end[0]),
+                        shown(z.end[1])
                     ),
                 });
             }
@@ -204,18 +206,27 @@ pub fn check(
     out
 }
 
-/// Element edges across each zone of a pair: its points in contact (positive
-/// pressure) within the zone, less one. Rows sit on element corners, so
-/// neighbouring rows are one edge apart.
+/// Element edges across each zone of a pair (`zones_along`): its points in
+/// contact (positive pressure) from the point at the zone's start to the one
+/// at its end, less one. Rows sit on element corners, so neighbouring rows are
+/// one edge apart; the points are ordered by (x, y), which runs along a
+/// surface that is a graph over x and along a vertical face.
 fn zone_edges(pair: &PairReport) -> Vec<f64> {
-    pair.zones
+    let nearest = |p: [f64; 2]| {
+        (0..pair.points.len()).min_by(|&a, &b| {
+            let d = |k: usize| (pair.points[k].x - p[0]).hypot(pair.points[k].y - p[1]);
+            d(a).total_cmp(&d(b))
+        })
+    };
+    pair.zones_along
         .iter()
         .map(|z| {
-            let tol = 1e-9 * (z[1] - z[0]).abs().max(z[0].abs()).max(z[1].abs());
-            let n = pair
-                .points
+            let (Some(a), Some(b)) = (nearest(z.start), nearest(z.end)) else {
+                return 0.0;
+            };
+            let n = pair.points[a.min(b)..=a.max(b)]
                 .iter()
-                .filter(|q| q.pressure > 0.0 && q.x >= z[0] - tol && q.x <= z[1] + tol)
+                .filter(|q| q.pressure > 0.0)
                 .count();
             n.saturating_sub(1) as f64
         })

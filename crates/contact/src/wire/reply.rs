@@ -143,6 +143,16 @@ fn pair(pr: PairReport) -> p::PairResult {
         foundation,
         discretization,
         zones: pr.zones,
+        zones_along: pr
+            .zones_along
+            .into_iter()
+            .map(|z| p::ZoneAlong {
+                s_start: z.s[0],
+                s_end: z.s[1],
+                start: z.start,
+                end: z.end,
+            })
+            .collect(),
         points: pr
             .points
             .into_iter()
