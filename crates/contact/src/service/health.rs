@@ -70,6 +70,11 @@ pub struct Health {
     pub limits: LimitsReport,
     pub cache_entries: usize,
     pub cache_bytes: usize,
+    /// Real / predicted time of the numeric factorization on this machine
+    /// (measured at start-up, learned from every factorization since): what
+    /// the factorization's prediction, and so the refusal of a
+    /// factorization that cannot end in time, is scaled by.
+    pub factorization_scale: f64,
 }
 
 /// Percentiles (nearest rank) of the recent window; all 0 before the first request.
@@ -175,6 +180,7 @@ impl State {
             },
             cache_entries: self.cache.len(),
             cache_bytes: self.cache.bytes(),
+            factorization_scale: contact_core::linalg::rate::scale(),
         }
     }
 }
