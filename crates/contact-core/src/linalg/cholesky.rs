@@ -156,6 +156,7 @@ impl SymbolicFactor {
     }
 
     /// faer's symbolic factorization (ordering included).
+    #[cfg(test)]
     pub(crate) fn symbolic(&self) -> &SymbolicCholesky<usize> {
         &self.symbolic
     }
@@ -256,6 +257,7 @@ impl Cholesky {
     }
 
     /// L's values, supernode by supernode (faer's layout).
+    #[cfg(test)]
     pub(crate) fn values(&self) -> &[f64] {
         &self.values
     }
