@@ -22,6 +22,15 @@ most requests overflow)::
     python -m contact_client.load_test --serve target/release/contact --clients 4 --requests 200 --only hertz_t3
     python -m contact_client.load_test --serve target/release/contact --serve-args "--workers 1 --queue-limit 0" \
         --clients 8 --requests 50 --only hertz_t3 --overflow
+
+``--deadline DOFS,...`` is a mode of its own: for each size, the Hertz block
+meshed uniformly to about that many DOF is solved once without a limit, then
+with ``time_limit`` at 30, 50, 70 and 90 % of that time; it prints how late
+each answer came against max(10 % of the limit, 0.2 s), and exits 1 if any was
+later (start the service with ``--cache-mb 0``, or the repeats are cache hits)::
+
+    python -m contact_client.load_test --serve target/release/contact --serve-args "--cache-mb 0" \
+        --deadline 500000,1000000,2000000
 """
 
 from __future__ import annotations
@@ -252,6 +261,43 @@ def report(r: dict) -> str:
     return "\n".join(lines + [f"  {n}" for n in r["notes"]])
 
 
+def uniform_hertz(dofs: int, time_limit: float | None = None) -> dict:
+    """The Hertz block (40 x 20) meshed uniformly with about ``dofs`` DOF (2 per node)."""
+    req = scenes.hertz_cylinder()
+    m = req["bodies"][0]["mesh"]["rectangle"]
+    m.pop("grading", None)
+    m["size"] = math.sqrt(40.0 * 20.0 * 2.0 / dofs)
+    if time_limit is not None:
+        req["time_limit"] = time_limit
+    return req
+
+
+def deadlines(connect: str, sizes: list[int], timeout: float = 600.0) -> bool:
+    """The --deadline mode: True when every answer came within max(10 % of its limit, 0.2 s)."""
+    check_loopback(connect)
+    ok = True
+    with Client(connect, timeout=timeout) as c:
+        for dofs in sizes:
+            t = time.perf_counter()
+            reply = c.solve(uniform_hertz(dofs), timeout=timeout, retries=0)
+            full = time.perf_counter() - t
+            print(f"{reply['size']['dofs']} DOF: {full:.2f} s without a limit")
+            for frac in (0.3, 0.5, 0.7, 0.9):
+                limit = round(frac * full, 2)
+                t = time.perf_counter()
+                try:
+                    c.solve(uniform_hertz(dofs, limit), timeout=timeout, retries=0)
+                    got = "solved"
+                except ContactError as e:
+                    got = e.code
+                late = time.perf_counter() - t - limit
+                within = late <= max(0.1 * limit, 0.2)
+                ok &= within
+                print(f"  limit {limit:.2f} s: {got}, {late:+.3f} s past it ({'within' if within else 'NOT within'} "
+                      f"max(10 %, 0.2 s))")
+    return ok
+
+
 def check_loopback(connect: str) -> None:
     """Refuse any endpoint but a loopback address: this tool only loads the local machine."""
     try:
@@ -268,6 +314,7 @@ def main(argv: list[str] | None = None) -> int:
     where = p.add_mutually_exclusive_group(required=True)
     where.add_argument("--connect", help="endpoint of a running service (loopback only), e.g. tcp/127.0.0.1:7447")
     where.add_argument("--serve", metavar="BINARY", help="start `BINARY serve` on a free loopback port for the test")
+    p.add_argument("--deadline", metavar="DOFS", help="time-limit mode: comma-separated sizes, e.g. 500000,1000000")
     p.add_argument("--clients", type=int, default=16, help="concurrent clients (default 16)")
     p.add_argument("--requests", type=int, default=50, help="requests per client (default 50)")
     p.add_argument("--timeout", type=float, default=60.0, help="per-query timeout in seconds (default 60)")
@@ -279,6 +326,12 @@ def main(argv: list[str] | None = None) -> int:
     a = p.parse_args(argv)
     if a.clients < 1 or a.requests < 1 or a.clients * a.requests > 100_000:
         p.error("--clients and --requests must be positive, at most 100000 queries in all")
+    if a.deadline:
+        sizes = [int(x) for x in a.deadline.split(",")]
+        if a.serve:
+            with local_service(a.serve, extra=tuple(a.serve_args.split())) as endpoint:
+                return 0 if deadlines(endpoint, sizes, a.timeout) else 1
+        return 0 if deadlines(a.connect, sizes, a.timeout) else 1
     if a.serve:
         with local_service(a.serve, extra=tuple(a.serve_args.split())) as endpoint:
             r = run(endpoint, a.clients, a.requests, a.timeout, a.max_seconds, a.spread, a.only, a.overflow)

@@ -80,25 +80,27 @@ fn main() {
     let t = Instant::now();
     let s = rate::calibrate();
     println!("calibration: scale {s:.3} ({:.2} s)", t.elapsed().as_secs_f64());
-    println!("     DOF   nnz(L)    flops  predicted_s  real_s  error   scale_after  faer_one_call_s");
+    println!("     DOF   nnz(L)    flops  predicted_s  real_s  error  uncalibrated  scale_after  faer_one_call_s");
     for (nx, ny) in [(500, 250), (707, 354), (1000, 500), (1225, 612), (1414, 707)] {
         let k = rate::grid_stiffness(nx, ny);
         let analysis = Arc::new(SymbolicFactor::try_new(&k).expect("SPD"));
         let cost = analysis.cost();
         let faer = compare.then(|| faer_one_call(&k).0);
         let predicted = cost.predicted_secs();
+        let reference = cost.reference_secs();
         let t = Instant::now();
         let chol = Cholesky::with_symbolic(analysis, &k).expect("factors");
         let real = t.elapsed().as_secs_f64();
         drop(chol);
         println!(
-            "{:>8} {:>8.2e} {:>8.2e} {:>12.2} {:>7.2} {:>+6.1}%  {:>11.3}  {}",
+            "{:>8} {:>8.2e} {:>8.2e} {:>12.2} {:>7.2} {:>+6.1}%  {:>+11.1}%  {:>11.3}  {}",
             k.nrows(),
             cost.nnz as f64,
             cost.flops,
             predicted,
             real,
             100.0 * (predicted / real - 1.0),
+            100.0 * (reference / real - 1.0),
             rate::scale(),
             faer.map_or(String::new(), |f| format!("{f:.2}"))
         );
