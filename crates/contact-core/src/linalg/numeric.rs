@@ -108,15 +108,26 @@ pub(crate) fn factorize(
             Default::default(),
         ));
     }
-    let req = chol.or(faer::sparse::utils::permute_self_adjoint_scratch::<usize>(n));
+    // P A Pᵀ first, in memory left uninitialized until written, as faer's
+    // own call keeps it: zeroed first (two more passes over it), the 1M-DOF
+    // grid's factorization took 2.6–4.6 % more CPU time than faer's, against
+    // 0.7–0.9 % less without.
+    let req = StackReq::new::<f64>(a_nnz)
+        .and(StackReq::new::<usize>(n + 1))
+        .and(StackReq::new::<usize>(a_nnz))
+        .and(chol.or(faer::sparse::utils::permute_self_adjoint_scratch::<usize>(n)));
     let mut mem = MemBuffer::try_new(req).map_err(|_| Stop::OutOfMemory)?;
     let stack = MemStack::new(&mut mem);
+    // SAFETY: f64 and usize are plain data, valid whatever their bits, and
+    // the permutation writes every entry of the matrix it returns.
+    let (pval, stack) = unsafe { stack.make_raw::<f64>(a_nnz) };
+    let (pcol, stack) = unsafe { stack.make_raw::<usize>(n + 1) };
+    let (prow, stack) = unsafe { stack.make_raw::<usize>(a_nnz) };
     // P A Pᵀ, lower triangle, exactly as faer's own numeric factorization makes it.
-    let (mut pval, mut pcol, mut prow) = (vec![0.0f64; a_nnz], vec![0usize; n + 1], vec![0usize; a_nnz]);
     let pa_mut = faer::sparse::utils::permute_self_adjoint_to_unsorted(
-        &mut pval,
-        &mut pcol,
-        &mut prow,
+        pval,
+        pcol,
+        prow,
         a,
         perm,
         Side::Lower,
@@ -125,13 +136,17 @@ pub(crate) fn factorize(
     );
     let pa = faer::reborrow::IntoConst::into_const(pa_mut);
     let Some(gemm) = Gemm::detect() else {
-        return faer::sparse::linalg::cholesky::supernodal::factorize_supernodal_numeric_llt(
+        use faer::sparse::linalg::cholesky::supernodal as faer_supernodal;
+        // faer's product without the gather–scatter kernel needs scratch of its own.
+        let req = faer_supernodal::factorize_supernodal_numeric_llt_scratch::<usize, f64>(sym, par, Default::default());
+        let mut mem = MemBuffer::try_new(req).map_err(|_| Stop::OutOfMemory)?;
+        return faer_supernodal::factorize_supernodal_numeric_llt(
             values,
             pa,
             LltRegularization::default(),
             sym,
             par,
-            stack,
+            MemStack::new(&mut mem),
             Default::default(),
         )
         .map(|_| ())
