@@ -13,7 +13,24 @@ time (``--max-seconds``), and loopback only::
     python -m contact_client.load_test --connect tcp/127.0.0.1:7447 --clients 16 --requests 50
 
 Prints throughput, latency percentiles and the counts; exits 1 when any reply
-was lost or wrong.
+was lost or wrong. ``--only NAME`` sends one request of the mix (``hertz_t3``:
+the coarse Hertz scene, for round trip and solves/s); ``--overflow`` does not
+retry ``busy`` but counts those answers and their latency (with
+``--serve-args "--workers 1 --queue-limit 0"`` and more clients than that,
+most requests overflow)::
+
+    python -m contact_client.load_test --serve target/release/contact --clients 4 --requests 200 --only hertz_t3
+    python -m contact_client.load_test --serve target/release/contact --serve-args "--workers 1 --queue-limit 0" \
+        --clients 8 --requests 50 --only hertz_t3 --overflow
+
+``--deadline DOFS,...`` is a mode of its own: for each size, the Hertz block
+meshed uniformly to about that many DOF is solved once without a limit, then
+with ``time_limit`` at 30, 50, 70 and 90 % of that time; it prints how late
+each answer came against max(10 % of the limit, 0.2 s), and exits 1 if any was
+later (start the service with ``--cache-mb 0``, or the repeats are cache hits)::
+
+    python -m contact_client.load_test --serve target/release/contact --serve-args "--cache-mb 0" \
+        --deadline 500000,1000000,2000000
 """
 
 from __future__ import annotations
@@ -77,10 +94,10 @@ def with_client_id(payload: bytes, client_id: str) -> bytes:
     return json.dumps(req | {"client_id": client_id}).encode()
 
 
-def outcome(client: Client, payload: bytes, timeout: float) -> tuple[str, object]:
-    """("ok", reply) | ("error", code) | ("lost", reason), after retrying ``busy``."""
+def outcome(client: Client, payload: bytes, timeout: float, retries: int = 20) -> tuple[str, object]:
+    """("ok", reply) | ("error", code) | ("lost", reason), after retrying ``busy`` ``retries`` times."""
     try:
-        return "ok", client.solve(payload, timeout=timeout, retries=20)
+        return "ok", client.solve(payload, timeout=timeout, retries=retries)
     except ContactError as e:
         return "error", e.code
     except TransportError as e:
@@ -107,6 +124,8 @@ def judge(expected: tuple[str, object], got: tuple[str, object], client_id: str)
     kind, value = got
     if kind == "lost":
         return "lost"
+    if got == ("error", "busy") and expected != got:
+        return "busy"
     if kind != expected[0]:
         return "wrong"
     if kind == "ok":
@@ -116,8 +135,10 @@ def judge(expected: tuple[str, object], got: tuple[str, object], client_id: str)
 
 @dataclass
 class Tally:
-    counts: dict = field(default_factory=lambda: {"ok": 0, "wrong": 0, "lost": 0})
+    counts: dict = field(default_factory=lambda: {"ok": 0, "wrong": 0, "lost": 0, "busy": 0})
     latencies: list = field(default_factory=list)
+    #: Latencies of the `busy` answers (not retried with ``overflow``).
+    busy_latencies: list = field(default_factory=list)
     #: Latencies of the refusals alone (invalid requests): answered on arrival,
     #: they must not wait behind the solves.
     refusal_latencies: list = field(default_factory=list)
@@ -129,6 +150,9 @@ class Tally:
         expected_kind = expected[0]
         with self.lock:
             self.counts[verdict] += 1
+            if verdict == "busy":
+                self.busy_latencies.append(latency)
+                return
             self.latencies.append(latency)
             # A `timeout` is valid work that queues and runs out of time; every
             # other error of the mix is a refusal on arrival.
@@ -148,10 +172,15 @@ def percentile(sorted_values: list[float], p: float) -> float:
 
 
 def run(connect: str, clients: int = 16, requests: int = 50, timeout: float = 60.0,
-        max_seconds: float = 600.0, spread: bool = False) -> dict:
+        max_seconds: float = 600.0, spread: bool = False, only: str | None = None,
+        overflow: bool = False) -> dict:
     """The load test against a running service; returns the figures (see ``report``)."""
     check_loopback(connect)
     work = workload()
+    if only is not None:
+        work = [(k, v) for k, v in work if k == only]
+        if not work:
+            raise ValueError(f"no request {only!r} in the mix")
     with Client(connect, timeout=timeout) as c:
         reference = references(c, work, timeout)
     tally = Tally()
@@ -167,7 +196,7 @@ def run(connect: str, clients: int = 16, requests: int = 50, timeout: float = 60
                 name, payload = work[(k + i) % len(work)]
                 cid = f"load-{k}-{i}"
                 t0 = time.perf_counter()
-                got = outcome(c, with_client_id(payload, cid), timeout)
+                got = outcome(c, with_client_id(payload, cid), timeout, retries=0 if overflow else 20)
                 verdict = judge(reference[name], got, cid)
                 tally.add(verdict, time.perf_counter() - t0, name, reference[name], repr(got[1]))
 
@@ -180,6 +209,7 @@ def run(connect: str, clients: int = 16, requests: int = 50, timeout: float = 60
     wall = time.perf_counter() - t0
     lat = sorted(tally.latencies)
     refusals = sorted(tally.refusal_latencies)
+    busy = sorted(tally.busy_latencies)
     sent = clients * requests
     answered = sum(tally.counts.values())
     return {
@@ -191,6 +221,9 @@ def run(connect: str, clients: int = 16, requests: int = 50, timeout: float = 60
         "lost": tally.counts["lost"] + (sent - answered),
         "wrong": tally.counts["wrong"],
         "ok": tally.counts["ok"],
+        "busy": tally.counts["busy"],
+        # Valid requests answered identically to the sequential answer, per second.
+        "solves_per_s": tally.valid_identical / wall if wall > 0 else 0.0,
         "valid_identical": tally.valid_identical,
         "valid_sent": sum(1 for k in range(clients) for i in range(requests)
                           if reference[work[(k + i) % len(work)][0]][0] == "ok"),
@@ -198,6 +231,8 @@ def run(connect: str, clients: int = 16, requests: int = 50, timeout: float = 60
         "throughput_per_s": answered / wall if wall > 0 else 0.0,
         "latency_s": {"p50": percentile(lat, 0.50), "p90": percentile(lat, 0.90),
                       "p99": percentile(lat, 0.99), "max": lat[-1] if lat else 0.0},
+        "busy_latency_s": {"p50": percentile(busy, 0.50), "p90": percentile(busy, 0.90),
+                           "max": busy[-1] if busy else 0.0},
         "refusal_latency_s": {"p50": percentile(refusals, 0.50), "p90": percentile(refusals, 0.90),
                               "max": refusals[-1] if refusals else 0.0},
         "notes": tally.notes,
@@ -207,20 +242,60 @@ def run(connect: str, clients: int = 16, requests: int = 50, timeout: float = 60
 def report(r: dict) -> str:
     lat = r["latency_s"]
     ref = r["refusal_latency_s"]
+    busy = r["busy_latency_s"]
     lines = [
         f"clients x requests : {r['clients']} x {r['requests_per_client']} = {r['sent']}",
         f"wall time          : {r['wall_s']:.2f} s",
-        f"throughput         : {r['throughput_per_s']:.1f} replies/s",
+        f"throughput         : {r['throughput_per_s']:.1f} replies/s, {r['solves_per_s']:.1f} valid solves/s",
         f"latency            : p50 {lat['p50'] * 1e3:.1f} ms, p90 {lat['p90'] * 1e3:.1f} ms, "
         f"p99 {lat['p99'] * 1e3:.1f} ms, max {lat['max'] * 1e3:.1f} ms",
         f"refusals (invalid) : p50 {ref['p50'] * 1e3:.1f} ms, p90 {ref['p90'] * 1e3:.1f} ms, "
         f"max {ref['max'] * 1e3:.1f} ms",
+        f"busy (not retried) : {r['busy']}: p50 {busy['p50'] * 1e3:.1f} ms, p90 {busy['p90'] * 1e3:.1f} ms, "
+        f"max {busy['max'] * 1e3:.1f} ms",
         f"answered correctly : {r['ok']}",
         f"valid, identical to the sequential answer: {r['valid_identical']} of {r['valid_sent']}",
         f"lost               : {r['lost']}",
         f"wrong              : {r['wrong']}",
     ]
     return "\n".join(lines + [f"  {n}" for n in r["notes"]])
+
+
+def uniform_hertz(dofs: int, time_limit: float | None = None) -> dict:
+    """The Hertz block (40 x 20) meshed uniformly with about ``dofs`` DOF (2 per node)."""
+    req = scenes.hertz_cylinder()
+    m = req["bodies"][0]["mesh"]["rectangle"]
+    m.pop("grading", None)
+    m["size"] = math.sqrt(40.0 * 20.0 * 2.0 / dofs)
+    if time_limit is not None:
+        req["time_limit"] = time_limit
+    return req
+
+
+def deadlines(connect: str, sizes: list[int], timeout: float = 600.0) -> bool:
+    """The --deadline mode: True when every answer came within max(10 % of its limit, 0.2 s)."""
+    check_loopback(connect)
+    ok = True
+    with Client(connect, timeout=timeout) as c:
+        for dofs in sizes:
+            t = time.perf_counter()
+            reply = c.solve(uniform_hertz(dofs), timeout=timeout, retries=0)
+            full = time.perf_counter() - t
+            print(f"{reply['size']['dofs']} DOF: {full:.2f} s without a limit")
+            for frac in (0.3, 0.5, 0.7, 0.9):
+                limit = round(frac * full, 2)
+                t = time.perf_counter()
+                try:
+                    c.solve(uniform_hertz(dofs, limit), timeout=timeout, retries=0)
+                    got = "solved"
+                except ContactError as e:
+                    got = e.code
+                late = time.perf_counter() - t - limit
+                within = late <= max(0.1 * limit, 0.2)
+                ok &= within
+                print(f"  limit {limit:.2f} s: {got}, {late:+.3f} s past it ({'within' if within else 'NOT within'} "
+                      f"max(10 %, 0.2 s))")
+    return ok
 
 
 def check_loopback(connect: str) -> None:
@@ -239,19 +314,29 @@ def main(argv: list[str] | None = None) -> int:
     where = p.add_mutually_exclusive_group(required=True)
     where.add_argument("--connect", help="endpoint of a running service (loopback only), e.g. tcp/127.0.0.1:7447")
     where.add_argument("--serve", metavar="BINARY", help="start `BINARY serve` on a free loopback port for the test")
+    p.add_argument("--deadline", metavar="DOFS", help="time-limit mode: comma-separated sizes, e.g. 500000,1000000")
     p.add_argument("--clients", type=int, default=16, help="concurrent clients (default 16)")
     p.add_argument("--requests", type=int, default=50, help="requests per client (default 50)")
     p.add_argument("--timeout", type=float, default=60.0, help="per-query timeout in seconds (default 60)")
     p.add_argument("--max-seconds", type=float, default=600.0, help="stop sending after this (default 600)")
     p.add_argument("--spread", action="store_true", help="spread queries over all live instances")
+    p.add_argument("--only", metavar="NAME", help="send only this request of the mix (e.g. hertz_t3)")
+    p.add_argument("--overflow", action="store_true", help="do not retry busy; count it and its latency")
+    p.add_argument("--serve-args", default="", help="extra arguments of `BINARY serve` (with --serve)")
     a = p.parse_args(argv)
     if a.clients < 1 or a.requests < 1 or a.clients * a.requests > 100_000:
         p.error("--clients and --requests must be positive, at most 100000 queries in all")
+    if a.deadline:
+        sizes = [int(x) for x in a.deadline.split(",")]
+        if a.serve:
+            with local_service(a.serve, extra=tuple(a.serve_args.split())) as endpoint:
+                return 0 if deadlines(endpoint, sizes, a.timeout) else 1
+        return 0 if deadlines(a.connect, sizes, a.timeout) else 1
     if a.serve:
-        with local_service(a.serve) as endpoint:
-            r = run(endpoint, a.clients, a.requests, a.timeout, a.max_seconds, a.spread)
+        with local_service(a.serve, extra=tuple(a.serve_args.split())) as endpoint:
+            r = run(endpoint, a.clients, a.requests, a.timeout, a.max_seconds, a.spread, a.only, a.overflow)
     else:
-        r = run(a.connect, a.clients, a.requests, a.timeout, a.max_seconds, a.spread)
+        r = run(a.connect, a.clients, a.requests, a.timeout, a.max_seconds, a.spread, a.only, a.overflow)
     print(report(r))
     return 1 if r["lost"] or r["wrong"] else 0
 

@@ -5,9 +5,10 @@
 //! iterative methods poll [`expired`] once per iteration (and Clarabel gets
 //! [`remaining_secs`] as its own time limit). A solve over its time therefore
 //! stops at the next boundary with [`Timeout`] (a `CoreError::Timeout`), unwinding normally,
-//! so everything it allocated is dropped and the thread is free again. A stage
-//! that does not poll (one sparse factorization) runs to its end: the overshoot
-//! is at most one such stage.
+//! so everything it allocated is dropped and the thread is free again. The
+//! numeric factorization polls between its supernode updates
+//! (`linalg::numeric`); what does not poll (the fill-reducing ordering, one
+//! sparse sweep) runs to its end: the overshoot is at most one such step.
 //!
 //! A thread-local rather than a parameter keeps the numerical signatures free of
 //! service concerns; the guard restores the previous deadline on drop (also when
@@ -83,6 +84,18 @@ pub fn check(stage: &'static str) -> Result<(), Timeout> {
     }
 }
 
+/// `Err(Timeout)` naming `stage` when less than `secs` are left: work known
+/// to take that long, and that does not poll, cannot end in time.
+pub fn check_room(stage: &'static str, secs: f64) -> Result<(), Timeout> {
+    match DEADLINE.with(|d| d.get()) {
+        Some(l) if remaining_secs() < secs => Err(Timeout {
+            stage,
+            limit_s: l.limit.as_secs_f64(),
+        }),
+        _ => Ok(()),
+    }
+}
+
 /// Seconds left (infinite without a deadline; never negative).
 pub fn remaining_secs() -> f64 {
     match DEADLINE.with(|d| d.get()) {
@@ -116,6 +129,15 @@ mod tests {
             }
         }
         assert!(check("assembly").is_ok());
+    }
+
+    #[test]
+    fn work_longer_than_the_time_left_is_not_started() {
+        assert!(check_room("factorization", 1e9).is_ok(), "no deadline, no limit");
+        let _d = Deadline::install(Duration::from_secs(3600));
+        assert!(check_room("factorization", 1.0).is_ok());
+        let t = check_room("factorization", 7200.0).unwrap_err();
+        assert_eq!((t.stage, t.limit_s), ("factorization", 3600.0));
     }
 
     #[test]

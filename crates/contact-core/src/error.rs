@@ -44,10 +44,20 @@ pub enum CoreError {
     #[error("{reason} (at {path})")]
     TooLarge { path: String, reason: String },
     #[error(transparent)]
-    Linalg(#[from] crate::linalg::LinalgError),
+    Linalg(crate::linalg::LinalgError),
     /// The solve ran past its time limit and was stopped after `stage`.
     #[error("the solve exceeded its time limit of {limit_s} s and was stopped after stage '{stage}'")]
     Timeout { stage: &'static str, limit_s: f64 },
+}
+
+/// A factorization stopped at the deadline is the solve's timeout, like any stage's.
+impl From<crate::linalg::LinalgError> for CoreError {
+    fn from(e: crate::linalg::LinalgError) -> Self {
+        match e {
+            crate::linalg::LinalgError::Deadline(t) => t.into(),
+            e => CoreError::Linalg(e),
+        }
+    }
 }
 
 impl From<crate::cancel::Timeout> for CoreError {

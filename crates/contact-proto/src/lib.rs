@@ -4,6 +4,7 @@
 //! top-level `proto/` directory are generated from these types (`contact schema`)
 //! and a test fails when they drift. Every message carries `version`.
 
+pub mod bounded;
 pub mod error;
 pub mod reply;
 pub mod request;

@@ -216,6 +216,14 @@ pub struct ZoneAlong {
     pub start: [f64; 2],
     /// Undeformed position [x, y] of the zone's end.
     pub end: [f64; 2],
+    /// Estimated error of the start's and the end's position along the
+    /// surface [length]: the zone ends at its last node in contact, and a
+    /// least-squares fit of the square-root pressure drop places the edge
+    /// between that node and the next (at least a quarter of their spacing);
+    /// the spacing where no such edge is found (a sharp punch corner); 0 where
+    /// the zone ends with its edge set or a foundation panel.
+    #[serde(default)]
+    pub uncertainty: [f64; 2],
 }
 
 /// A node of the other body of a two-body pair.

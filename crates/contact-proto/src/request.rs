@@ -48,7 +48,11 @@ pub struct SolveRequest {
     /// Solve once per factor, with every load and prescribed displacement
     /// multiplied by it (gaps unchanged), from one factorization. The reply's
     /// `steps` holds each answer.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    #[serde(
+        default,
+        skip_serializing_if = "Vec::is_empty",
+        deserialize_with = "crate::bounded::load_factors"
+    )]
     pub load_factors: Vec<f64>,
     /// The names of the units the request's numbers are in, echoed in the
     /// reply for plots and files. Nothing is converted: the numbers must be

@@ -84,6 +84,13 @@ enum Cmd {
         /// Largest accepted request payload in bytes.
         #[arg(long, default_value_t = 64 << 20)]
         max_request_bytes: usize,
+        /// Requests parsed and validated at once (default: number of cores).
+        #[arg(long)]
+        max_parses: Option<usize>,
+        /// Payload bytes being read at once; past it a request is answered
+        /// `busy` unread (default: twice --max-request-bytes, at least that).
+        #[arg(long)]
+        max_door_bytes: Option<usize>,
         /// Seconds a solve may run before it is stopped and answered `timeout`.
         #[arg(long, default_value_t = 300.0, value_parser = positive_seconds)]
         max_solve_s: f64,
@@ -228,6 +235,8 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
             max_load_steps,
             max_output_values,
             max_request_bytes,
+            max_parses,
+            max_door_bytes,
             max_solve_s,
             cache_mb,
             log_format,
@@ -239,12 +248,19 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
                 connect,
                 queue_limit,
                 max_request_bytes,
+                // A request the size limit accepts must fit at the door.
+                max_door_bytes: max_door_bytes
+                    .unwrap_or(max_request_bytes.saturating_mul(2))
+                    .max(max_request_bytes),
                 max_solve_time: std::time::Duration::from_secs_f64(max_solve_s),
                 cache_bytes: cache_mb << 20,
                 ..Default::default()
             };
             if let Some(w) = workers {
                 cfg.workers = w.max(1);
+            }
+            if let Some(p) = max_parses {
+                cfg.max_parses = p.max(1);
             }
             if let Some(m) = max_dofs {
                 cfg.limits.max_dofs = m;

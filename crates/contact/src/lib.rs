@@ -20,4 +20,4 @@ pub mod service;
 pub mod summary;
 pub mod wire;
 
-pub use wire::{check_bytes, error_reply, solve_bytes, solve_bytes_cached};
+pub use wire::{check_bytes, error_reply, solve_bytes, solve_bytes_cached, solve_validated, validate_bytes, Validated};

@@ -89,6 +89,29 @@ pub fn reply(r: &SolveReply) -> String {
             peak.map_or("-".into(), |q| num(q.pressure)),
             peak.map_or(String::new(), |q| format!(" at x = {}", num(q.x)))
         );
+        let ends: Vec<String> = p
+            .zones_along
+            .iter()
+            .filter(|z| z.uncertainty.iter().any(|u| *u > 0.0))
+            .map(|z| {
+                format!(
+                    "({}, {}) ±{}, ({}, {}) ±{}",
+                    num(z.start[0]),
+                    num(z.start[1]),
+                    num(z.uncertainty[0]),
+                    num(z.end[0]),
+                    num(z.end[1]),
+                    num(z.uncertainty[1])
+                )
+            })
+            .collect();
+        if !ends.is_empty() {
+            let _ = writeln!(
+                o,
+                "  zone ends  {} (estimated error along the surface)",
+                ends.join("; ")
+            );
+        }
     }
     for pu in &r.punches {
         let _ = writeln!(

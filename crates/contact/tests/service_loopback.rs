@@ -157,6 +157,8 @@ fn limits_are_reported_and_enforced() {
         "--workers",
         "1",
         "--queue-limit",
+        "2",
+        "--max-parses",
         "1",
         "--max-request-bytes",
         "200000",
@@ -172,7 +174,8 @@ fn limits_are_reported_and_enforced() {
     let h = health(&session);
     assert_eq!(
         h["limits"],
-        json!({"queue_limit": 1, "max_request_bytes": 200000, "max_dofs": 200000, "max_candidates": 300,
+        json!({"queue_limit": 2, "max_request_bytes": 200000, "max_parses": 1, "max_door_bytes": 400000,
+               "max_dofs": 200000, "max_candidates": 300,
                "max_load_steps": 10000, "max_output_values": 20_000_000, "max_solve_time_s": 30.0,
                "cache_limit_bytes": 2048u64 << 20})
     );
@@ -211,7 +214,9 @@ fn limits_are_reported_and_enforced() {
 
     // One factor solves in well under a second from the cached operator; 10⁴ of
     // them keep the only worker busy until the 5 s limit cuts the request. A
-    // second request then waits in the queue of one, and a third is refused.
+    // second request then waits in the queue of two; bad requests are refused
+    // as soon as they are read; once a third fills the queue, the next one is
+    // turned away `busy` before it is read, whatever it holds.
     let mut slow = hertz.clone();
     slow["load_factors"] = json!(vec![1.0; 10_000]);
     slow["time_limit"] = json!(5.0);
@@ -239,11 +244,8 @@ fn limits_are_reported_and_enforced() {
     wait_for(1, 0);
     let queued = submit(bytes(&hertz));
     wait_for(1, 1);
-    let r = query(&session, "contact/solve", &bytes(&hertz));
-    assert_eq!(code(&r), "busy");
-    assert_eq!(r.1["queue_depth"], 1);
-    // Bad requests are refused on arrival, not behind the solves: answered
-    // while the worker is still busy for seconds and the queue is full.
+    // Bad requests are refused as soon as they are read, not behind the
+    // solves: answered while the worker is still busy for seconds.
     let t = Instant::now();
     assert_eq!(code(&query(&session, "contact/solve", b"{")), "malformed_json");
     let mut soft = hertz.clone();
@@ -264,6 +266,13 @@ fn limits_are_reported_and_enforced() {
         "refusals took {:?} behind a 5 s solve",
         t.elapsed()
     );
+    let queued_too = submit(bytes(&hertz));
+    wait_for(1, 2);
+    let r = query(&session, "contact/solve", &bytes(&hertz));
+    assert_eq!(code(&r), "busy");
+    assert_eq!(r.1["queue_depth"], 2);
+    let r = query(&session, "contact/solve", b"{");
+    assert_eq!((code(&r), &r.1["queue_depth"]), ("busy".into(), &json!(2)), "not read");
     assert_eq!(health(&session)["in_flight"], 1, "the slow solve was still running");
     let error_of = |replies: zenoh::handlers::FifoChannelHandler<zenoh::query::Reply>| -> Value {
         let reply = replies.recv().expect("a reply");
@@ -272,11 +281,13 @@ fn limits_are_reported_and_enforced() {
     let err = error_of(running);
     assert_eq!(err["code"], "timeout");
     assert!(err["message"].as_str().unwrap().contains("5 s"), "{err}");
-    let served = queued.recv().expect("a reply");
-    assert!(
-        served.result().is_ok(),
-        "the queued valid request is served after the slow one"
-    );
+    for queued in [queued, queued_too] {
+        let served = queued.recv().expect("a reply");
+        assert!(
+            served.result().is_ok(),
+            "the queued valid requests are served after the slow one"
+        );
+    }
 
     let (ok, next) = query(&session, "contact/solve", &bytes(&hertz));
     assert!(ok && next["status"] == "solved", "{next}");
@@ -290,10 +301,87 @@ fn limits_are_reported_and_enforced() {
             &o["solved"],
             &o["malformed_json"]
         ),
-        (&json!(1), &json!(2), &json!(4), &json!(3), &json!(1))
+        (&json!(2), &json!(2), &json!(4), &json!(4), &json!(1))
     );
     assert_eq!(
-        (&h["rejected_busy"], &h["panics"], &h["in_flight"]),
-        (&json!(1), &json!(0), &json!(0))
+        (
+            &h["rejected_busy"],
+            &h["panics"],
+            &h["in_flight"],
+            &h["reading"],
+            &h["door_bytes"]
+        ),
+        (&json!(2), &json!(0), &json!(0), &json!(0), &json!(0))
     );
+}
+
+/// Peak resident memory of a process (VmHWM), bytes.
+fn peak_rss(pid: u32) -> u64 {
+    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).unwrap();
+    let line = status.lines().find(|l| l.starts_with("VmHWM:")).unwrap();
+    let kb: u64 = line.split_whitespace().nth(1).unwrap().parse().unwrap();
+    kb << 10
+}
+
+/// The door bounds memory whatever arrives: 32 payloads of 60 MB sent at
+/// once, each the Hertz example with a `load_factors` list of 15M entries
+/// (read whole, 120 MB as f64 and about 1.2 GB as a JSON value), are every
+/// one answered — `too_large` at the first factor past the limit when read,
+/// `busy` unread when no queue slot is free or the door's 128 MiB of
+/// payloads are taken — and the service's peak resident memory stays under
+/// the README's bound of 1.5 GB with the default limits (measured on main:
+/// 1.3 GB for one such request, 9.7 GB for eight).
+#[test]
+fn a_burst_of_huge_requests_is_answered_in_bounded_memory() {
+    const COPIES: usize = 32;
+    const FACTORS: usize = 15_000_000;
+    let (server, session) = serve(&[]);
+    let mut req = common::example("signorini_hertz_cylinder.json");
+    req["load_factors"] = json!([0.5]);
+    let text = bytes(&req);
+    let marker = b"\"load_factors\":[0.5]";
+    let at = text.windows(marker.len()).position(|w| w == marker).unwrap() + marker.len() - 1;
+    let mut payload = Vec::with_capacity(text.len() + 4 * FACTORS);
+    payload.extend_from_slice(&text[..at]);
+    payload.extend((0..FACTORS).flat_map(|_| *b",1.0"));
+    payload.extend_from_slice(&text[at..]);
+    assert!(payload.len() > 60_000_000 && payload.len() < 64 << 20);
+    let payload = zenoh::bytes::ZBytes::from(payload);
+    let codes: Vec<(String, Value)> = std::thread::scope(|s| {
+        let sent: Vec<_> = (0..COPIES)
+            .map(|_| {
+                let (session, payload) = (&session, payload.clone());
+                s.spawn(move || {
+                    let replies = session
+                        .get("contact/solve")
+                        .payload(payload)
+                        .timeout(Duration::from_secs(120))
+                        .wait()
+                        .unwrap();
+                    let reply = replies.recv().expect("every request is answered");
+                    let err: Value = serde_json::from_slice(&reply.result().unwrap_err().payload().to_bytes()).unwrap();
+                    (err["code"].as_str().unwrap().to_string(), err["path"].clone())
+                })
+            })
+            .collect();
+        sent.into_iter().map(|t| t.join().unwrap()).collect()
+    });
+    let read = codes.iter().filter(|(c, _)| c == "too_large").count();
+    assert!(read >= 1, "{codes:?}");
+    for (code, path) in &codes {
+        match code.as_str() {
+            "too_large" => assert_eq!(path, "/load_factors"),
+            "busy" => {}
+            other => panic!("unexpected answer {other}"),
+        }
+    }
+    let h = health(&session);
+    assert_eq!((&h["reading"], &h["door_bytes"]), (&json!(0), &json!(0)), "{h}");
+    let peak = peak_rss(server.0.id());
+    eprintln!(
+        "{read} read, {} busy; peak RSS of the service {:.0} MB",
+        COPIES - read,
+        peak as f64 / 1e6
+    );
+    assert!(peak < 1536 << 20, "peak RSS {peak} bytes");
 }

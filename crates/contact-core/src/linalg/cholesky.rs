@@ -4,7 +4,6 @@
 //! factor is the same as for K alone (the floor of any direct method).
 
 use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky,
@@ -35,6 +34,9 @@ pub enum LinalgError {
         left_s
     )]
     Overrun { cost: FactorCost, left_s: f64 },
+    /// The numeric factorization was stopped at the deadline (a `timeout`).
+    #[error("the factorization was stopped at the time limit of {} s", .0.limit_s)]
+    Deadline(crate::cancel::Timeout),
 }
 
 /// What a numeric factorization will cost, known from the symbolic analysis.
@@ -86,6 +88,13 @@ impl FactorCost {
         Ok(())
     }
 
+    /// Seconds the numeric factorization is predicted to take on this
+    /// machine: the reference machine's time times the scale learned here
+    /// (`linalg::rate`).
+    pub fn predicted_secs(&self) -> f64 {
+        self.reference_secs() * super::rate::scale()
+    }
+
     /// Seconds the numeric factorization takes on the reference machine (2
     /// cores, faer sequential supernodal), t = a·flops + b·nnz + c·flops·nnz:
     /// the last term is the loss of cache reuse once L outgrows memory
@@ -93,7 +102,7 @@ impl FactorCost {
     /// Least-squares fit over 22 factorizations (T3 and T6; graded and uniform
     /// rectangles, half-disks; 12k to 2.1M DOF, 0.014 to 27 s): relative error
     /// within −15 %…+23 % (−13 % on the two 2M-DOF factors).
-    pub fn predicted_secs(&self) -> f64 {
+    pub fn reference_secs(&self) -> f64 {
         const PER_FLOP: f64 = 6.68e-12;
         const PER_ENTRY: f64 = 9.92e-9;
         const PER_FLOP_ENTRY: f64 = 1.72e-20;
@@ -109,6 +118,8 @@ impl FactorCost {
 /// redoing it.
 pub struct SymbolicFactor {
     symbolic: SymbolicCholesky<usize>,
+    /// Which supernodes update which: the numeric factorization's schedule.
+    descendants: super::numeric::Descendants,
     n: usize,
     cost: FactorCost,
     /// `pattern_key` of the matrix it was made for.
@@ -119,7 +130,11 @@ impl SymbolicFactor {
     /// Orders `a` (lower triangle) and analyzes the factor's structure.
     pub fn try_new(a: &SparseColMat<usize, f64>) -> Result<Self, LinalgError> {
         let symbolic = symbolic(a)?;
+        let SymbolicCholeskyRaw::Supernodal(sym) = symbolic.raw() else {
+            unreachable!("factorization is forced supernodal")
+        };
         Ok(Self {
+            descendants: super::numeric::Descendants::of(sym),
             cost: FactorCost::of(&symbolic),
             symbolic,
             n: a.nrows(),
@@ -138,6 +153,17 @@ impl SymbolicFactor {
             unreachable!("factorization is forced supernodal")
         };
         sym
+    }
+
+    /// faer's symbolic factorization (ordering included).
+    #[cfg(test)]
+    pub(crate) fn symbolic(&self) -> &SymbolicCholesky<usize> {
+        &self.symbolic
+    }
+
+    /// Which supernodes update which.
+    pub(crate) fn descendants(&self) -> &super::numeric::Descendants {
+        &self.descendants
     }
 
     /// Factor position of every DOF (the inverse of the fill-reducing order).
@@ -169,6 +195,20 @@ pub struct Cholesky {
     values: Vec<f64>,
 }
 
+/// Factors of more values than this are freed on a thread of their own.
+const FREED_BESIDE: usize = 1 << 23;
+
+impl Drop for Cholesky {
+    /// Giving a large factor's pages back takes time (0.26–0.41 s measured
+    /// for the 2.4 GB of a 2M-DOF factor) that a reply, a `timeout` above
+    /// all, need not wait for.
+    fn drop(&mut self) {
+        if self.values.len() >= FREED_BESIDE {
+            free_beside(std::mem::take(&mut self.values));
+        }
+    }
+}
+
 impl Cholesky {
     /// Factorizes `a` (lower triangle, n×n).
     pub fn try_new(a: &SparseColMat<usize, f64>) -> Result<Self, LinalgError> {
@@ -181,27 +221,45 @@ impl Cholesky {
         debug_assert_eq!(a.nrows(), analysis.n);
         let symbolic = &analysis.symbolic;
         analysis.cost.fits_in_time_left()?;
+        // Timed from here: the prediction is for the whole numeric stage,
+        // the factor's memory included (zeroed lazily, then filled).
+        let started = std::time::Instant::now();
         let mut values = vec![0.0; symbolic.len_val()];
-        let par = super::par();
-        let req = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
-        let mut mem = MemBuffer::try_new(req).map_err(|_| LinalgError::Faer("out of memory".into()))?;
-        symbolic
-            .factorize_numeric_llt(
-                &mut values,
-                a.as_ref(),
-                Side::Lower,
-                LltRegularization::default(),
-                par,
-                MemStack::new(&mut mem),
-                Default::default(),
-            )
-            .map_err(|_| LinalgError::NotPositiveDefinite)?;
+        let done = super::numeric::factorize(
+            &mut values,
+            a.as_ref(),
+            symbolic.perm().expect("the ordering is always given"),
+            analysis.supernodal(),
+            analysis.descendants(),
+            super::par(),
+        );
+        if let Err(stop) = done {
+            use super::numeric::Stop;
+            return Err(match stop {
+                Stop::NotPositiveDefinite => LinalgError::NotPositiveDefinite,
+                Stop::OutOfMemory => LinalgError::Faer("out of memory".into()),
+                Stop::Deadline(t) => {
+                    // As a finished factor (`Drop for Cholesky`): beside the reply.
+                    if values.len() >= FREED_BESIDE {
+                        free_beside(values);
+                    }
+                    LinalgError::Deadline(t)
+                }
+            });
+        }
+        super::rate::learn(analysis.cost, started.elapsed().as_secs_f64());
         Ok(Self { analysis, values })
     }
 
     /// The numeric factorization's cost as predicted before it ran.
     pub fn cost(&self) -> FactorCost {
         self.analysis.cost
+    }
+
+    /// L's values, supernode by supernode (faer's layout).
+    #[cfg(test)]
+    pub(crate) fn values(&self) -> &[f64] {
+        &self.values
     }
 
     /// Entries in the factor L (a memory and cost measure).
@@ -300,9 +358,25 @@ impl Cholesky {
     }
 }
 
+/// Drops `values` on a thread of its own (inline when no thread can be
+/// started: the closure that holds them is dropped then).
+fn free_beside(values: Vec<f64>) {
+    let _ = std::thread::Builder::new()
+        .name("free-factor".into())
+        .spawn(move || drop(values));
+}
+
 /// Supernodal symbolic factorization of `a` in AMD order.
 fn symbolic(a: &SparseColMat<usize, f64>) -> Result<SymbolicCholesky<usize>, LinalgError> {
+    let started = std::time::Instant::now();
     let (fwd, inv) = ordering(a)?;
+    // Neither the ordering nor faer's symbolic factorization after it polls
+    // (measured on T3 grids: 0.55 s then 0.47 s at 1M DOF, 1.07 s then 0.92 s
+    // at 2M): a deadline passed during the ordering stops the solve here, and
+    // so does one the symbolic factorization, about as long, would pass.
+    let took = started.elapsed().as_secs_f64();
+    crate::cancel::check("factorization").map_err(LinalgError::Deadline)?;
+    crate::cancel::check_room("factorization", took).map_err(LinalgError::Deadline)?;
     let perm = PermRef::new_checked(&fwd, &inv, a.nrows());
     let params = CholeskySymbolicParams {
         supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
@@ -366,8 +440,10 @@ mod tests {
     /// carries the prediction.
     #[test]
     fn a_factorization_that_cannot_end_in_time_is_not_started() {
+        let k = dense_spd(60);
+        let analysis = Arc::new(SymbolicFactor::try_new(&k).unwrap());
         let _d = crate::cancel::Deadline::install(std::time::Duration::ZERO);
-        match Cholesky::try_new(&dense_spd(60)) {
+        match Cholesky::with_symbolic(analysis, &k) {
             Err(LinalgError::Overrun { cost, left_s }) => {
                 assert_eq!(left_s, 0.0);
                 assert!(cost.flops > 0.0);

@@ -3,6 +3,8 @@
 
 pub mod cholesky;
 pub mod dense;
+mod numeric;
+pub mod rate;
 pub mod schur;
 pub mod sparse;
 

@@ -1,5 +1,6 @@
 //! Solution → report: certificate, contact zones, pressures, resultants.
 
+pub mod accuracy;
 pub mod certificate;
 pub mod compose;
 pub mod post;

@@ -14,6 +14,7 @@ use std::collections::{BTreeMap, HashMap, HashSet};
 use crate::contact::ConstraintSet;
 use crate::mesh::{boundary::boundary_nodes, Edge, Mesh2d};
 use crate::scene::{Scene, Target};
+use crate::solution::accuracy;
 use crate::solution::report::{ContactPoint, CounterPoint, PairReport, PairTarget, Resultant, ZoneAlong};
 
 /// Nodal contact forces of pair `p` on `body`: node → force.
@@ -83,12 +84,13 @@ pub fn pairs(
             });
         }
         let mesh = &meshes[pair.body];
+        let pressure: Vec<f64> = (0..cons.len()).map(|i| lambda[i] / cons.candidates[i].weight).collect();
         let (zones, zones_along) = zones(
             mesh,
             &along(mesh, &mesh.edge_sets[&pair.edges]),
             cons,
             &idx,
-            in_contact,
+            (in_contact, &pressure),
             |v| sc.length(v),
         );
         // The radial forces of a body of revolution and their moments cancel
@@ -241,7 +243,7 @@ fn zones(
     chain: &[Station],
     cons: &ConstraintSet,
     idx: &[usize],
-    in_contact: &[bool],
+    (in_contact, pressure): (&[bool], &[f64]),
     length: impl Fn(f64) -> f64,
 ) -> (Vec<[f64; 2]>, Vec<ZoneAlong>) {
     let at: HashMap<usize, usize> = chain.iter().enumerate().map(|(k, t)| (t.node, k)).collect();
@@ -297,15 +299,43 @@ fn zones(
     }
     runs.extend(open);
     let mut xs: Vec<[f64; 2]> = runs.iter().map(|r| r.x.map(&length)).collect();
+    // The candidates of each chain in order, for the zone ends' estimate.
+    let stations: Vec<accuracy::Station> = order
+        .iter()
+        .map(|&(k, i)| accuracy::Station {
+            s: chain[k].s,
+            pressure: pressure[i],
+            in_contact: in_contact[i],
+        })
+        .collect();
+    let position = |k: usize| order.iter().position(|&(kk, _)| kk == k).expect("a run's candidate");
     let along = runs
         .iter()
         .map(|r| {
             let (s0, p0) = end(r.first.0, r.first.1, -1);
             let (s1, p1) = end(r.last.0, r.last.1, 1);
+            let (a, b) = (position(r.first.0), position(r.last.0));
+            let same = |q: usize| chain[order[q].0].chain == chain[r.first.0].chain;
+            let (lo, hi) = (
+                (0..=a).rev().take_while(|&q| same(q)).last().unwrap_or(a),
+                (b..order.len()).take_while(|&q| same(q)).last().unwrap_or(b),
+            );
+            let on_chain = &stations[lo..=hi];
+            // A foundation row's zone ends at its panel's outer end: its
+            // pressure is constant there, no square-root edge to fit.
+            let fitted = cons.candidates[r.first.1].foundation().is_none();
+            let error = |from: usize, to: usize, dir: isize| {
+                if fitted {
+                    length(accuracy::end_error(on_chain, from - lo, to - lo, dir))
+                } else {
+                    0.0
+                }
+            };
             ZoneAlong {
                 s: [length(s0), length(s1)],
                 start: p0.map(&length),
                 end: p1.map(&length),
+                uncertainty: [error(b, a, -1), error(a, b, 1)],
             }
         })
         .collect();

@@ -239,6 +239,9 @@ pub struct ZoneAlong {
     pub s: [f64; 2],
     pub start: [f64; 2],
     pub end: [f64; 2],
+    /// Estimated error of the start's and the end's position along the
+    /// surface (`solution::accuracy`).
+    pub uncertainty: [f64; 2],
 }
 
 /// A node of the other body of a two-body pair.

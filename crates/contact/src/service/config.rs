@@ -21,6 +21,14 @@ pub struct ServiceConfig {
     /// Requests that may wait for a worker before `busy` is answered.
     pub queue_limit: usize,
     pub max_request_bytes: usize,
+    /// Requests read (parsed and validated) at once; the others that fit in
+    /// `max_door_bytes` wait for a turn.
+    pub max_parses: usize,
+    /// Payload bytes held at the door at once (arrived, not yet read into a
+    /// scene): a request that would pass it is answered `busy` unread. Reading
+    /// costs at most a few times the payload (its numbers as f64), so this
+    /// bounds the door's memory whatever arrives.
+    pub max_door_bytes: usize,
     pub limits: Limits,
     /// A solve still running after this is stopped at its next stage boundary
     /// or iteration and answered `timeout`.
@@ -40,6 +48,8 @@ impl Default for ServiceConfig {
             workers: std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1),
             queue_limit: 16,
             max_request_bytes: 64 << 20,
+            max_parses: std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1),
+            max_door_bytes: 128 << 20,
             limits: Limits::default(),
             max_solve_time: Duration::from_secs(300),
             cache_bytes: 2 << 30,

@@ -22,8 +22,14 @@ pub struct State {
     /// Requests admitted and not yet answered (waiting or running).
     pub pending: AtomicUsize,
     pub in_flight: AtomicUsize,
+    /// Payload bytes at the door (arrived, not yet read into a scene).
+    pub door_bytes: AtomicUsize,
+    /// Requests being parsed and validated.
+    pub reading: AtomicUsize,
     pub next_id: AtomicU64,
     pub workers: tokio::sync::Semaphore,
+    /// Turns to parse and validate (`max_parses`).
+    pub parses: tokio::sync::Semaphore,
     pub cache: crate::cache::OperatorCache,
     /// The session progress is published on (set once it is open).
     pub publisher: std::sync::OnceLock<zenoh::Session>,
@@ -45,9 +51,12 @@ pub struct Health {
     pub protocol: &'static str,
     pub instance: String,
     pub uptime_s: f64,
-    /// Admitted requests waiting for a worker.
+    /// Admitted requests waiting for a worker (or being read).
     pub queue_depth: usize,
     pub in_flight: usize,
+    /// Requests being parsed and validated, and the payload bytes at the door.
+    pub reading: usize,
+    pub door_bytes: usize,
     pub workers: usize,
     /// Successful replies (any `status`).
     pub solves_served: u64,
@@ -61,6 +70,11 @@ pub struct Health {
     pub limits: LimitsReport,
     pub cache_entries: usize,
     pub cache_bytes: usize,
+    /// Real / predicted time of the numeric factorization on this machine
+    /// (measured at start-up, learned from every factorization since): what
+    /// the factorization's prediction, and so the refusal of a
+    /// factorization that cannot end in time, is scaled by.
+    pub factorization_scale: f64,
 }
 
 /// Percentiles (nearest rank) of the recent window; all 0 before the first request.
@@ -77,6 +91,8 @@ pub struct Latency {
 pub struct LimitsReport {
     pub queue_limit: usize,
     pub max_request_bytes: usize,
+    pub max_parses: usize,
+    pub max_door_bytes: usize,
     pub max_dofs: usize,
     pub max_candidates: usize,
     pub max_load_steps: usize,
@@ -88,6 +104,7 @@ pub struct LimitsReport {
 impl State {
     pub fn new(cfg: ServiceConfig, instance: String) -> Self {
         let workers = tokio::sync::Semaphore::new(cfg.workers.max(1));
+        let parses = tokio::sync::Semaphore::new(cfg.max_parses.max(1));
         let cache = crate::cache::OperatorCache::new(cfg.cache_bytes);
         Self {
             cfg,
@@ -95,8 +112,11 @@ impl State {
             started: Instant::now(),
             pending: AtomicUsize::new(0),
             in_flight: AtomicUsize::new(0),
+            door_bytes: AtomicUsize::new(0),
+            reading: AtomicUsize::new(0),
             next_id: AtomicU64::new(1),
             workers,
+            parses,
             cache,
             publisher: std::sync::OnceLock::new(),
             stats: Mutex::new(Stats::default()),
@@ -137,6 +157,8 @@ impl State {
             uptime_s: self.started.elapsed().as_secs_f64(),
             queue_depth: pending.saturating_sub(in_flight),
             in_flight,
+            reading: self.reading.load(Ordering::SeqCst),
+            door_bytes: self.door_bytes.load(Ordering::SeqCst),
             workers: cfg.workers,
             solves_served: ok,
             errors_served: all - ok,
@@ -147,6 +169,8 @@ impl State {
             limits: LimitsReport {
                 queue_limit: cfg.queue_limit,
                 max_request_bytes: cfg.max_request_bytes,
+                max_parses: cfg.max_parses,
+                max_door_bytes: cfg.max_door_bytes,
                 max_dofs: cfg.limits.max_dofs,
                 max_candidates: cfg.limits.max_candidates,
                 max_load_steps: cfg.limits.max_load_steps,
@@ -156,6 +180,7 @@ impl State {
             },
             cache_entries: self.cache.len(),
             cache_bytes: self.cache.bytes(),
+            factorization_scale: contact_core::linalg::rate::scale(),
         }
     }
 }

@@ -37,6 +37,10 @@ pub const KEY_INSTANCES: &str = "contact/instance";
 
 /// Runs the service until ctrl-c (or SIGTERM).
 pub async fn run(cfg: ServiceConfig) -> anyhow::Result<()> {
+    // This machine's factorization speed, before the first deadline needs it
+    // (measured again by every factorization; `linalg::rate`).
+    let scale = tokio::task::spawn_blocking(contact_core::linalg::rate::calibrate).await?;
+    tracing::info!(factorization_scale = scale, "factorization speed calibrated");
     let zconf = cfg.zenoh_config()?;
     let session = zenoh::open(zconf)
         .await

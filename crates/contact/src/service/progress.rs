@@ -23,16 +23,8 @@ const MIN_INTERVAL: Duration = Duration::from_millis(50);
 const MAX_CHUNK: usize = 128;
 
 /// `contact/progress/<client_id or request id>` for this request.
-pub fn key_for(payload: &[u8], request_id: &str) -> String {
-    #[derive(serde::Deserialize)]
-    struct Id {
-        client_id: Option<String>,
-    }
-    let chunk = serde_json::from_slice::<Id>(payload)
-        .ok()
-        .and_then(|i| i.client_id)
-        .filter(|c| is_plain_chunk(c))
-        .unwrap_or_else(|| request_id.to_string());
+pub fn key_for(client_id: Option<&str>, request_id: &str) -> String {
+    let chunk = client_id.filter(|c| is_plain_chunk(c)).unwrap_or(request_id);
     format!("{KEY_PROGRESS}/{chunk}")
 }
 
@@ -70,17 +62,11 @@ mod tests {
 
     #[test]
     fn a_plain_client_id_is_the_key_and_anything_else_falls_back_to_the_request_id() {
-        assert_eq!(key_for(br#"{"client_id": "run-7"}"#, "z-1"), "contact/progress/run-7");
-        for bad in [
-            r#"{"client_id": "a/b"}"#,
-            r#"{"client_id": "**"}"#,
-            r#"{"client_id": ""}"#,
-            "not json",
-            "{}",
-        ] {
-            assert_eq!(key_for(bad.as_bytes(), "z-1"), "contact/progress/z-1", "{bad}");
+        assert_eq!(key_for(Some("run-7"), "z-1"), "contact/progress/run-7");
+        for bad in [Some("a/b"), Some("**"), Some(""), Some("a\nb"), None] {
+            assert_eq!(key_for(bad, "z-1"), "contact/progress/z-1", "{bad:?}");
         }
-        let long = format!(r#"{{"client_id": "{}"}}"#, "x".repeat(MAX_CHUNK + 1));
-        assert_eq!(key_for(long.as_bytes(), "z-1"), "contact/progress/z-1");
+        let long = "x".repeat(MAX_CHUNK + 1);
+        assert_eq!(key_for(Some(&long), "z-1"), "contact/progress/z-1");
     }
 }

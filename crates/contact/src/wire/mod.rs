@@ -4,7 +4,7 @@
 use contact_core::cache::OperatorCache;
 use contact_core::error::CoreError;
 use contact_core::{Limits, Scene};
-use contact_proto::{ErrorCode, ErrorDetails, ErrorReply, LoadBound, SolveReply};
+use contact_proto::{ErrorCode, ErrorDetails, ErrorReply, LoadBound, SolveReply, Units};
 
 use crate::parse::parse_request;
 
@@ -21,22 +21,63 @@ pub fn solve_bytes_cached(
     limits: &Limits,
     cache: Option<&OperatorCache>,
 ) -> Result<SolveReply, ErrorReply> {
-    let run = || -> Result<SolveReply, CoreError> {
-        let req = parse_request(bytes)?;
+    solve_validated(&validate_bytes(bytes, limits)?, limits, cache)
+}
+
+/// A request that passed the door: parsed and validated into its scene, ready
+/// for the numerics. The service validates on arrival and hands this to a
+/// worker, so a request is validated once.
+pub struct Validated {
+    scene: Scene,
+    units: Option<Units>,
+}
+
+impl Validated {
+    /// The request's `client_id`, echoed in its reply.
+    pub fn client_id(&self) -> Option<&str> {
+        self.scene.client_id.as_deref()
+    }
+}
+
+/// The checks of `solve_bytes` that come before any numerics: parse (lists
+/// cut at their limits), the time limit, validation (with its size
+/// estimates). Cheap and bounded by the payload, so the service runs it on
+/// arrival and only valid work queues.
+pub fn validate_bytes(bytes: &[u8], limits: &Limits) -> Result<Validated, ErrorReply> {
+    let run = || -> Result<Validated, CoreError> {
+        let req = parse_request(bytes, limits)?;
         let scene = Scene::try_new(&req, limits)?;
-        let mut r = contact_core::solve(&scene, limits, cache).map(reply::reply)?;
-        r.units = req.units;
-        Ok(r)
+        Ok(Validated {
+            scene,
+            units: req.units,
+        })
     };
     run().map_err(|e| error_reply(&e).with_client_id_of(bytes))
 }
 
-/// The checks of `solve_bytes` that come before any numerics: parse, the time
-/// limit, validation (with its size estimates). Cheap and bounded by the
-/// payload, so the service runs it on arrival and only valid work queues.
+/// `validate_bytes` without its result.
 pub fn check_bytes(bytes: &[u8], limits: &Limits) -> Result<(), ErrorReply> {
-    let run = || -> Result<(), CoreError> { Scene::try_new(&parse_request(bytes)?, limits).map(|_| ()) };
-    run().map_err(|e| error_reply(&e).with_client_id_of(bytes))
+    validate_bytes(bytes, limits).map(|_| ())
+}
+
+/// Solves a validated request.
+pub fn solve_validated(
+    request: &Validated,
+    limits: &Limits,
+    cache: Option<&OperatorCache>,
+) -> Result<SolveReply, ErrorReply> {
+    match contact_core::solve(&request.scene, limits, cache) {
+        Ok(report) => {
+            let mut r = reply::reply(report);
+            r.units.clone_from(&request.units);
+            Ok(r)
+        }
+        Err(e) => {
+            let mut err = error_reply(&e);
+            err.client_id = request.client_id().map(Into::into);
+            Err(err)
+        }
+    }
 }
 
 /// The wire form of a refusal: its code (the core's name for it,

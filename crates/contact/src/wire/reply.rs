@@ -151,6 +151,7 @@ fn pair(pr: PairReport) -> p::PairResult {
                 s_end: z.s[1],
                 start: z.start,
                 end: z.end,
+                uncertainty: z.uncertainty,
             })
             .collect(),
         points: pr
