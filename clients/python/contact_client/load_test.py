@@ -104,8 +104,16 @@ def outcome(client: Client, payload: bytes, timeout: float, retries: int = 20) -
         return "lost", str(e)
 
 
+#: Fields inside ``diagnostics`` that change between runs: the factorization's
+#: predicted seconds come from this machine's measured speed at the time.
+VOLATILE_DIAGNOSTICS = ("factorization_predicted",)
+
+
 def stable(reply: dict) -> dict:
-    return {k: v for k, v in reply.items() if k not in VOLATILE}
+    out = {k: v for k, v in reply.items() if k not in VOLATILE}
+    if isinstance(out.get("diagnostics"), dict):
+        out["diagnostics"] = {k: v for k, v in out["diagnostics"].items() if k not in VOLATILE_DIAGNOSTICS}
+    return out
 
 
 def references(client: Client, work: list[tuple[str, bytes]], timeout: float) -> dict[str, tuple[str, object]]:
