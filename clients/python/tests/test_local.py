@@ -10,7 +10,7 @@ import pytest
 
 from contact_client import Client, ContactError, TransportError, solve_local
 from scenes_small import expected_pressure, square_block
-from support import VOLATILE, diff_replies
+from support import diff_replies
 
 # The same solver on the same input: only the summation order of a parallel
 # reduction could differ, far below this.
@@ -20,7 +20,13 @@ PARITY_REL = 1e-12
 def test_in_process_reply_equals_the_service_reply(hertz_example, hertz_reply):
     local = solve_local(hertz_example)
     assert "request_id" not in local and "request_id" in hertz_reply
-    diffs = diff_replies(hertz_reply, local, rel=PARITY_REL, skip=VOLATILE)
+    # The service scales its factorization-time prediction by this machine's
+    # measured rate; the in-process solver keeps the uncalibrated model.
+    served = json.loads(json.dumps(hertz_reply))
+    local = json.loads(json.dumps(local))
+    for reply in (served, local):
+        reply.get("diagnostics", {}).pop("factorization_predicted", None)
+    diffs = diff_replies(served, local, rel=PARITY_REL, skip=("timings", "cache", "request_id"))
     assert not diffs, "\n".join(diffs[:20])
 
 

@@ -122,9 +122,9 @@ fn a_zone_a_few_elements_wide_is_never_answered_without_a_warning() {
 /// without bound under refinement (the linear theory's r^(−1/2)); measured on
 /// patches a tenth of the zone wide it stays at the load's level, so the
 /// Sadowsky example raises nothing. A flat punch with rounded corners (0.3)
-/// under the same load keeps its zone on the flat: no `large_contact_zone`
-/// (it used to report 4.05, the half-width over the corner radius); pressed
-/// 50 times harder its zone runs well onto the rounding and the warning fires.
+/// under the same load keeps its zone nearly on the flat: no warning at all;
+/// pressed 50 times harder its zone runs well onto the rounding and
+/// `large_contact_zone` fires with that reach.
 #[test]
 fn each_warning_fires_only_where_its_assumption_fails() {
     let hertz = solved(&example("signorini_hertz_cylinder.json"));
@@ -148,8 +148,12 @@ fn each_warning_fires_only_where_its_assumption_fails() {
         req["obstacles"][0]["punch"]["vertical"]["load"] = json!(load);
         solve(&req).expect("answered")
     };
+    // Before, this punch raised four warnings: large_contact_zone 2.57,
+    // gap_linearization 0.34 (the whole punch's sinking counted as sliding
+    // across its rounding), large_strain 0.065 and large_rotation 0.156 (at
+    // the element by the corner).
     let light = rounded(-10.0);
-    assert!(!codes(&light).contains(&"large_contact_zone"), "{:?}", light.warnings);
+    assert!(light.warnings.is_empty(), "{:?}", light.warnings);
     let heavy = rounded(-500.0);
     let w = heavy
         .warnings

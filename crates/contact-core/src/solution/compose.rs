@@ -92,11 +92,11 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
         Status::Solved
     };
     let disp = nodal_displacements(&m.meshes, &m.dofs, &sol.u, free.map(|p| (p, beta.as_slice())));
-    let punch_rotations: Vec<(usize, f64)> = (0..scene.obstacles.len())
+    let punch_motions: Vec<(usize, [f64; 3])> = (0..scene.obstacles.len())
         .filter(|&o| scene.obstacles[o].punch.is_some())
-        .map(|o| (o, free_motions::punch_motion(scene, &m.free, &beta, o)[2]))
+        .map(|o| (o, free_motions::punch_motion(scene, &m.free, &beta, o)))
         .collect();
-    let warnings = validity::check(scene, &m.meshes, &disp, &m.cons, &punch_rotations, &pairs);
+    let warnings = validity::check(scene, &m.meshes, &disp, &m.cons, &punch_motions, &pairs);
     let bodies = body_outputs(scene, &m.meshes, &disp);
     // The post stage has no deadline check: its answer is ready.
     let _ = obs.leave(Stage::Post);

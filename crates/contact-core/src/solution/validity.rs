@@ -16,8 +16,9 @@
 //!   undeformed shape;
 //! - contact half-width 0.3 of a curved obstacle's radius: the Hertz-type gap
 //!   x²/2R is off by (a/R)²/4 ≈ 2 % there;
-//! - contact displacement 5e-2 of the obstacle's radius: the linearized
-//!   distance d + ∇d·u errs by |u_t|²/2R.
+//! - contact motion across the obstacle, relative to it (a punch carries its
+//!   surface along), 5e-2 of its local radius of curvature: the linearized
+//!   distance d + ∇d·u errs by |u_t|²/2R, 2.5 % of u_t.
 //!
 //! Strain and rotation are judged on the mean gradient over patches a tenth
 //! of the body's narrowest contact zone wide, not element by element: at a
@@ -54,14 +55,14 @@ pub const MIN_ZONE_EDGES: f64 = 8.0;
 const PATCH_OVER_ZONE: f64 = 0.1;
 
 /// `disp[b][n]`: nodal displacements of body b (rigid motions included);
-/// `punch_rotations`: (obstacle, θ) of every punch; `pairs`: the pairs'
+/// `punch_motions`: (obstacle, (α1, α2, θ)) of every punch; `pairs`: the pairs'
 /// reports (zones and points in the request's units).
 pub fn check(
     scene: &Scene,
     meshes: &[Mesh2d],
     disp: &[Vec<[f64; 2]>],
     cons: &ConstraintSet,
-    punch_rotations: &[(usize, f64)],
+    punch_motions: &[(usize, [f64; 3])],
     pairs: &[PairReport],
 ) -> Vec<Warning> {
     let to_scene = 1.0 / scene.scales.length;
@@ -123,7 +124,7 @@ pub fn check(
             format!("body '{name}' moves by {moved:.3} of its size, beyond the {MAX_DISPLACEMENT} up to which equilibrium written on the undeformed shape holds"),
         );
     }
-    for &(o, theta) in punch_rotations {
+    for &(o, [_, _, theta]) in punch_motions {
         warn(
             "large_rotation",
             theta.abs(),
@@ -184,21 +185,42 @@ pub fn check(
                 onto / radius
             ),
         );
-        let moved = cons
+        // The linearized distance errs by u_t²/2R, u_t the point's motion
+        // relative to the obstacle across the row's normal, R the radius of
+        // curvature where it touches: a punch carries the surface with it, and
+        // a rounded punch's flat has no curvature to err by.
+        let punch = punch_motions.iter().find(|(q, _)| *q == o).map(|(_, b)| *b);
+        let reference = scene.obstacles[o].punch.as_ref().map_or([0.0; 2], |pu| pu.reference);
+        // Only where it touches: an open point's gap is not linearized about it.
+        let touching: std::collections::HashSet<usize> = pairs[p]
+            .points
+            .iter()
+            .filter(|q| q.pressure > 0.0)
+            .map(|q| q.node)
+            .collect();
+        let slid = cons
             .candidates
             .iter()
-            .filter(|c| c.pair == p)
-            .map(|c| disp[c.body][c.node])
-            .map(|d| d[0].hypot(d[1]))
+            .filter(|c| c.pair == p && touching.contains(&c.node))
+            .filter_map(|c| {
+                let r = local_radius(shape, c.x)?;
+                let mut u = disp[c.body][c.node];
+                if let Some([a1, a2, th]) = punch {
+                    u[0] -= a1 - th * (c.x[1] - reference[1]);
+                    u[1] -= a2 + th * (c.x[0] - reference[0]);
+                }
+                let along = u[0] * c.normal[0] + u[1] * c.normal[1];
+                let across = (u[0] - along * c.normal[0]).hypot(u[1] - along * c.normal[1]);
+                Some(across / r)
+            })
             .fold(0.0, f64::max);
         warn(
             "gap_linearization",
-            moved / radius,
+            slid,
             MAX_CONTACT_MOTION_OVER_RADIUS,
             pair.path.clone(),
             format!(
-                "contact points move by {:.3} of the obstacle's radius of curvature, beyond the {MAX_CONTACT_MOTION_OVER_RADIUS} up to which the linearized distance errs by under 2.5 %",
-                moved / radius
+                "contact points slide across the obstacle by {slid:.3} of its radius of curvature, beyond the {MAX_CONTACT_MOTION_OVER_RADIUS} up to which the linearized distance errs by under 2.5 % of that motion"
             ),
         );
     }
@@ -294,6 +316,23 @@ fn patch_extremes(mesh: &Mesh2d, u: &[[f64; 2]], patch: f64) -> (f64, f64) {
         rotation = rotation.max((0.5 * (g[2] - g[1])).abs());
     }
     (strain, rotation)
+}
+
+/// The obstacle's radius of curvature where the point at `x` touches it
+/// (None: straight there).
+fn local_radius(shape: &Shape, x: [f64; 2]) -> Option<f64> {
+    match shape {
+        Shape::Profile {
+            reference,
+            psi: Psi::Flat {
+                half_width,
+                corner_radius,
+            },
+        } => {
+            ((x[0] - reference[0]).abs() > half_width - corner_radius && *corner_radius > 0.0).then_some(*corner_radius)
+        }
+        other => curvature_radius(other),
+    }
 }
 
 /// The smallest radius of curvature of a curved obstacle (None: straight).
