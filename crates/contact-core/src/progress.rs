@@ -50,6 +50,10 @@ struct Installed {
     iterations: usize,
     /// Predicted seconds of the current stage already done (`credit`).
     credit: f64,
+    /// The part of `credit` told by `credit` itself (the rest by `within`).
+    base: f64,
+    /// When the sink was last told.
+    told: Instant,
 }
 
 /// Contact iterations a solve is expected to take (the Hertz scenes take 7 to
@@ -88,6 +92,8 @@ impl Sink {
             plan: [0.0; 6],
             iterations: 0,
             credit: 0.0,
+            base: 0.0,
+            told: Instant::now(),
         };
         Self {
             previous: SINK.with(|s| s.replace(Some(new))),
@@ -111,7 +117,9 @@ fn emit(stage: Option<&'static str>, iteration: Option<usize>, residual: Option<
                 i.stage = st;
                 i.iterations = 0;
                 i.credit = 0.0;
+                i.base = 0.0;
             }
+            i.told = Instant::now();
             if let Some(k) = iteration {
                 i.iterations = k;
             }
@@ -147,7 +155,30 @@ pub fn revise(stage: &str, seconds: f64) {
 /// `seconds` of the current stage's predicted work are done (a part of it
 /// that ran, such as the factorization's symbolic analysis).
 pub fn credit(seconds: f64) {
-    with_installed(|i| i.credit = seconds);
+    with_installed(|i| {
+        i.credit = seconds;
+        i.base = seconds;
+    });
+}
+
+/// Least time between two reports of `within`: a bar that moves four times a
+/// second, and a sink (zenoh, Python) that is not flooded.
+const WITHIN_EVERY_S: f64 = 0.25;
+
+/// `fraction` of the current stage's work after its `credit` is done (the
+/// numeric factorization's share of multiply–adds): told to the sink at most
+/// every `WITHIN_EVERY_S`.
+pub fn within(fraction: f64) {
+    let due = SINK.with(|s| {
+        let Ok(mut slot) = s.try_borrow_mut() else { return false };
+        let Some(i) = slot.as_mut() else { return false };
+        let k = STAGES.iter().position(|s| *s == i.stage).unwrap_or(0);
+        i.credit = i.base + fraction.clamp(0.0, 1.0) * (i.plan[k] - i.base).max(0.0);
+        i.told.elapsed().as_secs_f64() >= WITHIN_EVERY_S
+    });
+    if due {
+        emit(None, None, None);
+    }
 }
 
 fn with_installed(f: impl FnOnce(&mut Installed)) {
@@ -196,5 +227,23 @@ mod tests {
             *seen,
             vec![("mesh", None), ("contact_solve", None), ("contact_solve", Some(1))]
         );
+    }
+
+    /// Within a stage the bar moves by the share of its work done after the
+    /// credited part, and the sink hears of it at most every 0.25 s.
+    #[test]
+    fn a_long_stage_moves_the_bar_within_it() {
+        let seen = Arc::new(Mutex::new(Vec::new()));
+        let s = seen.clone();
+        let _g = Sink::install(move |p| s.lock().unwrap().push(p.done));
+        plan([1.0, 1.0, 10.0, 0.0, 0.0, 0.0]);
+        stage("factorization");
+        credit(2.0);
+        within(0.5);
+        assert_eq!(seen.lock().unwrap().len(), 1, "no report sooner than 0.25 s");
+        std::thread::sleep(std::time::Duration::from_millis(260));
+        within(0.5);
+        // mesh + assembly (2) + the credit (2) + half of the remaining 8.
+        assert_eq!(*seen.lock().unwrap(), vec![2.0, 8.0]);
     }
 }
