@@ -12,6 +12,10 @@ pub fn shown(x: f64) -> String {
     if x == 0.0 || !x.is_finite() {
         return format!("{x}");
     }
+    // Below 1e-300 the power of ten would overflow: print it as it is.
+    if x.abs() < 1e-300 {
+        return format!("{x:e}");
+    }
     // Dividing an integer by an exact power of ten rounds once, correctly.
     let digits = 6 - x.abs().log10().floor() as i32;
     let v = if digits >= 0 {

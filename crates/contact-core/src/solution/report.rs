@@ -80,6 +80,19 @@ impl Report {
                 for z in &p.zones {
                     check(&|| at(format!("pairs/{i}/zones")), z);
                 }
+                for z in &p.zones_along {
+                    let v = [
+                        z.s[0],
+                        z.s[1],
+                        z.start[0],
+                        z.start[1],
+                        z.end[0],
+                        z.end[1],
+                        z.uncertainty[0],
+                        z.uncertainty[1],
+                    ];
+                    check(&|| at(format!("pairs/{i}/zones_along")), &v);
+                }
                 for (k, q) in p.points.iter().enumerate() {
                     let v = [q.x, q.y, q.gap, q.pressure, q.force, q.weight, q.normal[0], q.normal[1]];
                     check(&|| at(format!("pairs/{i}/points/{k}")), &v);
@@ -92,6 +105,9 @@ impl Report {
                     check(&|| at(format!("pairs/{i}/other_resultant")), &[r.fx, r.fy, r.m]);
                 }
             }
+        }
+        for (i, w) in self.warnings.iter().enumerate() {
+            check(&|| format!("warnings/{i}"), &[w.value, w.limit]);
         }
         for (i, p) in self.punches.iter().enumerate() {
             let v = [p.alpha1, p.alpha2, p.theta, p.p1, p.p2, p.m];
