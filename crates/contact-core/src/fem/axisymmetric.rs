@@ -88,6 +88,12 @@ pub fn centroid_stress(order: Order, x: &[[f64; 2]], d: &D4, ue: &[f64]) -> [f64
 mod tests {
     use super::*;
 
+    /// The straight-sided T6 on `corners` (midside nodes at the midpoints).
+    fn straight_t6(c: [[f64; 2]; 3]) -> [[f64; 2]; 6] {
+        let mid = |a: [f64; 2], b: [f64; 2]| [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+        [c[0], c[1], c[2], mid(c[0], c[1]), mid(c[1], c[2]), mid(c[2], c[0])]
+    }
+
     /// A uniform radial expansion u_r = ε r, u_z = ε z is a state of uniform
     /// strain ε in every direction (hoop included): K u is the nodal force of
     /// the uniform stress σ = 3Kε on the element's boundary, and the element's
@@ -106,15 +112,7 @@ mod tests {
         let volume = std::f64::consts::TAU * rbar * area;
         let bulk = e / (3.0 * (1.0 - 2.0 * nu));
         let exact = 0.5 * 9.0 * bulk * eps * eps * volume;
-        let mid = |a: [f64; 2], b: [f64; 2]| [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
-        let t6 = [
-            corners[0],
-            corners[1],
-            corners[2],
-            mid(corners[0], corners[1]),
-            mid(corners[1], corners[2]),
-            mid(corners[2], corners[0]),
-        ];
+        let t6 = straight_t6(corners);
         for (order, x) in [(Order::T3, &corners[..]), (Order::T6, &t6[..])] {
             let mut ke = [0.0; 144];
             stiffness(order, x, &d, &mut ke);
@@ -151,15 +149,7 @@ mod tests {
         let volume = std::f64::consts::TAU * int_r;
         let theta = 3.0 * int_r2 / int_r;
         let exact = 0.5 * lambda * volume * theta * theta;
-        let mid = |a: [f64; 2], b: [f64; 2]| [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
-        let x = [
-            corners[0],
-            corners[1],
-            corners[2],
-            mid(corners[0], corners[1]),
-            mid(corners[1], corners[2]),
-            mid(corners[2], corners[0]),
-        ];
+        let x = straight_t6(corners);
         let mut ke = [0.0; 144];
         stiffness_selective(Order::T6, &x, &d, lambda, &mut ke);
         let u: Vec<f64> = x.iter().flat_map(|p| [p[0] * p[0], 0.0]).collect();

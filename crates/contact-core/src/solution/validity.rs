@@ -272,6 +272,19 @@ fn zone_edges(pair: &PairReport) -> Vec<f64> {
 /// the flat (from the punch's reference point) reached by the farthest zone
 /// end, which is 0 while the zone stays on the flat.
 fn curved_reach(shape: &Shape, zones: &[[f64; 2]]) -> f64 {
+    match rounded_flat(shape) {
+        Some((x_r, flat, _)) => zones
+            .iter()
+            .flat_map(|z| [z[0], z[1]])
+            .map(|x| ((x - x_r).abs() - flat).max(0.0))
+            .fold(0.0, f64::max),
+        None => zones.iter().map(|z| 0.5 * (z[1] - z[0])).fold(0.0, f64::max),
+    }
+}
+
+/// A flat punch with rounded corners: its reference x, the flat's half-width
+/// and the corners' radius.
+fn rounded_flat(shape: &Shape) -> Option<(f64, f64, f64)> {
     match shape {
         Shape::Profile {
             reference,
@@ -279,15 +292,8 @@ fn curved_reach(shape: &Shape, zones: &[[f64; 2]]) -> f64 {
                 half_width,
                 corner_radius,
             },
-        } => {
-            let flat = half_width - corner_radius;
-            zones
-                .iter()
-                .flat_map(|z| [z[0], z[1]])
-                .map(|x| ((x - reference[0]).abs() - flat).max(0.0))
-                .fold(0.0, f64::max)
-        }
-        _ => zones.iter().map(|z| 0.5 * (z[1] - z[0])).fold(0.0, f64::max),
+        } if *corner_radius > 0.0 => Some((reference[0], half_width - corner_radius, *corner_radius)),
+        _ => None,
     }
 }
 
@@ -333,17 +339,9 @@ fn patch_extremes(mesh: &Mesh2d, u: &[[f64; 2]], patch: f64) -> (f64, f64) {
 /// The obstacle's radius of curvature where the point at `x` touches it
 /// (None: straight there).
 fn local_radius(shape: &Shape, x: [f64; 2]) -> Option<f64> {
-    match shape {
-        Shape::Profile {
-            reference,
-            psi: Psi::Flat {
-                half_width,
-                corner_radius,
-            },
-        } => {
-            ((x[0] - reference[0]).abs() > half_width - corner_radius && *corner_radius > 0.0).then_some(*corner_radius)
-        }
-        other => curvature_radius(other),
+    match rounded_flat(shape) {
+        Some((x_r, flat, radius)) => ((x[0] - x_r).abs() > flat).then_some(radius),
+        None => curvature_radius(shape),
     }
 }
 
