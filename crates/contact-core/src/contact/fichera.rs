@@ -20,6 +20,21 @@ enum Lp {
     Failed,
 }
 
+/// Clarabel run to a gap of 1e-13: the ranges are reported to the user, and
+/// its default gap tolerance (1e-8, and 5e-5 when it settles for "almost
+/// solved") printed 9.999926 for a moment bound of exactly 10.
+fn tight_settings() -> clarabel::solver::DefaultSettings<f64> {
+    DefaultSettingsBuilder::default()
+        .verbose(false)
+        .tol_gap_abs(1e-13)
+        .tol_gap_rel(1e-13)
+        .tol_feas(1e-12)
+        .tol_ktratio(1e-10)
+        .max_iter(400)
+        .build()
+        .expect("static settings")
+}
+
 fn lp(c: &Mat<f64>, rhs: &[f64], keep: &[usize], objective: Option<(usize, f64)>) -> Lp {
     let m = c.nrows();
     let (mut rows, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
@@ -46,18 +61,7 @@ fn lp(c: &Mat<f64>, rhs: &[f64], keep: &[usize], objective: Option<(usize, f64)>
         None => vec![0.0; m],
     };
     let p = CscMatrix::zeros((m, m));
-    // The ranges are reported to the user: Clarabel's default gap tolerance
-    // (1e-8, and 5e-5 when it settles for "almost solved") printed 9.999926 for
-    // a moment bound of exactly 10.
-    let settings = DefaultSettingsBuilder::default()
-        .verbose(false)
-        .tol_gap_abs(1e-13)
-        .tol_gap_rel(1e-13)
-        .tol_feas(1e-12)
-        .tol_ktratio(1e-10)
-        .max_iter(400)
-        .build()
-        .expect("static settings");
+    let settings = tight_settings();
     let cones = [ZeroConeT(ne), NonnegativeConeT(m)];
     let Ok(mut solver) = DefaultSolver::new(&p, &q, &a, &b, &cones, settings) else {
         return Lp::Failed;
@@ -179,15 +183,7 @@ pub fn escape(c: &Mat<f64>, rhs: &[f64]) -> Option<Vec<f64>> {
     b[m + 1] = 1.0;
     let q: Vec<f64> = (0..k).map(|j| -(0..m).map(|i| c[(i, j)]).sum::<f64>()).collect();
     let p = CscMatrix::zeros((k, k));
-    let settings = DefaultSettingsBuilder::default()
-        .verbose(false)
-        .tol_gap_abs(1e-12)
-        .tol_gap_rel(1e-12)
-        .tol_feas(1e-12)
-        .max_iter(200)
-        .build()
-        .expect("static settings");
-    let mut solver = DefaultSolver::new(&p, &q, &a, &b, &[NonnegativeConeT(m + 2)], settings).ok()?;
+    let mut solver = DefaultSolver::new(&p, &q, &a, &b, &[NonnegativeConeT(m + 2)], tight_settings()).ok()?;
     solver.solve();
     // Undecided: leave it to the solve, whose certificate judges the answer.
     if !matches!(

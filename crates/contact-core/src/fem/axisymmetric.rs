@@ -12,6 +12,9 @@ use crate::mesh::Order;
 /// Voigt order of the axisymmetric strains and stresses.
 pub type D4 = [[f64; 4]; 4];
 
+/// The strains whose sum is the volume change: ε_rr + ε_zz + ε_θθ.
+const VOLUME: [f64; 4] = [1.0, 1.0, 0.0, 1.0];
+
 /// Isotropic D for (rr, zz, rz, θθ) with engineering shear strain.
 pub fn d_matrix(e: f64, nu: f64) -> D4 {
     let c = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
@@ -35,7 +38,7 @@ pub fn stiffness(order: Order, x: &[[f64; 2]], d: &D4, ke: &mut [f64; 144]) {
 /// at the centroid: see `element::add_mean_dilatation`), the deviatoric part
 /// with the full rule.
 pub fn stiffness_selective(order: Order, x: &[[f64; 2]], d: &D4, lambda: f64, ke: &mut [f64; 144]) {
-    element::selective_of(order, x, d, lambda, [1.0, 1.0, 0.0, 1.0], b_column, true, ke);
+    element::selective_of(order, x, d, lambda, VOLUME, b_column, true, ke);
 }
 
 /// The strain columns of DOF a (component a % 2 of node a / 2) at radius r.
@@ -55,17 +58,10 @@ fn b_column(a: usize, n: &[f64; 6], dx: &[f64; 6], dy: &[f64; 6], r: f64) -> [f6
 /// measured on a ball on a flat at ν = 0.49, a/h ≈ 21, the stresses within a/2
 /// of the contact were off by up to 21 % of p0 on elements touching the axis.
 pub fn centroid_stress_selective(order: Order, x: &[[f64; 2]], d: &D4, lambda: f64, ue: &[f64]) -> [f64; 4] {
-    let m = [1.0, 1.0, 0.0, 1.0];
-    let mut dev = *d;
-    for i in 0..4 {
-        for j in 0..4 {
-            dev[i][j] -= lambda * m[i] * m[j];
-        }
-    }
-    let (bbar, _) = element::mean_dilatation(order, x, m, b_column, true);
+    let (bbar, _) = element::mean_dilatation(order, x, VOLUME, b_column, true);
     let theta: f64 = ue.iter().zip(&bbar).map(|(u, b)| u * b).sum();
-    let s = centroid_stress(order, x, &dev, ue);
-    std::array::from_fn(|i| s[i] + lambda * theta * m[i])
+    let s = centroid_stress(order, x, &element::deviatoric(d, lambda, VOLUME), ue);
+    std::array::from_fn(|i| s[i] + lambda * theta * VOLUME[i])
 }
 
 /// Centroid stress (rr, zz, rz, θθ).

@@ -164,15 +164,14 @@ pub(crate) fn selective_of<const S: usize>(
 ) {
     let nd = 2 * order_len(order);
     ke[..nd * nd].iter_mut().for_each(|v| *v = 0.0);
-    let mut dev = *d;
-    for i in 0..S {
-        for j in 0..S {
-            dev[i][j] -= lambda * m[i] * m[j];
-        }
-    }
-    add_stiffness(order, x, &dev, rule(order), column, ring, ke);
+    add_stiffness(order, x, &deviatoric(d, lambda, m), rule(order), column, ring, ke);
     add_mean_dilatation(order, x, lambda, m, column, ring, ke);
     symmetrize(nd, ke);
+}
+
+/// D − λ m mᵀ: the part of D the P2–P0 element integrates with the full rule.
+pub(crate) fn deviatoric<const S: usize>(d: &[[f64; S]; S], lambda: f64, m: [f64; S]) -> [[f64; S]; S] {
+    std::array::from_fn(|i| std::array::from_fn(|j| d[i][j] - lambda * m[i] * m[j]))
 }
 
 /// Adds the volumetric stiffness λ V b̄ b̄ᵀ to the upper triangle of `ke`, with

@@ -57,6 +57,8 @@ pub fn pairs(
     let mut total = Resultant::default();
     let mut n_active = 0;
     let mut out = Vec::with_capacity(scene.pairs.len());
+    // Nondimensional pressure of every row, for the zone ends' estimate.
+    let pressure: Vec<f64> = (0..cons.len()).map(|i| lambda[i] / cons.candidates[i].weight).collect();
     for (p, pair) in scene.pairs.iter().enumerate() {
         let mut idx: Vec<usize> = (0..cons.len()).filter(|&i| cons.candidates[i].pair == p).collect();
         idx.sort_by(|&a, &b| {
@@ -84,7 +86,6 @@ pub fn pairs(
             });
         }
         let mesh = &meshes[pair.body];
-        let pressure: Vec<f64> = (0..cons.len()).map(|i| lambda[i] / cons.candidates[i].weight).collect();
         let (zones, zones_along) = zones(
             mesh,
             &along(mesh, &mesh.edge_sets[&pair.edges]),
