@@ -19,6 +19,7 @@
 //! is what comes out. No I/O, no serialization: the `contact` crate turns
 //! bytes into requests and reports into replies.
 
+pub mod adapt;
 pub mod admit;
 pub mod cache;
 pub mod cancel;

@@ -48,6 +48,8 @@ pub struct Timings {
     pub condensation: f64,
     pub contact_solve: f64,
     pub post: f64,
+    /// The error estimate's coarser solve and earlier refinement rounds.
+    pub estimate: f64,
     pub total: f64,
 }
 
@@ -60,6 +62,7 @@ impl Timings {
         self.condensation += s.condensation;
         self.contact_solve += s.contact_solve;
         self.post += s.post;
+        self.estimate += s.estimate;
         self.total += s.total;
     }
 }

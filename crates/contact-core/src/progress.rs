@@ -27,6 +27,9 @@ pub struct Progress {
     /// Both 0 without a plan.
     pub done: f64,
     pub total: f64,
+    /// The round of tolerance-driven refinement (from 1), when refining:
+    /// each round's stages run from the start of the bar again.
+    pub round: Option<usize>,
 }
 
 /// The stages in the order a condensed solve runs them (`factorization` and
@@ -54,6 +57,7 @@ struct Installed {
     base: f64,
     /// When the sink was last told.
     told: Instant,
+    round: Option<usize>,
 }
 
 /// Contact iterations a solve is expected to take (the Hertz scenes take 7 to
@@ -94,6 +98,7 @@ impl Sink {
             credit: 0.0,
             base: 0.0,
             told: Instant::now(),
+            round: None,
         };
         Self {
             previous: SINK.with(|s| s.replace(Some(new))),
@@ -130,6 +135,7 @@ fn emit(stage: Option<&'static str>, iteration: Option<usize>, residual: Option<
                 elapsed: i.start.elapsed().as_secs_f64(),
                 done: i.done(),
                 total: i.plan.iter().sum(),
+                round: i.round,
             };
             (i.sink)(&p);
         }
@@ -199,6 +205,11 @@ pub fn report() {
 /// The solve enters `name`.
 pub fn stage(name: &'static str) {
     emit(Some(name), None, None);
+}
+
+/// Round `k` (from 1) of tolerance-driven refinement begins.
+pub fn round(k: usize) {
+    with_installed(|i| i.round = Some(k));
 }
 
 /// Iteration `k` of the current stage ended with `residual`.

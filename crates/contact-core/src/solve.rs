@@ -25,10 +25,27 @@ use crate::solution::report::{CacheState, LoadStep, Report, Status, Timings};
 
 /// Solves the scene, once per load factor (one factorization serves them all).
 /// Within the scene's own time limit, if it has one.
+/// With `settings.accuracy`, round after round on finer meshes; with
+/// `settings.estimate`, every pair's error estimated (`adapt`).
 pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<Report, CoreError> {
     let _deadline = scene
         .time_limit
         .map(|s| crate::cancel::Deadline::install(std::time::Duration::from_secs_f64(s.min(1e9))));
+    // Only the first round of refinement, and not the estimate's coarser
+    // companion, can be the service's cached operator.
+    let uncached = |s: &Scene| solve_steps(s, limits, None);
+    if let Some(target) = scene.settings.accuracy {
+        return crate::adapt::refine(scene, target, &uncached);
+    }
+    let mut report = solve_steps(scene, limits, cache)?;
+    if scene.settings.estimate {
+        crate::adapt::estimate(scene, &mut report, &uncached);
+    }
+    Ok(report)
+}
+
+/// The scene once per load factor.
+fn solve_steps(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<Report, CoreError> {
     if scene.load_factors.is_empty() {
         return solve_once(scene, limits, cache);
     }

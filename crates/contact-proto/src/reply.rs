@@ -71,6 +71,57 @@ pub struct SolveReply {
     /// request's units either way).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub units: Option<crate::Units>,
+    /// With `settings.accuracy`: the rounds of refinement that led to this
+    /// answer (the top-level fields describe the last round).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub refinement: Option<Refinement>,
+}
+
+/// Tolerance-driven refinement: each round halves the generated meshes'
+/// element sizes (near the contact zones and away from them) and solves again.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Refinement {
+    /// Whether every estimate met its target.
+    pub reached: bool,
+    /// Why the rounds stopped: `reached`, `max_rounds`, `max_dofs`,
+    /// `size_limit`, `not_converging` or `not_solved`.
+    pub stopped: String,
+    pub rounds: Vec<RefinementRound>,
+}
+
+/// One solve of tolerance-driven refinement.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RefinementRound {
+    pub dofs: usize,
+    /// Smallest element size asked of the generators in this round [length].
+    pub h_min: f64,
+    /// Largest estimated `pressure_l2` over the pairs (null where not estimated).
+    pub pressure_l2: Option<f64>,
+    /// Largest estimated zone-end error over the pairs [length].
+    pub zone_edge: f64,
+    /// Wall-clock seconds of the round (its solve and its estimate).
+    pub seconds: f64,
+}
+
+/// A posteriori error estimate of one pair's answer.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PairAccuracy {
+    /// How the estimate was made: `two_level` (this solve against one with
+    /// every generated element twice as large, Richardson-scaled) or
+    /// `zone_edges` (meshes that cannot be coarsened: only the zone ends).
+    pub basis: String,
+    /// Estimated relative L2 error of the nodal pressure over the zone.
+    pub pressure_l2: Option<f64>,
+    /// Estimated relative error of the peak pressure.
+    pub peak: Option<f64>,
+    /// Estimated relative error of the pair's resultant force.
+    pub resultant: Option<f64>,
+    /// Estimated error of each zone's start and end along the surface, in
+    /// the order of `zones_along` [length].
+    pub zone_edges: Vec<[f64; 2]>,
 }
 
 /// A violated assumption of the model, or a discretization too coarse to
@@ -199,6 +250,9 @@ pub struct PairResult {
     /// (equal and opposite to `resultant`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub other_resultant: Option<Resultant>,
+    /// The estimated error of this pair's answer (absent with `settings.estimate` false).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accuracy: Option<PairAccuracy>,
 }
 
 /// A contact zone along the surface of the pair's edge set.
@@ -314,6 +368,10 @@ pub struct Timings {
     pub condensation: f64,
     pub contact_solve: f64,
     pub post: f64,
+    /// The error estimate's coarser solve (and, with `settings.accuracy`, the
+    /// refinement rounds before the last).
+    #[serde(default)]
+    pub estimate: f64,
     pub total: f64,
 }
 

@@ -526,6 +526,42 @@ pub struct SolverSettings {
     /// How the gap of a contact row is measured: `signed_distance` (default)
     /// or `body_normal`.
     pub gap: GapMeasure,
+    /// Estimate every pair's pressure error by a second, coarser solve of the
+    /// same scene (generated meshes only; default true). The zone ends'
+    /// uncertainty is always given.
+    pub estimate: bool,
+    /// Accuracy to reach: the generated meshes are refined round by round
+    /// until the estimates are below these targets or a limit is met.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accuracy: Option<AccuracyTarget>,
+}
+
+/// Targets of tolerance-driven refinement: set at least one of `pressure_l2`
+/// and `zone_edge`.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct AccuracyTarget {
+    /// Estimated relative L2 error of every pair's pressure over its zone (e.g. 0.005).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pressure_l2: Option<f64>,
+    /// Estimated error of every zone end's position [length].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub zone_edge: Option<f64>,
+    /// Most solves, the first included (default 6).
+    #[serde(default = "default_rounds")]
+    pub max_rounds: usize,
+    /// Largest number of degrees of freedom a round may have (default 400000,
+    /// within the service's own size limit).
+    #[serde(default = "default_max_dofs")]
+    pub max_dofs: usize,
+}
+
+fn default_rounds() -> usize {
+    6
+}
+
+fn default_max_dofs() -> usize {
+    400_000
 }
 
 /// The linearized non-penetration condition of a contact row.
@@ -556,6 +592,8 @@ impl Default for SolverSettings {
             barrier: None,
             formulation: Formulation::Condensed,
             gap: GapMeasure::SignedDistance,
+            estimate: true,
+            accuracy: None,
         }
     }
 }

@@ -112,6 +112,31 @@ pub fn reply(r: &SolveReply) -> String {
                 ends.join("; ")
             );
         }
+        if let Some(a) = p.accuracy.as_ref().filter(|a| a.pressure_l2.is_some()) {
+            let pct = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{:.2} %", 100.0 * v));
+            let _ = writeln!(
+                o,
+                "  accuracy   pressure L2 ±{}, peak ±{}, resultant ±{} (estimated, {})",
+                pct(a.pressure_l2),
+                pct(a.peak),
+                pct(a.resultant),
+                a.basis.replace('_', "-")
+            );
+        }
+    }
+    if let Some(rf) = &r.refinement {
+        let rounds: Vec<String> = rf.rounds.iter().map(|k| k.dofs.to_string()).collect();
+        let _ = writeln!(
+            o,
+            "refinement   {} round(s), DOFs {}: {}",
+            rf.rounds.len(),
+            rounds.join(" → "),
+            if rf.reached {
+                "target reached".to_string()
+            } else {
+                format!("target NOT reached ({})", rf.stopped)
+            }
+        );
     }
     for pu in &r.punches {
         let _ = writeln!(
@@ -146,8 +171,8 @@ pub fn reply(r: &SolveReply) -> String {
     let t = &r.timings;
     let _ = writeln!(
         o,
-        "time         {:.3} s (mesh {:.3}, assembly {:.3}, factorization {:.3}, condensation {:.3}, contact {:.3}, post {:.3})",
-        t.total, t.mesh, t.assembly, t.factorization, t.condensation, t.contact_solve, t.post
+        "time         {:.3} s (mesh {:.3}, assembly {:.3}, factorization {:.3}, condensation {:.3}, contact {:.3}, post {:.3}, estimate {:.3})",
+        t.total, t.mesh, t.assembly, t.factorization, t.condensation, t.contact_solve, t.post, t.estimate
     );
     if let Some(steps) = &r.steps {
         let _ = writeln!(o, "load steps   {} (the lines above are the last)", steps.len());

@@ -7,6 +7,7 @@
 //! - boundary edges of an edge set are oriented with the body on their left, so
 //!   the outward normal of edge a→b is (dy, −dx)/|ab|.
 
+pub mod bisect;
 pub mod boundary;
 pub mod estimate;
 pub mod generate;

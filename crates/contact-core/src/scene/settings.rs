@@ -83,6 +83,20 @@ pub struct Settings {
     pub penalty: f64,
     /// Barrier parameter ζ of `barrier`.
     pub barrier: f64,
+    /// Estimate the pressure's error by a coarser second solve (`crate::adapt`).
+    pub estimate: bool,
+    /// Tolerance-driven refinement, when asked for.
+    pub accuracy: Option<AccuracyTarget>,
+}
+
+/// What tolerance-driven refinement must reach (`crate::adapt`): a relative
+/// L2 error of the pressure, a zone-end error in the request's length unit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AccuracyTarget {
+    pub pressure_l2: Option<f64>,
+    pub zone_edge: Option<f64>,
+    pub max_rounds: usize,
+    pub max_dofs: usize,
 }
 
 impl Default for Settings {
@@ -97,6 +111,8 @@ impl Default for Settings {
             gap: GapMeasure::SignedDistance,
             penalty: 1e-6,
             barrier: 1e-8,
+            estimate: true,
+            accuracy: None,
         }
     }
 }

@@ -22,6 +22,8 @@
 //! before the next node: the estimate is that spacing. A zone that ends where
 //! its edge set ends (a footing's whole base) ends there exactly: 0.
 
+use crate::solution::report::{PairAccuracy, PairReport};
+
 /// Outer fraction of a zone whose nodes the fit uses.
 const WINDOW: f64 = 0.3;
 /// Fewest nodes in contact the fit needs (three coefficients and one more).
@@ -111,6 +113,89 @@ fn edge_root(points: &[(f64, f64)], dir: f64) -> Option<f64> {
         .into_iter()
         .filter(|&t| c1 + 2.0 * c2 * t < 0.0)
         .min_by(|a, b| a.abs().total_cmp(&b.abs()))
+}
+
+/// A pair's estimate from its zone ends alone (no second solve).
+pub fn zone_edges_only(pair: &PairReport) -> PairAccuracy {
+    PairAccuracy {
+        basis: "zone_edges",
+        pressure_l2: None,
+        peak: None,
+        resultant: None,
+        zone_edges: pair.zones_along.iter().map(|z| z.uncertainty).collect(),
+    }
+}
+
+/// The two-level estimate of a pair's error: the same pair solved on meshes
+/// whose elements are `ratio` times as large (`coarse`) differs from the
+/// finer solution (`fine`) by about (ratio^q − 1) times the finer one's
+/// error, for an error of order q in the element size. The nodal pressure
+/// of `coarse` is interpolated along its surface at `fine`'s candidates, and
+/// the L2 difference is weighed by `fine`'s tributary weights over the union
+/// of the two zones. The pressure's error is dominated by where the zone
+/// edge falls between nodes and by the far field's stiffness, both O(h²)
+/// for T3 and, on our graded meshes, for T6 too (its pressure lives on the
+/// corner nodes): `ORDER`.
+pub fn two_level(fine: &PairReport, coarse: &PairReport, ratio: f64) -> PairAccuracy {
+    let scale = ratio.powf(ORDER) - 1.0;
+    let mut c: Vec<(f64, f64, f64)> = coarse.points.iter().map(|q| (q.x, q.y, q.pressure)).collect();
+    c.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    let (mut num, mut den) = (0.0, 0.0);
+    for q in &fine.points {
+        let pc = along_polyline(&c, q.x, q.y);
+        if q.pressure > 0.0 || pc > 0.0 {
+            num += q.weight * (q.pressure - pc).powi(2);
+            den += q.weight * q.pressure.powi(2);
+        }
+    }
+    let peak = |pts: &[crate::solution::report::ContactPoint]| pts.iter().map(|q| q.pressure).fold(0.0, f64::max);
+    let (pf, pc) = (peak(&fine.points), peak(&coarse.points));
+    let norm = |r: &crate::solution::report::Resultant| r.fx.hypot(r.fy);
+    let (rf, rc) = (norm(&fine.resultant), norm(&coarse.resultant));
+    let dr = (fine.resultant.fx - coarse.resultant.fx).hypot(fine.resultant.fy - coarse.resultant.fy);
+    PairAccuracy {
+        basis: "two_level",
+        pressure_l2: (den > 0.0).then(|| (num / den).sqrt() / scale),
+        peak: (pf > 0.0).then(|| (pf - pc).abs() / pf / scale),
+        resultant: (rf > 0.0 && rc.is_finite()).then(|| dr / rf / scale),
+        zone_edges: fine.zones_along.iter().map(|z| z.uncertainty).collect(),
+    }
+}
+
+/// Observed order of the nodal pressure error in the element size (see
+/// `two_level`).
+const ORDER: f64 = 2.0;
+
+/// The value at (x, y) of the piecewise-linear field through `pts` (x, y,
+/// value; sorted by x, then y, which is their order along a surface that is
+/// a graph over x or a vertical face): on the segment nearest the point among
+/// those around its place in the order; 0 beyond the ends.
+fn along_polyline(pts: &[(f64, f64, f64)], x: f64, y: f64) -> f64 {
+    if pts.len() < 2 {
+        return pts
+            .first()
+            .map_or(0.0, |p| if (p.0 - x).hypot(p.1 - y) == 0.0 { p.2 } else { 0.0 });
+    }
+    let k = pts.partition_point(|p| p.0 < x || (p.0 == x && p.1 < y));
+    let lo = k.saturating_sub(4);
+    let hi = (k + 4).min(pts.len() - 1);
+    let mut best = (f64::INFINITY, 0.0);
+    for i in lo..hi {
+        let (a, b) = (pts[i], pts[i + 1]);
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        let len2 = dx * dx + dy * dy;
+        let t = if len2 > 0.0 {
+            (((x - a.0) * dx + (y - a.1) * dy) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let (px, py) = (a.0 + t * dx, a.1 + t * dy);
+        let d = (x - px).hypot(y - py);
+        if d < best.0 {
+            best = (d, a.2 + t * (b.2 - a.2));
+        }
+    }
+    best.1
 }
 
 /// Gaussian elimination with partial pivoting on a 3 × 3 system.

@@ -121,6 +121,7 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
         timings: obs.finish(),
         cache,
         steps: None,
+        refinement: None,
         punches,
         bodies,
         foundations,

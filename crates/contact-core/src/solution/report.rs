@@ -39,6 +39,27 @@ pub struct Report {
     /// The bodies are sections of bodies of revolution about the y axis
     /// (the VTU file says so).
     pub axisymmetric: bool,
+    /// The rounds of tolerance-driven refinement, when the scene asked for them.
+    pub refinement: Option<Refinement>,
+}
+
+/// Tolerance-driven refinement (`crate::adapt`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Refinement {
+    pub reached: bool,
+    pub stopped: &'static str,
+    pub rounds: Vec<Round>,
+}
+
+/// One round of refinement: its size, the smallest generated element size
+/// (request units), the largest estimates over the pairs, its seconds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Round {
+    pub dofs: usize,
+    pub h_min: f64,
+    pub pressure_l2: Option<f64>,
+    pub zone_edge: f64,
+    pub seconds: f64,
 }
 
 impl Report {
@@ -245,6 +266,19 @@ pub struct PairReport {
     /// Two bodies: the pressure at the other body's nodes, and its resultant.
     pub other_points: Option<Vec<CounterPoint>>,
     pub other_resultant: Option<Resultant>,
+    /// The estimated error of the pair's answer (`solution::accuracy`).
+    pub accuracy: Option<PairAccuracy>,
+}
+
+/// A posteriori error estimate of a pair (`solution::accuracy`): relative
+/// errors, and the zone ends' in the request's length unit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PairAccuracy {
+    pub basis: &'static str,
+    pub pressure_l2: Option<f64>,
+    pub peak: Option<f64>,
+    pub resultant: Option<f64>,
+    pub zone_edges: Vec<[f64; 2]>,
 }
 
 /// A contact zone along the surface of its edge set: arc length from the

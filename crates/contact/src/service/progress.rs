@@ -49,6 +49,9 @@ pub fn install(session: zenoh::Session, key: String, request_id: String) -> crat
         if let Some(r) = p.residual {
             v["residual"] = r.into();
         }
+        if let Some(k) = p.round {
+            v["round"] = k.into();
+        }
         v["request_id"] = serde_json::Value::String(request_id.clone());
         if let Err(e) = session.put(&key, serde_json::to_vec(&v).unwrap_or_default()).wait() {
             tracing::warn!(request_id = %request_id, "progress not published on {key}: {e}");

@@ -69,6 +69,21 @@ pub fn reply(mut report: Report) -> p::SolveReply {
             .collect(),
         vtu: None,
         units: None,
+        refinement: report.refinement.map(|r| p::Refinement {
+            reached: r.reached,
+            stopped: r.stopped.to_string(),
+            rounds: r
+                .rounds
+                .into_iter()
+                .map(|k| p::RefinementRound {
+                    dofs: k.dofs,
+                    h_min: k.h_min,
+                    pressure_l2: k.pressure_l2,
+                    zone_edge: k.zone_edge,
+                    seconds: k.seconds,
+                })
+                .collect(),
+        }),
     };
     crate::output::attach_vtu(&mut reply, outputs, &stress_zz, axisymmetric);
     reply
@@ -107,6 +122,7 @@ fn timings(t: r::Timings) -> p::Timings {
         condensation: t.condensation,
         contact_solve: t.contact_solve,
         post: t.post,
+        estimate: t.estimate,
         total: t.total,
     }
 }
@@ -137,6 +153,13 @@ fn pair(pr: PairReport) -> p::PairResult {
         ),
     };
     p::PairResult {
+        accuracy: pr.accuracy.map(|a| p::PairAccuracy {
+            basis: a.basis.to_string(),
+            pressure_l2: a.pressure_l2,
+            peak: a.peak,
+            resultant: a.resultant,
+            zone_edges: a.zone_edges,
+        }),
         body: pr.body,
         obstacle,
         against,

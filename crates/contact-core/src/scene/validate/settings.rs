@@ -5,7 +5,9 @@ use contact_proto::{self as proto, OutputKind, SolveRequest};
 
 use super::{finite, invalid, positive, Limits};
 use crate::error::{CoreError, InvalidKind, InvalidKind as K};
-use crate::scene::{Analysis, Body, Formulation, GapMeasure, Method, Outputs, Scales, Settings, Traction};
+use crate::scene::{
+    AccuracyTarget, Analysis, Body, Formulation, GapMeasure, Method, Outputs, Scales, Settings, Traction,
+};
 
 /// `units`: short printable names, if given.
 pub fn units(req: &SolveRequest) -> Result<(), CoreError> {
@@ -108,6 +110,55 @@ pub fn settings(
             Some(z) => positive(z, "/settings/barrier", K::Request, "barrier")? / scales.force_unit(),
             None => Settings::default().barrier,
         },
+        estimate: s.estimate,
+        accuracy: s.accuracy.as_ref().map(accuracy_target).transpose()?,
+    })
+}
+
+/// `settings.accuracy`: at least one target, each positive and finite (the
+/// pressure's a relative error below 1, not so small that the rounds only
+/// chase round-off), one round at least.
+fn accuracy_target(t: &proto::AccuracyTarget) -> Result<AccuracyTarget, CoreError> {
+    const AT: &str = "/settings/accuracy";
+    if t.pressure_l2.is_none() && t.zone_edge.is_none() {
+        return Err(invalid(
+            K::Request,
+            AT,
+            "accuracy needs a target: pressure_l2 (a relative error, e.g. 0.005) and/or zone_edge (a length)",
+        ));
+    }
+    if let Some(p) = t.pressure_l2 {
+        positive(p, &format!("{AT}/pressure_l2"), K::Request, "pressure_l2")?;
+        if !(1e-6..1.0).contains(&p) {
+            return Err(invalid(
+                K::Request,
+                format!("{AT}/pressure_l2"),
+                format!("pressure_l2 is a relative error between 1e-6 and 1 (0.005 is 0.5 %), got {p}"),
+            ));
+        }
+    }
+    if let Some(z) = t.zone_edge {
+        positive(z, &format!("{AT}/zone_edge"), K::Request, "zone_edge")?;
+    }
+    if t.max_rounds == 0 || t.max_rounds > 20 {
+        return Err(invalid(
+            K::Request,
+            format!("{AT}/max_rounds"),
+            format!("max_rounds must be between 1 and 20, got {}", t.max_rounds),
+        ));
+    }
+    if t.max_dofs == 0 {
+        return Err(invalid(
+            K::Request,
+            format!("{AT}/max_dofs"),
+            "max_dofs must be positive",
+        ));
+    }
+    Ok(AccuracyTarget {
+        pressure_l2: t.pressure_l2,
+        zone_edge: t.zone_edge,
+        max_rounds: t.max_rounds,
+        max_dofs: t.max_dofs,
     })
 }
 
