@@ -29,8 +29,15 @@ use crate::scene::{AccuracyTarget, MeshSource, Scene};
 use crate::solution::accuracy;
 use crate::solution::report::{PairAccuracy, Refinement, Report, Round, Status, Warning};
 
-/// Element size ratio of the estimate's coarser companion and of one round.
+/// Element size ratio of the estimate's coarser companion and of one round
+/// in the zones.
 const RATIO: f64 = 2.0;
+/// A round's factor on the grading's growth (ratio − 1) and the far-field
+/// size: the error sits at the zones, and halving these too made each round
+/// 4× larger (the T3 disk from h_min = 0.02 R met 0.5 % at 27.6k DOF in
+/// 0.11 s; by 1/√2, at 9.9k DOF in 0.04 s; the T6 one stopped at 110k DOF
+/// short of it, and by 1/√2 met it at 118k DOF).
+const ROUND_FIELD: f64 = std::f64::consts::FRAC_1_SQRT_2;
 /// Growth of the graded window over the farthest zone end it must cover.
 const MARGIN: f64 = 1.25;
 /// A round that does not bring the estimate below this fraction of the
@@ -47,7 +54,7 @@ pub type Solver<'a> = dyn Fn(&Scene) -> Result<Report, CoreError> + 'a;
 pub fn estimate(scene: &Scene, report: &mut Report, solve: &Solver) {
     let t = Instant::now();
     let coarse = (report.status == Status::Solved)
-        .then(|| resized(scene, RATIO, RATIO, None))
+        .then(|| resized(scene, [RATIO; 3], None))
         .flatten()
         .map(|c| {
             // The companion's progress would restart the caller's bar.
@@ -104,7 +111,8 @@ pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver) -> Result<R
         if rounds.len() >= target.max_rounds {
             break "max_rounds";
         }
-        let next = resized(&current, 1.0 / RATIO, 1.0 / RATIO, Some(&report)).expect("refining always succeeds");
+        let next = resized(&current, [1.0 / RATIO, ROUND_FIELD, ROUND_FIELD], Some(&report))
+            .expect("refining always succeeds");
         // Unknowns grow by about the last round's factor (4 before the first).
         if report.size.dofs as f64 * growth.unwrap_or(4.0) > target.max_dofs as f64 {
             break "max_dofs";
@@ -249,7 +257,7 @@ fn smallest_size(scene: &Scene) -> f64 {
 /// widened (or, ungraded, created) to cover the body's zones, and each given
 /// (inline or Gmsh) mesh bisected around them. None when coarsening (`h` ≥ 1)
 /// a given mesh.
-fn resized(scene: &Scene, h: f64, size: f64, report: Option<&Report>) -> Option<Scene> {
+fn resized(scene: &Scene, [h, growth, size]: [f64; 3], report: Option<&Report>) -> Option<Scene> {
     let mut out = scene.clone();
     for (b, body) in out.bodies.iter_mut().enumerate() {
         let ends = report.map(|r| zone_ends(scene, r, b)).unwrap_or_default();
@@ -285,7 +293,7 @@ fn resized(scene: &Scene, h: f64, size: f64, report: Option<&Report>) -> Option<
                     size: new_size,
                     grading: Some(Grading {
                         extent: g.extent.max(MARGIN * reach(apex, &ends)),
-                        ..scaled(g, h, new_size)
+                        ..scaled(g, [h, growth], new_size)
                     }),
                     order: *order,
                 }
@@ -300,7 +308,7 @@ fn resized(scene: &Scene, h: f64, size: f64, report: Option<&Report>) -> Option<
             } => {
                 let new_size = s * size;
                 let grading = match (grading, ends.is_empty()) {
-                    (Some((focus, g)), true) => Some((*focus, scaled(*g, h, new_size))),
+                    (Some((focus, g)), true) => Some((*focus, scaled(*g, [h, growth], new_size))),
                     (None, true) => None,
                     (g, false) => {
                         // Keep the focus if it already covers the zones; else
@@ -318,7 +326,7 @@ fn resized(scene: &Scene, h: f64, size: f64, report: Option<&Report>) -> Option<
                                 },
                             ),
                         };
-                        let mut g1 = scaled(g0, h, new_size);
+                        let mut g1 = scaled(g0, [h, growth], new_size);
                         g1.extent = g1.extent.max(MARGIN * reach(focus, &ends));
                         Some((focus, g1))
                     }
@@ -343,10 +351,10 @@ fn resized(scene: &Scene, h: f64, size: f64, report: Option<&Report>) -> Option<
 /// distance d from the focus is about h_min + (ratio − 1) d, so both terms
 /// scale (scaling h_min alone leaves the graded region's error: on the T3
 /// disk the resultant stayed 0.22 % stiff at every h_min with ratio 1.1).
-fn scaled(g: Grading, h: f64, size: f64) -> Grading {
+fn scaled(g: Grading, [h, growth]: [f64; 2], size: f64) -> Grading {
     Grading {
         h_min: (g.h_min * h).min(size),
-        ratio: (1.0 + (g.ratio - 1.0) * h).clamp(1.0, 2.0),
+        ratio: (1.0 + (g.ratio - 1.0) * growth).clamp(1.0, 2.0),
         extent: g.extent,
     }
 }

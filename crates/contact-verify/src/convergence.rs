@@ -42,7 +42,7 @@ use contact_core::solution::report::Report;
 use contact_core::Limits;
 
 /// The levels' finest element size at the contact, as a fraction of the first.
-const LEVELS: usize = 6;
+pub const LEVELS: usize = 6;
 
 /// Model floor of the disk scene against the half-plane formula (see the module doc).
 pub const DISK_FLOOR_L2: f64 = 4e-3;

@@ -2,7 +2,8 @@
 //!
 //! Analytic references (`reference`: Hertz), typed request builders (`build`),
 //! the time-against-error benchmark (`bench`),
-//! convergence under refinement (`convergence`) and the numerical stress suite
+//! convergence under refinement (`convergence`), time to a tolerance with and
+//! without refinement (`tolerance`) and the numerical stress suite
 //! (`stability`). Used by the tests, the CI smoke run and `contact bench`.
 
 pub mod bench;
@@ -11,3 +12,4 @@ pub mod convergence;
 pub mod reference;
 pub mod run;
 pub mod stability;
+pub mod tolerance;

@@ -305,6 +305,23 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
                     100.0 * contact_verify::convergence::DISK_FLOOR_L2,
                     100.0 * contact_verify::convergence::DISK_FLOOR_MOMENT
                 );
+                // Time to a tolerance: the reference 4× finer than the finest T6 level run.
+                let levels = if quick { 3 } else { contact_verify::convergence::LEVELS };
+                // (at most the 949k-DOF T6 disk, h_min 0.000275 R: a finer one takes minutes).
+                let reference_h = (0.0176 / 2f64.powi(levels as i32 - 1) / 4.0).max(0.000275);
+                println!("\ntime to a tolerance, disk on a flat (error against T6 at h_min {reference_h} R):");
+                println!("{}", contact_verify::tolerance::Row::table_header());
+                let tol = contact_verify::tolerance::run(levels, reference_h, |r| println!("{}", r.table_line()));
+                let mut text = format!("{}\n", contact_verify::tolerance::Row::HEADER);
+                for r in &tol {
+                    text.push_str(&r.csv());
+                    text.push('\n');
+                }
+                // Beside the convergence CSV.
+                let path = csv.with_file_name("tolerance.csv");
+                std::fs::create_dir_all(path.parent().unwrap_or(Path::new(".")))?;
+                std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))?;
+                println!("wrote {}", path.display());
                 (
                     contact_verify::convergence::Row::HEADER,
                     rows.iter().map(|r| r.csv()).collect::<Vec<_>>(),

@@ -3,6 +3,7 @@
 
 use contact::wire;
 use contact_verify::convergence::{disk_request, errors};
+use contact_verify::tolerance::error_against;
 use serde_json::{json, Value};
 
 fn solve(req: &Value) -> contact_core::solution::report::Report {
@@ -123,26 +124,6 @@ fn the_estimate_is_optional_and_the_targets_are_checked() {
     }
 }
 
-/// Nodal relative L2 error of a reply's pressure against a finer reference
-/// of the same scene, at the reply's candidates (the reference interpolated
-/// linearly along x; near the apex the generators' uniform windows nest the
-/// coarser nodes in the finer ones, so it is read at its own nodes there).
-fn l2_against(r: &contact_core::solution::report::Report, reference: &contact_core::solution::report::Report) -> f64 {
-    let mut rp: Vec<(f64, f64)> = reference.pairs[0].points.iter().map(|q| (q.x, q.pressure)).collect();
-    rp.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let at = |x: f64| {
-        let k = rp.partition_point(|p| p.0 < x).clamp(1, rp.len() - 1);
-        let (a, b) = (rp[k - 1], rp[k]);
-        a.1 + (b.1 - a.1) * ((x - a.0) / (b.0 - a.0)).clamp(0.0, 1.0)
-    };
-    let (mut num, mut den) = (0.0, 0.0);
-    for q in &r.pairs[0].points {
-        num += q.weight * (q.pressure - at(q.x)).powi(2);
-        den += q.weight * at(q.x).powi(2);
-    }
-    (num / den).sqrt()
-}
-
 /// The two-level estimate is the size of the true error: on the disk on a
 /// flat at h = 0.0022 R, T3 and T6, against the same disk by T6 at four
 /// times finer (the reference's own error, 0.16 % of L2 against a 949k-DOF
@@ -155,7 +136,7 @@ fn the_pressure_estimate_is_the_size_of_the_error() {
     for element in ["t3", "t6"] {
         let r = solve(&disk_request(0.0022, element));
         let acc = r.pairs[0].accuracy.as_ref().unwrap();
-        let eff = acc.pressure_l2.unwrap() / l2_against(&r, &reference);
+        let eff = acc.pressure_l2.unwrap() / error_against(&r, &reference);
         assert!((0.5..=2.0).contains(&eff), "{element}: pressure effectivity {eff:.3}");
         if element == "t3" {
             let true_r = (r.resultant.fy / reference.resultant.fy - 1.0).abs();

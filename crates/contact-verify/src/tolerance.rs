@@ -1,0 +1,174 @@
+//! Time to a tolerance on the disk on a flat: the first fixed mesh level of
+//! the convergence suite whose true error meets it (found by running the
+//! levels in turn, each timed on its own), against `settings.accuracy` from
+//! a coarse start (one request, timed whole: its rounds and estimates).
+//!
+//! The true error is the nodal L2 error against the same disk solved by T6
+//! four times finer than the finest level asked (`reference_h`), at the same
+//! prescribed displacement.
+
+use contact_core::scene::Limits;
+use contact_core::solution::report::Report;
+use serde_json::json;
+
+use crate::convergence::disk_request;
+
+/// Targets of the table (relative L2 error of the pressure).
+pub const TOLERANCES: [f64; 2] = [0.005, 0.002];
+/// The adaptive runs' coarse start: 6 element edges across the half-zone.
+pub const START_H: f64 = 0.02;
+
+#[derive(Debug, Clone)]
+pub struct Row {
+    pub element: &'static str,
+    pub tolerance: f64,
+    /// `fixed` (the levels h0 / 2^k of the convergence suite) or `adaptive`.
+    pub mode: &'static str,
+    pub dofs: usize,
+    /// Levels run (fixed) or refinement rounds (adaptive).
+    pub solves: usize,
+    /// Seconds of the solve that met the tolerance (fixed: that level alone;
+    /// adaptive: the whole request).
+    pub t_total: f64,
+    /// Seconds to get there (fixed: every level run until then).
+    pub t_cumulative: f64,
+    pub error: f64,
+    /// The reply's own estimate (adaptive), or its two-level estimate (fixed).
+    pub estimate: Option<f64>,
+    pub reached: bool,
+}
+
+impl Row {
+    pub const HEADER: &'static str =
+        "element,tolerance,mode,dofs,solves,t_total,t_cumulative,err_l2_ref,estimate,reached";
+
+    pub fn csv(&self) -> String {
+        format!(
+            "{},{},{},{},{},{:.6},{:.6},{:.6e},{},{}",
+            self.element,
+            self.tolerance,
+            self.mode,
+            self.dofs,
+            self.solves,
+            self.t_total,
+            self.t_cumulative,
+            self.error,
+            self.estimate.map_or(String::new(), |e| format!("{e:.6e}")),
+            self.reached
+        )
+    }
+
+    pub fn table_header() -> String {
+        format!(
+            "{:<4} {:>6} {:<8} {:>8} {:>6} {:>9} {:>9} {:>9} {:>9} {}",
+            "el", "tol", "mode", "dofs", "solves", "t[s]", "t_cum[s]", "err_ref", "estimate", "reached"
+        )
+    }
+
+    pub fn table_line(&self) -> String {
+        format!(
+            "{:<4} {:>6} {:<8} {:>8} {:>6} {:>9.4} {:>9.4} {:>8.3}% {:>9} {}",
+            self.element,
+            self.tolerance,
+            self.mode,
+            self.dofs,
+            self.solves,
+            self.t_total,
+            self.t_cumulative,
+            100.0 * self.error,
+            self.estimate.map_or("-".into(), |e| format!("{:.3}%", 100.0 * e)),
+            self.reached
+        )
+    }
+}
+
+/// Nodal relative L2 error of the disk's pressure against `reference`, at
+/// the reply's candidates (the reference interpolated linearly along x: near
+/// the apex the generator's uniform window nests the coarser nodes in the
+/// finer ones, so it is read at its own nodes there).
+pub fn error_against(r: &Report, reference: &Report) -> f64 {
+    let mut rp: Vec<(f64, f64)> = reference.pairs[0].points.iter().map(|q| (q.x, q.pressure)).collect();
+    rp.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let at = |x: f64| {
+        let k = rp.partition_point(|p| p.0 < x).clamp(1, rp.len() - 1);
+        let (a, b) = (rp[k - 1], rp[k]);
+        a.1 + (b.1 - a.1) * ((x - a.0) / (b.0 - a.0)).clamp(0.0, 1.0)
+    };
+    let (mut num, mut den) = (0.0, 0.0);
+    for q in &r.pairs[0].points {
+        num += q.weight * (q.pressure - at(q.x)).powi(2);
+        den += q.weight * at(q.x).powi(2);
+    }
+    (num / den).sqrt()
+}
+
+fn solve(req: &serde_json::Value) -> Report {
+    match crate::run::solve(req, &Limits::default()) {
+        Ok(r) => r,
+        Err(e) => panic!("time-to-tolerance scene rejected: {e:?}"),
+    }
+}
+
+/// The table: T3 and T6, each tolerance, fixed levels (up to `levels`) and
+/// adaptive; the reference is T6 at `reference_h`.
+pub fn run(levels: usize, reference_h: f64, mut progress: impl FnMut(&Row)) -> Vec<Row> {
+    let reference = solve(&disk_request(reference_h, "t6"));
+    let mut rows = Vec::new();
+    for element in ["t3", "t6"] {
+        let label = if element == "t3" { "T3" } else { "T6" };
+        for tol in TOLERANCES {
+            // Fixed levels, coarse to fine, until one meets the tolerance.
+            let mut cumulative = 0.0;
+            let mut fixed = None;
+            for k in 0..levels {
+                let h = 0.0088 / 2f64.powi(k as i32) * if element == "t6" { 2.0 } else { 1.0 };
+                let r = solve(&disk_request(h, element));
+                // The level's own cost, without its estimate.
+                let t = r.timings.total - r.timings.estimate;
+                cumulative += t;
+                let error = error_against(&r, &reference);
+                let row = Row {
+                    element: label,
+                    tolerance: tol,
+                    mode: "fixed",
+                    dofs: r.size.dofs,
+                    solves: k + 1,
+                    t_total: t,
+                    t_cumulative: cumulative,
+                    error,
+                    estimate: r.pairs[0].accuracy.as_ref().and_then(|a| a.pressure_l2),
+                    reached: error <= tol,
+                };
+                let done = row.reached;
+                fixed = Some(row);
+                if done {
+                    break;
+                }
+            }
+            if let Some(row) = fixed {
+                progress(&row);
+                rows.push(row);
+            }
+            let mut req = disk_request(START_H, element);
+            req["settings"] = json!({"accuracy": {"pressure_l2": tol}});
+            let r = solve(&req);
+            let refinement = r.refinement.as_ref().expect("rounds reported");
+            let error = error_against(&r, &reference);
+            let row = Row {
+                element: label,
+                tolerance: tol,
+                mode: "adaptive",
+                dofs: r.size.dofs,
+                solves: refinement.rounds.len(),
+                t_total: r.timings.total,
+                t_cumulative: r.timings.total,
+                error,
+                estimate: r.pairs[0].accuracy.as_ref().and_then(|a| a.pressure_l2),
+                reached: error <= tol,
+            };
+            progress(&row);
+            rows.push(row);
+        }
+    }
+    rows
+}
