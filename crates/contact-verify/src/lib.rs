@@ -2,13 +2,15 @@
 //!
 //! Analytic references (`reference`: Hertz), typed request builders (`build`),
 //! the time-against-error benchmark (`bench`),
-//! convergence under refinement (`convergence`), time to a tolerance with and
+//! convergence under refinement (`convergence`), the error estimate against
+//! the true error (`effectivity`), time to a tolerance with and
 //! without refinement (`tolerance`) and the numerical stress suite
 //! (`stability`). Used by the tests, the CI smoke run and `contact bench`.
 
 pub mod bench;
 pub mod build;
 pub mod convergence;
+pub mod effectivity;
 pub mod reference;
 pub mod run;
 pub mod stability;

@@ -135,7 +135,9 @@ enum Cmd {
         stability: bool,
         /// Convergence under refinement against Hertz instead (elastic disk on a
         /// rigid flat and rigid cylinder into a block, six levels, T3 and T6;
-        /// CSV to --csv, default bench_out/convergence.csv).
+        /// CSV to --csv, default bench_out/convergence.csv), then the time to a
+        /// tolerance (tolerance.csv) and the error estimate's effectivity on
+        /// seven scenes (effectivity.csv) beside it.
         #[arg(long, conflicts_with = "stability")]
         convergence: bool,
     },
@@ -320,6 +322,20 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
                 // Beside the convergence CSV.
                 let path = csv.with_file_name("tolerance.csv");
                 std::fs::create_dir_all(path.parent().unwrap_or(Path::new(".")))?;
+                std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))?;
+                println!("wrote {}", path.display());
+                // The estimate against the true error on every kind of scene.
+                println!(
+                    "\nerror estimate against the true error (reference: T6, every element half the scene's own):"
+                );
+                println!("{}", contact_verify::effectivity::Row::table_header());
+                let eff = contact_verify::effectivity::run(&[], |r| println!("{}", r.table_line()));
+                let mut text = format!("{}\n", contact_verify::effectivity::Row::HEADER);
+                for r in &eff {
+                    text.push_str(&r.csv());
+                    text.push('\n');
+                }
+                let path = csv.with_file_name("effectivity.csv");
                 std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))?;
                 println!("wrote {}", path.display());
                 (

@@ -146,11 +146,6 @@ pub fn zone_edges_only(pair: &PairReport) -> PairAccuracy {
 /// larger errs on the safe side.
 pub fn two_level(fine: &PairReport, coarse: &PairReport, ratio: f64) -> PairAccuracy {
     let scale = ratio.powf(ORDER) - 1.0;
-    let sorted = |pair: &PairReport| {
-        let mut v: Vec<(f64, f64, f64)> = pair.points.iter().map(|q| (q.x, q.y, q.pressure)).collect();
-        v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-        v
-    };
     // Relative L2 difference of `at`'s nodal pressure from `other`'s
     // field, weighed at `at`'s candidates; None without pressure.
     let relative = |at: &PairReport, other: &[(f64, f64, f64)]| {
@@ -164,7 +159,7 @@ pub fn two_level(fine: &PairReport, coarse: &PairReport, ratio: f64) -> PairAccu
         }
         (den > 0.0).then(|| (num / den).sqrt())
     };
-    let l2 = match (relative(fine, &sorted(coarse)), relative(coarse, &sorted(fine))) {
+    let l2 = match (relative(fine, &field(coarse)), relative(coarse, &field(fine))) {
         (Some(a), Some(b)) => Some(a.max(b)),
         (a, b) => a.or(b),
     };
@@ -182,6 +177,13 @@ pub fn two_level(fine: &PairReport, coarse: &PairReport, ratio: f64) -> PairAccu
     }
 }
 
+/// A pair's nodal pressure as (x, y, p), sorted for `along_polyline`.
+pub fn field(pair: &PairReport) -> Vec<(f64, f64, f64)> {
+    let mut v: Vec<(f64, f64, f64)> = pair.points.iter().map(|q| (q.x, q.y, q.pressure)).collect();
+    v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    v
+}
+
 /// Observed order of the nodal pressure error in the element size (see
 /// `two_level`).
 const ORDER: f64 = 2.0;
@@ -190,7 +192,7 @@ const ORDER: f64 = 2.0;
 /// value; sorted by x, then y, which is their order along a surface that is
 /// a graph over x or a vertical face): on the segment nearest the point among
 /// those around its place in the order; 0 beyond the ends.
-fn along_polyline(pts: &[(f64, f64, f64)], x: f64, y: f64) -> f64 {
+pub fn along_polyline(pts: &[(f64, f64, f64)], x: f64, y: f64) -> f64 {
     if pts.len() < 2 {
         return pts
             .first()

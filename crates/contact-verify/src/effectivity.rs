@@ -1,0 +1,281 @@
+//! How well each reply's error estimate (`pairs[].accuracy`) matches its true
+//! error, on the convergence suite's kinds of scene: the disk and the ball on
+//! a flat, a rigid cylinder into a block, the flat punch of revolution, two
+//! elastic cylinders, a footing on Winkler springs and a flat punch under an
+//! eccentric load (a moment).
+//!
+//! Each scene is solved at three levels (every generated element 8, 4 and 2
+//! times the scene's own: `h_min`, the grading's `ratio − 1` and `size`), T3
+//! and T6 (T6 elements twice as long: the same node spacing), and compared
+//! with its own overkill: T6 with every element half the scene's own (4×
+//! finer than the finest level). The true error is the nodal relative L2
+//! error of the first pair's pressure at the level's candidates (the
+//! reference interpolated along the surface), and each zone end's distance to
+//! the nearest end of the reference's zones.
+
+use contact_core::scene::Limits;
+use contact_core::solution::accuracy::{along_polyline, field};
+use contact_core::solution::report::Report;
+use serde_json::{json, Value};
+
+/// Level factors on the scene's element sizes, coarse to fine, and the
+/// reference's.
+pub const LEVELS: [f64; 3] = [8.0, 4.0, 2.0];
+pub const REFERENCE: f64 = 0.5;
+
+/// A scene: its name and its request at the scene's own element sizes.
+pub struct Scene {
+    pub name: &'static str,
+    pub request: fn() -> Value,
+}
+
+fn example(name: &str) -> Value {
+    let path = format!("{}/../../proto/examples/{name}", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    serde_json::from_str(&text).expect("example JSON")
+}
+
+pub const SCENES: [Scene; 7] = [
+    Scene {
+        name: "disk_on_flat",
+        request: || crate::convergence::disk_request(0.0011, "t3"),
+    },
+    Scene {
+        name: "ball_on_flat",
+        request: || crate::convergence::ball_request(0.0011, "t3"),
+    },
+    Scene {
+        name: "hertz_block",
+        request: || crate::bench::hertz_request(0.02, "t3", "auto"),
+    },
+    Scene {
+        name: "punch_of_revolution",
+        request: || example("axisymmetric_flat_punch.json"),
+    },
+    Scene {
+        name: "two_cylinders",
+        request: || example("two_bodies_cylinders.json"),
+    },
+    Scene {
+        name: "winkler_footing",
+        request: || example("foundation_winkler_footing.json"),
+    },
+    Scene {
+        name: "punch_under_moment",
+        request: || {
+            let mut req = example("indentation_flat_punch.json");
+            // M = 2 with P2 = −10: eccentric by 0.2 of the half-width 1.
+            req["obstacles"][0]["punch"]["rotation"] = json!({ "load": 2.0 });
+            req
+        },
+    },
+];
+
+/// The request with every generated element `factor` times as large (T6:
+/// twice that, the same node spacing as T3) and of order `element`.
+pub fn scaled(req: &Value, factor: f64, element: &str) -> Value {
+    let mut req = req.clone();
+    let f = factor * if element == "t6" { 2.0 } else { 1.0 };
+    if let Some(bodies) = req["bodies"].as_array_mut() {
+        for b in bodies {
+            for kind in ["rectangle", "half_disk", "quarter_disk"] {
+                // (Indexing a missing key would insert it.)
+                let Some(m) = b["mesh"].get_mut(kind) else { continue };
+                {
+                    // The far field no coarser than a quarter of the body (the
+                    // generators refuse a size past a disk's radius).
+                    let extent = m["radius"]
+                        .as_f64()
+                        .or_else(|| Some(m["width"].as_f64()?.min(m["height"].as_f64()?)))
+                        .unwrap_or(f64::INFINITY);
+                    let size = m["size"].as_f64().unwrap_or(1.0);
+                    m["size"] = json!((size * f).min((0.25 * extent).max(size)));
+                    m["element"] = json!(element);
+                    if let Some(g) = m.get_mut("grading") {
+                        g["h_min"] = json!(g["h_min"].as_f64().unwrap_or(1.0) * f);
+                        let ratio = g["ratio"].as_f64().unwrap_or(1.1);
+                        g["ratio"] = json!((1.0 + (ratio - 1.0) * f).min(2.0));
+                    }
+                }
+            }
+        }
+    }
+    req
+}
+
+#[derive(Debug, Clone)]
+pub struct Row {
+    pub scene: &'static str,
+    pub element: &'static str,
+    pub factor: f64,
+    pub dofs: usize,
+    pub err_l2: f64,
+    pub est_l2: Option<f64>,
+    /// Largest true error of a zone end, and its estimate.
+    pub err_edge: f64,
+    pub est_edge: f64,
+    pub err_resultant: f64,
+    pub est_resultant: Option<f64>,
+    /// Seconds of the estimate over seconds of the solve.
+    pub cost: f64,
+}
+
+impl Row {
+    pub const HEADER: &'static str =
+        "scene,element,factor,dofs,err_l2,est_l2,eff_l2,err_edge,est_edge,eff_edge,err_resultant,est_resultant,eff_resultant,cost";
+
+    fn eff(est: Option<f64>, err: f64) -> Option<f64> {
+        est.filter(|_| err > 0.0).map(|e| e / err)
+    }
+    pub fn eff_l2(&self) -> Option<f64> {
+        Self::eff(self.est_l2, self.err_l2)
+    }
+    pub fn eff_edge(&self) -> Option<f64> {
+        Self::eff(Some(self.est_edge), self.err_edge)
+    }
+    pub fn eff_resultant(&self) -> Option<f64> {
+        Self::eff(self.est_resultant, self.err_resultant)
+    }
+
+    pub fn csv(&self) -> String {
+        let o = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.6e}"));
+        format!(
+            "{},{},{},{},{:.6e},{},{},{:.6e},{:.6e},{},{:.6e},{},{},{:.4}",
+            self.scene,
+            self.element,
+            self.factor,
+            self.dofs,
+            self.err_l2,
+            o(self.est_l2),
+            o(self.eff_l2()),
+            self.err_edge,
+            self.est_edge,
+            o(self.eff_edge()),
+            self.err_resultant,
+            o(self.est_resultant),
+            o(self.eff_resultant()),
+            self.cost
+        )
+    }
+
+    pub fn table_header() -> String {
+        format!(
+            "{:<20} {:<3} {:>4} {:>8} {:>8} {:>8} {:>6} {:>9} {:>9} {:>6} {:>8} {:>8} {:>6} {:>5}",
+            "scene",
+            "el",
+            "f",
+            "dofs",
+            "err_l2",
+            "est_l2",
+            "eff",
+            "err_edge",
+            "est_edge",
+            "eff",
+            "err_res",
+            "est_res",
+            "eff",
+            "cost"
+        )
+    }
+
+    pub fn table_line(&self) -> String {
+        let pct = |v: Option<f64>| v.map_or("-".into(), |v| format!("{:.3}%", 100.0 * v));
+        let e = |v: Option<f64>| v.map_or("-".into(), |v| format!("{v:.2}"));
+        format!(
+            "{:<20} {:<3} {:>4} {:>8} {:>8} {:>8} {:>6} {:>9.2e} {:>9.2e} {:>6} {:>8} {:>8} {:>6} {:>5.2}",
+            self.scene,
+            self.element,
+            self.factor,
+            self.dofs,
+            pct(Some(self.err_l2)),
+            pct(self.est_l2),
+            e(self.eff_l2()),
+            self.err_edge,
+            self.est_edge,
+            e(self.eff_edge()),
+            pct(Some(self.err_resultant)),
+            pct(self.est_resultant),
+            e(self.eff_resultant()),
+            self.cost
+        )
+    }
+}
+
+fn solve(req: &Value) -> Report {
+    match crate::run::solve(req, &Limits::default()) {
+        Ok(r) => r,
+        Err(e) => panic!("effectivity scene rejected: {e:?}"),
+    }
+}
+
+/// The row of a level's reply against the reference's.
+pub fn compare(scene: &'static str, element: &'static str, factor: f64, r: &Report, reference: &Report) -> Row {
+    let (p, q) = (&r.pairs[0], &reference.pairs[0]);
+    let rf = field(q);
+    let (mut num, mut den) = (0.0, 0.0);
+    for c in &p.points {
+        let pr = along_polyline(&rf, c.x, c.y);
+        num += c.weight * (c.pressure - pr).powi(2);
+        den += c.weight * pr.powi(2);
+    }
+    let ref_ends: Vec<[f64; 2]> = q.zones_along.iter().flat_map(|z| [z.start, z.end]).collect();
+    let (mut err_edge, mut est_edge) = (0.0f64, 0.0f64);
+    for z in &p.zones_along {
+        for (end, u) in [(z.start, z.uncertainty[0]), (z.end, z.uncertainty[1])] {
+            let d = ref_ends
+                .iter()
+                .map(|e| (e[0] - end[0]).hypot(e[1] - end[1]))
+                .fold(f64::INFINITY, f64::min);
+            if d.is_finite() && d > err_edge {
+                err_edge = d;
+                est_edge = u;
+            }
+        }
+    }
+    let norm = |r: &contact_core::solution::report::Resultant| r.fx.hypot(r.fy);
+    let dr = (p.resultant.fx - q.resultant.fx).hypot(p.resultant.fy - q.resultant.fy);
+    let acc = p.accuracy.as_ref();
+    Row {
+        scene,
+        element,
+        factor,
+        dofs: r.size.dofs,
+        err_l2: if den > 0.0 { (num / den).sqrt() } else { 0.0 },
+        est_l2: acc.and_then(|a| a.pressure_l2),
+        err_edge,
+        est_edge,
+        err_resultant: if norm(&q.resultant) > 0.0 {
+            dr / norm(&q.resultant)
+        } else {
+            0.0
+        },
+        est_resultant: acc.and_then(|a| a.resultant),
+        cost: r.timings.estimate / (r.timings.total - r.timings.estimate).max(1e-12),
+    }
+}
+
+/// Every scene (or those named in `only`), T3 and T6, at every level.
+pub fn run(only: &[&str], mut progress: impl FnMut(&Row)) -> Vec<Row> {
+    let mut rows = Vec::new();
+    for sc in SCENES.iter().filter(|s| only.is_empty() || only.contains(&s.name)) {
+        let base = (sc.request)();
+        let mut reference = scaled(&base, REFERENCE, "t6");
+        reference["settings"]["estimate"] = json!(false);
+        let reference = solve(&reference);
+        for element in ["t3", "t6"] {
+            for factor in LEVELS {
+                let r = solve(&scaled(&base, factor, element));
+                let row = compare(
+                    sc.name,
+                    if element == "t3" { "T3" } else { "T6" },
+                    factor,
+                    &r,
+                    &reference,
+                );
+                progress(&row);
+                rows.push(row);
+            }
+        }
+    }
+    rows
+}
