@@ -155,9 +155,18 @@ impl Row {
 /// The elastic disk on a rigid flat, symmetric quarter: element size `h_min`
 /// within 0.105 R (≈ 1.6 a) of the apex.
 pub fn disk_request(h_min: f64, element: &str) -> Value {
+    disk_request_sized(h_min, element, FAR_FIELD_SIZE)
+}
+
+/// The levels' far-field (nominal) element size of the disk and the ball.
+pub const FAR_FIELD_SIZE: f64 = 0.125;
+
+/// The disk scene with the far-field element size `size` (the overkill
+/// references refine it too).
+pub fn disk_request_sized(h_min: f64, element: &str, size: f64) -> Value {
     use crate::build::*;
     let mesh = graded(
-        quarter_disk([0.0, 1.0], 1.0, true, 0.125, element),
+        quarter_disk([0.0, 1.0], 1.0, true, size, element),
         grading(h_min, 1.1, 0.105, None),
     );
     let disk = body("disk", 1.0, 0.3, mesh)
@@ -230,9 +239,19 @@ const SCENES: [Scene; 4] = [
     },
 ];
 
+/// The scene's converged zone end (`Scene::edge`), where one is known.
+pub fn converged_edge(scene: &str) -> Option<f64> {
+    SCENES.iter().find(|s| s.name == scene).and_then(|s| s.edge)
+}
+
 /// The disk scene's quarter section as a ball (axisymmetric), pressed 0.004 R.
 pub fn ball_request(h_min: f64, element: &str) -> Value {
-    let mut req = disk_request(h_min, element);
+    ball_request_sized(h_min, element, FAR_FIELD_SIZE)
+}
+
+/// The ball scene with the far-field element size `size`.
+pub fn ball_request_sized(h_min: f64, element: &str, size: f64) -> Value {
+    let mut req = disk_request_sized(h_min, element, size);
     req["analysis"] = json!("axisymmetric");
     req["bodies"][0]["supports"] = json!([{ "edges": "flat", "uy": -0.004 }]);
     req["description"] = json!("convergence: elastic ball (axisymmetric section) pressed 0.004 R onto a rigid flat");

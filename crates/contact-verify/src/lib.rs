@@ -1,6 +1,7 @@
 //! # contact-verify — what the contact solver is checked against
 //!
-//! Analytic references (`reference`: Hertz), typed request builders (`build`),
+//! Analytic references (`reference`: Hertz), overkill references of the
+//! convergence scenes (`overkill`, tables in `data/`), typed request builders (`build`),
 //! the time-against-error benchmark (`bench`),
 //! convergence under refinement (`convergence`) and the numerical stress suite
 //! (`stability`). Used by the tests, the CI smoke run and `contact bench`.
@@ -8,6 +9,7 @@
 pub mod bench;
 pub mod build;
 pub mod convergence;
+pub mod overkill;
 pub mod reference;
 pub mod run;
 pub mod stability;
