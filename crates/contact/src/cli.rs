@@ -135,6 +135,7 @@ enum Cmd {
         stability: bool,
         /// Convergence under refinement against Hertz instead (elastic disk on a
         /// rigid flat and rigid cylinder into a block, six levels, T3 and T6;
+        /// the disk and the ball also against their overkill references;
         /// CSV to --csv, default bench_out/convergence.csv).
         #[arg(long, conflicts_with = "stability")]
         convergence: bool,
@@ -305,6 +306,9 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
                     100.0 * contact_verify::convergence::DISK_FLOOR_L2,
                     100.0 * contact_verify::convergence::DISK_FLOOR_MOMENT
                 );
+                for line in contact_verify::overkill::summary() {
+                    println!("{line}");
+                }
                 (
                     contact_verify::convergence::Row::HEADER,
                     rows.iter().map(|r| r.csv()).collect::<Vec<_>>(),
