@@ -135,7 +135,7 @@ enum Cmd {
         stability: bool,
         /// Convergence under refinement against Hertz instead (elastic disk on a
         /// rigid flat and rigid cylinder into a block, six levels, T3 and T6;
-        /// the disk and the ball also against their overkill references;
+        /// the disk, the ball and the block also against overkill references;
         /// CSV to --csv, default bench_out/convergence.csv).
         #[arg(long, conflicts_with = "stability")]
         convergence: bool,
