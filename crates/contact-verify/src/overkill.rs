@@ -12,7 +12,7 @@
 //! of the last few nodes depend on where the edge happens to fall (measured
 //! at h_min = 0.0001375 R: the last node off the fit by 4.7e-3 p0 on the
 //! disk, 1.4e-3 on the ball, the fifth by 2e-4, the sixteenth by 1–2.5e-5;
-//! fit_from lies 23 nodes from the edge). The window stops short of those and
+//! fit_from lies 23 nodes from the edge there, 14 on the block). The window stops short of those and
 //! starts where p² still follows a quadratic (on the ball, a window at 60–80 %
 //! moved the edge by 5e-6 R, one at 70–90 % left the nodes at 95 % 6e-5 p0
 //! off). Inside, p² is interpolated by the cubic through the four nearest
@@ -30,7 +30,8 @@
 //! Tables are made by `cargo run --release -p contact-verify --example
 //! overkill` (see that file), which states in each table's header how it was
 //! made and its own measured uncertainty: the same evaluation from a solve
-//! with h_min twice as large, and one with the far-field size also doubled.
+//! with h_min twice as large, one with the far-field size also doubled, and
+//! the fit over two other windows.
 
 use std::sync::OnceLock;
 
@@ -74,7 +75,7 @@ pub struct RefErrors {
     pub edge: f64,
 }
 
-/// Outer fraction of the zone past which the fit replaces the nodal values
+/// Fraction of the zone past which the fit replaces the nodal values
 /// (the last few nodes' values depend on where the edge falls between them).
 pub const FIT_FROM: f64 = 0.95;
 /// The fit's window starts at this fraction of the zone.
