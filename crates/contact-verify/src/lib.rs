@@ -1,6 +1,7 @@
 //! # contact-verify — what the contact solver is checked against
 //!
-//! Analytic references (`reference`: Hertz), typed request builders (`build`),
+//! Analytic references (`reference`: Hertz), overkill references of the
+//! convergence scenes (`overkill`, tables in `data/`), typed request builders (`build`),
 //! the time-against-error benchmark (`bench`),
 //! convergence under refinement (`convergence`), the error estimate against
 //! the true error (`effectivity`), time to a tolerance with and
@@ -11,6 +12,7 @@ pub mod bench;
 pub mod build;
 pub mod convergence;
 pub mod effectivity;
+pub mod overkill;
 pub mod reference;
 pub mod run;
 pub mod stability;

@@ -135,6 +135,7 @@ enum Cmd {
         stability: bool,
         /// Convergence under refinement against Hertz instead (elastic disk on a
         /// rigid flat and rigid cylinder into a block, six levels, T3 and T6;
+        /// the disk, the ball and the block also against overkill references;
         /// CSV to --csv, default bench_out/convergence.csv), then the time to a
         /// tolerance (tolerance.csv) and the error estimate's effectivity on
         /// seven scenes (effectivity.csv) beside it.
@@ -307,6 +308,9 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
                     100.0 * contact_verify::convergence::DISK_FLOOR_L2,
                     100.0 * contact_verify::convergence::DISK_FLOOR_MOMENT
                 );
+                for line in contact_verify::overkill::summary() {
+                    println!("{line}");
+                }
                 // Time to a tolerance: the reference 4× finer than the finest T6 level run.
                 let levels = if quick { 3 } else { contact_verify::convergence::LEVELS };
                 // (at most the 949k-DOF T6 disk, h_min 0.000275 R: a finer one takes minutes).
