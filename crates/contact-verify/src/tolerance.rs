@@ -3,9 +3,8 @@
 //! levels in turn, each timed on its own), against `settings.accuracy` from
 //! a coarse start (one request, timed whole: its rounds and estimates).
 //!
-//! The true error is the nodal L2 error against the same disk solved by T6
-//! four times finer than the finest level asked (`reference_h`), at the same
-//! prescribed displacement.
+//! The true error is the nodal L2 error against the disk's stored overkill
+//! table (`overkill`: T6 at 3.7M DOF), at the same prescribed displacement.
 
 use contact_core::scene::Limits;
 use contact_core::solution::report::Report;
@@ -82,24 +81,12 @@ impl Row {
     }
 }
 
-/// Nodal relative L2 error of the disk's pressure against `reference`, at
-/// the reply's candidates (the reference interpolated linearly along x: near
-/// the apex the generator's uniform window nests the coarser nodes in the
-/// finer ones, so it is read at its own nodes there).
-pub fn error_against(r: &Report, reference: &Report) -> f64 {
-    let mut rp: Vec<(f64, f64)> = reference.pairs[0].points.iter().map(|q| (q.x, q.pressure)).collect();
-    rp.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let at = |x: f64| {
-        let k = rp.partition_point(|p| p.0 < x).clamp(1, rp.len() - 1);
-        let (a, b) = (rp[k - 1], rp[k]);
-        a.1 + (b.1 - a.1) * ((x - a.0) / (b.0 - a.0)).clamp(0.0, 1.0)
-    };
-    let (mut num, mut den) = (0.0, 0.0);
-    for q in &r.pairs[0].points {
-        num += q.weight * (q.pressure - at(q.x)).powi(2);
-        den += q.weight * at(q.x).powi(2);
-    }
-    (num / den).sqrt()
+/// Nodal relative L2 error of a reply of the disk on a flat against its
+/// overkill table.
+pub fn error(r: &Report) -> f64 {
+    crate::overkill::reference_error("disk_on_flat", r)
+        .expect("the disk's stored reference")
+        .l2
 }
 
 fn solve(req: &serde_json::Value) -> Report {
@@ -110,9 +97,8 @@ fn solve(req: &serde_json::Value) -> Report {
 }
 
 /// The table: T3 and T6, each tolerance, fixed levels (up to `levels`) and
-/// adaptive; the reference is T6 at `reference_h`.
-pub fn run(levels: usize, reference_h: f64, mut progress: impl FnMut(&Row)) -> Vec<Row> {
-    let reference = solve(&disk_request(reference_h, "t6"));
+/// adaptive.
+pub fn run(levels: usize, mut progress: impl FnMut(&Row)) -> Vec<Row> {
     let mut rows = Vec::new();
     for element in ["t3", "t6"] {
         let label = if element == "t3" { "T3" } else { "T6" };
@@ -126,7 +112,7 @@ pub fn run(levels: usize, reference_h: f64, mut progress: impl FnMut(&Row)) -> V
                 // The level's own cost, without its estimate.
                 let t = r.timings.total - r.timings.estimate;
                 cumulative += t;
-                let error = error_against(&r, &reference);
+                let error = error(&r);
                 let row = Row {
                     element: label,
                     tolerance: tol,
@@ -153,7 +139,7 @@ pub fn run(levels: usize, reference_h: f64, mut progress: impl FnMut(&Row)) -> V
             req["settings"] = json!({"accuracy": {"pressure_l2": tol}});
             let r = solve(&req);
             let refinement = r.refinement.as_ref().expect("rounds reported");
-            let error = error_against(&r, &reference);
+            let error = error(&r);
             let row = Row {
                 element: label,
                 tolerance: tol,

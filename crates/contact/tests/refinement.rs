@@ -3,7 +3,6 @@
 
 use contact::wire;
 use contact_verify::convergence::{disk_request, errors};
-use contact_verify::tolerance::error_against;
 use serde_json::{json, Value};
 
 fn solve(req: &Value) -> contact_core::solution::report::Report {
@@ -124,24 +123,47 @@ fn the_estimate_is_optional_and_the_targets_are_checked() {
     }
 }
 
-/// The two-level estimate is the size of the true error: on the disk on a
-/// flat at h = 0.0022 R, T3 and T6, against the same disk by T6 at four
-/// times finer (the reference's own error, 0.16 % of L2 against a 949k-DOF
-/// solution, mostly at its edge, is why the band is a factor 2 each way:
-/// measured 1.02 for both against the 949k-DOF solution). The resultant's
-/// estimate too (measured 1.25 on T3).
+/// The estimates are the size of the true errors on the smooth-edged scenes
+/// of the effectivity table (`contact_verify::effectivity`), at its middle
+/// level (every element 4× the scene's own), T3 and T6, against the stored
+/// overkill tables (disk, ball, block) or the scene solved 4× finer (two
+/// cylinders). The zone ends' estimate within [0.5, 2] of the true error
+/// (measured 0.84–1.00 here); the pressure's within a factor 3 (measured
+/// 0.44–1.38 here and 0.19–4.4 over all three levels: where the zone edge
+/// falls between nodes makes the two levels' errors step rather than scale,
+/// module `solution::accuracy`); the T3 resultant's within [0.5, 2]
+/// (measured 1.12–1.24). The T6 resultant, 0.03–0.24 % off, is overestimated
+/// up to 28× and not tested.
 #[test]
-fn the_pressure_estimate_is_the_size_of_the_error() {
-    let reference = solve(&disk_request(0.00055, "t6"));
-    for element in ["t3", "t6"] {
-        let r = solve(&disk_request(0.0022, element));
-        let acc = r.pairs[0].accuracy.as_ref().unwrap();
-        let eff = acc.pressure_l2.unwrap() / error_against(&r, &reference);
-        assert!((0.5..=2.0).contains(&eff), "{element}: pressure effectivity {eff:.3}");
-        if element == "t3" {
-            let true_r = (r.resultant.fy / reference.resultant.fy - 1.0).abs();
-            let eff = acc.resultant.unwrap() / true_r;
-            assert!((0.5..=2.0).contains(&eff), "resultant effectivity {eff:.3}");
+fn the_estimates_are_the_size_of_the_true_errors() {
+    use contact_verify::effectivity::{compare, scaled, SCENES};
+    for name in ["disk_on_flat", "ball_on_flat", "hertz_block", "two_cylinders"] {
+        let sc = SCENES.iter().find(|s| s.name == name).unwrap();
+        let base = (sc.request)();
+        let reference = contact_verify::overkill::reference(name)
+            .is_none()
+            .then(|| solve(&scaled(&base, 0.5, "t6")));
+        for (element, label) in [("t3", "T3"), ("t6", "T6")] {
+            let r = solve(&scaled(&base, 4.0, element));
+            let row = compare(sc.name, label, 4.0, &r, reference.as_ref());
+            let eff = row.eff_l2().unwrap();
+            assert!(
+                (1.0 / 3.0..=3.0).contains(&eff),
+                "{name} {label}: pressure effectivity {eff:.3}"
+            );
+            if let Some(eff) = row.eff_edge() {
+                assert!(
+                    (0.5..=2.0).contains(&eff),
+                    "{name} {label}: zone end effectivity {eff:.3}"
+                );
+            }
+            if element == "t3" {
+                let eff = row.eff_resultant().unwrap();
+                assert!(
+                    (0.5..=2.0).contains(&eff),
+                    "{name} {label}: resultant effectivity {eff:.3}"
+                );
+            }
         }
     }
 }

@@ -20,7 +20,9 @@
 //! Where no root lies within 1.5 spacings (a sharp punch corner, where the
 //! pressure rises to the end; too few nodes), the edge is only known to lie
 //! before the next node: the estimate is that spacing. A zone that ends where
-//! its edge set ends (a footing's whole base) ends there exactly: 0.
+//! its edge set ends (a footing's whole base) ends there exactly: 0. A
+//! foundation's zone ends at its last active panel, where the foundation
+//! lifts off within half a spacing (`panel_end_error`).
 
 use crate::solution::report::{PairAccuracy, PairReport};
 
@@ -67,6 +69,16 @@ pub fn end_error(stations: &[Station], first: usize, last: usize, dir: isize) ->
         Some(t) if t.abs() * length <= 1.5 * spacing => (t.abs() * length).max(0.25 * spacing),
         _ => spacing,
     }
+}
+
+/// The error of a foundation zone's end at `stations[last]` (its active node
+/// on the side `dir`): the zone is reported to the outer end of that node's
+/// panel, halfway to the next node, and the foundation lifts off somewhere
+/// between the two nodes: half the spacing, or 0 where the surface ends.
+pub fn panel_end_error(stations: &[Station], last: usize, dir: isize) -> f64 {
+    last.checked_add_signed(dir)
+        .filter(|&k| k < stations.len())
+        .map_or(0.0, |next| 0.5 * (stations[next].s - stations[last].s).abs())
 }
 
 /// The root nearest the end (t = 0; t > 0 outward in direction `dir`) where
@@ -148,10 +160,11 @@ pub fn two_level(fine: &PairReport, coarse: &PairReport, ratio: f64) -> PairAccu
     let scale = ratio.powf(ORDER) - 1.0;
     // Relative L2 difference of `at`'s nodal pressure from `other`'s
     // field, weighed at `at`'s candidates; None without pressure.
-    let relative = |at: &PairReport, other: &[(f64, f64, f64)]| {
+    let relative = |at: &PairReport, other: &PairReport| {
+        let (pts, reach) = field_with_reach(other);
         let (mut num, mut den) = (0.0, 0.0);
         for q in &at.points {
-            let po = along_polyline(other, q.x, q.y);
+            let po = along(&pts, Some(&reach), q.x, q.y);
             if q.pressure > 0.0 || po > 0.0 {
                 num += q.weight * (q.pressure - po).powi(2);
                 den += q.weight * q.pressure.max(po).powi(2);
@@ -159,7 +172,7 @@ pub fn two_level(fine: &PairReport, coarse: &PairReport, ratio: f64) -> PairAccu
         }
         (den > 0.0).then(|| (num / den).sqrt())
     };
-    let l2 = match (relative(fine, &field(coarse)), relative(coarse, &field(fine))) {
+    let l2 = match (relative(fine, coarse), relative(coarse, fine)) {
         (Some(a), Some(b)) => Some(a.max(b)),
         (a, b) => a.or(b),
     };
@@ -184,6 +197,23 @@ pub fn field(pair: &PairReport) -> Vec<(f64, f64, f64)> {
     v
 }
 
+/// `field`, with each point's distance to its zone's estimated edge where it
+/// ends a zone (`zones_along`'s uncertainty), else 0.
+fn field_with_reach(pair: &PairReport) -> (Vec<(f64, f64, f64)>, Vec<f64>) {
+    let pts = field(pair);
+    let reach = pts
+        .iter()
+        .map(|p| {
+            pair.zones_along
+                .iter()
+                .flat_map(|z| [(z.start, z.uncertainty[0]), (z.end, z.uncertainty[1])])
+                .find(|(e, _)| e[0] == p.0 && e[1] == p.1)
+                .map_or(0.0, |(_, u)| u)
+        })
+        .collect();
+    (pts, reach)
+}
+
 /// Observed order of the nodal pressure error in the element size (see
 /// `two_level`).
 const ORDER: f64 = 2.0;
@@ -193,6 +223,15 @@ const ORDER: f64 = 2.0;
 /// a graph over x or a vertical face): on the segment nearest the point among
 /// those around its place in the order; 0 beyond the ends.
 pub fn along_polyline(pts: &[(f64, f64, f64)], x: f64, y: f64) -> f64 {
+    along(pts, None, x, y)
+}
+
+/// As `along_polyline`, but on a segment from a zone end (a point with
+/// positive value and `reach[i]` > 0) to an open point, the value falls like
+/// a square root to zero at `reach[i]` from the end: the estimated edge
+/// (`end_error`), not linearly to the open point (which puts pressure where
+/// the zone has ended).
+fn along(pts: &[(f64, f64, f64)], reach: Option<&[f64]>, x: f64, y: f64) -> f64 {
     if pts.len() < 2 {
         return pts
             .first()
@@ -214,7 +253,24 @@ pub fn along_polyline(pts: &[(f64, f64, f64)], x: f64, y: f64) -> f64 {
         let (px, py) = (a.0 + t * dx, a.1 + t * dy);
         let d = (x - px).hypot(y - py);
         if d < best.0 {
-            best = (d, a.2 + t * (b.2 - a.2));
+            let linear = a.2 + t * (b.2 - a.2);
+            let value = match reach {
+                Some(r) if (a.2 > 0.0) != (b.2 > 0.0) && len2 > 0.0 => {
+                    let (p, from_end, to_edge) = if a.2 > 0.0 {
+                        (a.2, t, r[i])
+                    } else {
+                        (b.2, 1.0 - t, r[i + 1])
+                    };
+                    let e = (to_edge / len2.sqrt()).min(1.0);
+                    if e > 0.0 {
+                        p * (1.0 - from_end / e).max(0.0).sqrt()
+                    } else {
+                        linear
+                    }
+                }
+                _ => linear,
+            };
+            best = (d, value);
         }
     }
     best.1

@@ -330,7 +330,7 @@ fn zones(
                 if fitted {
                     length(accuracy::end_error(on_chain, from - lo, to - lo, dir))
                 } else {
-                    0.0
+                    length(accuracy::panel_end_error(on_chain, to - lo, dir))
                 }
             };
             ZoneAlong {
