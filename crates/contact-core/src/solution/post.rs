@@ -153,6 +153,7 @@ pub fn pairs(
             resultant: res,
             max_penetration: sc.length(max_pen),
             pruned: cons.pruned[p],
+            friction: None,
         });
     }
     (out, total, n_active)

@@ -1,0 +1,259 @@
+//! One load step of Coulomb friction on the condensed rows: a primal–dual
+//! active set (semismooth Newton) on the Alart–Curnier complementarity
+//! functions.
+//!
+//! The normal rows N and the tangential rows T (`contact::friction`) are
+//! condensed together from one factorization, W = [B_N; B_T] K⁻¹ [B_N; B_T]ᵀ,
+//! so that for the normal forces λ and the tangential multipliers τ (friction
+//! force −τ along the tangent)
+//!
+//! ```text
+//! gap   w  = W_NN λ + W_NT τ + q,    q = g − B_N K⁻¹ f
+//! slip  Δs = e − W_TN λ − W_TT τ,    e = B_T K⁻¹ f + ū_t − u_t(previous step)
+//! ```
+//!
+//! and the step's conditions are λ ≥ 0, w ≥ 0, λ w = 0 and, in contact,
+//! |τ| ≤ μ λ with Δs = 0 where |τ| < μ λ and τ = μ λ sign(Δs) where Δs ≠ 0
+//! (the friction force opposes the slip: −τ Δs ≤ 0). The slip is the
+//! increment over the step (incremental, small-slip Coulomb law), measured
+//! from the tangential displacement the previous step ended with.
+//!
+//! Why this method: in 2D the cone is an interval, so the Alart–Curnier
+//! functions min(λ, c w) = 0 and τ = proj_[−μλ̃, μλ̃](τ + c_t Δs), λ̃ = λ − c w,
+//! are piecewise linear with four pieces per point (open, stick, slip + and
+//! slip −). Their semismooth Newton step is the linear system of the current
+//! pieces, and Newton's update of the pieces is the active-set update, as in
+//! the frictionless `active_set` (Hüeber, Stadler and Wohlmuth, SIAM J. Sci.
+//! Comput. 30, 2008). It reuses the warm start of the previous step's states
+//! (a load path changes a few points per step) and stops when the states
+//! repeat, with the answer exact up to the linear algebra. A Tresca fixed
+//! point on p would solve a QP per outer iteration and converge only
+//! linearly in its outer loop. The system of a state set is not symmetric
+//! (the slip rows tie τ to λ), so it is solved by LU; its size is the number
+//! of points in contact plus those among them with a tangential row.
+
+use std::time::Instant;
+
+use faer::Mat;
+
+use super::Solution;
+use crate::cache::Prepared;
+use crate::contact::friction::Tangents;
+use crate::contact::ConstraintSet;
+use crate::scene::Settings;
+
+/// A point's state in a step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum State {
+    Open,
+    Stick,
+    /// Sliding with τ = sign · μ λ (the slip along +t for sign +1).
+    Slip(i8),
+}
+
+/// What a step leaves to the next one.
+#[derive(Debug, Clone)]
+pub struct History {
+    /// Tangential displacement of each tangential row at the end of the step.
+    pub ut: Vec<f64>,
+    /// State of each candidate (the warm start of the next step).
+    pub state: Vec<State>,
+}
+
+impl History {
+    /// The undeformed, unloaded start: no displacement, the states of the
+    /// rows that penetrate without forces in contact.
+    pub fn start(nt: usize) -> Self {
+        Self {
+            ut: vec![0.0; nt],
+            state: Vec::new(),
+        }
+    }
+}
+
+/// The data of one step.
+pub struct Step<'a> {
+    /// The factor with W over the rows [N; T].
+    pub op: &'a Prepared,
+    pub f: &'a [f64],
+    pub cons: &'a ConstraintSet,
+    pub tangents: &'a Tangents,
+    pub settings: &'a Settings,
+}
+
+/// The friction of a solved step: the tangential multipliers, the slip of
+/// the step per tangential row, the states, and what the report reads of the
+/// normal solution (forces, contact, displacement scale ‖u‖∞).
+pub struct Friction {
+    pub tau: Vec<f64>,
+    pub slip: Vec<f64>,
+    pub history: History,
+    pub lambda: Vec<f64>,
+    pub in_contact: Vec<bool>,
+    pub u_scale: f64,
+}
+
+/// Solves one step from the state `previous` left.
+pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
+    let t0 = Instant::now();
+    let (n, nt) = (p.cons.len(), p.tangents.len());
+    let w = &p.op.condensed.w;
+    let y = p.op.chol.forward(p.f);
+    let bk = p.op.condensed.rows_of(&y);
+    let q: Vec<f64> = (0..n).map(|i| p.cons.candidates[i].g - bk[i]).collect();
+    let e: Vec<f64> = (0..nt)
+        .map(|k| bk[n + k] + p.tangents.prescribed[k] - previous.ut[k])
+        .collect();
+    let mut state = if previous.state.len() == n {
+        previous.state.clone()
+    } else {
+        q.iter()
+            .map(|&qi| if qi < 0.0 { State::Stick } else { State::Open })
+            .collect()
+    };
+    let mean = |r: std::ops::Range<usize>| {
+        let len = r.len().max(1) as f64;
+        r.map(|i| w[(i, i)]).sum::<f64>() / len
+    };
+    let (c, ct) = (1.0 / mean(0..n), 1.0 / mean(n..n + nt).max(f64::MIN_POSITIVE));
+    let mut lambda = vec![0.0; n];
+    let mut tau = vec![0.0; nt];
+    let mut seen: Vec<Vec<State>> = Vec::new();
+    let mut converged = false;
+    let mut iterations = 0;
+    if n == 0 {
+        converged = true;
+    }
+    while !converged && iterations < p.settings.max_iterations && !crate::cancel::expired() {
+        iterations += 1;
+        let Some((l, t)) = newton_step(w, &q, &e, p.tangents, &state) else {
+            break;
+        };
+        (lambda, tau) = (l, t);
+        let (gap, slip) = gap_and_slip(w, &q, &e, &lambda, &tau);
+        let next: Vec<State> = (0..n)
+            .map(|i| {
+                let lt = lambda[i] - c * gap[i];
+                if lt <= 0.0 {
+                    return State::Open;
+                }
+                match p.tangents.row_of[i] {
+                    None => State::Stick,
+                    Some(k) => {
+                        let z = tau[k] + ct * slip[k];
+                        if z.abs() <= p.tangents.mu[k] * lt {
+                            State::Stick
+                        } else {
+                            State::Slip(if z > 0.0 { 1 } else { -1 })
+                        }
+                    }
+                }
+            })
+            .collect();
+        let residual = (0..n).map(|i| lambda[i].min(c * gap[i]).abs()).fold(0.0, f64::max);
+        crate::progress::iteration(iterations, residual);
+        if next == state {
+            converged = true;
+            break;
+        }
+        if seen.contains(&next) {
+            break; // cycling
+        }
+        seen.push(std::mem::replace(&mut state, next));
+    }
+    // u = K⁻¹ (f − B_Nᵀ λ − B_Tᵀ τ): the condensed blocks hold both row sets.
+    let multipliers: Vec<f64> = lambda.iter().chain(&tau).copied().collect();
+    let mut yz = y;
+    p.op.condensed.subtract(&multipliers, &mut yz);
+    let u = p.op.chol.backward(&yz);
+    let ut = p.tangents.displacements(&u);
+    let slip: Vec<f64> = ut.iter().zip(&previous.ut).map(|(a, b)| a - b).collect();
+    let in_contact: Vec<bool> = (0..n).map(|i| state[i] != State::Open && lambda[i] > 0.0).collect();
+    let friction = Friction {
+        tau,
+        slip,
+        history: History { ut, state },
+        lambda: lambda.clone(),
+        in_contact: in_contact.clone(),
+        u_scale: u.iter().fold(0.0f64, |a, x| a.max(x.abs())),
+    };
+    let sol = Solution {
+        u,
+        lambda,
+        beta: Vec::new(),
+        in_contact,
+        iterations,
+        converged,
+        breakdown: false,
+        method: "active_set",
+        exact: true,
+        t_contact: t0.elapsed().as_secs_f64(),
+        refinements: 0,
+        fallback: None,
+    };
+    (sol, friction)
+}
+
+/// The gaps w and slips Δs of (λ, τ).
+fn gap_and_slip(w: &Mat<f64>, q: &[f64], e: &[f64], lambda: &[f64], tau: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let (n, nt) = (q.len(), e.len());
+    let x: Vec<f64> = lambda.iter().chain(tau).copied().collect();
+    let wx = crate::linalg::dense::matvec(w, &x);
+    let gap = (0..n).map(|i| wx[i] + q[i]).collect();
+    let slip = (0..nt).map(|k| e[k] - wx[n + k]).collect();
+    (gap, slip)
+}
+
+/// The linear system of the states: for every point in contact its gap is
+/// closed (w_i = 0); a sticking point's slip vanishes (Δs_k = 0); a sliding
+/// point's τ_k = ± μ_k λ_i. λ and τ vanish off contact. None when singular.
+fn newton_step(w: &Mat<f64>, q: &[f64], e: &[f64], t: &Tangents, state: &[State]) -> Option<(Vec<f64>, Vec<f64>)> {
+    let n = q.len();
+    let on: Vec<usize> = (0..n).filter(|&i| state[i] != State::Open).collect();
+    let on_t: Vec<usize> = on.iter().filter_map(|&i| t.row_of[i]).collect();
+    let (a, b) = (on.len(), on_t.len());
+    if a == 0 {
+        return Some((vec![0.0; n], vec![0.0; e.len()]));
+    }
+    // Unknowns: λ of `on`, then τ of `on_t`; W's columns n + k for τ_k.
+    let col = |j: usize| if j < a { on[j] } else { n + on_t[j - a] };
+    let mut m = Mat::<f64>::zeros(a + b, a + b);
+    let mut rhs = Mat::<f64>::zeros(a + b, 1);
+    for (r, &i) in on.iter().enumerate() {
+        for j in 0..a + b {
+            m[(r, j)] = w[(i, col(j))];
+        }
+        rhs[(r, 0)] = -q[i];
+    }
+    for (s, &k) in on_t.iter().enumerate() {
+        let r = a + s;
+        let i = t.of[k];
+        match state[i] {
+            State::Slip(sign) => {
+                m[(r, r)] = 1.0;
+                let li = on.iter().position(|&x| x == i).expect("a sliding point is in contact");
+                m[(r, li)] = -f64::from(sign) * t.mu[k];
+            }
+            _ => {
+                for j in 0..a + b {
+                    m[(r, j)] = w[(n + k, col(j))];
+                }
+                rhs[(r, 0)] = e[k];
+            }
+        }
+    }
+    let x = faer::linalg::solvers::Solve::solve(&m.partial_piv_lu(), &rhs);
+    let mut lambda = vec![0.0; n];
+    let mut tau = vec![0.0; e.len()];
+    for (j, &i) in on.iter().enumerate() {
+        lambda[i] = x[(j, 0)];
+    }
+    for (s, &k) in on_t.iter().enumerate() {
+        tau[k] = x[(a + s, 0)];
+    }
+    lambda
+        .iter()
+        .chain(&tau)
+        .all(|v| v.is_finite())
+        .then_some((lambda, tau))
+}
