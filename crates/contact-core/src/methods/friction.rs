@@ -104,7 +104,7 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
     let e: Vec<f64> = (0..nt)
         .map(|k| bk[n + k] + p.tangents.prescribed[k] - previous.ut[k])
         .collect();
-    let mut state = if previous.state.len() == n {
+    let state = if previous.state.len() == n {
         previous.state.clone()
     } else {
         q.iter()
@@ -116,51 +116,40 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
         r.map(|i| w[(i, i)]).sum::<f64>() / len
     };
     let (c, ct) = (1.0 / mean(0..n), 1.0 / mean(n..n + nt).max(f64::MIN_POSITIVE));
-    let mut lambda = vec![0.0; n];
-    let mut tau = vec![0.0; nt];
-    let mut seen: Vec<Vec<State>> = Vec::new();
-    let mut converged = false;
+    // Semismooth Newton on a piecewise linear function may cycle between
+    // state sets when a step changes many points at once (measured at ν = 0.3,
+    // where the normal load alone makes points slip: two steps out of four
+    // cycled with the parameters below). The parameters c, c_t weigh the
+    // forces against the gaps in the update; a cycle for one choice is
+    // usually none for another, so the run restarts with them scaled.
     let mut iterations = 0;
-    if n == 0 {
-        converged = true;
-    }
-    while !converged && iterations < p.settings.max_iterations && !crate::cancel::expired() {
-        iterations += 1;
-        let Some((l, t)) = newton_step(w, &q, &e, p.tangents, &state) else {
-            break;
-        };
-        (lambda, tau) = (l, t);
-        let (gap, slip) = gap_and_slip(w, &q, &e, &lambda, &tau);
-        let next: Vec<State> = (0..n)
-            .map(|i| {
-                let lt = lambda[i] - c * gap[i];
-                if lt <= 0.0 {
-                    return State::Open;
-                }
-                match p.tangents.row_of[i] {
-                    None => State::Stick,
-                    Some(k) => {
-                        let z = tau[k] + ct * slip[k];
-                        if z.abs() <= p.tangents.mu[k] * lt {
-                            State::Stick
-                        } else {
-                            State::Slip(if z > 0.0 { 1 } else { -1 })
-                        }
-                    }
-                }
-            })
-            .collect();
-        let residual = (0..n).map(|i| lambda[i].min(c * gap[i]).abs()).fold(0.0, f64::max);
-        crate::progress::iteration(iterations, residual);
-        if next == state {
-            converged = true;
+    let mut run = None;
+    for scale in C_SCALES {
+        let budget = p.settings.max_iterations.saturating_sub(iterations);
+        if budget == 0 || crate::cancel::expired() {
             break;
         }
-        if seen.contains(&next) {
-            break; // cycling
+        let r = pdas(w, &q, &e, p.tangents, state.clone(), (scale * c, scale * ct), budget);
+        iterations += r.iterations;
+        let done = r.converged;
+        run = Some(r);
+        if done {
+            break;
         }
-        seen.push(std::mem::replace(&mut state, next));
     }
+    let Run {
+        lambda,
+        tau,
+        state,
+        converged,
+        ..
+    } = run.unwrap_or_else(|| Run {
+        lambda: vec![0.0; n],
+        tau: vec![0.0; nt],
+        state,
+        iterations: 0,
+        converged: n == 0,
+    });
     // u = K⁻¹ (f − B_Nᵀ λ − B_Tᵀ τ): the condensed blocks hold both row sets.
     let multipliers: Vec<f64> = lambda.iter().chain(&tau).copied().collect();
     let mut yz = y;
@@ -192,6 +181,80 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
         fallback: None,
     };
     (sol, friction)
+}
+
+/// Scalings of the update's parameters tried in turn after a cycle.
+const C_SCALES: [f64; 5] = [1.0, 0.1, 10.0, 0.01, 100.0];
+
+/// One run of the active set: its last iterate and states.
+struct Run {
+    lambda: Vec<f64>,
+    tau: Vec<f64>,
+    state: Vec<State>,
+    iterations: usize,
+    converged: bool,
+}
+
+/// Newton steps from the states `state` until they repeat (converged), cycle
+/// or exhaust `budget`; (c, c_t) weigh gap against force and slip against
+/// friction force in the update.
+fn pdas(
+    w: &Mat<f64>,
+    q: &[f64],
+    e: &[f64],
+    t: &Tangents,
+    mut state: Vec<State>,
+    (c, ct): (f64, f64),
+    budget: usize,
+) -> Run {
+    let (n, nt) = (q.len(), e.len());
+    let mut run = Run {
+        lambda: vec![0.0; n],
+        tau: vec![0.0; nt],
+        state: Vec::new(),
+        iterations: 0,
+        converged: n == 0,
+    };
+    let mut seen: Vec<Vec<State>> = Vec::new();
+    while !run.converged && run.iterations < budget && !crate::cancel::expired() {
+        run.iterations += 1;
+        let Some((lambda, tau)) = newton_step(w, q, e, t, &state) else {
+            break;
+        };
+        let (gap, slip) = gap_and_slip(w, q, e, &lambda, &tau);
+        let next: Vec<State> = (0..n)
+            .map(|i| {
+                let lt = lambda[i] - c * gap[i];
+                if lt <= 0.0 {
+                    return State::Open;
+                }
+                match t.row_of[i] {
+                    None => State::Stick,
+                    Some(k) => {
+                        let z = tau[k] + ct * slip[k];
+                        if z.abs() <= t.mu[k] * lt {
+                            State::Stick
+                        } else {
+                            State::Slip(if z > 0.0 { 1 } else { -1 })
+                        }
+                    }
+                }
+            })
+            .collect();
+        let residual = (0..n).map(|i| lambda[i].min(c * gap[i]).abs()).fold(0.0, f64::max);
+        crate::progress::iteration(run.iterations, residual);
+        (run.lambda, run.tau) = (lambda, tau);
+        if next == state {
+            run.converged = true;
+            break;
+        }
+        if seen.contains(&next) {
+            break; // cycling
+        }
+        seen.push(std::mem::replace(&mut state, next));
+    }
+    run.state = state;
+    run
 }
 
 /// The gaps w and slips Δs of (λ, τ).
