@@ -117,7 +117,7 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
         vec![(scene.clone(), 1.0, None)]
     };
     let mut op: Option<Arc<crate::cache::Prepared>> = None;
-    let mut history = methods::friction::History::start(0);
+    let mut history = methods::friction::History::default();
     let (mut steps, mut timings, mut last) = (Vec::new(), Timings::default(), None);
     for (s, k, loads) in steps_in {
         obs.enter(Stage::Assembly);
@@ -134,9 +134,6 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
                     limits.max_candidates
                 ),
             });
-        }
-        if history.ut.len() != tangents.len() {
-            history = methods::friction::History::start(tangents.len());
         }
         let prepared = match &op {
             Some(p) => p.clone(),
@@ -166,6 +163,7 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
             f: &f,
             cons: &model.cons,
             tangents: &tangents,
+            dofs: &model.dofs,
             settings: &s.settings,
         };
         let (sol, friction) = methods::friction::solve_step(&step, &history);

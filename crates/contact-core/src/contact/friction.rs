@@ -86,6 +86,27 @@ impl Tangents {
             .collect()
     }
 
+    /// The tangential displacements of the rows for a displacement of every
+    /// DOF (free and prescribed: `DofMap::dof` indexing); zero for an empty one
+    /// (the undeformed start).
+    pub fn of_nodal(&self, dofs: &DofMap, displacement: &[f64]) -> Vec<f64> {
+        if displacement.is_empty() {
+            return vec![0.0; self.len()];
+        }
+        self.terms
+            .iter()
+            .map(|terms| {
+                terms
+                    .iter()
+                    .map(|t| {
+                        let d = |c: usize| displacement[dofs.dof(t.body, t.node, c)];
+                        t.coef[0] * d(0) + t.coef[1] * d(1)
+                    })
+                    .sum()
+            })
+            .collect()
+    }
+
     /// Accumulates B_Tᵀ τ into y.
     pub fn apply_transpose_into(&self, tau: &[f64], y: &mut [f64]) {
         for (r, &t) in self.rows.iter().zip(tau) {

@@ -34,12 +34,15 @@
 
 use std::time::Instant;
 
+use std::collections::HashMap;
+
 use faer::Mat;
 
 use super::Solution;
 use crate::cache::Prepared;
 use crate::contact::friction::Tangents;
 use crate::contact::ConstraintSet;
+use crate::fem::assembly::{DofMap, FIXED};
 use crate::scene::Settings;
 
 /// A point's state in a step.
@@ -51,24 +54,16 @@ pub enum State {
     Slip(i8),
 }
 
-/// What a step leaves to the next one.
-#[derive(Debug, Clone)]
+/// What a step leaves to the next one, by node rather than by row index
+/// (the candidates of a step depend on its loads through the pruning of
+/// distant nodes, so the rows of two steps need not be the same).
+#[derive(Debug, Clone, Default)]
 pub struct History {
-    /// Tangential displacement of each tangential row at the end of the step.
-    pub ut: Vec<f64>,
-    /// State of each candidate (the warm start of the next step).
-    pub state: Vec<State>,
-}
-
-impl History {
-    /// The undeformed, unloaded start: no displacement, the states of the
-    /// rows that penetrate without forces in contact.
-    pub fn start(nt: usize) -> Self {
-        Self {
-            ut: vec![0.0; nt],
-            state: Vec::new(),
-        }
-    }
+    /// Displacement of every DOF (free and prescribed) at the end of the
+    /// step; empty at the undeformed start.
+    pub displacement: Vec<f64>,
+    /// State of each candidate, by (pair, node): the warm start of the next step.
+    pub state: HashMap<(usize, usize), State>,
 }
 
 /// The data of one step.
@@ -78,6 +73,7 @@ pub struct Step<'a> {
     pub f: &'a [f64],
     pub cons: &'a ConstraintSet,
     pub tangents: &'a Tangents,
+    pub dofs: &'a DofMap,
     pub settings: &'a Settings,
 }
 
@@ -101,16 +97,22 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
     let y = p.op.chol.forward(p.f);
     let bk = p.op.condensed.rows_of(&y);
     let q: Vec<f64> = (0..n).map(|i| p.cons.candidates[i].g - bk[i]).collect();
+    let ut_before = p.tangents.of_nodal(p.dofs, &previous.displacement);
     let e: Vec<f64> = (0..nt)
-        .map(|k| bk[n + k] + p.tangents.prescribed[k] - previous.ut[k])
+        .map(|k| bk[n + k] + p.tangents.prescribed[k] - ut_before[k])
         .collect();
-    let state = if previous.state.len() == n {
-        previous.state.clone()
-    } else {
-        q.iter()
-            .map(|&qi| if qi < 0.0 { State::Stick } else { State::Open })
-            .collect()
-    };
+    // Points known from the previous step start in their state; new ones in
+    // contact where they penetrate without forces.
+    let state: Vec<State> = (0..n)
+        .map(|i| {
+            let c = &p.cons.candidates[i];
+            match previous.state.get(&(c.pair, c.node)) {
+                Some(&s) => s,
+                None if q[i] < 0.0 => State::Stick,
+                None => State::Open,
+            }
+        })
+        .collect();
     let mean = |r: std::ops::Range<usize>| {
         let len = r.len().max(1) as f64;
         r.map(|i| w[(i, i)]).sum::<f64>() / len
@@ -156,12 +158,24 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
     p.op.condensed.subtract(&multipliers, &mut yz);
     let u = p.op.chol.backward(&yz);
     let ut = p.tangents.displacements(&u);
-    let slip: Vec<f64> = ut.iter().zip(&previous.ut).map(|(a, b)| a - b).collect();
+    let slip: Vec<f64> = ut.iter().zip(&ut_before).map(|(a, b)| a - b).collect();
+    let displacement: Vec<f64> = (0..p.dofs.free.len())
+        .map(|d| match p.dofs.free[d] {
+            FIXED => p.dofs.prescribed[d],
+            k => u[k],
+        })
+        .collect();
+    let by_node = (0..n)
+        .map(|i| ((p.cons.candidates[i].pair, p.cons.candidates[i].node), state[i]))
+        .collect();
     let in_contact: Vec<bool> = (0..n).map(|i| state[i] != State::Open && lambda[i] > 0.0).collect();
     let friction = Friction {
         tau,
         slip,
-        history: History { ut, state },
+        history: History {
+            displacement,
+            state: by_node,
+        },
         lambda: lambda.clone(),
         in_contact: in_contact.clone(),
         u_scale: u.iter().fold(0.0f64, |a, x| a.max(x.abs())),

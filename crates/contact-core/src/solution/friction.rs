@@ -45,7 +45,7 @@ pub fn attach(report: &mut Report, scene: &Scene, model: &Model, t: &Tangents, s
                     Some(k) => (-s.tau[k] / cons.candidates[i].weight, s.slip[k]),
                     None => (0.0, 0.0),
                 };
-                let st = match state.get(i) {
+                let st = match state.get(&(p, q.node)) {
                     _ if !s.in_contact[i] => FrictionState::Open,
                     Some(State::Slip(_)) => FrictionState::Slip,
                     _ => FrictionState::Stick,
