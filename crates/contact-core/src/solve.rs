@@ -72,16 +72,18 @@ pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
 /// A load step's scene, its factor, and a load path step's factors.
 type StepScene = (Scene, f64, Option<BTreeMap<String, f64>>);
 
-/// The scenes of the load steps.
-fn step_scenes(scene: &Scene) -> Vec<StepScene> {
+/// The scenes of the load steps, one at a time (a scene holds its inline
+/// meshes: a hundred steps' copies at once could hold gigabytes).
+fn step_scenes(scene: &Scene) -> Box<dyn Iterator<Item = StepScene> + '_> {
     if !scene.load_path.is_empty() {
-        return scene
-            .load_path
-            .iter()
-            .map(|st| (scene.at_step(st), 1.0, Some(st.given.clone())))
-            .collect();
+        return Box::new(
+            scene
+                .load_path
+                .iter()
+                .map(|st| (scene.at_step(st), 1.0, Some(st.given.clone()))),
+        );
     }
-    scene.load_factors.iter().map(|&k| (scene.scaled(k), k, None)).collect()
+    Box::new(scene.load_factors.iter().map(|&k| (scene.scaled(k), k, None)))
 }
 
 /// Coulomb friction: the load steps in order (one step, the loads as given,
@@ -114,7 +116,7 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
     let steps_in = if stepped {
         step_scenes(scene)
     } else {
-        vec![(scene.clone(), 1.0, None)]
+        Box::new(std::iter::once((scene.clone(), 1.0, None)))
     };
     let mut op: Option<Arc<crate::cache::Prepared>> = None;
     let mut history = methods::friction::History::default();

@@ -59,7 +59,11 @@ pub struct SolveRequest {
     /// tangential one grows); history-dependent contact (friction) carries
     /// its state from one step to the next. Not together with `load_factors`.
     /// The reply's `steps` holds each answer.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    #[serde(
+        default,
+        skip_serializing_if = "Vec::is_empty",
+        deserialize_with = "crate::bounded::load_path"
+    )]
     pub load_path: Vec<LoadPathStep>,
     /// The names of the units the request's numbers are in, echoed in the
     /// reply for plots and files. Nothing is converted: the numbers must be

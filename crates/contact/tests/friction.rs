@@ -321,3 +321,15 @@ fn unsupported_friction_is_refused() {
     r["load_factors"] = json!([1.0]);
     refused(&r, "/load_path");
 }
+
+/// A load path is bounded like `load_factors`: past the service's step limit
+/// it is `too_large` at `/load_path`, before any step is solved.
+#[test]
+fn load_path_is_bounded() {
+    let mut r = example("signorini_roller_on_flat.json");
+    let limit = contact::scene::Limits::default().max_load_steps;
+    r["load_path"] = Value::from(vec![json!({"loads": {}}); limit + 1]);
+    let e = solve(&r).expect_err("too many steps");
+    assert_eq!(e.code, contact::proto::ErrorCode::TooLarge, "{e:?}");
+    assert_eq!(e.path, "/load_path", "{e:?}");
+}
