@@ -113,45 +113,13 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
             }
         })
         .collect();
-    let mean = |r: std::ops::Range<usize>| {
-        let len = r.len().max(1) as f64;
-        r.map(|i| w[(i, i)]).sum::<f64>() / len
-    };
-    let (c, ct) = (1.0 / mean(0..n), 1.0 / mean(n..n + nt).max(f64::MIN_POSITIVE));
-    // Semismooth Newton on a piecewise linear function may cycle between
-    // state sets when a step changes many points at once (measured at ν = 0.3,
-    // where the normal load alone makes points slip: two steps out of four
-    // cycled with the parameters below). The parameters c, c_t weigh the
-    // forces against the gaps in the update; a cycle for one choice is
-    // usually none for another, so the run restarts with them scaled.
-    let mut iterations = 0;
-    let mut run = None;
-    for scale in C_SCALES {
-        let budget = p.settings.max_iterations.saturating_sub(iterations);
-        if budget == 0 || crate::cancel::expired() {
-            break;
-        }
-        let r = pdas(w, &q, &e, p.tangents, state.clone(), (scale * c, scale * ct), budget);
-        iterations += r.iterations;
-        let done = r.converged;
-        run = Some(r);
-        if done {
-            break;
-        }
-    }
     let Run {
         lambda,
         tau,
         state,
         converged,
-        ..
-    } = run.unwrap_or_else(|| Run {
-        lambda: vec![0.0; n],
-        tau: vec![0.0; nt],
-        state,
-        iterations: 0,
-        converged: n == 0,
-    });
+        iterations,
+    } = solve_states(w, &q, &e, p.tangents, state, p.settings.max_iterations);
     // u = K⁻¹ (f − B_Nᵀ λ − B_Tᵀ τ): the condensed blocks hold both row sets.
     let multipliers: Vec<f64> = lambda.iter().chain(&tau).copied().collect();
     let mut yz = y;
@@ -195,6 +163,48 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
         fallback: None,
     };
     (sol, friction)
+}
+
+/// The step's problem for (W, q, e) from the states `state`: the active set,
+/// restarted with rescaled parameters after a cycle; the iterations of all
+/// its runs.
+fn solve_states(w: &Mat<f64>, q: &[f64], e: &[f64], t: &Tangents, state: Vec<State>, max_iterations: usize) -> Run {
+    let (n, nt) = (q.len(), e.len());
+    let mean = |r: std::ops::Range<usize>| {
+        let len = r.len().max(1) as f64;
+        r.map(|i| w[(i, i)]).sum::<f64>() / len
+    };
+    let (c, ct) = (1.0 / mean(0..n), 1.0 / mean(n..n + nt).max(f64::MIN_POSITIVE));
+    // Semismooth Newton on a piecewise linear function may cycle between
+    // state sets when a step changes many points at once (measured at ν = 0.3,
+    // where the normal load alone makes points slip: two steps out of four
+    // cycled with the parameters below). The parameters c, c_t weigh the
+    // forces against the gaps in the update; a cycle for one choice is
+    // usually none for another, so the run restarts with them scaled.
+    let mut iterations = 0;
+    let mut run = None;
+    for scale in C_SCALES {
+        let budget = max_iterations.saturating_sub(iterations);
+        if budget == 0 || crate::cancel::expired() {
+            break;
+        }
+        let r = pdas(w, q, e, t, state.clone(), (scale * c, scale * ct), budget);
+        iterations += r.iterations;
+        let done = r.converged;
+        run = Some(r);
+        if done {
+            break;
+        }
+    }
+    let mut run = run.unwrap_or_else(|| Run {
+        lambda: vec![0.0; n],
+        tau: vec![0.0; nt],
+        state,
+        iterations: 0,
+        converged: n == 0,
+    });
+    run.iterations = iterations;
+    run
 }
 
 /// Scalings of the update's parameters tried in turn after a cycle.
@@ -333,4 +343,78 @@ fn newton_step(w: &Mat<f64>, q: &[f64], e: &[f64], t: &Tangents, state: &[State]
         .chain(&tau)
         .all(|v| v.is_finite())
         .then_some((lambda, tau))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A deterministic stream of numbers in [−1, 1) (64-bit LCG).
+    struct Lcg(u64);
+    impl Lcg {
+        fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        }
+    }
+
+    /// On random compliances (W = A Aᵀ + I, symmetric positive definite with
+    /// normal–tangential coupling, as an elastic body's) and random loads,
+    /// the active set ends on a point of the discrete Coulomb law: λ ≥ 0,
+    /// w ≥ 0, λ w = 0, |τ| ≤ μ λ, −τ Δs ≤ 0 and Δs = 0 inside the cone, each
+    /// to 1e-10 of the problem's scale (round-off of the LU of a system of
+    /// size ≤ 16).
+    #[test]
+    fn the_active_set_solves_the_discrete_coulomb_law() {
+        let (n, mu) = (8, 0.4);
+        let mut rng = Lcg(29);
+        for case in 0..200 {
+            let a = Mat::<f64>::from_fn(2 * n, 2 * n, |_, _| rng.next());
+            let w = Mat::<f64>::from_fn(2 * n, 2 * n, |i, j| {
+                (0..2 * n).map(|k| a[(i, k)] * a[(j, k)]).sum::<f64>() / (2 * n) as f64 + f64::from(i == j)
+            });
+            let q: Vec<f64> = (0..n).map(|_| rng.next()).collect();
+            let e: Vec<f64> = (0..n).map(|_| 0.5 * rng.next()).collect();
+            let t = Tangents {
+                of: (0..n).collect(),
+                row_of: (0..n).map(Some).collect(),
+                mu: vec![mu; n],
+                ..Default::default()
+            };
+            let start = q
+                .iter()
+                .map(|&v| if v < 0.0 { State::Stick } else { State::Open })
+                .collect();
+            let r = solve_states(&w, &q, &e, &t, start, 200);
+            assert!(
+                r.converged,
+                "case {case}: no convergence in {} iterations",
+                r.iterations
+            );
+            let (gap, slip) = gap_and_slip(&w, &q, &e, &r.lambda, &r.tau);
+            let tol = 1e-10;
+            for i in 0..n {
+                let (l, tau) = (r.lambda[i], r.tau[i]);
+                assert!(
+                    l >= -tol && gap[i] >= -tol && (l * gap[i]).abs() <= tol,
+                    "case {case}, point {i}: λ {l}, w {}",
+                    gap[i]
+                );
+                assert!(
+                    tau.abs() <= mu * l + tol,
+                    "case {case}, point {i}: |τ| {tau} > μλ {}",
+                    mu * l
+                );
+                assert!(-tau * slip[i] <= tol, "case {case}, point {i}: τ {tau}, Δs {}", slip[i]);
+                assert!(
+                    (mu * l - tau.abs()).max(0.0) * slip[i].abs() <= tol,
+                    "case {case}, point {i}: slip {} inside the cone",
+                    slip[i]
+                );
+            }
+        }
+    }
 }
