@@ -124,6 +124,15 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
     for (s, k, loads) in steps_in {
         obs.enter(Stage::Assembly);
         let model = Model::build(&s, meshes.clone())?;
+        // A load-controlled punch on another pair: its motions would join the
+        // frictional problem as well.
+        if !model.free.motions.is_empty() {
+            return Err(CoreError::invalid(
+                crate::error::InvalidKind::Request,
+                format!("{}/friction", frictional.path),
+                "friction in a scene with a load-controlled punch is not supported yet: prescribe the punch's motions, or remove 'friction'",
+            ));
+        }
         let tangents = crate::contact::friction::Tangents::new(&s, &model.cons, &model.dofs);
         if model.cons.len() + tangents.len() > limits.max_candidates {
             return Err(CoreError::TooLarge {

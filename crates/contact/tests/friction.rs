@@ -24,11 +24,16 @@ const E: f64 = 200.0;
 /// The roller (T6, contact-zone element size `h`, Poisson ratio `nu`) pressed
 /// by 0.05, then moved sideways by each of `shifts` in turn.
 fn roller(nu: f64, h: f64, shifts: &[f64], mu: Option<f64>) -> Value {
+    roller_of("t6", nu, h, shifts, mu)
+}
+
+/// `roller` with the given element (T3: nodal rows; T6: mortar rows).
+fn roller_of(element: &str, nu: f64, h: f64, shifts: &[f64], mu: Option<f64>) -> Value {
     let mut r = example("signorini_roller_on_flat.json");
     let b = &mut r["bodies"][0];
     b["material"]["poisson_ratio"] = json!(nu);
     let mesh = &mut b["mesh"]["half_disk"];
-    mesh["element"] = json!("t6");
+    mesh["element"] = json!(element);
     mesh["grading"] = json!({"h_min": h, "ratio": 1.2, "extent": 0.6});
     // The sideways motion as its own support, so that the path scales it alone.
     b["supports"] = json!([{"edges": "flat", "uy": -0.05}, {"edges": "flat", "ux": 1.0}]);
@@ -158,10 +163,16 @@ fn unloading_follows_mindlin_deresiewicz() {
 
 /// Full sliding (Q = μP): every point in contact slips, q = μ p at each one
 /// (to the round-off of the solve, 1e-9 of μ p) and the tangential resultant
-/// is μ times the normal one.
+/// is μ times the normal one; on nodal (T3) and mortar (T6) rows.
 #[test]
 fn full_sliding_traction_is_mu_p() {
-    let r = solved(&roller(0.499, 0.01, &[0.0, 0.06], Some(MU)));
+    for (element, nu) in [("t6", 0.499), ("t3", 0.3)] {
+        full_sliding(&roller_of(element, nu, 0.01, &[0.0, 0.06], Some(MU)));
+    }
+}
+
+fn full_sliding(req: &Value) {
+    let r = solved(req);
     let (pairs, res, _) = steps(&r).pop().unwrap();
     let pts = &pairs[0].points;
     let p0 = pts.iter().map(|q| q.pressure).fold(0.0, f64::max);
@@ -185,7 +196,13 @@ fn full_sliding_traction_is_mu_p() {
 /// Σ (−force · normal + traction · weight · tangent) = (fx, fy), to round-off.
 #[test]
 fn point_forces_add_up_to_the_resultant() {
-    let r = solved(&roller(0.3, 0.01, &[0.0, 0.02], Some(MU)));
+    for element in ["t3", "t6"] {
+        point_forces(&roller_of(element, 0.3, 0.01, &[0.0, 0.02], Some(MU)));
+    }
+}
+
+fn point_forces(req: &Value) {
+    let r = solved(req);
     for (pairs, res, _) in steps(&r) {
         let pr = &pairs[0];
         let (mut fx, mut fy) = (0.0, 0.0);
@@ -312,6 +329,22 @@ fn unsupported_friction_is_refused() {
     // A roller whose top may slide freely is held sideways only by contact.
     let mut r = with("signorini_roller_on_flat.json");
     r["bodies"][0]["supports"] = json!([{"edges": "flat", "uy": -0.05}]);
+    refused(&r, "/contacts/0/friction");
+    // A load-controlled punch on another, frictionless pair.
+    let mut r = with("signorini_roller_on_flat.json");
+    let punch = example("indentation_flat_punch.json");
+    let n = r["obstacles"].as_array().unwrap().len();
+    r["obstacles"]
+        .as_array_mut()
+        .unwrap()
+        .push(punch["obstacles"][0].clone());
+    let mut second = punch["bodies"][0].clone();
+    second["name"] = json!("second");
+    r["bodies"].as_array_mut().unwrap().push(second);
+    let mut pair = punch["contacts"][0].clone();
+    pair["body"] = json!("second");
+    pair["obstacle"] = json!(n);
+    r["contacts"].as_array_mut().unwrap().push(pair);
     refused(&r, "/contacts/0/friction");
     // Load paths name loads by pointer, and exclude load factors.
     let mut r = with("signorini_roller_on_flat.json");
