@@ -4,6 +4,8 @@
 //! request ─validate→ Scene ─mesh→ meshes ─admit→ ─assemble→ Model ─admit→ Route
 //!   Condensed: K ─factor+condense→ Prepared (cacheable) ─LCP→ Solution
 //!   Full:      K ─active set / interior point on the whole system→ Solution
+//!   Friction:  K ─factor+condense normal and tangential rows→ per load step
+//!              ─frictional active set from the previous step's state→ Solution
 //! Solution ─certify, post-process→ Report
 //! ```
 //!
@@ -24,8 +26,10 @@ use crate::scene::{Limits, Method, Scene};
 use crate::solution::compose::{self, Solved};
 use crate::solution::report::{CacheState, LoadStep, Report, Status, Timings};
 
-/// Solves the scene, once per load factor (one factorization serves them all).
-/// Within the scene's own time limit, if it has one.
+/// Solves the scene, once per load factor or load path step (one
+/// factorization serves them all); with friction, step after step from the
+/// state the previous one left (`solve_frictional`). Within the scene's own
+/// time limit, if it has one.
 pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<Report, CoreError> {
     let _deadline = scene
         .time_limit

@@ -32,9 +32,8 @@
 //! (the slip rows tie τ to λ), so it is solved by LU; its size is the number
 //! of points in contact plus those among them with a tangential row.
 
-use std::time::Instant;
-
 use std::collections::HashMap;
+use std::time::Instant;
 
 use faer::Mat;
 
