@@ -4,12 +4,15 @@
 //! request ─validate→ Scene ─mesh→ meshes ─admit→ ─assemble→ Model ─admit→ Route
 //!   Condensed: K ─factor+condense→ Prepared (cacheable) ─LCP→ Solution
 //!   Full:      K ─active set / interior point on the whole system→ Solution
+//!   Friction:  K ─factor+condense normal and tangential rows→ per load step
+//!              ─frictional active set from the previous step's state→ Solution
 //! Solution ─certify, post-process→ Report
 //! ```
 //!
 //! Each stage is a typed value in and out; the [`Observer`] announces, times
 //! and deadline-checks them.
 
+use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use crate::admit::{self, Route};
@@ -23,10 +26,12 @@ use crate::scene::{Limits, Method, Scene};
 use crate::solution::compose::{self, Solved};
 use crate::solution::report::{CacheState, LoadStep, Report, Status, Timings};
 
-/// Solves the scene, once per load factor (one factorization serves them all).
-/// Within the scene's own time limit, if it has one.
-/// With `settings.accuracy`, round after round on finer meshes; with
-/// `settings.estimate`, every pair's error estimated (`adapt`).
+/// Solves the scene, once per load factor or load path step (one
+/// factorization serves them all); with friction, step after step from the
+/// state the previous one left (`solve_frictional`). Within the scene's own
+/// time limit, if it has one. With `settings.accuracy`, round after round on
+/// finer meshes; with `settings.estimate`, every pair's error estimated
+/// (`adapt`).
 pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<Report, CoreError> {
     let _deadline = scene
         .time_limit
@@ -44,19 +49,23 @@ pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
     Ok(report)
 }
 
-/// The scene once per load factor.
+/// The scene once per load factor or load path step.
 fn solve_steps(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<Report, CoreError> {
-    if scene.load_factors.is_empty() {
+    if scene.has_friction() {
+        return solve_frictional(scene, limits, cache);
+    }
+    if scene.load_factors.is_empty() && scene.load_path.is_empty() {
         return solve_once(scene, limits, cache);
     }
     // Later factors find the operator the first one prepared.
     let local = OperatorCache::new(usize::MAX);
     let mut steps = Vec::with_capacity(scene.load_factors.len());
     let (mut timings, mut first_cache, mut last) = (Timings::default(), None, None);
-    for &k in &scene.load_factors {
-        let r = solve_once(&scene.scaled(k), limits, cache.or(Some(&local)))?;
+    for (step, k, loads) in step_scenes(scene) {
+        let r = solve_once(&step, limits, cache.or(Some(&local)))?;
         steps.push(LoadStep {
             factor: k,
+            loads,
             status: r.status,
             iterations: r.iterations,
             pairs: r.pairs.clone(),
@@ -78,6 +87,157 @@ fn solve_steps(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) ->
         _ => CacheState::Off,
     };
     last.steps = Some(steps);
+    Ok(last)
+}
+
+/// A load step's scene, its factor, and a load path step's factors.
+type StepScene = (Scene, f64, Option<BTreeMap<String, f64>>);
+
+/// The scenes of the load steps, one at a time (a scene holds its inline
+/// meshes: a hundred steps' copies at once could hold gigabytes).
+fn step_scenes(scene: &Scene) -> Box<dyn Iterator<Item = StepScene> + '_> {
+    if !scene.load_path.is_empty() {
+        return Box::new(
+            scene
+                .load_path
+                .iter()
+                .map(|st| (scene.at_step(st), 1.0, Some(st.given.clone()))),
+        );
+    }
+    Box::new(scene.load_factors.iter().map(|&k| (scene.scaled(k), k, None)))
+}
+
+/// Coulomb friction: the load steps in order (one step, the loads as given,
+/// without `load_factors` or `load_path`), each starting from the state the
+/// previous one left, on one factorization of K condensed onto the normal
+/// and tangential rows together.
+fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<Report, CoreError> {
+    let t6 = scene.bodies.iter().any(|b| b.is_t6());
+    crate::progress::plan(observer::predicted(scene.estimated_nodes, t6));
+    let mut obs = Observer::new();
+    obs.enter(Stage::Mesh);
+    let meshes = crate::meshing::meshes(scene)?;
+    obs.leave(Stage::Mesh)?;
+    admit::meshes(&meshes, limits)?;
+    let frictional = scene
+        .pairs
+        .iter()
+        .find(|p| p.friction > 0.0)
+        .expect("a frictional pair");
+    // A body held only by contact would need its rigid motions among the
+    // unknowns of the frictional problem (a block pushed along a floor).
+    if !crate::fem::assembly::dof_map(scene, &meshes)?.rigid.is_empty() {
+        return Err(CoreError::invalid(
+            crate::error::InvalidKind::Request,
+            format!("{}/friction", frictional.path),
+            "friction on a body held only by contact (rigid motions left free by its supports) is not supported yet: support the body, or remove 'friction'",
+        ));
+    }
+    let stepped = !scene.load_factors.is_empty() || !scene.load_path.is_empty();
+    let steps_in = if stepped {
+        step_scenes(scene)
+    } else {
+        Box::new(std::iter::once((scene.clone(), 1.0, None)))
+    };
+    let mut op: Option<Arc<crate::cache::Prepared>> = None;
+    let mut history = methods::friction::History::default();
+    let (mut steps, mut timings, mut last) = (Vec::new(), Timings::default(), None);
+    for (s, k, loads) in steps_in {
+        obs.enter(Stage::Assembly);
+        let model = Model::build(&s, meshes.clone())?;
+        // A load-controlled punch on another pair: its motions would join the
+        // frictional problem as well.
+        if !model.free.motions.is_empty() {
+            return Err(CoreError::invalid(
+                crate::error::InvalidKind::Request,
+                format!("{}/friction", frictional.path),
+                "friction in a scene with a load-controlled punch is not supported yet: prescribe the punch's motions, or remove 'friction'",
+            ));
+        }
+        let tangents = crate::contact::friction::Tangents::new(&s, &model.cons, &model.dofs);
+        if model.cons.len() + tangents.len() > limits.max_candidates {
+            return Err(CoreError::TooLarge {
+                path: "/contacts".into(),
+                reason: format!(
+                    "{} contact rows ({} normal and {} tangential); this service accepts at most {} on the condensed formulation",
+                    model.cons.len() + tangents.len(),
+                    model.cons.len(),
+                    tangents.len(),
+                    limits.max_candidates
+                ),
+            });
+        }
+        let prepared = match &op {
+            Some(p) => p.clone(),
+            None => {
+                let stiffness = Arc::new(assemble_stiffness(&s, &model.meshes, &model.dofs)?);
+                obs.leave(Stage::Assembly)?;
+                obs.enter(Stage::Factorization);
+                let rows: Vec<&[(usize, f64)]> = model
+                    .cons
+                    .candidates
+                    .iter()
+                    .map(|c| c.row.as_slice())
+                    .chain(tangents.rows.iter().map(|r| r.as_slice()))
+                    .collect();
+                let p = Arc::new(methods::condensed::prepare_rows(stiffness, &rows, cache)?);
+                obs.timings.factorization = p.t_factorization;
+                obs.timings.condensation = p.t_condensation;
+                op = Some(p.clone());
+                p
+            }
+        };
+        obs.check(Stage::Factorization)?;
+        let f = assemble_loads(&model.external, &model.dofs, &prepared.stiffness);
+        obs.enter(Stage::ContactSolve);
+        let step = methods::friction::Step {
+            op: &prepared,
+            f: &f,
+            cons: &model.cons,
+            tangents: &tangents,
+            dofs: &model.dofs,
+            settings: &s.settings,
+        };
+        let (sol, friction) = methods::friction::solve_step(&step, &history);
+        obs.leave(Stage::ContactSolve)?;
+        obs.timings.contact_solve = sol.t_contact;
+        // The friction forces join the loads: the certificate's equilibrium is
+        // then K u = f − B_Nᵀ λ − B_Tᵀ τ.
+        let mut f_eff = f.clone();
+        let minus_tau: Vec<f64> = friction.tau.iter().map(|t| -t).collect();
+        tangents.apply_transpose_into(&minus_tau, &mut f_eff);
+        let composed = Solved {
+            model: &model,
+            k: &prepared.stiffness.k,
+            f: &f_eff,
+            pivot_ratio: Some(prepared.pivot_ratio),
+            predicted: Some(prepared.chol.cost().predicted_secs()),
+            compliance: None,
+        };
+        let mut r = compose::report(&s, &composed, sol, obs, CacheState::Off);
+        crate::solution::friction::attach(&mut r, &s, &model, &tangents, &friction);
+        history = friction.history;
+        obs = Observer::new();
+        steps.push(LoadStep {
+            factor: k,
+            loads,
+            status: r.status,
+            iterations: r.iterations,
+            pairs: r.pairs.clone(),
+            resultant: r.resultant,
+            certificate: r.certificate,
+        });
+        timings.add(&r.timings);
+        last = Some(r);
+    }
+    let mut last = last.expect("at least one step");
+    if let Some(bad) = steps.iter().find(|st| st.status != Status::Solved) {
+        last.status = bad.status;
+    }
+    last.timings = timings;
+    if stepped {
+        last.steps = Some(steps);
+    }
     Ok(last)
 }
 

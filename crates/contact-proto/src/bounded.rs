@@ -56,29 +56,45 @@ impl Drop for ListLimits {
 
 /// `load_factors`, stopped with an error at the first entry past the limit.
 pub fn load_factors<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Error> {
+    bounded(d, "/load_factors")
+}
+
+/// `load_path`, bounded by the same limit (each step is a load step): a
+/// payload of empty steps, 13 bytes each, would otherwise hold a step map
+/// per 13 bytes before validation counts them.
+pub fn load_path<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<crate::request::LoadPathStep>, D::Error> {
+    bounded(d, "/load_path")
+}
+
+fn bounded<'de, D: Deserializer<'de>, T: serde::Deserialize<'de>>(
+    d: D,
+    path: &'static str,
+) -> Result<Vec<T>, D::Error> {
     let limit = MAX_LOAD_FACTORS.with(|m| m.get());
     d.deserialize_seq(Bounded {
         limit,
-        path: "/load_factors",
+        path,
+        item: std::marker::PhantomData,
     })
 }
 
-struct Bounded {
+struct Bounded<T> {
     limit: usize,
     path: &'static str,
+    item: std::marker::PhantomData<T>,
 }
 
-impl<'de> Visitor<'de> for Bounded {
-    type Value = Vec<f64>;
+impl<'de, T: serde::Deserialize<'de>> Visitor<'de> for Bounded<T> {
+    type Value = Vec<T>;
 
     fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-        write!(f, "a list of at most {} numbers", self.limit)
+        write!(f, "a list of at most {} entries", self.limit)
     }
 
-    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Vec<f64>, A::Error> {
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Vec<T>, A::Error> {
         // The size hint comes from the payload: trusted only up to the limit.
         let mut out = Vec::with_capacity(seq.size_hint().unwrap_or(0).min(self.limit).min(1 << 16));
-        while let Some(x) = seq.next_element::<f64>()? {
+        while let Some(x) = seq.next_element::<T>()? {
             if out.len() == self.limit {
                 OVERFLOW.with(|o| {
                     o.set(Some(Overflow {

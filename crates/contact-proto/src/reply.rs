@@ -175,7 +175,11 @@ pub struct PunchResult {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LoadStep {
+    /// The load factor (1 for a `load_path` step, whose factors are `loads`).
     pub factor: f64,
+    /// A `load_path` step's factors, as given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub loads: Option<std::collections::BTreeMap<String, f64>>,
     pub status: SolveStatus,
     pub iterations: usize,
     pub pairs: Vec<PairResult>,
@@ -253,8 +257,39 @@ pub struct PairResult {
     /// The estimated error of this pair's answer (absent with `settings.estimate` false).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub accuracy: Option<PairAccuracy>,
+    /// A pair with friction: its stick and slip zones and tangential resultant
+    /// (`resultant` includes the friction forces).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<PairFriction>,
 }
 
+/// Friction on one pair.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PairFriction {
+    /// μ.
+    pub coefficient: f64,
+    /// Runs of consecutive points that stick, [x_start, x_end] (first and
+    /// last point of the run) in increasing x.
+    pub stick_zones: Vec<[f64; 2]>,
+    /// Runs of consecutive points that slip, [x_start, x_end].
+    pub slip_zones: Vec<[f64; 2]>,
+    /// Force and moment about the origin of the tangential (friction)
+    /// tractions on the body.
+    pub tangential_resultant: Resultant,
+}
+
+/// A contact point's friction state.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum FrictionState {
+    /// In contact, |t| < μ p (no slip in this step; |t| = μ p only by chance).
+    Stick,
+    /// In contact and sliding: |t| = μ p, opposite to the slip.
+    Slip,
+    /// Not in contact.
+    Open,
+}
 /// A contact zone along the surface of the pair's edge set.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -322,6 +357,18 @@ pub struct ContactPoint {
     /// node with `settings.gap = signed_distance`, the body's outward normal at
     /// the node with `body_normal` (mean over the support for mortar rows).
     pub normal: [f64; 2],
+    /// Pairs with friction: tangential traction on the body [force/length²]
+    /// along the tangent (−normal_y, normal_x) (`normal` turned 90°
+    /// counter-clockwise).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tangential_traction: Option<f64>,
+    /// Pairs with friction: slip in this load step [length], the node's
+    /// tangential motion relative to the obstacle along the same tangent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slip: Option<f64>,
+    /// Pairs with friction: stick, slip or open.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub state: Option<FrictionState>,
 }
 
 #[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, JsonSchema)]
@@ -345,6 +392,23 @@ pub struct Certificate {
     pub complementarity: f64,
     /// ‖K u − f + Bᵀλ‖∞ on the free DOFs relative to the largest nodal force.
     pub equilibrium: f64,
+    /// With friction: its conditions' residuals.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<FrictionResiduals>,
+}
+
+/// Relative residuals of the Coulomb conditions (dimensionless, each ≥ 0).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionResiduals {
+    /// Largest max(0, |t| − μ p) (as nodal forces) relative to the largest normal force.
+    pub cone: f64,
+    /// Largest max(0, t · slip) (the friction force doing positive work)
+    /// relative to (largest normal force × displacement scale).
+    pub dissipation: f64,
+    /// Largest (μ p − |t|) · |slip| (slip inside the cone) relative to
+    /// (largest normal force × displacement scale).
+    pub stick: f64,
 }
 
 #[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, JsonSchema)]

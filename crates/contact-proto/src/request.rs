@@ -54,11 +54,36 @@ pub struct SolveRequest {
         deserialize_with = "crate::bounded::load_factors"
     )]
     pub load_factors: Vec<f64>,
+    /// Solve step by step, each step scaling named loads and prescribed
+    /// displacements separately (so that a normal load can be held while a
+    /// tangential one grows); history-dependent contact (friction) carries
+    /// its state from one step to the next. Not together with `load_factors`.
+    /// The reply's `steps` holds each answer.
+    #[serde(
+        default,
+        skip_serializing_if = "Vec::is_empty",
+        deserialize_with = "crate::bounded::load_path"
+    )]
+    pub load_path: Vec<LoadPathStep>,
     /// The names of the units the request's numbers are in, echoed in the
     /// reply for plots and files. Nothing is converted: the numbers must be
     /// consistent (e.g. mm, N, MPa) whatever the names say.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub units: Option<Units>,
+}
+
+/// One step of a load path.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LoadPathStep {
+    /// Factor of each named load or prescribed displacement at this step, by
+    /// its JSON pointer in the request: `/bodies/0/tractions/1`,
+    /// `/bodies/0/point_loads/0`, `/bodies/0/supports/2` (its prescribed
+    /// values), `/bodies/0/body_force`. Those not named keep factor 1 (as
+    /// given). To move one component of a support separately, give it its own
+    /// support entry on the same edge set.
+    #[serde(default)]
+    pub loads: std::collections::BTreeMap<String, f64>,
 }
 
 /// Names of units (free text of at most 32 characters, e.g. "mm", "N", "MPa").
@@ -402,6 +427,19 @@ pub struct ContactSpec {
     /// (ignored for rigid obstacles).
     #[serde(default)]
     pub discretization: Discretization,
+    /// Coulomb friction on the pair (default: frictionless). Supported so far
+    /// against a fixed rigid obstacle, on the condensed active-set method.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<FrictionSpec>,
+}
+
+/// Coulomb friction: the tangential traction |t| ≤ μ p, sliding where it
+/// reaches μ p, sticking where it is below.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionSpec {
+    /// μ ≥ 0 (0: frictionless).
+    pub coefficient: f64,
 }
 
 /// A tensionless foundation under the bodies: its surface is the horizontal

@@ -4,7 +4,9 @@
 //! one symbolic + numeric Cholesky + one solve of the same K (AMD order,
 //! sequential: the solver's own kernels and parallelism), the ratios per
 //! stage (`r_fact`: factorization, `r_cont`: condensation and contact solve
-//! against the floor's solve). The harness returns rows; the CLI prints and writes them.
+//! against the floor's solve). A row with Coulomb friction (one step, the
+//! active set of `methods::friction`) follows the frictionless ones of each mesh.
+//! The harness returns rows; the CLI prints and writes them.
 
 use std::time::Instant;
 
@@ -205,6 +207,11 @@ fn floor_time(scene: &Scene) -> (f64, f64, usize) {
     (factor, t.elapsed().as_secs_f64(), k.nrows())
 }
 
+/// Coulomb coefficient of the frictional row (the scene's ν = 0.3 makes the
+/// normal load alone slip near the zone's edges, so the step has stick and
+/// slip points).
+const FRICTION: f64 = 0.3;
+
 /// Which rows the benchmark runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
@@ -278,10 +285,18 @@ pub fn run(mode: Mode, repeat: usize, mut progress: impl FnMut(&Row)) -> Vec<Row
             if nodal && n_free < 40_000 {
                 runs.push((MethodName::InteriorPoint, Formulation::Full, None));
             }
-            for (method, formulation, zeta) in runs {
+            // The same scene with Coulomb friction (μ = FRICTION), one step: its
+            // cost against the frictionless active set's row above it.
+            let frictional =
+                (mode != Mode::Floor).then_some((MethodName::ActiveSet, Formulation::Condensed, None, true));
+            let all = runs.into_iter().map(|(m, f, z)| (m, f, z, false)).chain(frictional);
+            for (method, formulation, zeta, with_friction) in all {
                 let name = serde_json::to_value(method).unwrap().as_str().unwrap().to_string();
                 let mut req = hertz_request(h_el, element, &name);
                 let mut settings = json!({ "formulation": formulation });
+                if with_friction {
+                    req["contacts"][0]["friction"] = json!({ "coefficient": FRICTION });
+                }
                 match (method, zeta) {
                     (MethodName::Barrier, Some(z)) => settings["barrier"] = json!(z),
                     (_, Some(z)) => settings["penalty"] = json!(z),
@@ -304,6 +319,7 @@ pub fn run(mode: Mode, repeat: usize, mut progress: impl FnMut(&Row)) -> Vec<Row
                     dofs: r.size.dofs,
                     candidates: r.size.candidates,
                     method: match zeta {
+                        _ if with_friction => format!("{}+friction(μ={FRICTION})", r.method),
                         Some(z) => format!("{}(ζ={z:.0e})", r.method),
                         None => r.method.clone(),
                     },

@@ -36,6 +36,7 @@ pub fn request(bodies: Vec<BodySpec>, contacts: Vec<ContactSpec>) -> SolveReques
         settings: SolverSettings::default(),
         outputs: Vec::new(),
         load_factors: Vec::new(),
+        load_path: Vec::new(),
         units: None,
     }
 }
@@ -254,6 +255,7 @@ pub fn pair(body: &str, edges: &str) -> ContactSpec {
         against: None,
         foundation: None,
         discretization: Discretization::default(),
+        friction: None,
     }
 }
 

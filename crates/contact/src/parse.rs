@@ -51,8 +51,14 @@ pub fn parse_request(bytes: &[u8], limits: &Limits) -> Result<SolveRequest, Core
         return Err(CoreError::TooLarge {
             path: over.path.into(),
             reason: format!(
-                "more than {} load factors; this service solves at most {} load steps per request (split the list)",
-                over.limit, over.limit
+                "more than {} {}; this service solves at most {} load steps per request (split the list)",
+                over.limit,
+                if over.path == "/load_path" {
+                    "load path steps"
+                } else {
+                    "load factors"
+                },
+                over.limit
             ),
         });
     }

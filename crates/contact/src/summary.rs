@@ -123,6 +123,28 @@ pub fn reply(r: &SolveReply) -> String {
                 a.basis.replace('_', "-")
             );
         }
+        if let Some(f) = &p.friction {
+            let runs = |z: &[[f64; 2]]| {
+                if z.is_empty() {
+                    "none".to_string()
+                } else {
+                    z.iter()
+                        .map(|z| format!("[{}, {}]", num(z[0]), num(z[1])))
+                        .collect::<Vec<_>>()
+                        .join(" ")
+                }
+            };
+            let r = &f.tangential_resultant;
+            let _ = writeln!(
+                o,
+                "  friction   μ {}: stick {}; slip {}; friction force fx {}, fy {}",
+                num(f.coefficient),
+                runs(&f.stick_zones),
+                runs(&f.slip_zones),
+                num(r.fx),
+                num(r.fy)
+            );
+        }
     }
     if let Some(rf) = &r.refinement {
         let rounds: Vec<String> = rf.rounds.iter().map(|k| k.dofs.to_string()).collect();
@@ -168,6 +190,13 @@ pub fn reply(r: &SolveReply) -> String {
         "certificate  primal {:.1e}, dual {:.1e}, complementarity {:.1e}, equilibrium {:.1e}",
         c.primal, c.dual, c.complementarity, c.equilibrium
     );
+    if let Some(f) = &c.friction {
+        let _ = writeln!(
+            o,
+            "  friction   cone {:.1e}, dissipation {:.1e}, stick {:.1e}",
+            f.cone, f.dissipation, f.stick
+        );
+    }
     let t = &r.timings;
     let _ = writeln!(
         o,

@@ -25,6 +25,17 @@ pub fn prepare(
     cons: &ConstraintSet,
     cache: Option<&OperatorCache>,
 ) -> Result<Prepared, CoreError> {
+    let rows: Vec<&[(usize, f64)]> = cons.candidates.iter().map(|c| c.row.as_slice()).collect();
+    prepare_rows(stiffness, &rows, cache)
+}
+
+/// `prepare` for any rows on the free DOFs (the frictional path condenses
+/// the normal rows and the tangential ones together).
+pub fn prepare_rows(
+    stiffness: Arc<Stiffness>,
+    rows: &[&[(usize, f64)]],
+    cache: Option<&OperatorCache>,
+) -> Result<Prepared, CoreError> {
     let t0 = Instant::now();
     let pattern = pattern_key(&stiffness.k);
     let symbolic = match cache.and_then(|c| c.get_symbolic(pattern)) {
@@ -37,8 +48,7 @@ pub fn prepare(
             s
         }
     };
-    let rows: Vec<&[(usize, f64)]> = cons.candidates.iter().map(|c| c.row.as_slice()).collect();
-    let reach = Reach::new(&symbolic, &rows);
+    let reach = Reach::new(&symbolic, rows);
     crate::observer::revise_factorization(
         t0.elapsed().as_secs_f64(),
         symbolic.cost().predicted_secs(),

@@ -14,12 +14,14 @@
 //! i.e. the LCP  λ ≥ 0,  w = Wλ + q ≥ 0,  λᵀw = 0  (w is the gap after deformation).
 //! Load-controlled punch motions β add −Cβ to the rows and their equilibrium
 //! Cᵀλ = −P as equalities: a mixed LCP, w = Wλ + q + Cβ (`PunchBlock`).
-//! `settings.formulation = full` runs the exact methods on the uncondensed system
+//! Coulomb friction adds tangential rows and is solved per load step by
+//! `friction`. `settings.formulation = full` runs the exact methods on the uncondensed system
 //! instead (`full`), for comparison.
 
 pub mod active_set;
 pub mod barrier;
 pub mod condensed;
+pub mod friction;
 pub mod full;
 pub mod interior_point;
 pub mod penalty;

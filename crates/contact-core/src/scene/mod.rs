@@ -37,6 +37,25 @@ pub struct Scene {
     pub notes: Vec<String>,
     /// Load multipliers to solve for (empty: the loads as given).
     pub load_factors: Vec<f64>,
+    /// Load path steps (empty: none): each scales named loads separately.
+    pub load_path: Vec<PathStep>,
+}
+
+/// One load path step: the factor of each named load (the others keep 1),
+/// and the names as the request gave them (echoed in the reply).
+#[derive(Debug, Clone, Default)]
+pub struct PathStep {
+    pub factors: Vec<(LoadRef, f64)>,
+    pub given: std::collections::BTreeMap<String, f64>,
+}
+
+/// A load or prescribed displacement of a body that a load path scales.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LoadRef {
+    Traction { body: usize, index: usize },
+    PointLoad { body: usize, index: usize },
+    Support { body: usize, index: usize },
+    BodyForce { body: usize },
 }
 
 impl Scene {
@@ -44,6 +63,7 @@ impl Scene {
     pub fn scaled(&self, k: f64) -> Scene {
         let mut s = self.clone();
         s.load_factors.clear();
+        s.load_path.clear();
         for b in &mut s.bodies {
             b.body_force = [k * b.body_force[0], k * b.body_force[1]];
             for sup in &mut b.supports {
@@ -61,6 +81,42 @@ impl Scene {
             }
         }
         s
+    }
+}
+
+impl Scene {
+    /// The scene of a load path step: each named load times its factor.
+    pub fn at_step(&self, step: &PathStep) -> Scene {
+        let mut s = self.clone();
+        s.load_factors.clear();
+        s.load_path.clear();
+        for &(r, k) in &step.factors {
+            match r {
+                LoadRef::Traction { body, index } => match &mut s.bodies[body].tractions[index] {
+                    Traction::Vector { t, .. } => *t = [k * t[0], k * t[1]],
+                    Traction::Pressure { p, .. } => *p *= k,
+                },
+                LoadRef::PointLoad { body, index } => {
+                    let f = &mut s.bodies[body].point_loads[index].force;
+                    *f = [k * f[0], k * f[1]];
+                }
+                LoadRef::Support { body, index } => {
+                    let sup = &mut s.bodies[body].supports[index];
+                    sup.ux = sup.ux.map(|v| k * v);
+                    sup.uy = sup.uy.map(|v| k * v);
+                }
+                LoadRef::BodyForce { body } => {
+                    let b = &mut s.bodies[body].body_force;
+                    *b = [k * b[0], k * b[1]];
+                }
+            }
+        }
+        s
+    }
+
+    /// Whether any pair has friction (μ > 0).
+    pub fn has_friction(&self) -> bool {
+        self.pairs.iter().any(|p| p.friction > 0.0)
     }
 }
 
@@ -261,6 +317,8 @@ pub struct Pair {
     pub edges: String,
     pub target: Target,
     pub path: String,
+    /// Coulomb coefficient μ (0: frictionless).
+    pub friction: f64,
 }
 
 /// What the pair's edge set may touch.

@@ -80,6 +80,7 @@ pub fn certify(
             dual,
             complementarity: comp,
             equilibrium: eq,
+            friction: None,
         },
         gaps,
     )

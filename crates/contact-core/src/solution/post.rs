@@ -154,6 +154,7 @@ pub fn pairs(
             max_penetration: sc.length(max_pen),
             pruned: cons.pruned[p],
             accuracy: None,
+            friction: None,
         });
     }
     (out, total, n_active)

@@ -125,6 +125,14 @@ impl Report {
                 if let Some(r) = &p.other_resultant {
                     check(&|| at(format!("pairs/{i}/other_resultant")), &[r.fx, r.fy, r.m]);
                 }
+                if let Some(f) = &p.friction {
+                    let r = &f.tangential_resultant;
+                    let v: Vec<f64> = [r.fx, r.fy, r.m]
+                        .into_iter()
+                        .chain(f.points.iter().flat_map(|q| [q.traction, q.slip]))
+                        .collect();
+                    check(&|| at(format!("pairs/{i}/friction")), &v);
+                }
             }
         }
         for (i, w) in self.warnings.iter().enumerate() {
@@ -178,21 +186,38 @@ pub struct Certificate {
     pub dual: f64,
     pub complementarity: f64,
     pub equilibrium: f64,
+    /// With friction: the Coulomb conditions' residuals.
+    pub friction: Option<FrictionResiduals>,
 }
 
 impl Certificate {
     pub fn worst(&self) -> f64 {
+        let f = self.friction.map_or(0.0, |f| f.cone.max(f.dissipation).max(f.stick));
         self.primal
             .max(self.dual)
             .max(self.complementarity)
             .max(self.equilibrium)
+            .max(f)
     }
     /// Every entry finite (`worst` alone would hide a NaN: f64::max ignores it).
     pub fn is_finite(&self) -> bool {
+        let f = self.friction.map_or([0.0; 3], |f| [f.cone, f.dissipation, f.stick]);
         [self.primal, self.dual, self.complementarity, self.equilibrium]
             .iter()
+            .chain(&f)
             .all(|v| v.is_finite())
     }
+}
+
+/// Relative residuals of the Coulomb conditions, each ≥ 0 (`solution::friction`).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FrictionResiduals {
+    /// max(0, |τ| − μλ) / ‖λ‖∞.
+    pub cone: f64,
+    /// max(0, −τ Δs) / (‖λ‖∞ D): the friction force may not do positive work.
+    pub dissipation: f64,
+    /// (μλ − |τ|) |Δs| / (‖λ‖∞ D): no slip inside the cone.
+    pub stick: f64,
 }
 
 /// Force and moment about the origin (counter-clockwise positive).
@@ -234,6 +259,8 @@ pub struct PunchReport {
 #[derive(Debug, Clone)]
 pub struct LoadStep {
     pub factor: f64,
+    /// A load path step's factors, by JSON pointer (None for a load factor).
+    pub loads: Option<std::collections::BTreeMap<String, f64>>,
     pub status: Status,
     pub iterations: usize,
     pub pairs: Vec<PairReport>,
@@ -268,6 +295,8 @@ pub struct PairReport {
     pub other_resultant: Option<Resultant>,
     /// The estimated error of the pair's answer (`solution::accuracy`).
     pub accuracy: Option<PairAccuracy>,
+    /// A pair with friction (`solution::friction`).
+    pub friction: Option<PairFriction>,
 }
 
 /// A posteriori error estimate of a pair (`solution::accuracy`): relative
@@ -279,6 +308,36 @@ pub struct PairAccuracy {
     pub peak: Option<f64>,
     pub resultant: Option<f64>,
     pub zone_edges: Vec<[f64; 2]>,
+}
+
+/// Friction on one pair, in the request's units.
+#[derive(Debug, Clone)]
+pub struct PairFriction {
+    pub coefficient: f64,
+    /// Runs of sticking and of slipping points, [x_first, x_last].
+    pub stick_zones: Vec<[f64; 2]>,
+    pub slip_zones: Vec<[f64; 2]>,
+    /// Of the friction forces on the body.
+    pub tangential_resultant: Resultant,
+    /// One per entry of `PairReport::points`, in the same order.
+    pub points: Vec<PointFriction>,
+}
+
+/// A contact point's tangential traction (along the normal turned 90°
+/// counter-clockwise, on the body), its slip in the step along the same
+/// direction, and its state.
+#[derive(Debug, Clone, Copy)]
+pub struct PointFriction {
+    pub traction: f64,
+    pub slip: f64,
+    pub state: FrictionState,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FrictionState {
+    Stick,
+    Slip,
+    Open,
 }
 
 /// A contact zone along the surface of its edge set: arc length from the

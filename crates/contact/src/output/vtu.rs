@@ -3,7 +3,9 @@
 //! One piece holds every body: points (z = 0), the triangles (VTK type 5 for
 //! T3, 22 for T6, whose node order — corners, then midsides of edges 01, 12,
 //! 20 — is ours), point data `displacement` (ux, uy, 0) and `contact_pressure`
-//! (0 off the contact candidates; a node in several pairs gets their sum), cell
+//! (0 off the contact candidates; a node in several pairs gets their sum),
+//! with friction `contact_tangential_traction` (the tangential traction as a
+//! vector (tx, ty, 0) on the body, 0 off the candidates of frictional pairs), cell
 //! data at the element centroids: `stress` (σxx, σyy, σxy), `stress_tensor`
 //! (the symmetric tensor in ParaView's order XX, YY, ZZ, XY, YZ, XZ, with σzz
 //! of plane strain), `von_mises`, `principal_stress` (σ1 ≥ σ2 ≥ σ3) and `body`
@@ -94,6 +96,21 @@ pub fn vtu(reply: &SolveReply, stress_zz: &[Vec<f64>], axisymmetric: bool) -> Ve
         }
     }
 
+    // With friction: the tangential traction along each point's tangent
+    // (−n_y, n_x), as a vector ParaView can draw as glyphs.
+    let friction = reply.pairs.iter().any(|p| p.friction.is_some());
+    let mut tangential = vec![0.0; points.len()];
+    for pair in reply.pairs.iter().filter(|p| p.friction.is_some()) {
+        if let Some(b) = index(&pair.body) {
+            for p in &pair.points {
+                let t = p.tangential_traction.unwrap_or(0.0);
+                let k = 3 * (first[b] + p.node);
+                tangential[k] += -t * p.normal[1];
+                tangential[k + 1] += t * p.normal[0];
+            }
+        }
+    }
+
     let n_points = points.len() / 3;
     let n_cells = types.len();
     let mut x = String::new();
@@ -113,6 +130,9 @@ pub fn vtu(reply: &SolveReply, stress_zz: &[Vec<f64>], axisymmetric: bool) -> Ve
     x.push_str("<PointData>\n");
     array(&mut x, "Float64", "displacement", 3, &le(&disp));
     array(&mut x, "Float64", "contact_pressure", 1, &le(&pressure));
+    if friction {
+        array(&mut x, "Float64", "contact_tangential_traction", 3, &le(&tangential));
+    }
     x.push_str("</PointData>\n<CellData>\n");
     array(&mut x, "Float64", "stress", 3, &le(&stress));
     array(&mut x, "Float64", "stress_tensor", 6, &le(&tensor));
@@ -213,6 +233,31 @@ mod tests {
         assert_eq!(decode(&xml, "types"), vec![VTK_TRIANGLE, VTK_TRIANGLE]);
         let d = f64s(decode(&xml, "displacement"));
         assert_eq!(&d[3..6], &[0.5, -1.0, 0.0], "node 1's (ux, uy, 0)");
+    }
+
+    /// A frictional pair adds the tangential traction as a vector along each
+    /// point's tangent (−n_y, n_x); a frictionless reply has no such array.
+    #[test]
+    fn friction_adds_the_tangential_traction() {
+        let mut reply: SolveReply = serde_json::from_str(include_str!("testdata/two_triangles_reply.json")).unwrap();
+        let plain = String::from_utf8(vtu(&reply, &[], false)).unwrap();
+        assert!(!plain.contains("contact_tangential_traction"));
+        let pair = &mut reply.pairs[0];
+        pair.friction = Some(crate::proto::PairFriction {
+            coefficient: 0.5,
+            stick_zones: vec![],
+            slip_zones: vec![[0.0, 1.0]],
+            tangential_resultant: Default::default(),
+        });
+        // Normal (0, −1): the tangent is (1, 0).
+        pair.points[0].tangential_traction = Some(-1.0);
+        pair.points[1].tangential_traction = Some(1.5);
+        let xml = String::from_utf8(vtu(&reply, &[], false)).unwrap();
+        let t: Vec<f64> = decode(&xml, "contact_tangential_traction")
+            .chunks(8)
+            .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+            .collect();
+        assert_eq!(t, vec![-1.0, 0.0, 0.0, 1.5, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
     }
 
     /// Uniaxial stress: von Mises is its magnitude and the principals are

@@ -111,6 +111,11 @@ fn certificate(c: r::Certificate) -> p::Certificate {
         dual: c.dual,
         complementarity: c.complementarity,
         equilibrium: c.equilibrium,
+        friction: c.friction.map(|f| p::FrictionResiduals {
+            cone: f.cone,
+            dissipation: f.dissipation,
+            stick: f.stick,
+        }),
     }
 }
 
@@ -130,6 +135,7 @@ fn timings(t: r::Timings) -> p::Timings {
 fn step(s: LoadStep) -> p::LoadStep {
     p::LoadStep {
         factor: s.factor,
+        loads: s.loads,
         status: status(s.status),
         iterations: s.iterations,
         pairs: s.pairs.into_iter().map(pair).collect(),
@@ -180,15 +186,26 @@ fn pair(pr: PairReport) -> p::PairResult {
         points: pr
             .points
             .into_iter()
-            .map(|c| p::ContactPoint {
-                x: c.x,
-                y: c.y,
-                gap: c.gap,
-                pressure: c.pressure,
-                force: c.force,
-                weight: c.weight,
-                node: c.node,
-                normal: c.normal,
+            .enumerate()
+            .map(|(k, c)| {
+                let fr = pr.friction.as_ref().map(|f| f.points[k]);
+                p::ContactPoint {
+                    x: c.x,
+                    y: c.y,
+                    gap: c.gap,
+                    pressure: c.pressure,
+                    force: c.force,
+                    weight: c.weight,
+                    node: c.node,
+                    normal: c.normal,
+                    tangential_traction: fr.map(|f| f.traction),
+                    slip: fr.map(|f| f.slip),
+                    state: fr.map(|f| match f.state {
+                        r::FrictionState::Stick => p::FrictionState::Stick,
+                        r::FrictionState::Slip => p::FrictionState::Slip,
+                        r::FrictionState::Open => p::FrictionState::Open,
+                    }),
+                }
             })
             .collect(),
         resultant: resultant(pr.resultant),
@@ -207,6 +224,12 @@ fn pair(pr: PairReport) -> p::PairResult {
                 .collect()
         }),
         other_resultant: pr.other_resultant.map(resultant),
+        friction: pr.friction.map(|f| p::PairFriction {
+            coefficient: f.coefficient,
+            stick_zones: f.stick_zones,
+            slip_zones: f.slip_zones,
+            tangential_resultant: resultant(f.tangential_resultant),
+        }),
     }
 }
 

@@ -5,6 +5,7 @@
 
 mod bodies;
 mod foundations;
+mod load_path;
 mod obstacles;
 mod pairs;
 mod settings;
@@ -115,6 +116,7 @@ impl Scene {
         let (pairs, notes) = pairs::pairs(req, &survey, &names)?;
         let settings = settings::settings(req, scales, &bodies, survey.nodes.iter().sum(), limits)?;
         settings::units(req)?;
+        let load_path = load_path::load_path(req, &bodies, limits)?;
         Ok(Scene {
             analysis: settings::analysis(req),
             scales,
@@ -130,6 +132,7 @@ impl Scene {
             estimated_nodes: survey.nodes.iter().sum(),
             notes,
             load_factors: req.load_factors.clone(),
+            load_path,
         })
     }
 }

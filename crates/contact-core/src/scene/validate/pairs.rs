@@ -115,15 +115,62 @@ pub fn pairs(req: &SolveRequest, survey: &Survey, n: &Names) -> Result<(Vec<Pair
             }
             t => (body, c.edges.clone(), t),
         };
+        let friction = friction(req, c, &cp, &target)?;
         pairs.push(Pair {
             body,
             edges,
             target,
             path: cp,
+            friction,
         });
     }
 
     Ok((pairs, notes))
+}
+
+/// The pair's Coulomb coefficient μ (0 without `friction`); friction where
+/// it is not supported yet is refused rather than ignored.
+fn friction(req: &SolveRequest, c: &proto::ContactSpec, cp: &str, target: &Target) -> Result<f64, CoreError> {
+    let Some(f) = c.friction else {
+        return Ok(0.0);
+    };
+    let mu = f.coefficient;
+    if !mu.is_finite() || mu < 0.0 {
+        return Err(invalid(
+            K::Request,
+            format!("{cp}/friction/coefficient"),
+            format!("the friction coefficient must be a finite number ≥ 0, got {mu}"),
+        ));
+    }
+    if mu == 0.0 {
+        return Ok(0.0);
+    }
+    let refuse = |what: &str| -> Result<f64, CoreError> {
+        Err(invalid(
+            K::Request,
+            format!("{cp}/friction"),
+            format!("friction {what} is not supported yet (remove 'friction' to solve the pair frictionless)"),
+        ))
+    };
+    match target {
+        Target::Body { .. } => return refuse("between two deformable bodies"),
+        Target::Foundation(_) => return refuse("on a foundation"),
+        Target::Obstacle(o) if req.obstacles[*o].punch.is_some() => return refuse("against a punch"),
+        Target::Obstacle(_) => {}
+    }
+    if !matches!(req.method, proto::MethodName::Auto | proto::MethodName::ActiveSet) {
+        return refuse("with a method other than 'auto' or 'active_set'");
+    }
+    if req.settings.formulation == proto::Formulation::Full {
+        return refuse("on the full formulation (use 'condensed')");
+    }
+    if req.analysis == proto::Analysis::Axisymmetric {
+        return refuse("in axisymmetry");
+    }
+    if req.contacts.iter().any(|p| p.foundation.is_some()) {
+        return refuse("in a scene with foundations");
+    }
+    Ok(mu)
 }
 
 fn resolve(r: &BodyRef, names: &[String], path: &str, what: &str) -> Result<usize, CoreError> {

@@ -87,7 +87,12 @@ pub fn settings(
         })
         .fold(0.0f64, |a, v| a.max(v.abs()));
     check_load_factors(&req.load_factors, load_size, scales, limits)?;
-    check_output_size(&req.outputs, req.load_factors.len(), nodes, limits)?;
+    check_output_size(
+        &req.outputs,
+        req.load_factors.len().max(req.load_path.len()),
+        nodes,
+        limits,
+    )?;
 
     Ok(Settings {
         tolerance: tol,

@@ -1,0 +1,104 @@
+//! `load_path`: steps that scale named loads and prescribed displacements
+//! separately, each named by its JSON pointer in the request.
+
+use contact_proto::SolveRequest;
+
+use super::{finite, invalid};
+use crate::error::{CoreError, InvalidKind as K};
+use crate::scene::validate::Limits;
+use crate::scene::{Body, LoadRef, PathStep};
+
+/// Largest |factor| of a load path step: beyond it the scaled loads leave the
+/// range the reply's magnitude check was made for (loads of O(E·L) times 1e6
+/// stay far below the 1e200 at which an answer is refused as overflowing).
+const MAX_FACTOR: f64 = 1e6;
+
+pub fn load_path(req: &SolveRequest, bodies: &[Body], limits: &Limits) -> Result<Vec<PathStep>, CoreError> {
+    if req.load_path.is_empty() {
+        return Ok(Vec::new());
+    }
+    if !req.load_factors.is_empty() {
+        return Err(invalid(
+            K::Request,
+            "/load_path",
+            "give either 'load_factors' (every load scaled alike) or 'load_path' (named loads scaled per step), not both",
+        ));
+    }
+    if req.load_path.len() > limits.max_load_steps {
+        return Err(CoreError::TooLarge {
+            path: "/load_path".into(),
+            reason: format!(
+                "{} load path steps; this service solves at most {} load steps per request",
+                req.load_path.len(),
+                limits.max_load_steps
+            ),
+        });
+    }
+    req.load_path
+        .iter()
+        .enumerate()
+        .map(|(k, step)| {
+            let factors = step
+                .loads
+                .iter()
+                .map(|(name, &f)| {
+                    let path = format!("/load_path/{k}/loads/{}", escape(name));
+                    let r = load_ref(name, bodies).ok_or_else(|| {
+                        invalid(
+                            K::Request,
+                            &path,
+                            format!(
+                                "'{name}' names no load: expected the JSON pointer of a traction, point load, support or body force, e.g. /bodies/0/tractions/1"
+                            ),
+                        )
+                    })?;
+                    finite(f, &path, K::Request)?;
+                    if f.abs() > MAX_FACTOR {
+                        return Err(invalid(
+                            K::Request,
+                            &path,
+                            format!("a load path factor must not exceed {MAX_FACTOR:e} in magnitude, got {f:e}"),
+                        ));
+                    }
+                    Ok((r, f))
+                })
+                .collect::<Result<Vec<_>, CoreError>>()?;
+            Ok(PathStep {
+                factors,
+                given: step.loads.clone(),
+            })
+        })
+        .collect()
+}
+
+/// A key as one JSON pointer token (RFC 6901: ~ as ~0, / as ~1).
+fn escape(key: &str) -> String {
+    key.replace('~', "~0").replace('/', "~1")
+}
+
+/// The load a pointer names: `/bodies/<i>/<tractions|point_loads|supports>/<j>`
+/// or `/bodies/<i>/body_force`, with the body by index.
+fn load_ref(name: &str, bodies: &[Body]) -> Option<LoadRef> {
+    let parts: Vec<&str> = name.strip_prefix("/bodies/")?.split('/').collect();
+    let index = |s: &str| -> Option<usize> {
+        // A pointer's array index: digits, no sign, no leading zero.
+        (!s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()) && (s == "0" || !s.starts_with('0')))
+            .then(|| s.parse().ok())
+            .flatten()
+    };
+    let body = index(parts.first()?)?;
+    let b = bodies.get(body)?;
+    match parts[1..] {
+        ["body_force"] => Some(LoadRef::BodyForce { body }),
+        ["tractions", j] => index(j)
+            .filter(|&i| i < b.tractions.len())
+            .map(|index| LoadRef::Traction { body, index }),
+        ["point_loads", j] => index(j)
+            .filter(|&i| i < b.point_loads.len())
+            .map(|index| LoadRef::PointLoad { body, index }),
+        ["supports", j] => index(j)
+            .filter(|&i| i < b.supports.len())
+            .map(|index| LoadRef::Support { body, index }),
+        _ => None,
+    }
+}

@@ -1,0 +1,133 @@
+//! Friction in the report: per point the tangential traction, the step's slip
+//! and the state; per pair the stick and slip zones and the tangential
+//! resultant (added to the pair's and the total resultant, which are the
+//! whole contact force on the bodies); and the Coulomb conditions'
+//! residuals in the certificate, which decide the status like the others.
+
+use std::collections::HashMap;
+
+use crate::contact::friction::Tangents;
+use crate::methods::friction::{self as fr, State};
+use crate::model::Model;
+use crate::scene::Scene;
+use crate::solution::report::{
+    FrictionResiduals, FrictionState, PairFriction, PointFriction, Report, Resultant, Status,
+};
+
+/// Adds the friction of the step `s` to `report` (composed from the normal
+/// forces, with the friction forces among the loads for its equilibrium).
+pub fn attach(report: &mut Report, scene: &Scene, model: &Model, t: &Tangents, s: &fr::Friction) {
+    let sc = scene.scales;
+    let cons = &model.cons;
+    let (lambda, state) = (&s.lambda, &s.history.state);
+    let residuals = residuals(t, lambda, &s.tau, &s.slip, s.u_scale);
+    report.certificate.friction = Some(residuals);
+    if report.status == Status::Solved && report.certificate.worst() > scene.settings.tolerance {
+        report.status = Status::NumericalError;
+    }
+    let mut total = Resultant::default();
+    for (p, pair) in scene.pairs.iter().enumerate() {
+        if pair.friction <= 0.0 {
+            continue;
+        }
+        let mesh = &model.meshes[pair.body];
+        let by_node: HashMap<usize, usize> = (0..cons.len())
+            .filter(|&i| cons.candidates[i].pair == p)
+            .map(|i| (cons.candidates[i].node, i))
+            .collect();
+        let pr = &mut report.pairs[p];
+        let points: Vec<PointFriction> = pr
+            .points
+            .iter()
+            .map(|q| {
+                let i = by_node[&q.node];
+                let (traction, slip) = match t.row_of[i] {
+                    Some(k) => (-s.tau[k] / cons.candidates[i].weight, s.slip[k]),
+                    None => (0.0, 0.0),
+                };
+                let st = match state.get(&(p, q.node)) {
+                    _ if !s.in_contact[i] => FrictionState::Open,
+                    Some(State::Slip(_)) => FrictionState::Slip,
+                    _ => FrictionState::Stick,
+                };
+                PointFriction {
+                    traction: sc.stress(traction),
+                    slip: sc.length(slip),
+                    state: st,
+                }
+            })
+            .collect();
+        let runs = |which: FrictionState| -> Vec<[f64; 2]> {
+            let mut out: Vec<[f64; 2]> = Vec::new();
+            let mut open = false;
+            for (q, f) in pr.points.iter().zip(&points) {
+                if f.state == which {
+                    match out.last_mut() {
+                        Some(z) if open => z[1] = q.x,
+                        _ => out.push([q.x, q.x]),
+                    }
+                    open = true;
+                } else {
+                    open = false;
+                }
+            }
+            out
+        };
+        // Friction forces on the nodes: −τ times the turned coefficients.
+        let mut r = Resultant::default();
+        for (k, terms) in t.terms.iter().enumerate() {
+            if cons.candidates[t.of[k]].pair != p {
+                continue;
+            }
+            for term in terms {
+                let f = [-s.tau[k] * term.coef[0], -s.tau[k] * term.coef[1]];
+                let x = mesh.nodes[term.node];
+                r.fx += f[0];
+                r.fy += f[1];
+                r.m += x[0] * f[1] - x[1] * f[0];
+            }
+        }
+        let r = Resultant {
+            fx: sc.force(r.fx),
+            fy: sc.force(r.fy),
+            m: sc.moment(r.m),
+        };
+        pr.resultant.fx += r.fx;
+        pr.resultant.fy += r.fy;
+        pr.resultant.m += r.m;
+        total.fx += r.fx;
+        total.fy += r.fy;
+        total.m += r.m;
+        pr.friction = Some(PairFriction {
+            coefficient: pair.friction,
+            stick_zones: runs(FrictionState::Stick),
+            slip_zones: runs(FrictionState::Slip),
+            tangential_resultant: r,
+            points,
+        });
+    }
+    report.resultant.fx += total.fx;
+    report.resultant.fy += total.fy;
+    report.resultant.m += total.m;
+}
+
+/// The Coulomb conditions' residuals (see `FrictionResiduals`), relative to
+/// the largest normal force and the displacement scale (‖u‖∞, or the largest
+/// slip if larger).
+pub fn residuals(t: &Tangents, lambda: &[f64], tau: &[f64], slip: &[f64], u_scale: f64) -> FrictionResiduals {
+    let inf = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    let lmax = inf(lambda);
+    let d = u_scale.max(inf(slip));
+    let ratio = |num: f64, den: f64| if num == 0.0 { 0.0 } else { num / den };
+    let mut r = FrictionResiduals::default();
+    for k in 0..t.len() {
+        let bound = t.mu[k] * lambda[t.of[k]].max(0.0);
+        r.cone = r.cone.max(ratio((tau[k].abs() - bound).max(0.0), lmax));
+        // The friction force −τ along t may not work with the slip: −τ Δs ≤ 0.
+        r.dissipation = r.dissipation.max(ratio((-tau[k] * slip[k]).max(0.0), lmax * d));
+        r.stick = r
+            .stick
+            .max(ratio((bound - tau[k].abs()).max(0.0) * slip[k].abs(), lmax * d));
+    }
+    r
+}

@@ -1,0 +1,368 @@
+//! Coulomb friction against closed forms and against the frictionless solve.
+//!
+//! The scene: the elastic roller of `signorini_roller_on_flat.json` (a
+//! half-disk R = 8, E = 200, arc down) whose flat top is moved down by 0.05
+//! onto the rigid floor and then sideways step by step (`load_path`), so that
+//! P stays nearly constant while the tangential load Q grows. A flat rigid
+//! floor makes the rows exact (vertical normal, horizontal tangent), so the
+//! only departure from the Cattaneo–Mindlin theory of two similar half-planes
+//! is the normal–tangential coupling of an elastic body on a rigid one,
+//! proportional to the second Dundurs constant β = (1 − 2ν) / (2(1 − ν)).
+//! At ν = 0.499 (T6, whose P2–P0 element does not lock) β = 0.001 and the
+//! coupling is negligible; at ν = 0.3 (β = 0.29) it is not (see
+//! `coupling_at_nu_0_3_shrinks_the_stick_zone`).
+
+mod common;
+use common::*;
+use contact::proto::{FrictionState, SolveReply, SolveStatus};
+use serde_json::{json, Value};
+
+const MU: f64 = 0.5;
+const R: f64 = 8.0;
+const E: f64 = 200.0;
+
+/// The roller (T6, contact-zone element size `h`, Poisson ratio `nu`) pressed
+/// by 0.05, then moved sideways by each of `shifts` in turn.
+fn roller(nu: f64, h: f64, shifts: &[f64], mu: Option<f64>) -> Value {
+    roller_of("t6", nu, h, shifts, mu)
+}
+
+/// `roller` with the given element (T3: nodal rows; T6: mortar rows).
+fn roller_of(element: &str, nu: f64, h: f64, shifts: &[f64], mu: Option<f64>) -> Value {
+    let mut r = example("signorini_roller_on_flat.json");
+    let b = &mut r["bodies"][0];
+    b["material"]["poisson_ratio"] = json!(nu);
+    let mesh = &mut b["mesh"]["half_disk"];
+    mesh["element"] = json!(element);
+    mesh["grading"] = json!({"h_min": h, "ratio": 1.2, "extent": 0.6});
+    // The sideways motion as its own support, so that the path scales it alone.
+    b["supports"] = json!([{"edges": "flat", "uy": -0.05}, {"edges": "flat", "ux": 1.0}]);
+    if let Some(mu) = mu {
+        r["contacts"][0]["friction"] = json!({"coefficient": mu});
+    }
+    r["load_path"] = Value::from(
+        shifts
+            .iter()
+            .map(|d| json!({"loads": {"/bodies/0/supports/1": d}}))
+            .collect::<Vec<_>>(),
+    );
+    r
+}
+
+/// The answer of every step (the reply's `steps`).
+fn steps(r: &SolveReply) -> Vec<(Vec<contact::proto::PairResult>, contact::proto::Resultant, SolveStatus)> {
+    r.steps
+        .as_ref()
+        .expect("a load path answers per step")
+        .iter()
+        .map(|s| (s.pairs.clone(), s.resultant, s.status))
+        .collect()
+}
+
+/// The ends of the run of points in `state` (or, with None, in contact):
+/// midway between the run's end points and their outer neighbours, where the
+/// true transition lies to ± half a spacing.
+fn run_ends(
+    points: &[contact::proto::ContactPoint],
+    inside: impl Fn(&contact::proto::ContactPoint) -> bool,
+) -> [f64; 2] {
+    let idx: Vec<usize> = (0..points.len()).filter(|&i| inside(&points[i])).collect();
+    assert!(!idx.is_empty(), "no point in the run");
+    let (lo, hi) = (idx[0], idx[idx.len() - 1]);
+    assert_eq!(hi - lo + 1, idx.len(), "the run is not contiguous");
+    let x = |i: usize| points[i].x;
+    let l = if lo > 0 { 0.5 * (x(lo) + x(lo - 1)) } else { x(lo) };
+    let h = if hi + 1 < points.len() {
+        0.5 * (x(hi) + x(hi + 1))
+    } else {
+        x(hi)
+    };
+    [l, h]
+}
+
+/// Cattaneo–Mindlin: under P then Q < μP the contact sticks on |x − x_s| < c
+/// with c = a √(1 − Q/(μP)), a the Hertz half-width of P, and slips on both
+/// sides. Tolerance 2 %: the stick zone's ends are known to half the corner
+/// spacing (0.0075 / 2 of c = 0.29–0.42, ≤ 1.3 %), and a/R = 0.06 puts the
+/// half-space idealisation's error near 0.4 % (measured a within 0.2 % of
+/// Hertz). Measured: c within 0.1, 0.6 and 1.2 % at Q/μP = 0.29, 0.49, 0.67.
+#[test]
+fn cattaneo_mindlin_stick_zone() {
+    let nu = 0.499;
+    let r = solved(&roller(nu, 0.0075, &[0.0, 0.015, 0.025, 0.035], Some(MU)));
+    let mut checked = 0;
+    for (k, (pairs, res, status)) in steps(&r).into_iter().enumerate() {
+        assert_eq!(status, SolveStatus::Solved, "step {k}");
+        let (p, q) = (res.fy, -res.fx);
+        let ratio = q / (MU * p);
+        let pts = &pairs[0].points;
+        let fr = pairs[0].friction.as_ref().expect("friction reported");
+        // On a flat floor the normal forces are vertical: the horizontal
+        // resultant is the friction force alone.
+        assert!((fr.tangential_resultant.fx - res.fx).abs() <= 1e-12 * p);
+        if k == 0 {
+            assert!(q.abs() < 1e-6 * p, "no tangential load yet: Q {q}");
+            continue;
+        }
+        assert!(ratio > 0.25 && ratio < 0.75, "step {k}: Q/μP = {ratio}");
+        let (a, _) = hertz(p, R, E, nu);
+        let stick = run_ends(pts, |q| q.state == Some(FrictionState::Stick));
+        let c = 0.5 * (stick[1] - stick[0]);
+        let expect = a * (1.0 - ratio).sqrt();
+        assert!(
+            (c / expect - 1.0).abs() < 0.02,
+            "step {k}: c {c} vs {expect} (Q/μP = {ratio})"
+        );
+        assert_eq!(fr.stick_zones.len(), 1, "{:?}", fr.stick_zones);
+        assert_eq!(fr.slip_zones.len(), 2, "slip on both sides: {:?}", fr.slip_zones);
+        // Slip annuli: the traction is μ p against the slip (the roller's top
+        // moves +x, its contact slips +x, friction pulls it back).
+        for pt in pts.iter().filter(|q| q.state == Some(FrictionState::Slip)) {
+            let t = pt.tangential_traction.unwrap();
+            assert!((t + MU * pt.pressure).abs() <= 1e-9 * MU * pt.pressure, "{pt:?}");
+            assert!(pt.slip.unwrap() > 0.0, "{pt:?}");
+        }
+        checked += 1;
+    }
+    assert_eq!(checked, 3);
+    assert!(r.certificate.friction.is_some());
+}
+
+/// History: after Q has grown to Q* the load is partly taken back. The
+/// points near the edges slip back first (Mindlin–Deresiewicz) and the
+/// contact sticks on c' = a √(1 − (Q* − Q)/(2μP)); the interior keeps the
+/// state the loading left. Tolerance 2 % as for the loading (c' = 0.43–0.48,
+/// half a spacing ≤ 0.9 %); measured within 0.9 %.
+#[test]
+fn unloading_follows_mindlin_deresiewicz() {
+    let nu = 0.499;
+    let r = solved(&roller(
+        nu,
+        0.0075,
+        &[0.0, 0.015, 0.025, 0.035, 0.025, 0.02, 0.01],
+        Some(MU),
+    ));
+    let all = steps(&r);
+    let q_star = -all[3].1.fx;
+    for (k, (pairs, res, _)) in all.iter().enumerate().skip(4) {
+        let (p, q) = (res.fy, -res.fx);
+        assert!(q > 0.0 && q < q_star, "step {k}: Q {q}, Q* {q_star}");
+        let (a, _) = hertz(p, R, E, nu);
+        let pts = &pairs[0].points;
+        let stick = run_ends(pts, |q| q.state == Some(FrictionState::Stick));
+        let c = 0.5 * (stick[1] - stick[0]);
+        let expect = a * (1.0 - (q_star - q) / (2.0 * MU * p)).sqrt();
+        assert!((c / expect - 1.0).abs() < 0.02, "step {k}: c {c} vs {expect}");
+        // Slipping back: against the loading's direction, friction along it.
+        for pt in pts.iter().filter(|q| q.state == Some(FrictionState::Slip)) {
+            assert!(pt.slip.unwrap() < 0.0, "step {k}: {pt:?}");
+            assert!((pt.tangential_traction.unwrap() - MU * pt.pressure).abs() <= 1e-9 * MU * pt.pressure);
+        }
+    }
+}
+
+/// Full sliding (Q = μP): every point in contact slips, q = μ p at each one
+/// (to the round-off of the solve, 1e-9 of μ p) and the tangential resultant
+/// is μ times the normal one; on nodal (T3) and mortar (T6) rows.
+#[test]
+fn full_sliding_traction_is_mu_p() {
+    for (element, nu) in [("t6", 0.499), ("t3", 0.3)] {
+        full_sliding(&roller_of(element, nu, 0.01, &[0.0, 0.06], Some(MU)));
+    }
+}
+
+fn full_sliding(req: &Value) {
+    let r = solved(req);
+    let (pairs, res, _) = steps(&r).pop().unwrap();
+    let pts = &pairs[0].points;
+    let p0 = pts.iter().map(|q| q.pressure).fold(0.0, f64::max);
+    let touching: Vec<_> = pts.iter().filter(|q| q.state != Some(FrictionState::Open)).collect();
+    assert!(touching.len() > 40, "{} points in contact", touching.len());
+    for pt in &touching {
+        assert_eq!(pt.state, Some(FrictionState::Slip), "{pt:?}");
+        let t = pt.tangential_traction.unwrap();
+        assert!((t + MU * pt.pressure).abs() <= 1e-9 * MU * p0, "{pt:?}");
+    }
+    assert!(
+        (-res.fx - MU * res.fy).abs() <= 1e-9 * res.fy,
+        "Q {} vs μP {}",
+        -res.fx,
+        MU * res.fy
+    );
+    assert!(pairs[0].friction.as_ref().unwrap().stick_zones.is_empty());
+}
+
+/// The points' forces add up to the pair's resultant, friction included:
+/// Σ (−force · normal + traction · weight · tangent) = (fx, fy), to round-off.
+#[test]
+fn point_forces_add_up_to_the_resultant() {
+    for element in ["t3", "t6"] {
+        point_forces(&roller_of(element, 0.3, 0.01, &[0.0, 0.02], Some(MU)));
+    }
+}
+
+fn point_forces(req: &Value) {
+    let r = solved(req);
+    for (pairs, res, _) in steps(&r) {
+        let pr = &pairs[0];
+        let (mut fx, mut fy) = (0.0, 0.0);
+        for q in &pr.points {
+            let (n, t) = (q.normal, [-q.normal[1], q.normal[0]]);
+            let ft = q.tangential_traction.unwrap() * q.weight;
+            fx += -q.force * n[0] + ft * t[0];
+            fy += -q.force * n[1] + ft * t[1];
+        }
+        assert!((fx - res.fx).abs() <= 1e-9 * res.fy, "fx {fx} vs {}", res.fx);
+        assert!((fy - res.fy).abs() <= 1e-9 * res.fy, "fy {fy} vs {}", res.fy);
+        assert!((pr.resultant.fx - res.fx).abs() <= 1e-12 * res.fy);
+    }
+}
+
+/// ν = 0.3 (β = 0.29): the normal load alone makes the contact slip near its
+/// edges (Spence), and under Q the stick zone is smaller than
+/// Cattaneo–Mindlin's and shifted toward the leading edge. The measured
+/// deviation (c 25–32 % below a √(1 − Q/μP) at Q/μP = 0.35–0.8 with μ = 0.5) is
+/// the coupling, which the similar-materials theory leaves out; the test
+/// checks its sign and that the step still satisfies every condition.
+#[test]
+fn coupling_at_nu_0_3_shrinks_the_stick_zone() {
+    let nu = 0.3;
+    let r = solved(&roller(nu, 0.0075, &[0.0, 0.025], Some(MU)));
+    let all = steps(&r);
+    let (pairs0, res0, _) = &all[0];
+    let (a0, _) = hertz(res0.fy, R, E, nu);
+    let stick0 = run_ends(&pairs0[0].points, |q| q.state == Some(FrictionState::Stick));
+    assert!(
+        0.5 * (stick0[1] - stick0[0]) < 0.8 * a0,
+        "partial slip under P alone: {stick0:?}, a {a0}"
+    );
+    let (pairs, res, _) = &all[1];
+    let ratio = -res.fx / (MU * res.fy);
+    let (a, _) = hertz(res.fy, R, E, nu);
+    let stick = run_ends(&pairs[0].points, |q| q.state == Some(FrictionState::Stick));
+    let c = 0.5 * (stick[1] - stick[0]);
+    assert!(c < 0.9 * a * (1.0 - ratio).sqrt(), "c {c}, Q/μP {ratio}");
+}
+
+/// μ = 0 is the frictionless problem: the reply is today's, number for number.
+#[test]
+fn zero_friction_is_the_frictionless_reply() {
+    for name in ["signorini_hertz_cylinder.json", "signorini_roller_on_flat.json"] {
+        let plain = example(name);
+        let mut zero = plain.clone();
+        zero["contacts"][0]["friction"] = json!({"coefficient": 0.0});
+        let (mut a, mut b) = (solved(&plain), solved(&zero));
+        // Timings and the factorization's predicted time are measurements.
+        for r in [&mut a, &mut b] {
+            r.timings = Default::default();
+            r.diagnostics.factorization_predicted = None;
+        }
+        assert_eq!(
+            serde_json::to_value(&a).unwrap(),
+            serde_json::to_value(&b).unwrap(),
+            "{name}"
+        );
+    }
+}
+
+/// A vanishing μ on the frictional solver gives the frictionless pressures:
+/// they differ by O(μ) times the coupling (here μ = 1e-9) plus round-off,
+/// so to 1e-7 of the peak.
+#[test]
+fn vanishing_friction_matches_the_frictionless_solver() {
+    let plain = solved(&roller(0.3, 0.01, &[0.0], None));
+    let tiny = solved(&roller(0.3, 0.01, &[0.0], Some(1e-9)));
+    let (a, b) = (&plain.pairs[0].points, &tiny.pairs[0].points);
+    let p0 = peak_pressure(&plain);
+    assert_eq!(a.len(), b.len());
+    for (x, y) in a.iter().zip(b) {
+        assert!((x.pressure - y.pressure).abs() <= 1e-7 * p0, "{x:?} vs {y:?}");
+        assert!(y.tangential_traction.unwrap().abs() <= 1e-9 * y.pressure * (1.0 + 1e-9));
+    }
+}
+
+/// A load path step scaling every load by k is the load factor k.
+#[test]
+fn load_path_scaling_all_loads_is_a_load_factor() {
+    let mut path = example("signorini_roller_on_flat.json");
+    path["load_path"] = json!([{"loads": {"/bodies/0/supports/0": 0.5}}, {"loads": {}}]);
+    let mut factors = example("signorini_roller_on_flat.json");
+    factors["load_factors"] = json!([0.5, 1.0]);
+    let (a, b) = (solved(&path), solved(&factors));
+    let (sa, sb) = (a.steps.unwrap(), b.steps.unwrap());
+    for (x, y) in sa.iter().zip(&sb) {
+        assert_eq!(
+            serde_json::to_value(&x.pairs).unwrap(),
+            serde_json::to_value(&y.pairs).unwrap()
+        );
+    }
+    assert!(sa[0].loads.is_some() && sb[0].loads.is_none());
+}
+
+fn refused(req: &Value, path: &str) {
+    let e = solve(req).expect_err("must be refused");
+    assert_eq!(e.code, contact::proto::ErrorCode::InvalidRequest, "{e:?}");
+    assert_eq!(e.path, path, "{e:?}");
+}
+
+/// What is not supported yet is refused at the field, never ignored.
+#[test]
+fn unsupported_friction_is_refused() {
+    let with = |name: &str| {
+        let mut r = example(name);
+        r["contacts"][0]["friction"] = json!({"coefficient": 0.3});
+        r
+    };
+    refused(&with("indentation_flat_punch.json"), "/contacts/0/friction");
+    refused(&with("two_bodies_cylinders.json"), "/contacts/0/friction");
+    refused(&with("foundation_winkler_footing.json"), "/contacts/0/friction");
+    refused(&with("axisymmetric_ball_on_flat.json"), "/contacts/0/friction");
+    let mut r = with("signorini_roller_on_flat.json");
+    r["method"] = json!("interior_point");
+    refused(&r, "/contacts/0/friction");
+    let mut r = with("signorini_roller_on_flat.json");
+    r["settings"] = json!({"formulation": "full"});
+    refused(&r, "/contacts/0/friction");
+    let mut r = with("signorini_roller_on_flat.json");
+    r["contacts"][0]["friction"] = json!({"coefficient": -0.1});
+    refused(&r, "/contacts/0/friction/coefficient");
+    // A roller whose top may slide freely is held sideways only by contact.
+    let mut r = with("signorini_roller_on_flat.json");
+    r["bodies"][0]["supports"] = json!([{"edges": "flat", "uy": -0.05}]);
+    refused(&r, "/contacts/0/friction");
+    // A load-controlled punch on another, frictionless pair.
+    let mut r = with("signorini_roller_on_flat.json");
+    let punch = example("indentation_flat_punch.json");
+    let n = r["obstacles"].as_array().unwrap().len();
+    r["obstacles"]
+        .as_array_mut()
+        .unwrap()
+        .push(punch["obstacles"][0].clone());
+    let mut second = punch["bodies"][0].clone();
+    second["name"] = json!("second");
+    r["bodies"].as_array_mut().unwrap().push(second);
+    let mut pair = punch["contacts"][0].clone();
+    pair["body"] = json!("second");
+    pair["obstacle"] = json!(n);
+    r["contacts"].as_array_mut().unwrap().push(pair);
+    refused(&r, "/contacts/0/friction");
+    // Load paths name loads by pointer, and exclude load factors.
+    let mut r = with("signorini_roller_on_flat.json");
+    r["load_path"] = json!([{"loads": {"/bodies/0/tractions/0": 1.0}}]);
+    refused(&r, "/load_path/0/loads/~1bodies~10~1tractions~10");
+    r["load_path"] = json!([{"loads": {"/bodies/0/supports/0": 1.0}}]);
+    r["load_factors"] = json!([1.0]);
+    refused(&r, "/load_path");
+}
+
+/// A load path is bounded like `load_factors`: past the service's step limit
+/// it is `too_large` at `/load_path`, before any step is solved.
+#[test]
+fn load_path_is_bounded() {
+    let mut r = example("signorini_roller_on_flat.json");
+    let limit = contact::scene::Limits::default().max_load_steps;
+    r["load_path"] = Value::from(vec![json!({"loads": {}}); limit + 1]);
+    let e = solve(&r).expect_err("too many steps");
+    assert_eq!(e.code, contact::proto::ErrorCode::TooLarge, "{e:?}");
+    assert_eq!(e.path, "/load_path", "{e:?}");
+}
