@@ -309,8 +309,9 @@ pub struct ZoneAlong {
     /// surface [length]: the zone ends at its last node in contact, and a
     /// least-squares fit of the square-root pressure drop places the edge
     /// between that node and the next (at least a quarter of their spacing);
-    /// the spacing where no such edge is found (a sharp punch corner); 0 where
-    /// the zone ends with its edge set or a foundation panel.
+    /// the spacing to the next surface node where no such edge is found (a
+    /// sharp punch corner); half the spacing at a foundation's lift-off; 0
+    /// where the zone ends with its edge set.
     #[serde(default)]
     pub uncertainty: [f64; 2],
 }

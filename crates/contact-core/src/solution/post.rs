@@ -328,11 +328,18 @@ fn zones(
             // pressure is constant there, no square-root edge to fit.
             let fitted = cons.candidates[r.first.1].foundation().is_none();
             let error = |from: usize, to: usize, dir: isize| {
-                if fitted {
-                    length(accuracy::end_error(on_chain, from - lo, to - lo, dir))
+                let e = if fitted {
+                    accuracy::end_error(on_chain, from - lo, to - lo, dir)
                 } else {
-                    length(accuracy::panel_end_error(on_chain, to - lo, dir))
-                }
+                    accuracy::panel_end_error(on_chain, to - lo, dir)
+                };
+                // The last candidate of its chain, where the surface goes on
+                // past pruned nodes (a flat punch's corner between two nodes):
+                // the zone ends before the next surface node.
+                let k = order[to].0;
+                let past_candidates = e == 0.0 && (to as isize + dir < lo as isize || to as isize + dir > hi as isize);
+                let beyond = neighbour(chain, k, dir).filter(|_| past_candidates);
+                length(beyond.map_or(e, |j| (chain[j].s - chain[k].s).abs()))
             };
             ZoneAlong {
                 s: [length(s0), length(s1)],
