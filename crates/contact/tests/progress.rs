@@ -28,3 +28,26 @@ fn a_solve_reports_every_stage_in_order() {
     assert!(last.residual.unwrap() >= 0.0);
     assert!(seen.windows(2).all(|w| w[0].elapsed <= w[1].elapsed));
 }
+
+/// With `settings.accuracy`, every round's stages are reported under its
+/// round number, rounds in order, and the estimate's coarser companion is
+/// silent (each round runs the stages once).
+#[test]
+fn refinement_reports_each_round() {
+    let seen = Arc::new(Mutex::new(Vec::new()));
+    let s = seen.clone();
+    let _g = Sink::install(move |p| s.lock().unwrap().push(p.clone()));
+    let mut req = contact_verify::convergence::disk_request(0.02, "t3");
+    req["settings"] = serde_json::json!({"accuracy": {"pressure_l2": 0.005}});
+    let reply = contact::solve_bytes(&serde_json::to_vec(&req).unwrap(), &contact::Limits::default()).unwrap();
+    let rounds = reply.refinement.expect("rounds").rounds.len();
+    assert!(rounds >= 2);
+    let seen = seen.lock().unwrap();
+    let numbers: Vec<usize> = seen.iter().map(|p| p.round.expect("a round number")).collect();
+    assert!(numbers.windows(2).all(|w| w[0] <= w[1]), "{numbers:?}");
+    for k in 1..=rounds {
+        let mut stages: Vec<&str> = seen.iter().filter(|p| p.round == Some(k)).map(|p| p.stage).collect();
+        stages.dedup();
+        assert_eq!(stages, STAGES.to_vec(), "round {k}");
+    }
+}
