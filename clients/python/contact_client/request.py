@@ -28,6 +28,7 @@ __all__ = [
     "PROTOCOL_VERSION",
     "request",
     "body",
+    "accuracy",
     "material",
     "rectangle",
     "half_disk",
@@ -90,6 +91,24 @@ def request(
     if load_factors is not None:
         req["load_factors"] = list(load_factors)
     return req
+
+
+def accuracy(
+    pressure_l2: float | None = None,
+    zone_edge: float | None = None,
+    *,
+    max_rounds: int | None = None,
+    max_dofs: int | None = None,
+) -> dict:
+    """``settings.accuracy``: refine the generated meshes (bisect given ones around
+    the zones) round by round until every pair's estimated relative L2 error of
+    the pressure is at most ``pressure_l2`` and every zone end's estimated error
+    at most ``zone_edge`` [length], or a limit stops the rounds (the reply then
+    warns ``tolerance_not_reached``). Pass as ``settings={"accuracy": accuracy(...)}``
+    or the ``accuracy=`` of the scene builders."""
+    if pressure_l2 is None and zone_edge is None:
+        raise ValueError("accuracy needs pressure_l2 and/or zone_edge")
+    return _given(pressure_l2=pressure_l2, zone_edge=zone_edge, max_rounds=max_rounds, max_dofs=max_dofs)
 
 
 def material(youngs_modulus: float, poisson_ratio: float) -> dict:

@@ -89,6 +89,7 @@ def hertz_cylinder(
     client_id: str | None = None,
     outputs: list[str] | None = None,
     mesh: dict | None = None,
+    accuracy: dict | None = None,
 ) -> dict:
     """Request: a rigid circle of ``radius`` pressed ``depth`` (default 0.12) into an
     elastic block, or with ``load`` instead: the block held only by contact and ``load``
@@ -104,6 +105,8 @@ def hertz_cylinder(
 
     ``mesh`` replaces the generated rectangle, e.g. ``gmsh_mesh(text, ["block"])``
     with ``gmsh_meshes.hertz_block()``; it needs edge sets "top" and "bottom".
+    ``accuracy`` (``request.accuracy(pressure_l2=...)``) refines until the
+    reply's error estimate meets it.
 
     The block is [-width/2, width/2] x [-height, 0] (top face at y = 0, fixed
     bottom), meshed uniformly at ``h_min`` within ``extent`` of the origin and
@@ -160,6 +163,7 @@ def hertz_cylinder(
         contacts=[rq.contact("block", "top", obstacle="cylinder")],
         analysis=analysis,
         method=method,
+        settings=None if accuracy is None else {"accuracy": accuracy},
         client_id=client_id,
         outputs=outputs,
         description=(

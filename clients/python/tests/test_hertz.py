@@ -197,3 +197,23 @@ def test_hertz_t6_example(client):
     req = load_json(path)
     s = _setup(req)
     assert_hertz(client.solve(req), s["R"], s["E"], s["nu"], s["analysis"])
+
+
+def test_accuracy_target_refines_a_coarse_hertz_scene(client):
+    """From a coarse start (h_min 0.08: 17 nodes across the zone) a 1 % target on the
+    pressure refines round by round until the estimate meets it; the answer then obeys
+    Hertz within the example's 2 % budget, and the repr says what was done."""
+    from contact_client import request as rq
+
+    req = scenes.hertz_cylinder(h_min=0.08, accuracy=rq.accuracy(pressure_l2=0.01))
+    r = client.solve(req)
+    ref = r["refinement"]
+    assert ref["reached"] and ref["stopped"] == "reached", ref
+    rounds = ref["rounds"]
+    assert len(rounds) >= 2 and all(b["dofs"] > a["dofs"] for a, b in zip(rounds, rounds[1:]))
+    acc = r["pairs"][0]["accuracy"]
+    assert acc["basis"] == "two_level" and acc["pressure_l2"] <= 0.01
+    assert_hertz(r, 8.0, 200.0, 0.3)
+    assert "refinement" in repr(r) and "accuracy" in repr(r)
+    with pytest.raises(ValueError):
+        rq.accuracy()
