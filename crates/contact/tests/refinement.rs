@@ -66,13 +66,19 @@ fn a_round_limit_stops_short_with_a_warning() {
     assert!(w["message"].as_str().unwrap().contains("max_rounds"), "{w}");
 }
 
-/// A given (inline) mesh is bisected around its zone: the block on a vee
+/// A given (inline) mesh carries only its zone ends' estimate by default, and
+/// with a target is bisected around its zone: the block on a vee
 /// refined to a zone-end error of 0.01 keeps its edge sets (the same pair
 /// solves on every round) and each round's zone end lies within twice its
 /// estimated error of the final round's (the estimate's effectivity bound).
 #[test]
 fn an_inline_mesh_is_bisected_around_its_zone() {
     let base = example("signorini_inline_block_on_vee.json");
+    // Without a target a given mesh is not coarsened: the zone ends alone.
+    let plain = solve(&base);
+    let acc = plain.pairs[0].accuracy.as_ref().unwrap();
+    assert_eq!((acc.basis, acc.pressure_l2), ("zone_edges", None));
+    assert_eq!(acc.zone_edges.len(), plain.pairs[0].zones_along.len());
     let mut ends = Vec::new();
     let mut estimates = Vec::new();
     for rounds in 1..=5 {
