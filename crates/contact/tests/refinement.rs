@@ -133,13 +133,11 @@ fn the_estimate_is_optional_and_the_targets_are_checked() {
 /// of the effectivity table (`contact_verify::effectivity`), at its middle
 /// level (every element 4× the scene's own), T3 and T6, against the stored
 /// overkill tables (disk, ball, block) or the scene solved 4× finer (two
-/// cylinders). The zone ends' estimate within [0.5, 2] of the true error
-/// (measured 0.84–1.00 here); the pressure's within a factor 3 (measured
-/// 0.44–1.38 here and 0.19–4.4 over all three levels: where the zone edge
-/// falls between nodes makes the two levels' errors step rather than scale,
-/// module `solution::accuracy`); the T3 resultant's within [0.5, 2]
-/// (measured 1.12–1.24). The T6 resultant, 0.03–0.24 % off, is overestimated
-/// up to 28× and not tested.
+/// cylinders): the pressure's, the zone ends' and the T3 resultant's within
+/// [0.5, 2] of the true error (measured 0.83–1.78, 0.84–1.00 and 1.12–1.24
+/// here; over all three levels the pressure's spans 0.56–4.5, the coarsest
+/// level's zone being 7 edges wide). The T6 resultant, 0.03–0.24 % off, is
+/// overestimated up to 28× and not tested.
 #[test]
 fn the_estimates_are_the_size_of_the_true_errors() {
     use contact_verify::effectivity::{compare, scaled, SCENES};
