@@ -35,6 +35,7 @@
 
 use std::sync::OnceLock;
 
+use contact_core::solution::accuracy::fit_quadratic;
 use contact_core::solution::report::Report;
 
 /// An overkill reference of one scene.
@@ -317,33 +318,6 @@ fn fit_pressure(c: [f64; 3], x: f64) -> f64 {
     (c[0] + c[1] * x + c[2] * x * x).max(0.0).sqrt()
 }
 
-/// Least-squares y = c0 + c1 x + c2 x², centred and scaled for conditioning.
-fn fit_quadratic(pts: &[(f64, f64)]) -> Option<[f64; 3]> {
-    let n = pts.len() as f64;
-    let m = pts.iter().map(|q| q.0).sum::<f64>() / n;
-    let s = pts
-        .iter()
-        .map(|q| (q.0 - m).abs())
-        .fold(0.0, f64::max)
-        .max(f64::MIN_POSITIVE);
-    let mut a = [[0.0; 3]; 3];
-    let mut b = [0.0; 3];
-    for &(x, y) in pts {
-        let t = (x - m) / s;
-        let phi = [1.0, t, t * t];
-        for i in 0..3 {
-            b[i] += phi[i] * y;
-            for j in 0..3 {
-                a[i][j] += phi[i] * phi[j];
-            }
-        }
-    }
-    let d = solve3(a, b)?;
-    // Back to x: y = d0 + d1 (x − m)/s + d2 (x − m)²/s².
-    let (d1, d2) = (d[1] / s, d[2] / (s * s));
-    Some([d[0] - d1 * m + d2 * m * m, d1 - 2.0 * d2 * m, d2])
-}
-
 /// The root of c0 + c1 x + c2 x² where it falls through zero, nearest `near`.
 fn falling_root(c: [f64; 3], near: f64) -> Option<f64> {
     let [c0, c1, c2] = c;
@@ -361,30 +335,4 @@ fn falling_root(c: [f64; 3], near: f64) -> Option<f64> {
         .into_iter()
         .filter(|&x| c1 + 2.0 * c2 * x < 0.0)
         .min_by(|a, b| (a - near).abs().total_cmp(&(b - near).abs()))
-}
-
-/// Gaussian elimination with partial pivoting on a 3 × 3 system.
-fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
-    for col in 0..3 {
-        let piv = (col..3).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
-        if a[piv][col].abs() <= 1e-300 {
-            return None;
-        }
-        a.swap(col, piv);
-        b.swap(col, piv);
-        let pivot = a[col];
-        for row in col + 1..3 {
-            let f = a[row][col] / pivot[col];
-            for (x, p) in a[row].iter_mut().zip(pivot).skip(col) {
-                *x -= f * p;
-            }
-            b[row] -= f * b[col];
-        }
-    }
-    let mut x = [0.0; 3];
-    for row in (0..3).rev() {
-        let s: f64 = (row + 1..3).map(|k| a[row][k] * x[k]).sum();
-        x[row] = (b[row] - s) / a[row][row];
-    }
-    Some(x)
 }

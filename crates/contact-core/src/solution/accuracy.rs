@@ -86,20 +86,9 @@ pub fn panel_end_error(stations: &[Station], last: usize, dir: isize) -> f64 {
 /// outward, or None. It may lie inside the zone: a mortar row's last corner
 /// in contact can carry a positive multiplier past the edge.
 fn edge_root(points: &[(f64, f64)], dir: f64) -> Option<f64> {
-    // Normal equations of y = c0 + c1 t + c2 t², in the outward coordinate.
-    let mut a = [[0.0; 3]; 3];
-    let mut b = [0.0; 3];
-    for &(t, y) in points {
-        let t = dir * t;
-        let phi = [1.0, t, t * t];
-        for i in 0..3 {
-            b[i] += phi[i] * y;
-            for j in 0..3 {
-                a[i][j] += phi[i] * phi[j];
-            }
-        }
-    }
-    let c = solve3(a, b)?;
+    // y = c0 + c1 t + c2 t², in the outward coordinate.
+    let outward: Vec<(f64, f64)> = points.iter().map(|&(t, y)| (dir * t, y)).collect();
+    let c = fit_quadratic(&outward)?;
     let (c0, c1, c2) = (c[0], c[1], c[2]);
     let roots: Vec<f64> = if c2.abs() <= 1e-12 * (c1.abs() + c0.abs()) {
         if c1 != 0.0 {
@@ -251,19 +240,21 @@ fn edge_deviation(pair: &PairReport) -> f64 {
     sum
 }
 
-/// Least squares y = c0 + c1 t + c2 t² through the points.
-fn fit_quadratic(points: &[(f64, f64)]) -> Option<[f64; 3]> {
-    // Scaled abscissa: the normal equations stay well conditioned.
-    let scale = points
+/// Least-squares y = c0 + c1 x + c2 x² through the points, centred and
+/// scaled for conditioning; None if they do not determine it.
+pub fn fit_quadratic(pts: &[(f64, f64)]) -> Option<[f64; 3]> {
+    let n = pts.len() as f64;
+    let m = pts.iter().map(|q| q.0).sum::<f64>() / n;
+    let s = pts
         .iter()
-        .map(|p| p.0.abs())
+        .map(|q| (q.0 - m).abs())
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
     let mut a = [[0.0; 3]; 3];
     let mut b = [0.0; 3];
-    for &(t, y) in points {
-        let u = t / scale;
-        let phi = [1.0, u, u * u];
+    for &(x, y) in pts {
+        let t = (x - m) / s;
+        let phi = [1.0, t, t * t];
         for i in 0..3 {
             b[i] += phi[i] * y;
             for j in 0..3 {
@@ -271,8 +262,10 @@ fn fit_quadratic(points: &[(f64, f64)]) -> Option<[f64; 3]> {
             }
         }
     }
-    let c = solve3(a, b)?;
-    Some([c[0], c[1] / scale, c[2] / (scale * scale)])
+    let d = solve3(a, b)?;
+    // Back to x: y = d0 + d1 (x − m)/s + d2 (x − m)²/s².
+    let (d1, d2) = (d[1] / s, d[2] / (s * s));
+    Some([d[0] - d1 * m + d2 * m * m, d1 - 2.0 * d2 * m, d2])
 }
 
 /// A pair's nodal pressure as (x, y, p), sorted for `along_polyline`.
