@@ -18,7 +18,8 @@
 //! the first round's with its coarser companion. The rounds stop when every
 //! estimate meets its target, or at `max_rounds`, at `max_dofs` (predicted
 //! from the growth of the last round), at the service's size or time limit,
-//! or when two rounds in a row do not improve the estimate: the answer is then the
+//! when two rounds in a row do not improve the estimate, or when a round
+//! fails (its mesh, its numerics): the answer is then the
 //! last round that ran, `solved` with a `tolerance_not_reached` warning.
 
 use std::time::Instant;
@@ -101,6 +102,7 @@ pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver) -> Result<R
     let mut rounds = vec![round(&current, &report, started.elapsed().as_secs_f64())];
     let mut growth = None::<f64>;
     let mut stalled = 0;
+    let mut failure = None::<String>;
     let stopped = loop {
         if met(&report, &target) {
             break "reached";
@@ -123,7 +125,12 @@ pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver) -> Result<R
             Ok(r) => r,
             Err(CoreError::Timeout { .. }) => break "time_limit",
             Err(CoreError::TooLarge { .. }) => break "size_limit",
-            Err(e) => return Err(e),
+            // A later round that cannot be solved (its mesh, its numerics)
+            // leaves the last round's answer standing.
+            Err(e) => {
+                failure = Some(e.to_string());
+                break "round_failed";
+            }
         };
         if fine.pairs.len() == report.pairs.len() {
             for (f, c) in fine.pairs.iter_mut().zip(&report.pairs) {
@@ -155,7 +162,9 @@ pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver) -> Result<R
     report.timings.total = total;
     let reached = stopped == "reached";
     if !reached {
-        report.warnings.push(not_reached(&report, &target, stopped));
+        report
+            .warnings
+            .push(not_reached(&report, &target, stopped, failure.as_deref()));
     }
     report.refinement = Some(Refinement {
         reached,
@@ -197,7 +206,7 @@ fn round(scene: &Scene, report: &Report, seconds: f64) -> Round {
     }
 }
 
-fn not_reached(report: &Report, target: &AccuracyTarget, stopped: &str) -> Warning {
+fn not_reached(report: &Report, target: &AccuracyTarget, stopped: &str, failure: Option<&str>) -> Warning {
     let (p, z) = worst(report);
     let why = match stopped {
         "max_rounds" => format!("after {} rounds (max_rounds)", target.max_rounds),
@@ -205,6 +214,7 @@ fn not_reached(report: &Report, target: &AccuracyTarget, stopped: &str) -> Warni
         "size_limit" => "the next round exceeds the service's size limit".into(),
         "time_limit" => "the next round ran past the time limit".into(),
         "not_solved" => "a round did not solve".into(),
+        "round_failed" => format!("the next round failed: {}", failure.unwrap_or("unknown")),
         _ => "a round no longer reduced the estimate (a floor the element sizes do not move)".into(),
     };
     let (value, limit, what) = match (target.pressure_l2, p) {

@@ -36,8 +36,9 @@ pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
     let _deadline = scene
         .time_limit
         .map(|s| crate::cancel::Deadline::install(std::time::Duration::from_secs_f64(s.min(1e9))));
-    // Only the first round of refinement, and not the estimate's coarser
-    // companion, can be the service's cached operator.
+    // The estimate's coarser companion and the refinement rounds are meshes
+    // of their own: they bypass the service's operator cache (which would
+    // keep operators no later request asks for).
     let uncached = |s: &Scene| solve_steps(s, limits, None);
     if let Some(target) = scene.settings.accuracy {
         return crate::adapt::refine(scene, target, &uncached);

@@ -85,7 +85,9 @@ pub struct Refinement {
     /// Whether every estimate met its target.
     pub reached: bool,
     /// Why the rounds stopped: `reached`, `max_rounds`, `max_dofs`,
-    /// `size_limit`, `not_converging` or `not_solved`.
+    /// `size_limit`, `time_limit`, `not_converging` (two rounds without
+    /// progress), `not_solved` or `round_failed` (the next round could not be
+    /// solved; the warning says why).
     pub stopped: String,
     pub rounds: Vec<RefinementRound>,
 }
