@@ -53,6 +53,7 @@ __all__ = [
     "pasternak",
     "half_plane",
     "contact",
+    "load_step",
 ]
 
 
@@ -75,8 +76,10 @@ def request(
     time_limit: float | None = None,
     client_id: str | None = None,
     description: str | None = None,
+    load_path: Iterable[dict] | None = None,
 ) -> dict:
-    """A whole solve request."""
+    """A whole solve request. ``load_path``: steps ``{"loads": {pointer: factor}}``
+    (see ``load_step``), exclusive with ``load_factors``."""
     req = _given(version=PROTOCOL_VERSION, description=description, analysis=analysis)
     req["bodies"] = list(bodies)
     obstacles = list(obstacles)
@@ -90,6 +93,8 @@ def request(
         req["outputs"] = list(outputs)
     if load_factors is not None:
         req["load_factors"] = list(load_factors)
+    if load_path is not None:
+        req["load_path"] = list(load_path)
     return req
 
 
@@ -109,6 +114,13 @@ def accuracy(
     if pressure_l2 is None and zone_edge is None:
         raise ValueError("accuracy needs pressure_l2 and/or zone_edge")
     return _given(pressure_l2=pressure_l2, zone_edge=zone_edge, max_rounds=max_rounds, max_dofs=max_dofs)
+
+
+def load_step(factors: dict[str, float] | None = None) -> dict:
+    """One load path step: the factor of each named load or prescribed motion by its
+    JSON pointer in the request (``"/bodies/0/supports/1"``,
+    ``"/obstacles/0/punch/horizontal"``, ...); those not named keep factor 1."""
+    return {"loads": dict(factors or {})}
 
 
 def material(youngs_modulus: float, poisson_ratio: float) -> dict:
@@ -303,10 +315,12 @@ def contact(
     against: tuple[str | int, str] | None = None,
     foundation: str | int | None = None,
     discretization: str | None = None,
+    friction: float | None = None,
 ) -> dict:
     """A contact pair: the body's edge set against exactly one of a rigid
     ``obstacle``, another body's edge set ``against=(body, edges)``, or a
-    ``foundation``."""
+    ``foundation``. ``friction``: the Coulomb coefficient μ (against a rigid
+    obstacle or punch; frictionless without it)."""
     if sum(x is not None for x in (obstacle, against, foundation)) != 1:
         raise ValueError("a contact pair names exactly one of obstacle, against or foundation")
     c: dict = {"body": body, "edges": edges}
@@ -318,4 +332,6 @@ def contact(
         c["against"] = {"body": against[0], "edges": against[1]}
     if discretization is not None:
         c["discretization"] = discretization
+    if friction is not None:
+        c["friction"] = {"coefficient": friction}
     return c

@@ -44,6 +44,7 @@ __all__ = [
     "flat_punch_of_revolution",
     "boussinesq_pressure",
     "boussinesq_settlement",
+    "cattaneo_mindlin_stick",
 ]
 
 def effective_modulus(youngs_modulus: float, poisson_ratio: float, analysis: str = "plane_strain") -> float:
@@ -224,6 +225,8 @@ def punch_on_block(
     extent: float = 1.2,
     element: str = "t3",
     method: str = "auto",
+    *,
+    friction: float | None = None,
 ) -> dict:
     """Request: a rigid punch pressed with ``load`` (force per unit thickness,
     downward) into the top face (y = 0) of an elastic block ``width`` x ``depth``
@@ -234,17 +237,29 @@ def punch_on_block(
     ``horizontal_load`` act on the punch; all three motions are load-controlled.
     The mesh is uniform at ``h_min`` within ``extent`` of the origin (cover the
     contact zone) and graded by 1.1 up to size 1 elsewhere.
+
+    With ``friction`` (Coulomb μ on the punch's face), friction holds the punch
+    sideways: it is pressed by ``load`` first, then pushed by ``horizontal_load``
+    in a second load path step (friction depends on the path). It sticks while
+    |horizontal_load| < μ load; beyond, it would slide and the service refuses the
+    request (``incompatible_loads``, with the admissible range [-μ load, μ load]).
     """
     mesh = rq.rectangle([-0.5 * width, -depth], width, depth, 1.0, element, rq.grading(h_min, 1.1, extent, [0.0, 0.0]))
     controls = rq.punch(horizontal=rq.load(horizontal_load), vertical=rq.load(-load), rotation=rq.load(moment))
+    path = None
+    if friction is not None and horizontal_load != 0.0:
+        push = "/obstacles/0/punch/horizontal"
+        path = [rq.load_step({push: 0.0}), rq.load_step({push: 1.0})]
     return rq.request(
         bodies=[
             rq.body("block", rq.material(youngs_modulus, poisson_ratio), mesh, [rq.support("bottom", 0.0, 0.0)])
         ],
         obstacles=[rq.obstacle("punch", rq.profile(profile), controls)],
-        contacts=[rq.contact("block", "top", obstacle="punch")],
+        contacts=[rq.contact("block", "top", obstacle="punch", friction=friction)],
         method=method,
-        description=f"rigid punch {profile} pressed with P = {load} into an elastic block {width} x {depth}",
+        load_path=path,
+        description=f"rigid punch {profile} pressed with P = {load} into an elastic block {width} x {depth}"
+        + ("" if friction is None else f", friction mu = {friction}, pushed sideways by Q = {horizontal_load}"),
     )
 
 
@@ -380,6 +395,8 @@ def roller_on_floor(
     analysis: str = "plane_strain",
     *,
     load: float | None = None,
+    friction: float | None = None,
+    shifts: list[float] | None = None,
 ) -> dict:
     """An elastic roller on a rigid floor (proto/examples/signorini_roller_on_flat.json).
 
@@ -391,16 +408,51 @@ def roller_on_floor(
     ``poisson_ratio``. The mesh is ``h_min`` [length] within ``extent`` of the apex,
     graded by 1.1 up to ``size``. Hertz (elastic cylinder on a rigid flat) with P =
     |resultant.fy|, which is ``load`` under load control: ``hertz_reference``.
+
+    ``friction``: Coulomb μ between roller and floor. ``shifts``: after pressing,
+    the clamped top is moved sideways by each of these displacements [length] in
+    turn (a load path: pressed, then shifted, so that P stays about constant while
+    the tangential load Q = -resultant.fx grows; the contact sticks on
+    |x| < a sqrt(1 - Q/(μP)), ``cattaneo_mindlin_stick``). The tangential load is
+    applied by the motion of the top rather than as a force: with friction the
+    solver does not yet take a body held sideways only by the floor, so ``shifts``
+    needs displacement control (``approach``, not ``load``). A sideways load
+    (force) on a rigid punch is ``punch_on_block(friction=..., horizontal_load=...)``.
     """
     mesh = rq.half_disk([0.0, radius], radius, "down", size, element, rq.grading(h_min, 1.1, extent))
     held, how = _held_by_contact("flat", 2.0 * radius, approach, load, 0.05)
+    path = None
+    if shifts is not None:
+        if load is not None:
+            raise ValueError("shifts move the roller's clamped top: give approach (displacement control), not load")
+        shifts = [float(s) for s in shifts]
+        if not shifts or not all(math.isfinite(s) for s in shifts):
+            raise ValueError(f"shifts must be a non-empty list of finite displacements, not {shifts!r}")
+        # The sideways motion as its own support on the top, scaled alone by the path.
+        pressed = held["supports"][0]
+        held["supports"] = [rq.support("flat", uy=pressed["uy"]), rq.support("flat", ux=1.0)]
+        path = [rq.load_step({"/bodies/0/supports/1": 0.0})] + [
+            rq.load_step({"/bodies/0/supports/1": s}) for s in shifts
+        ]
+        how += f", then shifted sideways by {shifts}"
     return rq.request(
         bodies=[rq.body("roller", rq.material(youngs_modulus, poisson_ratio), mesh, **held)],
         obstacles=[rq.obstacle("floor", rq.line([0.0, 0.0], [0.0, 1.0]))],
-        contacts=[rq.contact("roller", "arc", obstacle="floor")],
+        contacts=[rq.contact("roller", "arc", obstacle="floor", friction=friction)],
         analysis=analysis,
-        description=f"elastic roller R={radius} {how} onto a rigid floor",
+        load_path=path,
+        description=f"elastic roller R={radius} {how} onto a rigid floor"
+        + ("" if friction is None else f", friction mu = {friction}"),
     )
+
+
+def cattaneo_mindlin_stick(a: float, Q: float, mu: float, P: float) -> float:
+    """Half-width c of the central stick zone of a cylinder (Hertz half-width ``a``)
+    pressed by P and then loaded tangentially by |Q| < μP with P held
+    (Cattaneo-Mindlin, elastically similar bodies): c = a sqrt(1 - |Q|/(μP))."""
+    if not abs(Q) < mu * P:
+        raise ValueError(f"|Q| = {abs(Q)} must be below μP = {mu * P}: beyond, the contact slides")
+    return a * math.sqrt(1.0 - abs(Q) / (mu * P))
 
 
 def _held_by_contact(face: str, face_width: float, approach: float | None, load: float | None,

@@ -135,6 +135,20 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
         ));
     }
     let stepped = !scene.load_factors.is_empty() || !scene.load_path.is_empty();
+    // A punch pushed beyond what friction holds in some step is refused
+    // before the first step is solved (Fichera's condition with friction).
+    let loaded_punch = scene.obstacles.iter().any(|o| {
+        o.punch
+            .as_ref()
+            .is_some_and(|p| p.controls.iter().any(|c| matches!(c, crate::scene::Control::Load(_))))
+    });
+    if stepped && loaded_punch {
+        for (s, _, _) in step_scenes(scene) {
+            let mut model = Model::build(&s, meshes.clone())?;
+            let tangents = crate::contact::friction::Tangents::new(&s, &model.cons, &model.dofs);
+            punch_block(&s, &mut model, &tangents)?;
+        }
+    }
     let steps_in = if stepped {
         step_scenes(scene)
     } else {
@@ -145,17 +159,11 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
     let (mut steps, mut timings, mut last) = (Vec::new(), Timings::default(), None);
     for (s, k, loads) in steps_in {
         obs.enter(Stage::Assembly);
-        let model = Model::build(&s, meshes.clone())?;
-        // A load-controlled punch on another pair: its motions would join the
-        // frictional problem as well.
-        if !model.free.motions.is_empty() {
-            return Err(CoreError::invalid(
-                crate::error::InvalidKind::Request,
-                format!("{}/friction", frictional.path),
-                "friction in a scene with a load-controlled punch is not supported yet: prescribe the punch's motions, or remove 'friction'",
-            ));
-        }
+        let mut model = Model::build(&s, meshes.clone())?;
         let tangents = crate::contact::friction::Tangents::new(&s, &model.cons, &model.dofs);
+        // Load-controlled punch motions join the step's unknowns, once
+        // Fichera's condition with the friction cone admits their loads.
+        let block = punch_block(&s, &mut model, &tangents)?;
         if model.cons.len() + tangents.len() > limits.max_candidates {
             return Err(CoreError::TooLarge {
                 path: "/contacts".into(),
@@ -198,8 +206,18 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
             tangents: &tangents,
             dofs: &model.dofs,
             settings: &s.settings,
+            block: block.as_ref(),
         };
-        let (sol, friction) = methods::friction::solve_step(&step, &history);
+        let (mut sol, mut friction) = methods::friction::solve_step(&step, &history);
+        // Every free motion's amplitude, 0 for those not determined.
+        if let Some(b) = &block {
+            let mut beta = vec![0.0; model.free.motions.len()];
+            for (j, &m) in b.keep.iter().enumerate() {
+                beta[m] = sol.beta[j];
+            }
+            sol.beta = beta.clone();
+            friction.beta = beta;
+        }
         obs.leave(Stage::ContactSolve)?;
         obs.timings.contact_solve = sol.t_contact;
         // The friction forces join the loads: the certificate's equilibrium is
@@ -207,6 +225,21 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
         let mut f_eff = f.clone();
         let minus_tau: Vec<f64> = friction.tau.iter().map(|t| -t).collect();
         tangents.apply_transpose_into(&minus_tau, &mut f_eff);
+        // Likewise the punches' equilibrium: C_Nᵀλ + C_Tᵀτ = −P.
+        if let Some(b) = &block {
+            let mut shares = vec![(0.0, 0.0); model.free.motions.len()];
+            for (j, &m) in b.keep.iter().enumerate() {
+                let terms = (0..tangents.len()).map(|k| b.ct[(k, j)] * friction.tau[k]);
+                shares[m] = (terms.clone().sum(), terms.fold(0.0, |a: f64, v| a.max(v.abs())));
+            }
+            model.free.friction = shares;
+        }
+        for o in 0..s.obstacles.len() {
+            if s.obstacles[o].punch.is_some() {
+                let a = crate::contact::free_motions::punch_motion(&s, &model.free, &friction.beta, o);
+                friction.history.punches.insert(o, a);
+            }
+        }
         let composed = Solved {
             model: &model,
             k: &prepared.stiffness.k,
@@ -240,6 +273,52 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
         last.steps = Some(steps);
     }
     Ok(last)
+}
+
+/// The load-controlled punch motions of a frictional step (None without
+/// any): their columns in the normal and tangential rows and their loads,
+/// refused with `incompatible_loads` when no contact force inside the
+/// friction cone balances them (the punch would slide). A motion nothing
+/// resists and nothing loads is left out, at 0, and marked not determined.
+fn punch_block(
+    scene: &Scene,
+    model: &mut Model,
+    tangents: &crate::contact::friction::Tangents,
+) -> Result<Option<methods::friction::Block>, CoreError> {
+    let fm = &model.free;
+    if fm.is_empty() {
+        return Ok(None);
+    }
+    let component = |j: usize| match fm.motions[j].0 {
+        crate::contact::free_motions::Motion::Punch { obstacle, component } => (obstacle, component),
+        // A body held only by contact is refused before.
+        crate::contact::free_motions::Motion::Body { .. } => unreachable!("no body motions with friction"),
+    };
+    let k = fm.motions.len();
+    let ct = faer::Mat::<f64>::from_fn(tangents.len(), k, |r, j| match tangents.punch[r] {
+        Some((o, c)) if o == component(j).0 => c[component(j).1],
+        _ => 0.0,
+    });
+    let n = model.cons.len();
+    let ct_by_candidate = faer::Mat::<f64>::from_fn(n, k, |i, j| tangents.row_of[i].map_or(0.0, |r| ct[(r, j)]));
+    let mu: Vec<f64> = (0..n)
+        .map(|i| tangents.row_of[i].map_or(0.0, |r| tangents.mu[r]))
+        .collect();
+    let loose = fm.check_with_friction(scene, &model.dofs, &ct_by_candidate, &mu)?;
+    let keep: Vec<usize> = (0..k).filter(|j| !loose.contains(j)).collect();
+    let block = methods::friction::Block {
+        cn: faer::Mat::<f64>::from_fn(n, keep.len(), |i, j| fm.c[(i, keep[j])]),
+        ct: faer::Mat::<f64>::from_fn(tangents.len(), keep.len(), |r, j| ct[(r, keep[j])]),
+        rhs: keep.iter().map(|&j| fm.rhs[j]).collect(),
+        keep,
+    };
+    for j in loose {
+        model
+            .free
+            .undetermined
+            .push((0..k).map(|i| f64::from(u8::from(i == j))).collect());
+    }
+    Ok(Some(block))
 }
 
 fn solve_once(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<Report, CoreError> {

@@ -67,7 +67,8 @@ pub struct ErrorReply {
 #[serde(deny_unknown_fields)]
 pub struct ErrorDetails {
     /// With `incompatible_loads`: every load component that no non-negative
-    /// contact pressure can balance with the other loads as given, and the
+    /// contact pressure (on a frictional pair: no contact force inside the
+    /// friction cone |t| ≤ μ p) can balance with the other loads as given, and the
     /// interval it would have to lie in. The reply's `path` is the one that is
     /// furthest outside its interval, relative to the interval's nearer bound.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

@@ -79,7 +79,9 @@ pub struct LoadPathStep {
     /// Factor of each named load or prescribed displacement at this step, by
     /// its JSON pointer in the request: `/bodies/0/tractions/1`,
     /// `/bodies/0/point_loads/0`, `/bodies/0/supports/2` (its prescribed
-    /// values), `/bodies/0/body_force`. Those not named keep factor 1 (as
+    /// values), `/bodies/0/body_force`, and a punch's motion
+    /// `/obstacles/0/punch/horizontal` (`vertical`, `rotation`: its load or
+    /// displacement). Those not named keep factor 1 (as
     /// given). To move one component of a support separately, give it its own
     /// support entry on the same edge set.
     #[serde(default)]

@@ -3,7 +3,8 @@
 //! Analytic references (`reference`: Hertz), overkill references of the
 //! convergence scenes (`overkill`, tables in `data/`), typed request builders (`build`),
 //! the time-against-error benchmark (`bench`),
-//! convergence under refinement (`convergence`), the error estimate against
+//! convergence under refinement (`convergence`; with friction: `friction`,
+//! the Cattaneo–Mindlin stick zone), the error estimate against
 //! the true error (`effectivity`), time to a tolerance with and
 //! without refinement (`tolerance`) and the numerical stress suite
 //! (`stability`). Used by the tests, the CI smoke run and `contact bench`.
@@ -12,6 +13,7 @@ pub mod bench;
 pub mod build;
 pub mod convergence;
 pub mod effectivity;
+pub mod friction;
 pub mod overkill;
 pub mod reference;
 pub mod run;

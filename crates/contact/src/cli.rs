@@ -137,8 +137,10 @@ enum Cmd {
         /// rigid flat and rigid cylinder into a block, six levels, T3 and T6;
         /// the disk, the ball and the block also against overkill references;
         /// CSV to --csv, default bench_out/convergence.csv), then the time to a
-        /// tolerance (tolerance.csv) and the error estimate's effectivity on
-        /// seven scenes (effectivity.csv) beside it.
+        /// tolerance (tolerance.csv), the error estimate's effectivity on
+        /// seven scenes (effectivity.csv) and the frictional stick zone against
+        /// Cattaneo–Mindlin, three levels, T3 and T6 (friction_convergence.csv)
+        /// beside it.
         #[arg(long, conflicts_with = "stability")]
         convergence: bool,
     },
@@ -338,6 +340,21 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
                     text.push('\n');
                 }
                 let path = csv.with_file_name("effectivity.csv");
+                std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))?;
+                println!("wrote {}", path.display());
+                // Friction: the stick zone against Cattaneo–Mindlin.
+                println!(
+                    "\nfriction: stick half-width c of a roller (nu = 0.499, mu = {}) pressed then shifted, against Cattaneo-Mindlin:",
+                    contact_verify::friction::MU
+                );
+                println!("{}", contact_verify::friction::Row::table_header());
+                let fr = contact_verify::friction::run(|r| println!("{}", r.table_line()));
+                let mut text = format!("{}\n", contact_verify::friction::Row::HEADER);
+                for r in &fr {
+                    text.push_str(&r.csv());
+                    text.push('\n');
+                }
+                let path = csv.with_file_name("friction_convergence.csv");
                 std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))?;
                 println!("wrote {}", path.display());
                 (

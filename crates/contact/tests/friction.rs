@@ -247,7 +247,11 @@ fn coupling_at_nu_0_3_shrinks_the_stick_zone() {
 /// μ = 0 is the frictionless problem: the reply is today's, number for number.
 #[test]
 fn zero_friction_is_the_frictionless_reply() {
-    for name in ["signorini_hertz_cylinder.json", "signorini_roller_on_flat.json"] {
+    for name in [
+        "signorini_hertz_cylinder.json",
+        "signorini_roller_on_flat.json",
+        "indentation_flat_punch.json",
+    ] {
         let plain = example(name);
         let mut zero = plain.clone();
         zero["contacts"][0]["friction"] = json!({"coefficient": 0.0});
@@ -313,7 +317,6 @@ fn unsupported_friction_is_refused() {
         r["contacts"][0]["friction"] = json!({"coefficient": 0.3});
         r
     };
-    refused(&with("indentation_flat_punch.json"), "/contacts/0/friction");
     refused(&with("two_bodies_cylinders.json"), "/contacts/0/friction");
     refused(&with("foundation_winkler_footing.json"), "/contacts/0/friction");
     refused(&with("axisymmetric_ball_on_flat.json"), "/contacts/0/friction");
@@ -329,22 +332,6 @@ fn unsupported_friction_is_refused() {
     // A roller whose top may slide freely is held sideways only by contact.
     let mut r = with("signorini_roller_on_flat.json");
     r["bodies"][0]["supports"] = json!([{"edges": "flat", "uy": -0.05}]);
-    refused(&r, "/contacts/0/friction");
-    // A load-controlled punch on another, frictionless pair.
-    let mut r = with("signorini_roller_on_flat.json");
-    let punch = example("indentation_flat_punch.json");
-    let n = r["obstacles"].as_array().unwrap().len();
-    r["obstacles"]
-        .as_array_mut()
-        .unwrap()
-        .push(punch["obstacles"][0].clone());
-    let mut second = punch["bodies"][0].clone();
-    second["name"] = json!("second");
-    r["bodies"].as_array_mut().unwrap().push(second);
-    let mut pair = punch["contacts"][0].clone();
-    pair["body"] = json!("second");
-    pair["obstacle"] = json!(n);
-    r["contacts"].as_array_mut().unwrap().push(pair);
     refused(&r, "/contacts/0/friction");
     // Load paths name loads by pointer, and exclude load factors.
     let mut r = with("signorini_roller_on_flat.json");
@@ -365,4 +352,144 @@ fn load_path_is_bounded() {
     let e = solve(&r).expect_err("too many steps");
     assert_eq!(e.code, contact::proto::ErrorCode::TooLarge, "{e:?}");
     assert_eq!(e.path, "/load_path", "{e:?}");
+}
+
+/// The flat punch of `indentation_flat_punch.json` (half-width 1, P = 10 on
+/// an elastic block, ν = 0.3; graded to 0.05 under the punch) with friction
+/// `mu`, pressed by P, then (second load path step) loaded by its horizontal
+/// control `horizontal` (`{"load": Q}` or `{"displacement": α1}`).
+fn punch_pushed(mu: f64, horizontal: Value) -> Value {
+    let mut r = example("indentation_flat_punch.json");
+    r["bodies"][0]["mesh"]["rectangle"]["grading"]["h_min"] = json!(0.05);
+    r["contacts"][0]["friction"] = json!({"coefficient": mu});
+    r["obstacles"][0]["punch"]["horizontal"] = horizontal;
+    r["load_path"] = json!([
+        {"loads": {"/obstacles/0/punch/horizontal": 0.0}},
+        {"loads": {"/obstacles/0/punch/horizontal": 1.0}}
+    ]);
+    r
+}
+
+const PUNCH_P: f64 = 10.0;
+
+/// A load-controlled flat punch pushed sideways by Q = 0.5 μP < μP sticks
+/// (Fichera's condition with friction holds): the punch is in equilibrium,
+/// so the friction forces on the block add up to Q and the punch reports
+/// its loads (Q, −P, 0), each to 1e-8 of P (the step's linear system is
+/// solved by LU; measured 1e-15). Pressed only (the first step, Q = 0), the
+/// friction forces cancel; pushed, the punch moves the way it is pushed.
+#[test]
+fn punch_pushed_below_mu_p_is_in_equilibrium() {
+    let mu = 0.3;
+    let q = 0.5 * mu * PUNCH_P;
+    let r = solved(&punch_pushed(mu, json!({"load": q})));
+    let tol = 1e-8 * PUNCH_P;
+    let st = steps(&r);
+    let pressed = st[0].0[0].friction.as_ref().expect("friction");
+    assert!(
+        pressed.tangential_resultant.fx.abs() <= tol,
+        "{:?}",
+        pressed.tangential_resultant
+    );
+    let pushed = st[1].0[0].friction.as_ref().expect("friction");
+    assert!(
+        (pushed.tangential_resultant.fx - q).abs() <= tol,
+        "{:?}",
+        pushed.tangential_resultant
+    );
+    assert!(
+        (st[1].1.fx - q).abs() <= tol && (st[1].1.fy + PUNCH_P).abs() <= tol,
+        "{:?}",
+        st[1].1
+    );
+    let pu = &r.punches[0];
+    assert!(
+        (pu.p1 - q).abs() <= tol && (pu.p2 + PUNCH_P).abs() <= tol && pu.m.abs() <= tol,
+        "{pu:?}"
+    );
+    assert!(pu.unique && pu.alpha1 > 0.0, "{pu:?}");
+    // Some of the face sticks: the punch does not slide.
+    assert!(!pushed.stick_zones.is_empty(), "{pushed:?}");
+}
+
+/// Past μP the punch slides (no quasi-static equilibrium: Fichera's
+/// condition with the friction cone fails): Q = 1.05 μP is refused before
+/// any step is solved, as `incompatible_loads` at the horizontal load with
+/// its admissible range [−μP, μP]. On the flat face every row has the normal
+/// (0, 1) and the tangent (−1, 0), so the LP's range is exactly ±μP, found
+/// to its gap of 1e-13 (measured 1.7e-10 relative; tested at 1e-8).
+#[test]
+fn punch_pushed_beyond_mu_p_is_refused_with_its_range() {
+    let mu = 0.3;
+    let q = 1.05 * mu * PUNCH_P;
+    let e = solve(&punch_pushed(mu, json!({"load": q}))).expect_err("the punch slides");
+    assert_eq!(e.code, contact::proto::ErrorCode::IncompatibleLoads, "{e:?}");
+    assert_eq!(e.path, "/obstacles/0/punch/horizontal/load", "{e:?}");
+    let loads = &e.details.as_ref().expect("details").loads;
+    let b = loads
+        .iter()
+        .find(|b| b.path == e.path)
+        .expect("the horizontal load's range");
+    let limit = mu * PUNCH_P;
+    assert_eq!(b.value, q);
+    let (lo, hi) = (b.min.expect("bounded below"), b.max.expect("bounded above"));
+    assert!(
+        (lo + limit).abs() <= 1e-8 * limit && (hi - limit).abs() <= 1e-8 * limit,
+        "{b:?}"
+    );
+    assert!(e.message.contains("friction cone"), "{}", e.message);
+}
+
+/// A punch moved sideways by a prescribed displacement far beyond its stick
+/// range slides over the whole face: q = μ p at every point in contact (to
+/// the round-off of the solve, 1e-9 of μ p0) and the horizontal reaction on
+/// the punch is μP (its vertical load held at P) to 1e-8 of P.
+#[test]
+fn punch_moved_far_slides_with_mu_p() {
+    let mu = 0.3;
+    let r = solved(&punch_pushed(mu, json!({"displacement": 0.2})));
+    let pair = &r.pairs[0];
+    let f = pair.friction.as_ref().expect("friction");
+    assert!(f.stick_zones.is_empty(), "{f:?}");
+    let p0 = peak_pressure(&r);
+    for q in pair.points.iter().filter(|q| q.pressure > 0.0) {
+        let t = q.tangential_traction.expect("traction");
+        assert!((t.abs() - mu * q.pressure).abs() <= 1e-9 * mu * p0, "{q:?}");
+    }
+    let pu = &r.punches[0];
+    assert!((pu.p1 - mu * PUNCH_P).abs() <= 1e-8 * PUNCH_P, "{pu:?}");
+    assert!((pu.p2 + PUNCH_P).abs() <= 1e-8 * PUNCH_P, "{pu:?}");
+}
+
+/// A load-controlled punch on a frictionless pair beside a frictional one is
+/// solved with the frictional pair, not refused: its pressures are the
+/// frictionless solve's (the roller's friction does not reach the other
+/// body), to 1e-9 of the peak (two factorizations of the same block), and
+/// its horizontal motion, which nothing resists, is reported not unique.
+#[test]
+fn frictionless_punch_beside_a_frictional_pair() {
+    let punch = example("indentation_flat_punch.json");
+    let mut r = example("signorini_roller_on_flat.json");
+    r["contacts"][0]["friction"] = json!({"coefficient": 0.3});
+    let n = r["obstacles"].as_array().unwrap().len();
+    r["obstacles"]
+        .as_array_mut()
+        .unwrap()
+        .push(punch["obstacles"][0].clone());
+    let mut second = punch["bodies"][0].clone();
+    second["name"] = json!("second");
+    r["bodies"].as_array_mut().unwrap().push(second);
+    let mut pair = punch["contacts"][0].clone();
+    pair["body"] = json!("second");
+    pair["obstacle"] = json!(n);
+    r["contacts"].as_array_mut().unwrap().push(pair);
+    let both = solved(&r);
+    let alone = solved(&punch);
+    let (a, b) = (&alone.pairs[0].points, &both.pairs[1].points);
+    let p0 = peak_pressure(&alone);
+    assert_eq!(a.len(), b.len());
+    for (x, y) in a.iter().zip(b) {
+        assert!((x.pressure - y.pressure).abs() <= 1e-9 * p0, "{x:?} vs {y:?}");
+    }
+    assert!(!both.punches[0].unique, "{:?}", both.punches[0]);
 }

@@ -43,7 +43,9 @@ pub enum Link {
     Fixed,
     /// A punch: its obstacle index and the row c of −C, so that the
     /// constraint reads n·u − c·(α1, α2, θ) ≤ s: c = (n_x, n_y, (x − x_r) n_y − (y − y_r) n_x).
-    Punch { obstacle: usize, c: [f64; 3] },
+    /// `lever_t`: the rotation's share along the tangent, (y − r) · n, for
+    /// the tangential row of a frictional pair.
+    Punch { obstacle: usize, c: [f64; 3], lever_t: f64 },
     /// A foundation whose deflection under the row's force opens the gap.
     Foundation(FoundationRow),
 }
@@ -63,7 +65,17 @@ impl Candidate {
     /// The punch (obstacle index) and coefficients c of a punch row.
     pub fn punch(&self) -> Option<(usize, [f64; 3])> {
         match self.link {
-            Link::Punch { obstacle, c } => Some((obstacle, c)),
+            Link::Punch { obstacle, c, .. } => Some((obstacle, c)),
+            _ => None,
+        }
+    }
+
+    /// The punch and its motion coefficients along the row's tangent
+    /// t = (−n_y, n_x): the punch moves the point y by c_t · (α1, α2, θ)
+    /// along t, c_t = (t_x, t_y, (y − r) · n).
+    pub fn punch_tangent(&self) -> Option<(usize, [f64; 3])> {
+        match self.link {
+            Link::Punch { obstacle, c, lever_t } => Some((obstacle, [-c[1], c[0], lever_t])),
             _ => None,
         }
     }

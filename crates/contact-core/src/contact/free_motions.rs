@@ -60,6 +60,10 @@ pub struct FreeMotions {
     /// supports): their columns of C and each candidate's motion with them. A
     /// solution must put no net generalized force on them (`unbalanced`).
     pub unresisted: Vec<(Vec<f64>, Vec<f64>)>,
+    /// With friction, the friction forces' share C_Tᵀτ of each kept motion's
+    /// equilibrium, C_Nᵀλ + C_Tᵀτ = −P, and its largest term max_k |C_T,kj τ_k|,
+    /// the scale of that share (empty without friction).
+    pub friction: Vec<(f64, f64)>,
 }
 
 impl FreeMotions {
@@ -91,6 +95,10 @@ impl FreeMotions {
             for (i, l) in lambda.iter().enumerate() {
                 ct += self.c[(i, j)] * l;
                 scale = scale.max((self.c[(i, j)] * l).abs());
+            }
+            if let Some(&(fr, largest)) = self.friction.get(j) {
+                ct += fr;
+                scale = scale.max(largest);
             }
             if scale > 0.0 {
                 worst = worst.max((ct - self.rhs[j]).abs() / scale);
@@ -130,6 +138,9 @@ impl FreeMotions {
         external: &[f64],
     ) -> Result<Self, CoreError> {
         let (punch_free, c_punch) = cons.punch_block(scene);
+        if scene.has_friction() {
+            return Ok(Self::frictional(&punch_free, c_punch));
+        }
         let m = cons.len();
         let mut motions: Vec<(Motion, f64)> = punch_free
             .iter()
@@ -281,10 +292,76 @@ impl FreeMotions {
             undetermined,
             notes,
             unresisted,
+            friction: Vec::new(),
         };
-        fm.check_compatibility(scene, dofs)?;
+        fm.check_compatibility(scene, dofs, false)?;
         fm.check_held(scene, dofs)?;
         Ok(fm)
+    }
+
+    /// The free motions of a frictional scene: every load-controlled punch
+    /// component as given (V = I), unchecked here. Friction resists motions no
+    /// normal does (a flat punch pushed sideways), so the null space and
+    /// Fichera's test of the frictionless case do not apply; the frictional
+    /// solve checks them with the tangential rows (`check_with_friction`).
+    fn frictional(punch_free: &[(usize, usize, f64)], c: Mat<f64>) -> Self {
+        let k = punch_free.len();
+        Self {
+            motions: punch_free
+                .iter()
+                .map(|&(obstacle, component, load)| (Motion::Punch { obstacle, component }, load))
+                .collect(),
+            v: Mat::<f64>::from_fn(k, k, |i, j| if i == j { 1.0 } else { 0.0 }),
+            c,
+            rhs: punch_free.iter().map(|f| -f.2).collect(),
+            undetermined: Vec::new(),
+            notes: Vec::new(),
+            unresisted: Vec::new(),
+            friction: Vec::new(),
+        }
+    }
+
+    /// Fichera's condition with Coulomb friction: some contact force inside
+    /// the friction cone on every candidate balances the punches' loads. In
+    /// 2D the cone |τ| ≤ μ λ is spanned by two rays, λ (n ± μ t), so the
+    /// forces are non-negative combinations of the columns C_N ± μ C_T and
+    /// the frictionless LP decides (its ranges are then the frictional ones:
+    /// a flat punch under P admits the horizontal loads [−μ|P|, μ|P|]).
+    /// `ct`: each candidate's tangential punch coefficients (0 without a
+    /// tangential row), `mu` its coefficient. Returns the motions neither
+    /// the normals nor friction resist and no load works on (a flat punch's
+    /// horizontal motion on a frictionless pair): they are not determined,
+    /// as in the frictionless case; with a load they fail the test.
+    pub fn check_with_friction(
+        &self,
+        scene: &Scene,
+        dofs: &DofMap,
+        ct: &Mat<f64>,
+        mu: &[f64],
+    ) -> Result<Vec<usize>, CoreError> {
+        if self.is_empty() {
+            return Ok(Vec::new());
+        }
+        let (m, k) = (self.c.nrows(), self.c.ncols());
+        let cone = Mat::<f64>::from_fn(2 * m, k, |r, j| {
+            let (i, sign) = (r / 2, if r % 2 == 0 { 1.0 } else { -1.0 });
+            self.c[(i, j)] + sign * mu[i] * ct[(i, j)]
+        });
+        let undetermined: Vec<usize> = (0..k)
+            .filter(|&j| (0..2 * m).all(|r| cone[(r, j)] == 0.0) && self.rhs[j] == 0.0)
+            .collect();
+        let with_cone = Self {
+            motions: self.motions.clone(),
+            v: self.v.clone(),
+            c: cone,
+            rhs: self.rhs.clone(),
+            undetermined: Vec::new(),
+            notes: Vec::new(),
+            unresisted: Vec::new(),
+            friction: Vec::new(),
+        };
+        with_cone.check_compatibility(scene, dofs, true)?;
+        Ok(undetermined)
     }
 
     /// Some free motion must not be able to leave every contact without the
@@ -344,7 +421,8 @@ impl FreeMotions {
 
     /// Fichera's condition as an LP; on failure, the admissible range of each
     /// offending load with the others as given.
-    fn check_compatibility(&self, scene: &Scene, dofs: &DofMap) -> Result<(), CoreError> {
+    /// With `friction`, the columns are the friction cone's rays.
+    fn check_compatibility(&self, scene: &Scene, dofs: &DofMap, friction: bool) -> Result<(), CoreError> {
         if self.is_empty() {
             return Ok(());
         }
@@ -414,17 +492,27 @@ impl FreeMotions {
                     acc
                 });
         let loads = bounds.into_iter().map(|(_, b)| b).collect();
+        let force = if friction {
+            "contact force inside the friction cone (|t| ≤ μ p)"
+        } else {
+            "non-negative contact pressure"
+        };
+        let slides = if friction {
+            " (the punch would slide: no quasi-static equilibrium)"
+        } else {
+            ""
+        };
         Err(CoreError::invalid(
             InvalidKind::IncompatibleLoads,
             path,
             if ranges.is_empty() {
                 format!(
-                    "no non-negative contact pressure on the candidate zone balances the loads on {}",
+                    "no {force} on the candidate zone balances the loads on {}{slides}",
                     what.join(" and ")
                 )
             } else {
                 format!(
-                    "no non-negative contact pressure on the candidate zone balances the loads on {}; with the other loads as given, {}",
+                    "no {force} on the candidate zone balances the loads on {}{slides}; with the other loads as given, {}",
                     what.join(" and "),
                     ranges.join("; or ")
                 )

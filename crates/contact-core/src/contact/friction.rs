@@ -8,14 +8,22 @@
 //! relative to the fixed obstacle. Its multiplier τ puts −τ · R coef_k on
 //! the nodes, as λ puts −λ · coef_k: the friction force along t is −τ.
 //!
+//! Against a rigid punch the displacement is relative to the punch: the
+//! punch moves the row's point by c_t · (α1, α2, θ) along t
+//! (`Candidate::punch_tangent`), which the row subtracts; its prescribed
+//! components go to the prescribed part, its load-controlled ones are
+//! unknowns of the step (`punch` here, `methods::friction::Block`).
+//!
 //! Only rows of pairs with μ > 0 get a tangential row, and only where some
 //! free DOF moves along t (a node whose tangential motion is prescribed has
 //! its friction force taken by the support).
 
+use std::collections::HashMap;
+
 use super::constraints::{free_row, ConstraintSet};
 use super::rows::Term;
 use crate::fem::assembly::DofMap;
-use crate::scene::Scene;
+use crate::scene::{Control, Scene};
 
 /// The tangential rows of the frictional candidates.
 #[derive(Debug, Clone, Default)]
@@ -32,6 +40,8 @@ pub struct Tangents {
     pub prescribed: Vec<f64>,
     /// μ of each row.
     pub mu: Vec<f64>,
+    /// The punch of each row and its tangential motion coefficients c_t.
+    pub punch: Vec<Option<(usize, [f64; 3])>>,
 }
 
 impl Tangents {
@@ -59,12 +69,26 @@ impl Tangents {
             if row.is_empty() {
                 continue;
             }
+            // A prescribed punch motion moves the obstacle along t by c_t · ᾱ.
+            let punch = c.punch_tangent();
+            let moved: f64 = punch.map_or(0.0, |(o, ct)| {
+                let controls = scene.obstacles[o].punch.as_ref().map(|p| p.controls);
+                controls.map_or(0.0, |cs| {
+                    (0..3)
+                        .map(|k| match cs[k] {
+                            Control::Displacement(v) => ct[k] * v,
+                            _ => 0.0,
+                        })
+                        .sum()
+                })
+            });
             t.row_of[i] = Some(t.of.len());
             t.of.push(i);
             t.rows.push(row);
             t.terms.push(terms);
-            t.prescribed.push(-minus_prescribed);
+            t.prescribed.push(-minus_prescribed - moved);
             t.mu.push(mu);
+            t.punch.push(punch);
         }
         t
     }
@@ -86,23 +110,29 @@ impl Tangents {
             .collect()
     }
 
-    /// The tangential displacements of the rows for a displacement of every
-    /// DOF (free and prescribed: `DofMap::dof` indexing); zero for an empty one
-    /// (the undeformed start).
-    pub fn of_nodal(&self, dofs: &DofMap, displacement: &[f64]) -> Vec<f64> {
+    /// The tangential displacements of the rows, relative to their punches,
+    /// for a displacement of every DOF (free and prescribed: `DofMap::dof`
+    /// indexing) and the punches' motions (α1, α2, θ) by obstacle; zero for
+    /// an empty displacement (the undeformed start).
+    pub fn of_nodal(&self, dofs: &DofMap, displacement: &[f64], punches: &HashMap<usize, [f64; 3]>) -> Vec<f64> {
         if displacement.is_empty() {
             return vec![0.0; self.len()];
         }
         self.terms
             .iter()
-            .map(|terms| {
-                terms
+            .zip(&self.punch)
+            .map(|(terms, punch)| {
+                let body: f64 = terms
                     .iter()
                     .map(|t| {
                         let d = |c: usize| displacement[dofs.dof(t.body, t.node, c)];
                         t.coef[0] * d(0) + t.coef[1] * d(1)
                     })
-                    .sum()
+                    .sum();
+                let moved = punch.map_or(0.0, |(o, ct)| {
+                    punches.get(&o).map_or(0.0, |a| (0..3).map(|k| ct[k] * a[k]).sum())
+                });
+                body - moved
             })
             .collect()
     }

@@ -67,8 +67,9 @@ pub struct Seen {
     pub dir: [f64; 2],
     /// (body, node, N_k(y)): the target's nodes whose motion at y closes the gap.
     pub other: Vec<(usize, usize, f64)>,
-    /// A rigid punch's motion coefficients c (β = α1, α2, θ).
-    pub punch: Option<[f64; 3]>,
+    /// A rigid punch's motion coefficients c (β = α1, α2, θ) and the lever
+    /// (y − r) · n of its rotation along the tangent (`punch_coefficients`).
+    pub punch: Option<[f64; 4]>,
 }
 
 /// Answers `Seen` for a point x with the surface's outward normal there, or
@@ -85,7 +86,7 @@ pub struct Row {
     pub weight: f64,
     pub terms: Vec<Term>,
     pub gap: f64,
-    pub punch: Option<[f64; 3]>,
+    pub punch: Option<[f64; 4]>,
 }
 
 pub struct Rows {
@@ -95,10 +96,13 @@ pub struct Rows {
 
 /// The rigid motion coefficients c of a punch point y for the row direction n:
 /// the punch moves y by (α1 − θ (y_y − r_y), α2 + θ (y_x − r_x)), which closes
-/// the gap by −n · that motion.
-pub fn punch_coefficients(y: [f64; 2], reference: [f64; 2], n: [f64; 2]) -> [f64; 3] {
+/// the gap by −n · that motion. The fourth coefficient is the rotation's
+/// share along the tangent t = (−n_y, n_x), −t_x (y_y − r_y) + t_y (y_x − r_x)
+/// = (y − r) · n: a frictional row's tangential coefficients are then
+/// (t_x, t_y, (y − r) · n).
+pub fn punch_coefficients(y: [f64; 2], reference: [f64; 2], n: [f64; 2]) -> [f64; 4] {
     let (dx, dy) = (y[0] - reference[0], y[1] - reference[1]);
-    [n[0], n[1], dx * n[1] - dy * n[0]]
+    [n[0], n[1], dx * n[1] - dy * n[0], dx * n[0] + dy * n[1]]
 }
 
 /// Adds c · v to the coefficient of `node` of `body` in `terms`.
@@ -220,7 +224,7 @@ struct Tested {
     weight: f64,
     gap: f64,
     terms: Vec<Term>,
-    punch: Option<[f64; 3]>,
+    punch: Option<[f64; 4]>,
 }
 
 impl Tested {
@@ -228,8 +232,8 @@ impl Tested {
         self.weight += f;
         self.gap += f * seen.gap;
         if let Some(c) = seen.punch {
-            let p = self.punch.get_or_insert([0.0; 3]);
-            for k in 0..3 {
+            let p = self.punch.get_or_insert([0.0; 4]);
+            for k in 0..4 {
                 p[k] += f * c[k];
             }
         }
@@ -346,7 +350,7 @@ pub fn mortar(surface: &Surface, see: &See, limit: f64, breaks: &dyn Fn(&[[f64; 
                 })
                 .collect(),
             gap,
-            punch: t.punch.map(|p| [p[0] * inv, p[1] * inv, p[2] * inv]),
+            punch: t.punch.map(|p| p.map(|v| v * inv)),
         });
     }
     out

@@ -18,6 +18,13 @@
 //! increment over the step (incremental, small-slip Coulomb law), measured
 //! from the tangential displacement the previous step ended with.
 //!
+//! A load-controlled punch adds its free motions β (`Block`): the rows read
+//! the motion relative to the punch, w += C_N β and Δs −= C_T β, and the
+//! punch is in equilibrium with its loads P under the normal and the
+//! friction forces, C_Nᵀλ + C_Tᵀτ = −P. The Newton system gains β and these
+//! equations; with |Q| > μ|P| on a sliding punch it has no solution, which
+//! Fichera's test with the friction cone refuses before (`solve`).
+//!
 //! Why this method: in 2D the cone is an interval, so the Alart–Curnier
 //! functions min(λ, c w) = 0 and τ = proj_[−μλ̃, μλ̃](τ + c_t Δs), λ̃ = λ − c w,
 //! are piecewise linear with four pieces per point (open, stick, slip + and
@@ -31,6 +38,11 @@
 //! linearly in its outer loop. The system of a state set is not symmetric
 //! (the slip rows tie τ to λ), so it is solved by LU; its size is the number
 //! of points in contact plus those among them with a tangential row.
+//!
+//! Length: the Newton system of the states (with a punch's free motions),
+//! its state update and the test of the discrete Coulomb law on random
+//! compliances share the private run and residual functions; apart, the
+//! test would need them public.
 
 use std::collections::HashMap;
 use std::time::Instant;
@@ -63,6 +75,27 @@ pub struct History {
     pub displacement: Vec<f64>,
     /// State of each candidate, by (pair, node): the warm start of the next step.
     pub state: HashMap<(usize, usize), State>,
+    /// Motion (α1, α2, θ) of every punch at the end of the step, by obstacle.
+    pub punches: HashMap<usize, [f64; 3]>,
+}
+
+/// The free motions β of load-controlled punches in a step: their
+/// coefficients in the normal rows (C_N, candidates × motions) and in the
+/// tangential rows (C_T, tangential rows × motions), and the right-hand side
+/// −P of their equilibrium.
+pub struct Block {
+    /// The free motions (`FreeMotions::motions`) the block holds; the others
+    /// are not determined and stay at 0.
+    pub keep: Vec<usize>,
+    pub cn: Mat<f64>,
+    pub ct: Mat<f64>,
+    pub rhs: Vec<f64>,
+}
+
+impl Block {
+    fn len(&self) -> usize {
+        self.rhs.len()
+    }
 }
 
 /// The data of one step.
@@ -74,6 +107,8 @@ pub struct Step<'a> {
     pub tangents: &'a Tangents,
     pub dofs: &'a DofMap,
     pub settings: &'a Settings,
+    /// Load-controlled punch motions, if any.
+    pub block: Option<&'a Block>,
 }
 
 /// The friction of a solved step: the tangential multipliers, the slip of
@@ -86,6 +121,8 @@ pub struct Friction {
     pub lambda: Vec<f64>,
     pub in_contact: Vec<bool>,
     pub u_scale: f64,
+    /// The free motions β of the step (empty without a block).
+    pub beta: Vec<f64>,
 }
 
 /// Solves one step from the state `previous` left.
@@ -96,7 +133,7 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
     let y = p.op.chol.forward(p.f);
     let bk = p.op.condensed.rows_of(&y);
     let q: Vec<f64> = (0..n).map(|i| p.cons.candidates[i].g - bk[i]).collect();
-    let ut_before = p.tangents.of_nodal(p.dofs, &previous.displacement);
+    let ut_before = p.tangents.of_nodal(p.dofs, &previous.displacement, &previous.punches);
     let e: Vec<f64> = (0..nt)
         .map(|k| bk[n + k] + p.tangents.prescribed[k] - ut_before[k])
         .collect();
@@ -107,7 +144,10 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
             let c = &p.cons.candidates[i];
             match previous.state.get(&(c.pair, c.node)) {
                 Some(&s) => s,
-                None if q[i] < 0.0 => State::Stick,
+                // A load-controlled punch rests at its reference position,
+                // where its candidates touch or almost: all start closed and
+                // the first Newton step opens those the loads do not press.
+                None if q[i] < 0.0 || (p.block.is_some() && c.punch().is_some()) => State::Stick,
                 None => State::Open,
             }
         })
@@ -115,16 +155,22 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
     let Run {
         lambda,
         tau,
+        beta,
         state,
         converged,
         iterations,
-    } = solve_states(w, &q, &e, p.tangents, state, p.settings.max_iterations);
+    } = solve_states(w, &q, &e, p.tangents, p.block, state, p.settings.max_iterations);
     // u = K⁻¹ (f − B_Nᵀ λ − B_Tᵀ τ): the condensed blocks hold both row sets.
     let multipliers: Vec<f64> = lambda.iter().chain(&tau).copied().collect();
     let mut yz = y;
     p.op.condensed.subtract(&multipliers, &mut yz);
     let u = p.op.chol.backward(&yz);
-    let ut = p.tangents.displacements(&u);
+    let mut ut = p.tangents.displacements(&u);
+    if let Some(b) = p.block {
+        for (k, v) in ut.iter_mut().enumerate() {
+            *v -= (0..b.len()).map(|j| b.ct[(k, j)] * beta[j]).sum::<f64>();
+        }
+    }
     let slip: Vec<f64> = ut.iter().zip(&ut_before).map(|(a, b)| a - b).collect();
     let displacement: Vec<f64> = (0..p.dofs.free.len())
         .map(|d| match p.dofs.free[d] {
@@ -142,15 +188,18 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
         history: History {
             displacement,
             state: by_node,
+            // The caller knows the punches' prescribed components.
+            punches: HashMap::new(),
         },
         lambda: lambda.clone(),
         in_contact: in_contact.clone(),
         u_scale: u.iter().fold(0.0f64, |a, x| a.max(x.abs())),
+        beta: beta.clone(),
     };
     let sol = Solution {
         u,
         lambda,
-        beta: Vec::new(),
+        beta,
         in_contact,
         iterations,
         converged,
@@ -167,7 +216,15 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
 /// The step's problem for (W, q, e) from the states `state`: the active set,
 /// restarted with rescaled parameters after a cycle; the iterations of all
 /// its runs.
-fn solve_states(w: &Mat<f64>, q: &[f64], e: &[f64], t: &Tangents, state: Vec<State>, max_iterations: usize) -> Run {
+fn solve_states(
+    w: &Mat<f64>,
+    q: &[f64],
+    e: &[f64],
+    t: &Tangents,
+    block: Option<&Block>,
+    state: Vec<State>,
+    max_iterations: usize,
+) -> Run {
     let (n, nt) = (q.len(), e.len());
     let mean = |r: std::ops::Range<usize>| {
         let len = r.len().max(1) as f64;
@@ -187,7 +244,7 @@ fn solve_states(w: &Mat<f64>, q: &[f64], e: &[f64], t: &Tangents, state: Vec<Sta
         if budget == 0 || crate::cancel::expired() {
             break;
         }
-        let r = pdas(w, q, e, t, state.clone(), (scale * c, scale * ct), budget);
+        let r = pdas((w, q, e), t, block, state.clone(), (scale * c, scale * ct), budget);
         iterations += r.iterations;
         let done = r.converged;
         run = Some(r);
@@ -198,6 +255,7 @@ fn solve_states(w: &Mat<f64>, q: &[f64], e: &[f64], t: &Tangents, state: Vec<Sta
     let mut run = run.unwrap_or_else(|| Run {
         lambda: vec![0.0; n],
         tau: vec![0.0; nt],
+        beta: vec![0.0; block.map_or(0, Block::len)],
         state,
         iterations: 0,
         converged: n == 0,
@@ -213,19 +271,20 @@ const C_SCALES: [f64; 5] = [1.0, 0.1, 10.0, 0.01, 100.0];
 struct Run {
     lambda: Vec<f64>,
     tau: Vec<f64>,
+    beta: Vec<f64>,
     state: Vec<State>,
     iterations: usize,
     converged: bool,
 }
 
 /// Newton steps from the states `state` until they repeat (converged), cycle
-/// or exhaust `budget`; (c, c_t) weigh gap against force and slip against
-/// friction force in the update.
+/// or exhaust `budget`; (w, q, e) are the step's compliance and right-hand
+/// sides; (c, c_t) weigh gap against force and slip against friction force
+/// in the update.
 fn pdas(
-    w: &Mat<f64>,
-    q: &[f64],
-    e: &[f64],
+    (w, q, e): (&Mat<f64>, &[f64], &[f64]),
     t: &Tangents,
+    block: Option<&Block>,
     mut state: Vec<State>,
     (c, ct): (f64, f64),
     budget: usize,
@@ -234,6 +293,7 @@ fn pdas(
     let mut run = Run {
         lambda: vec![0.0; n],
         tau: vec![0.0; nt],
+        beta: vec![0.0; block.map_or(0, Block::len)],
         state: Vec::new(),
         iterations: 0,
         converged: n == 0,
@@ -241,10 +301,10 @@ fn pdas(
     let mut seen: Vec<Vec<State>> = Vec::new();
     while !run.converged && run.iterations < budget && !crate::cancel::expired() {
         run.iterations += 1;
-        let Some((lambda, tau)) = newton_step(w, q, e, t, &state) else {
+        let Some((lambda, tau, beta)) = newton_step(w, q, e, t, block, &state) else {
             break;
         };
-        let (gap, slip) = gap_and_slip(w, q, e, &lambda, &tau);
+        let (gap, slip) = gap_and_slip(w, q, e, block, &lambda, &tau, &beta);
         let next: Vec<State> = (0..n)
             .map(|i| {
                 let lt = lambda[i] - c * gap[i];
@@ -266,7 +326,7 @@ fn pdas(
             .collect();
         let residual = (0..n).map(|i| lambda[i].min(c * gap[i]).abs()).fold(0.0, f64::max);
         crate::progress::iteration(run.iterations, residual);
-        (run.lambda, run.tau) = (lambda, tau);
+        (run.lambda, run.tau, run.beta) = (lambda, tau, beta);
         if next == state {
             run.converged = true;
             break;
@@ -280,36 +340,77 @@ fn pdas(
     run
 }
 
-/// The gaps w and slips Δs of (λ, τ).
-fn gap_and_slip(w: &Mat<f64>, q: &[f64], e: &[f64], lambda: &[f64], tau: &[f64]) -> (Vec<f64>, Vec<f64>) {
+/// The gaps w and slips Δs of (λ, τ) and the free motions β.
+fn gap_and_slip(
+    w: &Mat<f64>,
+    q: &[f64],
+    e: &[f64],
+    block: Option<&Block>,
+    lambda: &[f64],
+    tau: &[f64],
+    beta: &[f64],
+) -> (Vec<f64>, Vec<f64>) {
     let (n, nt) = (q.len(), e.len());
     let x: Vec<f64> = lambda.iter().chain(tau).copied().collect();
     let wx = crate::linalg::dense::matvec(w, &x);
-    let gap = (0..n).map(|i| wx[i] + q[i]).collect();
-    let slip = (0..nt).map(|k| e[k] - wx[n + k]).collect();
+    let mut gap: Vec<f64> = (0..n).map(|i| wx[i] + q[i]).collect();
+    let mut slip: Vec<f64> = (0..nt).map(|k| e[k] - wx[n + k]).collect();
+    if let Some(b) = block {
+        for (j, &bj) in beta.iter().enumerate() {
+            (0..n).for_each(|i| gap[i] += b.cn[(i, j)] * bj);
+            (0..nt).for_each(|k| slip[k] -= b.ct[(k, j)] * bj);
+        }
+    }
     (gap, slip)
 }
 
 /// The linear system of the states: for every point in contact its gap is
 /// closed (w_i = 0); a sticking point's slip vanishes (Δs_k = 0); a sliding
-/// point's τ_k = ± μ_k λ_i. λ and τ vanish off contact. None when singular.
-fn newton_step(w: &Mat<f64>, q: &[f64], e: &[f64], t: &Tangents, state: &[State]) -> Option<(Vec<f64>, Vec<f64>)> {
+/// point's τ_k = ± μ_k λ_i. λ and τ vanish off contact. With a block, the
+/// free motions β join the unknowns and their equilibrium the equations.
+/// None when singular.
+fn newton_step(
+    w: &Mat<f64>,
+    q: &[f64],
+    e: &[f64],
+    t: &Tangents,
+    block: Option<&Block>,
+    state: &[State],
+) -> Option<NewtonStep> {
     let n = q.len();
     let on: Vec<usize> = (0..n).filter(|&i| state[i] != State::Open).collect();
     let on_t: Vec<usize> = on.iter().filter_map(|&i| t.row_of[i]).collect();
     let (a, b) = (on.len(), on_t.len());
+    let nb = block.map_or(0, Block::len);
     if a == 0 {
-        return Some((vec![0.0; n], vec![0.0; e.len()]));
+        // Nothing holds a free motion off contact.
+        return (nb == 0).then(|| (vec![0.0; n], vec![0.0; e.len()], Vec::new()));
     }
-    // Unknowns: λ of `on`, then τ of `on_t`; W's columns n + k for τ_k.
+    // Unknowns: λ of `on`, then τ of `on_t`, then β; W's columns n + k for τ_k.
     let col = |j: usize| if j < a { on[j] } else { n + on_t[j - a] };
-    let mut m = Mat::<f64>::zeros(a + b, a + b);
-    let mut rhs = Mat::<f64>::zeros(a + b, 1);
+    let size = a + b + nb;
+    let mut m = Mat::<f64>::zeros(size, size);
+    let mut rhs = Mat::<f64>::zeros(size, 1);
     for (r, &i) in on.iter().enumerate() {
         for j in 0..a + b {
             m[(r, j)] = w[(i, col(j))];
         }
         rhs[(r, 0)] = -q[i];
+    }
+    if let Some(bl) = block {
+        for j in 0..nb {
+            for (r, &i) in on.iter().enumerate() {
+                m[(r, a + b + j)] = bl.cn[(i, j)];
+                m[(a + b + j, r)] = bl.cn[(i, j)];
+            }
+            for (s, &k) in on_t.iter().enumerate() {
+                m[(a + b + j, a + s)] = bl.ct[(k, j)];
+                if !matches!(state[t.of[k]], State::Slip(_)) {
+                    m[(a + s, a + b + j)] = bl.ct[(k, j)];
+                }
+            }
+            rhs[(a + b + j, 0)] = bl.rhs[j];
+        }
     }
     for (s, &k) in on_t.iter().enumerate() {
         let r = a + s;
@@ -337,12 +438,17 @@ fn newton_step(w: &Mat<f64>, q: &[f64], e: &[f64], t: &Tangents, state: &[State]
     for (s, &k) in on_t.iter().enumerate() {
         tau[k] = x[(a + s, 0)];
     }
+    let beta: Vec<f64> = (0..nb).map(|j| x[(a + b + j, 0)]).collect();
     lambda
         .iter()
         .chain(&tau)
+        .chain(&beta)
         .all(|v| v.is_finite())
-        .then_some((lambda, tau))
+        .then_some((lambda, tau, beta))
 }
+
+/// λ, τ and β of a Newton step.
+type NewtonStep = (Vec<f64>, Vec<f64>, Vec<f64>);
 
 #[cfg(test)]
 mod tests {
@@ -387,13 +493,13 @@ mod tests {
                 .iter()
                 .map(|&v| if v < 0.0 { State::Stick } else { State::Open })
                 .collect();
-            let r = solve_states(&w, &q, &e, &t, start, 200);
+            let r = solve_states(&w, &q, &e, &t, None, start, 200);
             assert!(
                 r.converged,
                 "case {case}: no convergence in {} iterations",
                 r.iterations
             );
-            let (gap, slip) = gap_and_slip(&w, &q, &e, &r.lambda, &r.tau);
+            let (gap, slip) = gap_and_slip(&w, &q, &e, None, &r.lambda, &r.tau, &[]);
             let tol = 1e-10;
             for i in 0..n {
                 let (l, tau) = (r.lambda[i], r.tau[i]);

@@ -52,10 +52,27 @@ pub struct PathStep {
 /// A load or prescribed displacement of a body that a load path scales.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LoadRef {
-    Traction { body: usize, index: usize },
-    PointLoad { body: usize, index: usize },
-    Support { body: usize, index: usize },
-    BodyForce { body: usize },
+    Traction {
+        body: usize,
+        index: usize,
+    },
+    PointLoad {
+        body: usize,
+        index: usize,
+    },
+    Support {
+        body: usize,
+        index: usize,
+    },
+    BodyForce {
+        body: usize,
+    },
+    /// Component (0: horizontal, 1: vertical, 2: rotation) of a punch's
+    /// control, load or displacement.
+    Punch {
+        obstacle: usize,
+        component: usize,
+    },
 }
 
 impl Scene {
@@ -108,6 +125,13 @@ impl Scene {
                 LoadRef::BodyForce { body } => {
                     let b = &mut s.bodies[body].body_force;
                     *b = [k * b[0], k * b[1]];
+                }
+                LoadRef::Punch { obstacle, component } => {
+                    if let Some(pu) = &mut s.obstacles[obstacle].punch {
+                        match &mut pu.controls[component] {
+                            Control::Displacement(v) | Control::Load(v) => *v *= k,
+                        }
+                    }
                 }
             }
         }

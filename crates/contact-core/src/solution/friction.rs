@@ -109,6 +109,23 @@ pub fn attach(report: &mut Report, scene: &Scene, model: &Model, t: &Tangents, s
     report.resultant.fx += total.fx;
     report.resultant.fy += total.fy;
     report.resultant.m += total.m;
+    // The friction forces push the punches as well: P = −Σ (λ c + τ c_t),
+    // the normal part already in the report (`punches` lists every punch in
+    // the order of the obstacles).
+    let punches = scene.obstacles.iter().enumerate().filter(|(_, ob)| ob.punch.is_some());
+    for ((o, _), pr) in punches.zip(report.punches.iter_mut()) {
+        let mut load = [0.0; 3];
+        for (k, punch) in t.punch.iter().enumerate() {
+            if let Some((po, ct)) = punch {
+                if *po == o {
+                    (0..3).for_each(|c| load[c] -= s.tau[k] * ct[c]);
+                }
+            }
+        }
+        pr.p1 += sc.force(load[0]);
+        pr.p2 += sc.force(load[1]);
+        pr.m += sc.moment(load[2]);
+    }
 }
 
 /// The Coulomb conditions' residuals (see `FrictionResiduals`), relative to

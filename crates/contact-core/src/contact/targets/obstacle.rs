@@ -53,7 +53,11 @@ pub fn rows(
     let mut pruned = rows.pruned;
     for r in rows.rows {
         let link = match (&obstacle.punch, r.punch) {
-            (Some(_), Some(c)) => Link::Punch { obstacle: o, c },
+            (Some(_), Some(c)) => Link::Punch {
+                obstacle: o,
+                c: [c[0], c[1], c[2]],
+                lever_t: c[3],
+            },
             _ => Link::Fixed,
         };
         let Some(mut cand) = Candidate::try_new(p, slave.body, slave.mesh, r, dofs, link) else {

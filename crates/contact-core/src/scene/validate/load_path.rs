@@ -43,12 +43,12 @@ pub fn load_path(req: &SolveRequest, bodies: &[Body], limits: &Limits) -> Result
                 .iter()
                 .map(|(name, &f)| {
                     let path = format!("/load_path/{k}/loads/{}", escape(name));
-                    let r = load_ref(name, bodies).ok_or_else(|| {
+                    let r = load_ref(name, bodies, req).ok_or_else(|| {
                         invalid(
                             K::Request,
                             &path,
                             format!(
-                                "'{name}' names no load: expected the JSON pointer of a traction, point load, support or body force, e.g. /bodies/0/tractions/1"
+                                "'{name}' names no load: expected the JSON pointer of a traction, point load, support, body force or punch motion, e.g. /bodies/0/tractions/1 or /obstacles/0/punch/horizontal"
                             ),
                         )
                     })?;
@@ -77,15 +77,28 @@ fn escape(key: &str) -> String {
 }
 
 /// The load a pointer names: `/bodies/<i>/<tractions|point_loads|supports>/<j>`
-/// or `/bodies/<i>/body_force`, with the body by index.
-fn load_ref(name: &str, bodies: &[Body]) -> Option<LoadRef> {
-    let parts: Vec<&str> = name.strip_prefix("/bodies/")?.split('/').collect();
+/// or `/bodies/<i>/body_force`, with the body by index, or
+/// `/obstacles/<i>/punch/<horizontal|vertical|rotation>` of a punch.
+fn load_ref(name: &str, bodies: &[Body], req: &SolveRequest) -> Option<LoadRef> {
     let index = |s: &str| -> Option<usize> {
         // A pointer's array index: digits, no sign, no leading zero.
         (!s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()) && (s == "0" || !s.starts_with('0')))
             .then(|| s.parse().ok())
             .flatten()
     };
+    if let Some(rest) = name.strip_prefix("/obstacles/") {
+        let parts: Vec<&str> = rest.split('/').collect();
+        let obstacle = index(parts.first()?)?;
+        req.obstacles.get(obstacle)?.punch.as_ref()?;
+        let component = match parts[1..] {
+            ["punch", "horizontal"] => 0,
+            ["punch", "vertical"] => 1,
+            ["punch", "rotation"] => 2,
+            _ => return None,
+        };
+        return Some(LoadRef::Punch { obstacle, component });
+    }
+    let parts: Vec<&str> = name.strip_prefix("/bodies/")?.split('/').collect();
     let body = index(parts.first()?)?;
     let b = bodies.get(body)?;
     match parts[1..] {

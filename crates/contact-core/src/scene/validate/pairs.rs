@@ -155,7 +155,6 @@ fn friction(req: &SolveRequest, c: &proto::ContactSpec, cp: &str, target: &Targe
     match target {
         Target::Body { .. } => return refuse("between two deformable bodies"),
         Target::Foundation(_) => return refuse("on a foundation"),
-        Target::Obstacle(o) if req.obstacles[*o].punch.is_some() => return refuse("against a punch"),
         Target::Obstacle(_) => {}
     }
     if !matches!(req.method, proto::MethodName::Auto | proto::MethodName::ActiveSet) {

@@ -1,0 +1,99 @@
+"""Coulomb friction from the builders: Cattaneo-Mindlin's stick zone, full sliding,
+and a punch pushed sideways below and beyond mu P (Fichera's condition with friction)."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from contact_client import ContactError, scenes
+
+MU = 0.5
+
+
+def _stick_half_width(points: list[dict]) -> float:
+    """Half the length of the run of sticking points, its ends midway between the run's
+    end points and their outer neighbours (the true transition lies there to half a
+    spacing), as the Rust test measures it."""
+    pts = sorted(points, key=lambda p: p["x"])
+    idx = [i for i, p in enumerate(pts) if p["state"] == "stick"]
+    assert idx and idx == list(range(idx[0], idx[-1] + 1)), "one contiguous stick zone"
+    lo, hi = idx[0], idx[-1]
+    left = 0.5 * (pts[lo]["x"] + pts[lo - 1]["x"]) if lo > 0 else pts[lo]["x"]
+    right = 0.5 * (pts[hi]["x"] + pts[hi + 1]["x"]) if hi + 1 < len(pts) else pts[hi]["x"]
+    return 0.5 * (right - left)
+
+
+def test_roller_stick_zone_follows_cattaneo_mindlin(client):
+    # The roller of the Rust test (crates/contact/tests/friction.rs): nu = 0.499 so
+    # that the coupling of an elastic body on a rigid floor (Dundurs beta = 0.001) is
+    # negligible, T6 (P2-P0, no locking), h = 0.0075 at the zone (half a spacing is at
+    # most 1.3 % of c). Tolerance 2 % on c, as there; a from Hertz with the reply's P.
+    nu, radius, e = 0.499, 8.0, 200.0
+    req = scenes.roller_on_floor(radius=radius, poisson_ratio=nu, element="t6", h_min=0.0075, extent=0.6,
+                                 friction=MU, shifts=[0.015, 0.025, 0.035])
+    r = client.solve(req)
+    assert r["status"] == "solved"
+    steps = r["steps"]
+    assert len(steps) == 4
+    for k, st in enumerate(steps[1:], start=1):
+        p, q = st["resultant"]["fy"], -st["resultant"]["fx"]
+        assert 0.25 < q / (MU * p) < 0.75, f"step {k}: Q/muP = {q / (MU * p)}"
+        a, _ = scenes.hertz_reference(p, radius, e, nu)
+        c = _stick_half_width(st["pairs"][0]["points"])
+        expect = scenes.cattaneo_mindlin_stick(a, q, MU, p)
+        assert c == pytest.approx(expect, rel=0.02), f"step {k}: Q/muP = {q / (MU * p)}"
+
+
+def test_roller_moved_far_slides_with_mu_p(client):
+    # Moved 0.06 sideways after pressing (beyond the stick range), every point in
+    # contact slips with |t| = mu p, to the round-off of the step's LU (1e-9 of mu p0),
+    # and Q = mu P.
+    r = client.solve(scenes.roller_on_floor(h_min=0.01, friction=MU, shifts=[0.06]))
+    assert r["status"] == "solved"
+    pair = r["pairs"][0]
+    touching = [p for p in pair["points"] if p["state"] != "open"]
+    assert len(touching) > 40
+    p0 = max(p["pressure"] for p in pair["points"])
+    for p in touching:
+        assert p["state"] == "slip"
+        assert abs(abs(p["tangential_traction"]) - MU * p["pressure"]) <= 1e-9 * MU * p0
+    assert pair["friction"]["stick_zones"] == []
+    assert -r["resultant"]["fx"] == pytest.approx(MU * r["resultant"]["fy"], rel=1e-9)
+    assert "friction" in repr(r) and f"μ {MU}" in repr(r), "the summary shows the friction"
+
+
+def test_punch_pushed_below_mu_p_is_in_equilibrium(client):
+    # P = 10 then Q = 0.5 mu P: the punch sticks, and its equilibrium makes the friction
+    # forces on the block add up to Q (1e-8 of P: the step is solved by LU).
+    mu, load = 0.3, 10.0
+    q = 0.5 * mu * load
+    r = client.solve(scenes.punch_on_block({"flat": {"half_width": 1.0}}, load=load, horizontal_load=q,
+                                           h_min=0.05, friction=mu))
+    assert r["status"] == "solved"
+    fr = r["pairs"][0]["friction"]
+    assert fr["tangential_resultant"]["fx"] == pytest.approx(q, abs=1e-8 * load)
+    punch = r["punches"][0]
+    assert punch["p1"] == pytest.approx(q, abs=1e-8 * load) and punch["unique"]
+    assert fr["stick_zones"], "part of the face sticks"
+
+
+def test_punch_pushed_beyond_mu_p_is_refused_with_its_range(client):
+    mu, load = 0.3, 10.0
+    q = 1.05 * mu * load
+    with pytest.raises(ContactError) as err:
+        client.solve(scenes.punch_on_block({"flat": {"half_width": 1.0}}, load=load, horizontal_load=q,
+                                           h_min=0.05, friction=mu))
+    assert err.value.code == "incompatible_loads"
+    assert err.value.path == "/obstacles/0/punch/horizontal/load"
+    bound = next(b for b in err.value.details["loads"] if b["path"] == err.value.path)
+    # The LP's range is exactly +-mu P on a flat face, found to its 1e-13 gap (1e-8 here).
+    assert bound["min"] == pytest.approx(-mu * load, rel=1e-8)
+    assert bound["max"] == pytest.approx(mu * load, rel=1e-8)
+
+
+def test_shifts_need_displacement_control():
+    with pytest.raises(ValueError):
+        scenes.roller_on_floor(load=5.0, friction=MU, shifts=[0.01])
+    assert math.isclose(scenes.cattaneo_mindlin_stick(1.0, 0.75, 1.0, 1.0), 0.5)

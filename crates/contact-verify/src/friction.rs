@@ -1,0 +1,225 @@
+//! Friction under mesh refinement (`contact bench --convergence`, after the
+//! frictionless tables): the Cattaneo–Mindlin stick zone.
+//!
+//! The scene is the roller of `signorini_roller_on_flat.json` (half-disk
+//! R = 8, E = 200) at ν = 0.499, so that the normal–tangential coupling of an
+//! elastic body on a rigid floor (second Dundurs constant
+//! β = (1 − 2ν) / (2(1 − ν)) = 0.001) is negligible and Cattaneo–Mindlin's
+//! similar-materials theory applies; μ = 0.5. Its flat top is moved down by
+//! 0.05 (P ≈ 4.9), then sideways by 0.025 (Q/μP ≈ 0.49) in a second load
+//! path step. The stick zone is |x| < c with c = a √(1 − Q/(μP)), a Hertz's
+//! half-width at the reply's P. The measured c takes the run of sticking
+//! points and puts each end midway between its last sticking point and the
+//! next one (the transition lies there to ± half a spacing), so its error is
+//! bounded by half the node spacing plus the solution's own error.
+//!
+//! Three levels, node spacing s = 0.015, 0.0075, 0.00375 at the contact (T3
+//! at h_min = s, T6 at 2s: equal spacing, a T6 element is twice as long).
+//! At ν = 0.499 T3 locks (its stiffness is the incompressibility constraint's,
+//! not the material's) while T6 switches to the P2–P0 element: the T3 rows
+//! show what locking does to a frictional answer.
+
+use serde_json::{json, Value};
+
+use contact_core::solution::report::{FrictionState, Report};
+use contact_core::Limits;
+
+pub const MU: f64 = 0.5;
+const RADIUS: f64 = 8.0;
+const E: f64 = 200.0;
+const NU: f64 = 0.499;
+/// The sideways shift of the second step.
+const SHIFT: f64 = 0.025;
+/// Node spacing at the contact of the coarsest level.
+const S0: f64 = 0.015;
+pub const LEVELS: usize = 3;
+
+/// The roller at element size `h_min` (contact zone) and `element`.
+pub fn roller_request(h_min: f64, element: &str) -> Value {
+    let mut r: Value = serde_json::from_str(include_str!("../../../proto/examples/signorini_roller_on_flat.json"))
+        .expect("the example is JSON");
+    let b = &mut r["bodies"][0];
+    b["material"]["poisson_ratio"] = json!(NU);
+    let mesh = &mut b["mesh"]["half_disk"];
+    mesh["element"] = json!(element);
+    mesh["grading"] = json!({"h_min": h_min, "ratio": 1.2, "extent": 0.6});
+    // The sideways motion as its own support, scaled alone by the path.
+    b["supports"] = json!([{"edges": "flat", "uy": -0.05}, {"edges": "flat", "ux": 1.0}]);
+    r["contacts"][0]["friction"] = json!({"coefficient": MU});
+    r["load_path"] = json!([
+        {"loads": {"/bodies/0/supports/1": 0.0}},
+        {"loads": {"/bodies/0/supports/1": SHIFT}}
+    ]);
+    r["description"] = json!("convergence: elastic roller (nu = 0.499) pressed 0.05 onto a rigid floor, mu = 0.5, then shifted 0.025 sideways");
+    r
+}
+
+#[derive(Debug, Clone)]
+pub struct Row {
+    pub element: &'static str,
+    pub h_min: f64,
+    pub dofs: usize,
+    /// Q/(μP) of the last step.
+    pub ratio: f64,
+    /// Measured and Cattaneo–Mindlin stick half-widths, over a.
+    pub c_over_a: f64,
+    pub exact_over_a: f64,
+    /// c / c_exact − 1.
+    pub err_c: f64,
+    pub order: Option<f64>,
+    /// Half the node spacing at the stick zone's ends, over c_exact: the
+    /// resolution of the measured ends.
+    pub resolution: f64,
+    /// Active-set iterations of each step.
+    pub iterations: Vec<usize>,
+    pub t_total: f64,
+    pub status: String,
+}
+
+impl Row {
+    pub const HEADER: &'static str =
+        "scene,element,h_min,dofs,q_over_mu_p,c_over_a,cm_over_a,err_c,order,resolution,iterations_per_step,t_total,status";
+
+    pub fn csv(&self) -> String {
+        format!(
+            "roller_cattaneo_mindlin,{},{},{},{:.5},{:.5},{:.5},{:.4e},{},{:.4e},{},{:.6},{}",
+            self.element,
+            self.h_min,
+            self.dofs,
+            self.ratio,
+            self.c_over_a,
+            self.exact_over_a,
+            self.err_c,
+            self.order.map_or(String::new(), |o| format!("{o:.3}")),
+            self.resolution,
+            self.iterations
+                .iter()
+                .map(|i| i.to_string())
+                .collect::<Vec<_>>()
+                .join(" "),
+            self.t_total,
+            self.status
+        )
+    }
+
+    pub fn table_header() -> String {
+        format!(
+            "{:<3} {:>9} {:>8} {:>7} {:>7} {:>7} {:>10} {:>6} {:>9} {:>8} {:>8} {}",
+            "el", "h_min", "dofs", "Q/μP", "c/a", "CM c/a", "err_c", "order", "half_sp", "it/step", "time s", "status"
+        )
+    }
+
+    pub fn table_line(&self) -> String {
+        format!(
+            "{:<3} {:>9.2e} {:>8} {:>7.4} {:>7.4} {:>7.4} {:>+10.3e} {:>6} {:>9.2e} {:>8} {:>8.3} {}",
+            self.element,
+            self.h_min,
+            self.dofs,
+            self.ratio,
+            self.c_over_a,
+            self.exact_over_a,
+            self.err_c,
+            self.order.map_or("-".to_string(), |o| format!("{o:.2}")),
+            self.resolution,
+            self.iterations
+                .iter()
+                .map(|i| i.to_string())
+                .collect::<Vec<_>>()
+                .join("/"),
+            self.t_total,
+            self.status
+        )
+    }
+}
+
+/// The stick half-width of a pair's points and the node spacing at its ends:
+/// the run of sticking points, each end midway to the next point out.
+fn stick_half_width(r: &Report) -> Option<(f64, f64)> {
+    let pair = r.pairs.first()?;
+    let states = &pair.friction.as_ref()?.points;
+    let x: Vec<f64> = pair.points.iter().map(|p| p.x).collect();
+    let stick: Vec<usize> = (0..x.len())
+        .filter(|&i| states[i].state == FrictionState::Stick)
+        .collect();
+    let (lo, hi) = (*stick.first()?, *stick.last()?);
+    let left = if lo > 0 { 0.5 * (x[lo] + x[lo - 1]) } else { x[lo] };
+    let right = if hi + 1 < x.len() {
+        0.5 * (x[hi] + x[hi + 1])
+    } else {
+        x[hi]
+    };
+    let spacing = |i: usize, j: usize| if j < x.len() { (x[j] - x[i]).abs() } else { 0.0 };
+    let gap = spacing(lo.saturating_sub(1), lo).max(spacing(hi, hi + 1));
+    Some((0.5 * (right - left), gap))
+}
+
+/// T3 and T6 over the levels.
+pub fn run(progress: impl FnMut(&Row)) -> Vec<Row> {
+    run_elements(&["t3", "t6"], progress)
+}
+
+/// The given elements over the levels.
+pub fn run_elements(elements: &[&str], mut progress: impl FnMut(&Row)) -> Vec<Row> {
+    let limits = Limits::default();
+    let e_star = E / (1.0 - NU * NU);
+    let mut rows = Vec::new();
+    for &element in elements {
+        let mut prev: Option<f64> = None;
+        for k in 0..LEVELS {
+            let s = S0 / 2f64.powi(k as i32);
+            let h = if element == "t6" { 2.0 * s } else { s };
+            let req = roller_request(h, element);
+            let r = match crate::run::solve(&req, &limits) {
+                Ok(r) => r,
+                Err(e) => panic!("friction convergence scene rejected: {e:?}"),
+            };
+            let (p, q) = (r.resultant.fy, -r.resultant.fx);
+            let ratio = q / (MU * p);
+            let (a, _) = crate::reference::hertz(p, RADIUS, e_star);
+            let exact = a * (1.0 - ratio).max(0.0).sqrt();
+            let (c, gap) = stick_half_width(&r).unwrap_or((0.0, 0.0));
+            let err = c / exact - 1.0;
+            let row = Row {
+                element: if element == "t3" { "T3" } else { "T6" },
+                h_min: h,
+                dofs: r.size.dofs,
+                ratio,
+                c_over_a: c / a,
+                exact_over_a: exact / a,
+                err_c: err,
+                order: prev.and_then(|e: f64| (e != 0.0 && err != 0.0).then(|| (e.abs() / err.abs()).ln() / 2f64.ln())),
+                resolution: 0.5 * gap / exact,
+                iterations: r
+                    .steps
+                    .as_ref()
+                    .map_or_else(|| vec![r.iterations], |st| st.iter().map(|s| s.iterations).collect()),
+                t_total: r.timings.total,
+                status: format!("{:?}", r.status).to_lowercase(),
+            };
+            progress(&row);
+            prev = Some(err);
+            rows.push(row);
+        }
+    }
+    rows
+}
+
+#[cfg(test)]
+mod tests {
+    /// T6 converges to Cattaneo–Mindlin: at every level the stick half-width
+    /// is within its resolution (half the node spacing at the zone's ends)
+    /// plus 1 % (the half-space idealisation at a/R = 0.06 and β = 0.001:
+    /// measured a within 0.2 % of Hertz), and the step's active set stops
+    /// on a certified state. Measured: 4.8, 2.7 and 0.57 % against
+    /// resolutions of 4.2, 2.1 and 1.05 %.
+    #[test]
+    fn t6_stick_zone_converges_to_cattaneo_mindlin() {
+        let rows = super::run_elements(&["t6"], |_| {});
+        assert_eq!(rows.len(), super::LEVELS);
+        for r in &rows {
+            assert_eq!(r.status, "solved", "{r:?}");
+            assert!(r.err_c.abs() <= r.resolution + 0.01, "{r:?}");
+        }
+        assert!(rows[2].err_c.abs() < rows[0].err_c.abs(), "{rows:?}");
+    }
+}
