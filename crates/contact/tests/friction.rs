@@ -440,6 +440,26 @@ fn punch_pushed_beyond_mu_p_is_refused_with_its_range() {
     assert!(e.message.contains("friction cone"), "{}", e.message);
 }
 
+/// On a curved punch the linear compatibility check lets the candidates
+/// beyond the zone carry horizontal load through their tilted normals, so a
+/// push beyond μP is not refused up front; the frictional iteration then does
+/// not converge, and the reply says why instead of a bare `max_iterations`.
+#[test]
+fn a_curved_punch_pushed_beyond_mu_p_says_it_slides() {
+    let mut req = example("indentation_circular_punch.json");
+    req["contacts"][0]["friction"] = json!({"coefficient": 0.3});
+    req["obstacles"][0]["punch"]["horizontal"] = json!({"load": 1.05 * 0.3 * 10.0});
+    let r = solve(&req).expect("answered");
+    assert_ne!(r.status, SolveStatus::Solved);
+    assert!(
+        r.notes
+            .iter()
+            .any(|n| n.contains("punch 'punch'") && n.contains("slides")),
+        "{:?}",
+        r.notes
+    );
+}
+
 /// A punch moved sideways by a prescribed displacement far beyond its stick
 /// range slides over the whole face: q = μ p at every point in contact (to
 /// the round-off of the solve, 1e-9 of μ p0) and the horizontal reaction on
