@@ -301,7 +301,9 @@ pub struct ZoneAlong {
     /// left; the start of the chain holding them, further chains following
     /// with the arc length running on) [length].
     pub s_start: f64,
-    /// Arc length of the zone's end, ≥ `s_start` [length].
+    /// Arc length of the zone's end, ≥ `s_start` [length]. On a closed edge
+    /// set (a whole disk's rim) a zone across the node its chain starts at
+    /// is one zone whose end runs on past the perimeter.
     pub s_end: f64,
     /// Undeformed position [x, y] of the zone's start.
     pub start: [f64; 2],

@@ -544,3 +544,63 @@ fn an_edge_set_in_two_pieces_has_a_zone_on_each() {
         ]
     );
 }
+
+/// A whole disk given inline, its rim one closed edge set that starts at the
+/// bottom node, pressed onto a rigid flat: the zone straddles the node where
+/// the rim's chain starts and is still one zone, symmetric about x = 0 (to
+/// round-off: the mesh is symmetric), with an estimated error at both ends
+/// and its arc length running on past the closing edge. Before, it came back
+/// as two zones meeting at the seam, each "exact" there.
+#[test]
+fn a_zone_across_the_start_of_a_closed_rim_is_one_zone() {
+    let (rings, around) = (16usize, 256usize);
+    let mut nodes = vec![[0.0, 0.0]];
+    for k in 1..=rings {
+        let r = k as f64 / rings as f64;
+        for j in 0..around {
+            // From the bottom (−π/2), counter-clockwise.
+            let t = -std::f64::consts::FRAC_PI_2 + std::f64::consts::TAU * j as f64 / around as f64;
+            nodes.push([r * t.cos(), r * t.sin()]);
+        }
+    }
+    let at = |k: usize, j: usize| if k == 0 { 0 } else { 1 + (k - 1) * around + j % around };
+    let mut elements = Vec::new();
+    for j in 0..around {
+        elements.push(vec![0, at(1, j), at(1, j + 1)]);
+        for k in 1..rings {
+            elements.push(vec![at(k, j), at(k + 1, j), at(k + 1, j + 1)]);
+            elements.push(vec![at(k, j), at(k + 1, j + 1), at(k, j + 1)]);
+        }
+    }
+    let rim: Vec<[usize; 2]> = (0..around).map(|j| [at(rings, j), at(rings, j + 1)]).collect();
+    // The top eight rim edges carry the prescribed approach.
+    let top: Vec<[usize; 2]> = (around / 2 - 4..around / 2 + 4)
+        .map(|j| [at(rings, j), at(rings, j + 1)])
+        .collect();
+    let req = json!({
+        "version": "1",
+        "bodies": [{
+            "name": "disk",
+            "material": {"youngs_modulus": 1.0, "poisson_ratio": 0.3},
+            "mesh": {"inline": {"nodes": nodes, "elements": elements, "edge_sets": {"rim": rim, "top": top}}},
+            "supports": [{"edges": "top", "ux": 0.0, "uy": -0.04}]
+        }],
+        "obstacles": [{"name": "floor", "shape": {"line": {"point": [0.0, -1.0], "normal": [0.0, 1.0]}}}],
+        "contacts": [{"body": "disk", "edges": "rim", "obstacle": "floor"}]
+    });
+    let r = solved(&req);
+    let pair = &r.pairs[0];
+    assert_eq!(pair.zones_along.len(), 1, "{:?}", pair.zones_along);
+    assert_eq!(pair.zones.len(), 1, "{:?}", pair.zones);
+    let z = pair.zones_along[0];
+    let spacing = std::f64::consts::TAU / around as f64;
+    assert!(z.start[0] < -spacing && z.end[0] > spacing, "{z:?}");
+    assert!((z.start[0] + z.end[0]).abs() < 1e-9, "{z:?}");
+    assert!(z.s_end > z.s_start && z.s_end > std::f64::consts::TAU * 0.99, "{z:?}");
+    assert!(z.uncertainty.iter().all(|&u| u > 0.0 && u <= spacing), "{z:?}");
+    let x = pair.zones[0];
+    assert!(
+        (x[0] - z.start[0]).abs() < 1e-12 && (x[1] - z.end[0]).abs() < 1e-12,
+        "{x:?}"
+    );
+}

@@ -182,12 +182,27 @@ fn along(mesh: &Mesh2d, edges: &[Edge]) -> Vec<Station> {
     let mut s = 0.0;
     for (chain, start) in starts.chain(edges.iter().map(|e| e.a)).enumerate() {
         let mut n = start;
+        let from = out.len();
+        let mut closed = false;
         while seen.insert(n) {
-            out.push(Station { node: n, s, chain });
+            out.push(Station {
+                node: n,
+                s,
+                chain,
+                closed: false,
+            });
             let Some(&m) = next.get(&n) else { break };
             let (a, b) = (mesh.nodes[n], mesh.nodes[m]);
             s += (b[0] - a[0]).hypot(b[1] - a[1]);
+            closed = m == start;
             n = m;
+        }
+        // A loop (a whole disk's rim) comes back to where it started: its
+        // arc length runs on past the closing edge.
+        if closed && out.len() > from + 2 {
+            for t in &mut out[from..] {
+                t.closed = true;
+            }
         }
     }
     // A node no walk reached (an edge set that branches) still has a place,
@@ -195,17 +210,24 @@ fn along(mesh: &Mesh2d, edges: &[Edge]) -> Vec<Station> {
     for n in edges.iter().flat_map(|e| e.nodes().collect::<Vec<_>>()) {
         if seen.insert(n) {
             let chain = out.last().map_or(0, |t| t.chain + 1);
-            out.push(Station { node: n, s, chain });
+            out.push(Station {
+                node: n,
+                s,
+                chain,
+                closed: false,
+            });
         }
     }
     out
 }
 
-/// A node along an edge set: its arc length and the number of its chain.
+/// A node along an edge set: its arc length, the number of its chain, and
+/// whether that chain is a closed loop (its last node's next is its first).
 struct Station {
     node: usize,
     s: f64,
     chain: usize,
+    closed: bool,
 }
 
 /// The point at abscissa `x` of the surface `chain` next to its `k`-th node,
@@ -214,7 +236,10 @@ struct Station {
 /// next to their node).
 fn at_x(mesh: &Mesh2d, chain: &[Station], k: usize, dir: isize, x: f64) -> (f64, [f64; 2]) {
     let mut j = k;
-    while let Some(i) = neighbour(chain, j, dir) {
+    // Once round a closed loop at most.
+    let mut left = chain.len();
+    while let Some(i) = neighbour(chain, j, dir).filter(|_| left > 0) {
+        left -= 1;
         let (p, q) = (mesh.nodes[chain[j].node], mesh.nodes[chain[i].node]);
         if (x - p[0]) * (x - q[0]) <= 0.0 && p[0] != q[0] {
             let t = (x - p[0]) / (q[0] - p[0]);
@@ -226,10 +251,37 @@ fn at_x(mesh: &Mesh2d, chain: &[Station], k: usize, dir: isize, x: f64) -> (f64,
     (chain[k].s, mesh.nodes[chain[k].node])
 }
 
-/// The station next to the `k`-th on the side `dir` (±1), on the same chain.
+/// The station next to the `k`-th on the side `dir` (±1), on the same chain
+/// (round the closing edge of a loop).
 fn neighbour(chain: &[Station], k: usize, dir: isize) -> Option<usize> {
-    k.checked_add_signed(dir)
-        .filter(|&i| i < chain.len() && chain[i].chain == chain[k].chain)
+    let same = |i: &usize| *i < chain.len() && chain[*i].chain == chain[k].chain;
+    k.checked_add_signed(dir).filter(same).or_else(|| {
+        // The other end of a loop.
+        let (first, last) = loop_ends(chain, k)?;
+        Some(if dir > 0 { first } else { last }).filter(|&i| i != k)
+    })
+}
+
+/// The first and last station of the closed loop holding station `k`.
+fn loop_ends(chain: &[Station], k: usize) -> Option<(usize, usize)> {
+    if !chain[k].closed {
+        return None;
+    }
+    let c = chain[k].chain;
+    let first = (0..=k).rev().take_while(|&i| chain[i].chain == c).last()?;
+    let last = (k..chain.len()).take_while(|&i| chain[i].chain == c).last()?;
+    Some((first, last))
+}
+
+/// Distance along the surface between neighbouring stations `k` and `j`
+/// (across a loop's closing edge, the chord of that edge).
+fn spacing(mesh: &Mesh2d, chain: &[Station], k: usize, j: usize) -> f64 {
+    if k.abs_diff(j) == 1 {
+        (chain[j].s - chain[k].s).abs()
+    } else {
+        let (a, b) = (mesh.nodes[chain[k].node], mesh.nodes[chain[j].node]);
+        (a[0] - b[0]).hypot(a[1] - b[1])
+    }
 }
 
 /// The contact zones of one pair: runs of consecutive candidates in contact
@@ -301,7 +353,7 @@ fn zones(
         });
     }
     runs.extend(open);
-    let mut xs: Vec<[f64; 2]> = runs.iter().map(|r| r.x.map(&length)).collect();
+    let xs: Vec<[f64; 2]> = runs.iter().map(|r| r.x.map(&length)).collect();
     // The candidates of each chain in order, for the zone ends' estimate.
     let stations: Vec<accuracy::Station> = order
         .iter()
@@ -339,7 +391,7 @@ fn zones(
                 let k = order[to].0;
                 let past_candidates = e == 0.0 && (to as isize + dir < lo as isize || to as isize + dir > hi as isize);
                 let beyond = neighbour(chain, k, dir).filter(|_| past_candidates);
-                length(beyond.map_or(e, |j| (chain[j].s - chain[k].s).abs()))
+                length(beyond.map_or(e, |j| spacing(mesh, chain, k, j)))
             };
             ZoneAlong {
                 s: [length(s0), length(s1)],
@@ -348,7 +400,35 @@ fn zones(
                 uncertainty: [error(b, a, -1), error(a, b, 1)],
             }
         })
-        .collect();
+        .collect::<Vec<ZoneAlong>>();
+    // A loop's chain starts at an arbitrary node: a zone across it is the run
+    // that ends at the loop's last station and the one that starts at its
+    // first, one zone (its arc length running on past the closing edge).
+    let (mut xs, mut along) = (xs, along);
+    let mut r = 0;
+    while r < runs.len() {
+        let seam = loop_ends(chain, runs[r].first.0).filter(|&(first, _)| runs[r].first.0 == first);
+        let partner = seam.and_then(|(_, last)| {
+            (0..runs.len())
+                .find(|&q| q != r && runs[q].last.0 == last && chain[runs[q].first.0].chain == chain[last].chain)
+        });
+        if let (Some((first, last)), Some(q)) = (seam, partner) {
+            let perimeter = chain[last].s - chain[first].s + spacing(mesh, chain, last, first);
+            let (head, tail) = (along[r], along[q]);
+            along[q] = ZoneAlong {
+                s: [tail.s[0], head.s[1] + length(perimeter)],
+                start: tail.start,
+                end: head.end,
+                uncertainty: [tail.uncertainty[0], head.uncertainty[1]],
+            };
+            xs[q] = [xs[q][0].min(xs[r][0]), xs[q][1].max(xs[r][1])];
+            along.remove(r);
+            xs.remove(r);
+            runs.remove(r);
+            continue;
+        }
+        r += 1;
+    }
     xs.sort_by(|a, b| a[0].total_cmp(&b[0]));
     (xs, along)
 }
