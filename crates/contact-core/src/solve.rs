@@ -24,7 +24,7 @@ use crate::model::Model;
 use crate::observer::{self, Observer, Stage};
 use crate::scene::{Limits, Method, Scene};
 use crate::solution::compose::{self, Solved};
-use crate::solution::report::{CacheState, LoadStep, Report, Status, Timings};
+use crate::solution::report::{with_steps, CacheState, LoadStep, Report, Status, Timings};
 
 /// Solves the scene, once per load factor or load path step (one
 /// factorization serves them all); with friction, step after step from the
@@ -64,30 +64,16 @@ fn solve_steps(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) ->
     let (mut timings, mut first_cache, mut last) = (Timings::default(), None, None);
     for (step, k, loads) in step_scenes(scene) {
         let r = solve_once(&step, limits, cache.or(Some(&local)))?;
-        steps.push(LoadStep {
-            factor: k,
-            loads,
-            status: r.status,
-            iterations: r.iterations,
-            pairs: r.pairs.clone(),
-            resultant: r.resultant,
-            certificate: r.certificate,
-        });
+        steps.push(LoadStep::of(k, loads, &r));
         timings.add(&r.timings);
         first_cache.get_or_insert(r.cache);
         last = Some(r);
     }
-    let mut last = last.expect("at least one factor");
-    // The report is only as good as its worst step.
-    if let Some(bad) = steps.iter().find(|st| st.status != Status::Solved) {
-        last.status = bad.status;
-    }
-    last.timings = timings;
+    let mut last = with_steps(last.expect("at least one factor"), steps, timings);
     last.cache = match (local.is_empty(), first_cache) {
         (true, Some(c)) => c,
         _ => CacheState::Off,
     };
-    last.steps = Some(steps);
     Ok(last)
 }
 
@@ -255,25 +241,13 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
         }
         history = friction.history;
         obs = Observer::new();
-        steps.push(LoadStep {
-            factor: k,
-            loads,
-            status: r.status,
-            iterations: r.iterations,
-            pairs: r.pairs.clone(),
-            resultant: r.resultant,
-            certificate: r.certificate,
-        });
+        steps.push(LoadStep::of(k, loads, &r));
         timings.add(&r.timings);
         last = Some(r);
     }
-    let mut last = last.expect("at least one step");
-    if let Some(bad) = steps.iter().find(|st| st.status != Status::Solved) {
-        last.status = bad.status;
-    }
-    last.timings = timings;
-    if stepped {
-        last.steps = Some(steps);
+    let mut last = with_steps(last.expect("at least one step"), steps, timings);
+    if !stepped {
+        last.steps = None;
     }
     Ok(last)
 }

@@ -41,10 +41,13 @@ pub struct Station {
 
 /// The estimated error of a zone's end at `stations[last]` (the last node in
 /// contact going in direction `dir`, ±1, from `stations[first]`): the
-/// stations are one chain of the surface in order.
-pub fn end_error(stations: &[Station], first: usize, last: usize, dir: isize) -> f64 {
+/// stations are one chain of the surface's candidates in order, and `beyond`
+/// is the distance from their last one in direction `dir` to the next surface
+/// node (0 where the surface ends there; the spacing to a pruned node past a
+/// flat punch's corner, where the zone ends before it).
+pub fn end_error(stations: &[Station], first: usize, last: usize, dir: isize, beyond: f64) -> f64 {
     let Some(next) = last.checked_add_signed(dir).filter(|&k| k < stations.len()) else {
-        return 0.0;
+        return beyond;
     };
     let end = stations[last].s;
     let spacing = (stations[next].s - end).abs();
@@ -75,10 +78,10 @@ pub fn end_error(stations: &[Station], first: usize, last: usize, dir: isize) ->
 /// on the side `dir`): the zone is reported to the outer end of that node's
 /// panel, halfway to the next node, and the foundation lifts off somewhere
 /// between the two nodes: half the spacing, or 0 where the surface ends.
-pub fn panel_end_error(stations: &[Station], last: usize, dir: isize) -> f64 {
+pub fn panel_end_error(stations: &[Station], last: usize, dir: isize, beyond: f64) -> f64 {
     last.checked_add_signed(dir)
         .filter(|&k| k < stations.len())
-        .map_or(0.0, |next| 0.5 * (stations[next].s - stations[last].s).abs())
+        .map_or(beyond, |next| 0.5 * (stations[next].s - stations[last].s).abs())
 }
 
 /// The root nearest the end (t = 0; t > 0 outward in direction `dir`) where
@@ -402,7 +405,7 @@ mod tests {
                 }
             })
             .collect();
-        let e = end_error(&stations, 0, 9, 1);
+        let e = end_error(&stations, 0, 9, 1, 0.0);
         assert!((e - 0.03).abs() < 1e-9, "{e}");
         let corner: Vec<Station> = (0..15)
             .map(|k| {
@@ -415,7 +418,9 @@ mod tests {
                 }
             })
             .collect();
-        assert!((end_error(&corner, 0, 9, 1) - 0.1).abs() < 1e-12);
-        assert_eq!(end_error(&stations[..10], 0, 9, 1), 0.0);
+        assert!((end_error(&corner, 0, 9, 1, 0.0) - 0.1).abs() < 1e-12);
+        assert_eq!(end_error(&stations[..10], 0, 9, 1, 0.0), 0.0);
+        // Past the last candidate the surface may go on (pruned nodes).
+        assert_eq!(end_error(&stations[..10], 0, 9, 1, 0.07), 0.07);
     }
 }

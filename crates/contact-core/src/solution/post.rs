@@ -380,18 +380,15 @@ fn zones(
             // pressure is constant there, no square-root edge to fit.
             let fitted = cons.candidates[r.first.1].foundation().is_none();
             let error = |from: usize, to: usize, dir: isize| {
-                let e = if fitted {
-                    accuracy::end_error(on_chain, from - lo, to - lo, dir)
+                // The surface past the chain's last candidate on that side
+                // (pruned nodes past a flat punch's corner).
+                let k = order[if dir > 0 { hi } else { lo }].0;
+                let beyond = neighbour(chain, k, dir).map_or(0.0, |j| spacing(mesh, chain, k, j));
+                length(if fitted {
+                    accuracy::end_error(on_chain, from - lo, to - lo, dir, beyond)
                 } else {
-                    accuracy::panel_end_error(on_chain, to - lo, dir)
-                };
-                // The last candidate of its chain, where the surface goes on
-                // past pruned nodes (a flat punch's corner between two nodes):
-                // the zone ends before the next surface node.
-                let k = order[to].0;
-                let past_candidates = e == 0.0 && (to as isize + dir < lo as isize || to as isize + dir > hi as isize);
-                let beyond = neighbour(chain, k, dir).filter(|_| past_candidates);
-                length(beyond.map_or(e, |j| spacing(mesh, chain, k, j)))
+                    accuracy::panel_end_error(on_chain, to - lo, dir, beyond)
+                })
             };
             ZoneAlong {
                 s: [length(s0), length(s1)],

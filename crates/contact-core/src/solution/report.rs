@@ -268,6 +268,32 @@ pub struct LoadStep {
     pub certificate: Certificate,
 }
 
+impl LoadStep {
+    /// The step of `factor` (and a load path's `loads`) that `r` answers.
+    pub fn of(factor: f64, loads: Option<std::collections::BTreeMap<String, f64>>, r: &Report) -> Self {
+        Self {
+            factor,
+            loads,
+            status: r.status,
+            iterations: r.iterations,
+            pairs: r.pairs.clone(),
+            resultant: r.resultant,
+            certificate: r.certificate,
+        }
+    }
+}
+
+/// The last step's report with every step and their summed timings: only as
+/// good as its worst step.
+pub fn with_steps(mut last: Report, steps: Vec<LoadStep>, timings: Timings) -> Report {
+    if let Some(bad) = steps.iter().find(|st| st.status != Status::Solved) {
+        last.status = bad.status;
+    }
+    last.timings = timings;
+    last.steps = Some(steps);
+    last
+}
+
 /// What touches what in one pair.
 #[derive(Debug, Clone)]
 pub enum PairTarget {
