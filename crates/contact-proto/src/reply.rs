@@ -1,4 +1,7 @@
 //! The solve reply. Lengths, forces and pressures are in the request's units.
+//!
+//! Length: the whole reply in one file, so that its documentation (these doc
+//! comments, which become the JSON schema's descriptions) reads as one page.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
