@@ -440,24 +440,56 @@ fn punch_pushed_beyond_mu_p_is_refused_with_its_range() {
     assert!(e.message.contains("friction cone"), "{}", e.message);
 }
 
-/// On a curved punch the linear compatibility check lets the candidates
-/// beyond the zone carry horizontal load through their tilted normals, so a
-/// push beyond μP is not refused up front; the frictional iteration then does
-/// not converge, and the reply says why instead of a bare `max_iterations`.
-#[test]
-fn a_curved_punch_pushed_beyond_mu_p_says_it_slides() {
+/// The circular punch of `indentation_circular_punch.json` (R = 8, P = 10 on
+/// a flat block, ν = 0.3) with μ = 0.3 and the horizontal load `q`.
+fn circular_punch_pushed(q: f64) -> Value {
     let mut req = example("indentation_circular_punch.json");
     req["contacts"][0]["friction"] = json!({"coefficient": 0.3});
-    req["obstacles"][0]["punch"]["horizontal"] = json!({"load": 1.05 * 0.3 * 10.0});
-    let r = solve(&req).expect("answered");
-    assert_ne!(r.status, SolveStatus::Solved);
-    assert!(
-        r.notes
+    req["obstacles"][0]["punch"]["horizontal"] = json!({"load": q});
+    req
+}
+
+/// A curved punch on a flat block slides at Q = μP, as a flat one does: a
+/// cylinder translated over a flat surface closes no gap, so only friction
+/// holds it. The compatibility check takes each candidate's cone about both
+/// its normals, the punch's and the block's (vertical), so the candidates
+/// beyond the zone, where the punch's normal tilts by asin(x/R) (68° at the
+/// block's ends), no longer carry horizontal load through that tilt; it
+/// admitted Q = 1.05 μP before. Now Q = 1.05 μP is refused before any step,
+/// at the horizontal load, with the range ±μP (a candidate at x = 0 has both
+/// normals vertical, so the LP's bound is μP to its gap of 1e-13: measured
+/// 6.7e-11 relative, tested at 1e-8), and Q = 0.5 μP solves (14 iterations)
+/// with the punch in equilibrium, (Q, −P, 0) to 1e-8 of P.
+#[test]
+fn a_curved_punch_pushed_beyond_mu_p_is_refused_with_its_range() {
+    let (mu, p) = (0.3, 10.0);
+    for sign in [1.0, -1.0] {
+        let q = sign * 1.05 * mu * p;
+        let e = solve(&circular_punch_pushed(q)).expect_err("the punch slides");
+        assert_eq!(e.code, contact::proto::ErrorCode::IncompatibleLoads, "{e:?}");
+        assert_eq!(e.path, "/obstacles/0/punch/horizontal/load", "{e:?}");
+        let loads = &e.details.as_ref().expect("details").loads;
+        let b = loads
             .iter()
-            .any(|n| n.contains("punch 'punch'") && n.contains("slides")),
-        "{:?}",
-        r.notes
+            .find(|b| b.path == e.path)
+            .expect("the horizontal load's range");
+        let (lo, hi) = (b.min.expect("bounded below"), b.max.expect("bounded above"));
+        let limit = mu * p;
+        assert!(
+            (lo + limit).abs() <= 1e-8 * limit && (hi - limit).abs() <= 1e-8 * limit,
+            "{b:?}"
+        );
+    }
+    let q = 0.5 * mu * p;
+    let r = solved(&circular_punch_pushed(q));
+    let pu = &r.punches[0];
+    let tol = 1e-8 * p;
+    assert!(
+        (pu.p1 - q).abs() <= tol && (pu.p2 + p).abs() <= tol && pu.m.abs() <= tol,
+        "{pu:?}"
     );
+    let f = r.pairs[0].friction.as_ref().expect("friction");
+    assert!(!f.stick_zones.is_empty() && !f.slip_zones.is_empty(), "{f:?}");
 }
 
 /// A punch moved sideways by a prescribed displacement far beyond its stick
