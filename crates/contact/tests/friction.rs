@@ -596,8 +596,8 @@ fn spence_punch(nu: f64, mu: f64, h: f64, scale: f64) -> Value {
 /// 0.005: 0.695, 0.6925. ν = 0.3, μ = 0.4, reference 0.8645, depth 1280a,
 /// h = 0.02, 0.01, 0.005: 0.870, 0.865, 0.8675. Tolerance 2 %: half a
 /// spacing of h = 0.01 is 0.7 % of c = 0.69, the reference's error about
-/// 0.15 %, and the block's departure from the half-plane under 0.5 % at this
-/// depth (1280a to 5120a moves c by at most 0.7 %).
+/// 0.15 %, and the block's departure from the half-plane at this depth
+/// about as much as going to 5120a changes (at most 0.7 %).
 #[test]
 fn spence_flat_punch_stick_zone() {
     let p_load = 10.0;
