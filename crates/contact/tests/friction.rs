@@ -591,7 +591,7 @@ fn spence_punch(nu: f64, mu: f64, h: f64, scale: f64) -> Value {
 /// alone, the form in which the theory states it: 0.744 at β/μ = 0.952 for
 /// both (β, μ) = (0.286, 0.3) and (0.2, 0.21), where the coupled equations
 /// give 0.689 and 0.718. The finite elements solve the coupled problem and
-/// follow the coupled reference, 8 % below the approximation's.
+/// follow the coupled reference, 7 % below the approximation's.
 ///
 /// The finite block is a half-plane only when large: its clamped bottom at
 /// depth 20a gives c = 0.77 for ν = μ = 0.3, 80a 0.71, 320a 0.70, 1280a 0.69
