@@ -39,13 +39,14 @@
 //! **Overkill references.** Below that floor the disk, the ball and the block
 //! (its linearized-distance model) are compared with the same scene solved by
 //! T6 at h_min 4× below the finest T6 level, with the far field refined too
-//! (`overkill`, tables in `data/`, their own uncertainty 2.4e-5, 2.6e-4 and
-//! 4.0e-4 in L2, 2e-6, 7e-6 and 1.2e-5 in fy): `ref_err_l2` is the nodal L2
+//! (`overkill`, tables in `data/`, their own uncertainty 1.4e-5, 1.7e-4 and
+//! 3.3e-4 in L2, 8e-7, 8e-7 and 1.0e-5 in fy): `ref_err_l2` is the nodal L2
 //! error against it at the reply's nodes,
 //! `ref_err_fy` the resultant's relative error at the same prescribed
-//! approach, with their observed orders. Measured: T6 reaches 0.11 % (disk,
-//! 72k DOF), 0.097 % (ball, 252k) and 0.097 % (block, 119k, where Hertz
-//! reads 1.8 %) with its resultant within 3e-5 from 23k DOF on (block: 47k);
+//! approach, with their observed orders. Measured: T6 reaches 0.079 % (disk,
+//! 72k DOF; 0.023 % at 252k), 0.064 % (ball, 252k) and 0.050 % (block, 119k,
+//! where Hertz reads 1.6 %) with its resultant within 6e-5 from 23k DOF on
+//! (block: 1.4e-5 at 47k);
 //! T3 stalls at 0.24 % on the disk with its resultant +0.21 % from 18k DOF on
 //! (block: 0.3 %, +0.28 %): the far field's nominal size (0.125 R; 1 on the
 //! block), which h_min does not refine, is too stiff for T3 (disk at h_min

@@ -120,6 +120,24 @@ fn a_zone_a_few_elements_wide_is_never_answered_without_a_warning() {
         "{:?}",
         resolved.warnings
     );
+    // T6 carries a row on every surface node, midsides included: the count
+    // is of element edges still, the corners in contact less one (the
+    // example's T6 mesh at E × 1000: measured 3 points in contact, one corner
+    // and its two midsides, 0 edges), at most half the points' intervals.
+    let mut req = example("signorini_hertz_cylinder_t6.json");
+    req["bodies"][0]["material"]["youngs_modulus"] = json!(200.0 * 1e3);
+    req["obstacles"][0]["shape"]["circle"]["center"][1] = json!(8.0 - 0.12 / 1e3);
+    let r = solved(&req);
+    let w = r
+        .warnings
+        .iter()
+        .find(|w| w.code == "coarse_contact_zone")
+        .expect("warned");
+    let points = r.pairs[0].points.iter().filter(|q| q.pressure > 0.0).count() as f64;
+    assert!(
+        points >= 3.0 && w.value <= 0.5 * (points - 1.0),
+        "{w:?}: {points} points in contact"
+    );
     // Load-controlled: the load stays, the zone shrinks as 1/√E.
     let mut req = example("indentation_circular_punch.json");
     req["bodies"][0]["material"]["youngs_modulus"] = json!(200.0e6);

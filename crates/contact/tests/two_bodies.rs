@@ -51,10 +51,11 @@ fn hertz_two_cylinders() {
     assert!((o.m + pair.resultant.m).abs() <= 1e-12 * p);
 }
 
-/// Quadratic elements: the mortar multipliers live on the edge corners (linear
-/// per edge), which keeps the slave pressure free of node-to-node oscillation;
-/// inside 0.8 a every nodal pressure is within 1 % of Hertz's profile (measured
-/// 0.5 %), seen from both sides.
+/// Quadratic elements: the mortar multipliers live on every node (linear per
+/// half edge, dual), which keeps the slave pressure free of the node-to-node
+/// oscillation of nodal rows; inside 0.8 a every nodal pressure is within 1 %
+/// of Hertz's profile (measured 0.5 % with the multipliers on the corners),
+/// seen from both sides.
 #[test]
 fn hertz_two_cylinders_t6_pressure_profile() {
     let mut req = example("two_bodies_cylinders.json");

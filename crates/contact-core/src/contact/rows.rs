@@ -15,9 +15,11 @@
 //! - **nodal**: one row per surface node, at the node, with its tributary
 //!   length w_i = ∫ N_i ds as weight (pressure p_i = λ_i / w_i);
 //! - **mortar**: row i is ∫ Ψ_i (·) ds / ∫ Ψ_i ds over the part of the surface
-//!   that sees the target (∫ Ψ_i = ∫ Φ_i over a whole support). Φ_i are the linear hats of the multiplier nodes (the
-//!   nodes of T3 edges, the corners of T6 edges: quadratic nodal multipliers let
-//!   the pressure alternate between corner and midside nodes); Ψ_i are their
+//!   that sees the target (∫ Ψ_i = ∫ Φ_i over a whole support). Φ_i are the
+//!   linear hats of the multiplier nodes (the nodes of T3 edges; on T6 edges
+//!   every node, a hat on each half of the edge, or the corners only:
+//!   `T6Multiplier`; quadratic Lagrange multipliers let the pressure alternate
+//!   between corner and midside nodes); Ψ_i are their
 //!   dual (biorthogonal) partners, ∫ Ψ_i Φ_j ds = δ_ij ∫ Φ_j ds, which on an
 //!   edge are 2 − 3ξ and 3ξ − 1 (Wohlmuth, SIAM J. Numer. Anal. 38, 2000).
 //!   Testing with Ψ makes the discrete pressure a local quantity: with the
@@ -187,15 +189,19 @@ pub fn shape01(n_nodes: usize, xi: f64) -> ([f64; 3], [f64; 3]) {
 ///   falls in steps as the edge moves between corners: 1.08, 0.20, 0.21,
 ///   0.11, 0.16 % (T3: 0.51, 0.43, 0.24, 0.26, 0.24 %).
 /// - `Halves` (linear hats on each half of the edge, corners and midside, and
-///   their duals) places a multiplier at every surface node: 0.375, 0.231,
-///   0.121, 0.080, 0.022 %, better per DOF than T3 and than `Corners` at every
+///   their duals) places a multiplier at every surface node: 0.375, 0.232,
+///   0.121, 0.079, 0.023 %, better per DOF than T3 and than `Corners` at every
 ///   level; the ball and the flat block improve alike. It needs the midside on
 ///   the curved surface: on a straight chord the midside row sees the chord's
 ///   sagitta h²/8R as a gap bump, and the pressure alternates between corners
 ///   and midsides by O(h) (disk: 4.6, 2.4, 1.2, 0.62, 0.31 %), which is why the
 ///   generators place the midsides of curved edges on the curve. Next to the
 ///   zone edge corner and midside errors keep opposite signs, by up to 2–3e-3
-///   of p0 (measured), within the largest nodal error of T3 (1e-2 of p0).
+///   of p0 (measured), within the largest nodal error of T3 (1e-2 of p0); on
+///   a zone only ten edges wide (an inline disk of 256 rim edges) the
+///   alternation reached 4.4 % of the peak, which `Corners` does not have
+///   (`settings.t6_multipliers: corners`). A straight edge standing for a
+///   curve keeps `Corners` whatever the setting (`chords_of_curves`).
 /// - The quadratic Lagrange functions with their dual partners D M⁻¹ N were
 ///   non-monotone on the same disk (0.33, 0.57, 0.14, 0.14, 0.070 %) and
 ///   cannot carry an axis node of a body of revolution (∫ N ρ = 0 there).
@@ -205,8 +211,19 @@ pub enum T6Multiplier {
     /// which load the foundation over each corner's panel.
     Corners,
     /// Linear hats on the two halves of the edge and their duals per half:
-    /// rigid obstacles, punches and two bodies.
+    /// rigid obstacles, punches and two bodies by default
+    /// (`settings.t6_multipliers`).
     Halves,
+}
+
+impl T6Multiplier {
+    /// The scheme of `settings.t6_multipliers`.
+    pub fn of(setting: crate::scene::T6Multipliers) -> Self {
+        match setting {
+            crate::scene::T6Multipliers::EveryNode => T6Multiplier::Halves,
+            crate::scene::T6Multipliers::Corners => T6Multiplier::Corners,
+        }
+    }
 }
 
 /// The multiplier functions of one edge: Φ and Ψ at ξ.
@@ -339,6 +356,51 @@ struct Acc {
     standard: Tested,
 }
 
+/// Largest turn (radians) between neighbouring edges of a surface that is a
+/// polygon standing for a smooth curve; a sharper turn is a corner of the body.
+const CHORD_TURN: f64 = 0.5;
+
+/// Per edge of the surface: a straight T6 edge (its midside at the chord's
+/// midpoint, to 1e-9 of its length) where the surface turns gently at one of
+/// its ends (by more than 1e-9 and less than `CHORD_TURN` rad): a chord of a
+/// curve, whose midside would see the sagitta h²/8R as a bump in the gap. Such
+/// an edge keeps its multipliers on the corners (`T6Multiplier`): an inline
+/// T6 mesh made by adding midpoints to a T3 one, or a given mesh bisected.
+fn chords_of_curves(surface: &Surface) -> Vec<bool> {
+    let nodes = &surface.mesh.nodes;
+    let dir = |e: &Edge| {
+        let (a, b) = (nodes[e.a], nodes[e.b]);
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let l = dx.hypot(dy);
+        [dx / l, dy / l]
+    };
+    let mut at: HashMap<usize, Vec<[f64; 2]>> = HashMap::new();
+    for e in surface.edges {
+        at.entry(e.a).or_default().push(dir(e));
+        at.entry(e.b).or_default().push(dir(e));
+    }
+    surface
+        .edges
+        .iter()
+        .map(|e| {
+            let Some(m) = e.mid else { return false };
+            let (a, b, c) = (nodes[e.a], nodes[e.b], nodes[m]);
+            let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+            let off = (c[0] - 0.5 * (a[0] + b[0])).hypot(c[1] - 0.5 * (a[1] + b[1]));
+            if off > 1e-9 * len {
+                return false;
+            }
+            let d = dir(e);
+            [e.a, e.b].iter().any(|n| {
+                at[n].iter().any(|o| {
+                    let turn = (d[0] * o[1] - d[1] * o[0]).atan2(d[0] * o[0] + d[1] * o[1]).abs();
+                    turn > 1e-9 && turn < CHORD_TURN
+                })
+            })
+        })
+        .collect()
+}
+
 /// Mortar rows: each edge is integrated by 4-point Gauss on the sub-intervals
 /// between `breaks(edge)` (sorted, from 0 to 1), where the caller puts the
 /// kinks of what the points see (the projections of the other body's nodes), so
@@ -352,13 +414,19 @@ pub fn mortar(
 ) -> Rows {
     let mut order: Vec<usize> = Vec::new();
     let mut acc: HashMap<usize, Acc> = HashMap::new();
-    for e in surface.edges {
+    let chords = chords_of_curves(surface);
+    let mut carried = 0;
+    for (k, e) in surface.edges.iter().enumerate() {
         let nodes: Vec<usize> = e.nodes().collect();
         let pts: Vec<[f64; 2]> = nodes.iter().map(|&i| surface.mesh.nodes[i]).collect();
         let radii = surface
             .axisymmetric()
             .then(|| [pts[0][0], pts[pts.len() / 2][0], pts[pts.len() - 1][0]]);
-        let mult = EdgeMult::new(scheme, nodes.len(), radii);
+        let edge_scheme = if chords[k] { T6Multiplier::Corners } else { scheme };
+        if nodes.len() == 3 && edge_scheme == T6Multiplier::Halves {
+            carried += 1;
+        }
+        let mult = EdgeMult::new(edge_scheme, nodes.len(), radii);
         for w in breaks(&pts).windows(2) {
             let (x0, x1) = (w[0], w[1]);
             for g in &GAUSS4 {
@@ -393,12 +461,9 @@ pub fn mortar(
         .into_iter()
         .map(|b| (b.node, b.weight))
         .collect();
-    // Midside nodes carry no multiplier: they are not candidates.
-    let corners = if scheme == T6Multiplier::Corners {
-        full.len() - surface.edges.iter().filter(|e| e.mid.is_some()).count()
-    } else {
-        full.len()
-    };
+    // The midsides of edges with multipliers on their corners only are not
+    // candidates.
+    let corners = full.len() - (surface.edges.iter().filter(|e| e.mid.is_some()).count() - carried);
     let mut out = Rows {
         rows: Vec::new(),
         pruned: corners - order.len(),

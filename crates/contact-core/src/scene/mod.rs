@@ -12,7 +12,9 @@ mod size_limit;
 pub mod validate;
 
 pub use scaling::Scales;
-pub use settings::{AccuracyTarget, Analysis, Control, Discretization, Formulation, GapMeasure, Method, Settings};
+pub use settings::{
+    AccuracyTarget, Analysis, Control, Discretization, Formulation, GapMeasure, Method, Settings, T6Multipliers,
+};
 pub use validate::Limits;
 
 use crate::mesh::{generate::Grading, Mesh2d, Order};

@@ -60,6 +60,14 @@ pub enum GapMeasure {
     BodyNormal,
 }
 
+/// Where the mortar rows of a T6 surface carry their multipliers
+/// (`contact::rows::T6Multiplier`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum T6Multipliers {
+    EveryNode,
+    Corners,
+}
+
 /// One component of a punch's rigid motion: prescribed, or free with its
 /// load prescribed (nondimensional).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -79,6 +87,7 @@ pub struct Settings {
     pub prune_gap_ratio: f64,
     pub formulation: Formulation,
     pub gap: GapMeasure,
+    pub t6_multipliers: T6Multipliers,
     /// Penalty compliance ζ of `penalty` and `augmented_lagrangian`.
     pub penalty: f64,
     /// Barrier parameter ζ of `barrier`.
@@ -109,6 +118,7 @@ impl Default for Settings {
             prune_gap_ratio: 0.5,
             formulation: Formulation::Condensed,
             gap: GapMeasure::SignedDistance,
+            t6_multipliers: T6Multipliers::EveryNode,
             penalty: 1e-6,
             barrier: 1e-8,
             estimate: true,

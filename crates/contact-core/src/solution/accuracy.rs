@@ -8,14 +8,16 @@
 //! A least-squares fit p² = c0 + c1 t + c2 t² over the nodes in contact in the
 //! outer 30 % of the zone (at least its last four) finds the edge near the
 //! last node in contact (between it and the next; for a mortar row, whose
-//! last corner in contact can carry a multiplier past the edge, possibly
+//! last node in contact can carry a multiplier past the edge, possibly
 //! before it); its distance to the reported end is the
 //! end's estimated error, at least a quarter of the spacing (the fit's own
 //! scatter). Measured on the elastic disk on a flat against a 949k-DOF T6
 //! solution (its own fitted edge, stable to 3e-5 of R over fit windows of
 //! 10–30 % and against a mesh twice as coarse): effectivity 0.72–1.07 over
 //! five T3 levels (h 0.0088 to 0.00055 R) and 0.83–0.95 over four T6 levels,
-//! where the reported end itself was off by 2.6e-3 down to 1.3e-4 R.
+//! where the reported end itself was off by 2.6e-3 down to 1.3e-4 R (T6 with
+//! its multipliers on the corners then; with one on every node, against the
+//! disk's overkill table, 0.84–1.30 over three T6 levels, effectivity.csv).
 //!
 //! Where no root lies within 1.5 spacings (a sharp punch corner, where the
 //! pressure rises to the end; too few nodes), the edge is only known to lie
@@ -87,7 +89,7 @@ pub fn panel_end_error(stations: &[Station], last: usize, dir: isize, beyond: f6
 
 /// The root nearest the end (t = 0; t > 0 outward in direction `dir`) where
 /// the least-squares quadratic through (t_i, y_i) falls through zero going
-/// outward, or None. It may lie inside the zone: a mortar row's last corner
+/// outward, or None. It may lie inside the zone: a mortar row's last node
 /// in contact can carry a positive multiplier past the edge.
 fn edge_root(points: &[(f64, f64)], dir: f64) -> Option<f64> {
     // y = c0 + c1 t + c2 t², in the outward coordinate.
@@ -139,16 +141,18 @@ pub fn zone_edges_only(pair: &PairReport) -> PairAccuracy {
 /// pressure's error is dominated by where the zone edge falls between nodes
 /// and by the graded field's stiffness, both O(h²) for T3; for T6, whose
 /// multipliers sit on every surface node, the estimate with q = 2 kept its
-/// effectivity within 0.83–1.64 on the disk, ball, block and two cylinders
-/// at three levels each, measured against their overkill references).
+/// effectivity within 0.67–1.64 on the disk, ball, block and two cylinders
+/// at three levels each, measured against the overkill tables or the scene
+/// solved 4× finer).
 ///
 /// The nodal L2 difference is taken both ways and the larger kept: at the
 /// fine candidates (the coarse pressure interpolated along its surface,
 /// weighed by the fine tributary weights) and at the coarse ones (the fine
 /// interpolated). Where the edge's placement dominates, the two levels'
 /// errors are not in Richardson's ratio and either comparison alone can miss
-/// it: on the T6 disk at h = 0.0088 R the coarse-node comparison gave 0.15 %
-/// for a true 1.08 %, the fine-node one 0.57 %; at h = 0.0044 R the fine-node
+/// it: on the T6 disk (multipliers on the corners then) at h = 0.0088 R the
+/// coarse-node comparison gave 0.15 % for a true 1.08 %, the fine-node one
+/// 0.57 %; at h = 0.0044 R the fine-node
 /// comparison gave 1.54 % for a true 0.20 % (a linear segment across the
 /// coarse zone's square-root edge), the coarse-node one 0.29 %. Keeping the
 /// larger errs on the safe side.

@@ -14,7 +14,7 @@
 //! pressure is the singular solution's and is not estimated.
 //!
 //! An end is singular when the pressure at its last node in contact exceeds
-//! that of the node next inward (a smooth edge's pressure falls to it) and
+//! that of both nodes next inward (a smooth edge's pressure falls to it) and
 //! the surface goes on past it (where the edge set itself ends, a footing's
 //! whole base, the end is that of the body and its zone end is exact).
 
@@ -26,8 +26,24 @@ pub const BAND: f64 = 0.05;
 
 /// The singular zone ends of a pair, each with the band left out around it.
 pub fn singular_ends(pair: &PairReport) -> Vec<SingularEnd> {
-    let mut pts: Vec<(f64, f64, f64)> = pair.points.iter().map(|q| (q.x, q.y, q.pressure)).collect();
-    pts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    let touching: Vec<(f64, f64, f64)> = pair
+        .points
+        .iter()
+        .filter(|q| q.pressure > 0.0)
+        .map(|q| (q.x, q.y, q.pressure))
+        .collect();
+    // The point in contact nearest to `from`, other than those in `not`: the
+    // neighbours along the surface, whatever its shape (not by x).
+    let nearest = |from: (f64, f64, f64), not: &[(f64, f64, f64)]| {
+        touching
+            .iter()
+            .filter(|q| !not.iter().any(|n| n.0 == q.0 && n.1 == q.1))
+            .min_by(|a, b| {
+                let d = |q: &&(f64, f64, f64)| (q.0 - from.0).hypot(q.1 - from.1);
+                d(a).total_cmp(&d(b))
+            })
+            .copied()
+    };
     let mut out = Vec::new();
     for z in &pair.zones_along {
         let length = (z.s[1] - z.s[0]).abs();
@@ -35,15 +51,17 @@ pub fn singular_ends(pair: &PairReport) -> Vec<SingularEnd> {
             if uncertainty <= 0.0 || length <= 0.0 {
                 continue;
             }
-            let Some(i) = pts.iter().position(|p| p.0 == end[0] && p.1 == end[1] && p.2 > 0.0) else {
+            let Some(&last) = touching.iter().find(|q| q.0 == end[0] && q.1 == end[1]) else {
                 continue;
             };
-            let inside = |k: Option<usize>| k.filter(|&k| k < pts.len() && pts[k].2 > 0.0);
-            let inward = match (inside(i.checked_sub(1)), inside(i.checked_add(1))) {
-                (Some(k), None) | (None, Some(k)) => k,
-                _ => continue,
+            // The end above both its inward neighbours (three nodes at
+            // least): one interval alone is a zone two nodes wide; T6 corner
+            // and midside values may alternate next to the end.
+            let Some(first) = nearest(last, &[last]) else { continue };
+            let Some(second) = nearest(first, &[last, first]) else {
+                continue;
             };
-            if pts[i].2 > pts[inward].2 {
+            if last.2 > first.2 && last.2 > second.2 {
                 out.push(SingularEnd {
                     at: end,
                     band: BAND * length,

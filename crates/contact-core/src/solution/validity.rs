@@ -36,6 +36,7 @@
 //! the usual sign of a unit slip or of a mesh too coarse near the contact.
 
 use std::collections::HashMap;
+use std::collections::HashSet;
 
 use crate::contact::ConstraintSet;
 use crate::fem::element;
@@ -150,7 +151,12 @@ pub fn check(
         );
     }
     for (p, pair) in scene.pairs.iter().enumerate() {
-        let edges = zone_edges(&pairs[p]);
+        let midsides: HashSet<usize> = meshes[pair.body]
+            .edge_sets
+            .get(&pair.edges)
+            .map(|set| set.iter().filter_map(|e| e.mid).collect())
+            .unwrap_or_default();
+        let edges = zone_edges(&pairs[p], &midsides);
         if let Some((k, n)) = edges.iter().copied().enumerate().min_by(|a, b| a.1.total_cmp(&b.1)) {
             let z = &pairs[p].zones_along[k];
             let width = z.s[1] - z.s[0];
@@ -241,11 +247,12 @@ pub fn check(
 }
 
 /// Element edges across each zone of a pair (`zones_along`): its points in
-/// contact (positive pressure) from the point at the zone's start to the one
-/// at its end, less one. Rows sit on element corners, so neighbouring rows are
-/// one edge apart; the points are ordered by (x, y), which runs along a
-/// surface that is a graph over x and along a vertical face.
-fn zone_edges(pair: &PairReport) -> Vec<f64> {
+/// contact (positive pressure) at element corners (`midsides`: T6 rows may
+/// sit on midsides too, half an edge apart) from the point at the zone's
+/// start to the one at its end, less one; the points are ordered by (x, y),
+/// which runs along a surface that is a graph over x and along a vertical
+/// face.
+fn zone_edges(pair: &PairReport, midsides: &HashSet<usize>) -> Vec<f64> {
     let nearest = |p: [f64; 2]| {
         (0..pair.points.len()).min_by(|&a, &b| {
             let d = |k: usize| (pair.points[k].x - p[0]).hypot(pair.points[k].y - p[1]);
@@ -260,7 +267,7 @@ fn zone_edges(pair: &PairReport) -> Vec<f64> {
             };
             let n = pair.points[a.min(b)..=a.max(b)]
                 .iter()
-                .filter(|q| q.pressure > 0.0)
+                .filter(|q| q.pressure > 0.0 && !midsides.contains(&q.node))
                 .count();
             n.saturating_sub(1) as f64
         })

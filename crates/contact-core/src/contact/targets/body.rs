@@ -284,7 +284,13 @@ pub fn rows(
     };
     let rows = match discretization {
         Discretization::NodeToSegment => rows::nodal(slave, &see, limit),
-        Discretization::Mortar => rows::mortar(slave, T6Multiplier::Halves, &see, limit, &mortar_breaks(master)),
+        Discretization::Mortar => rows::mortar(
+            slave,
+            T6Multiplier::of(scene.settings.t6_multipliers),
+            &see,
+            limit,
+            &mortar_breaks(master),
+        ),
     };
     let mut pruned = rows.pruned;
     for r in rows.rows {

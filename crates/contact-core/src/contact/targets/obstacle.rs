@@ -47,7 +47,13 @@ pub fn rows(
         // not, and resolve the zone edge at the full node spacing (see
         // `rows::T6Multiplier`). Gauss points on each half of an edge: the
         // normals turn along the quadratic edge.
-        rows::mortar(slave, T6Multiplier::Halves, &see, limit, &|_| vec![0.0, 0.5, 1.0])
+        rows::mortar(
+            slave,
+            T6Multiplier::of(scene.settings.t6_multipliers),
+            &see,
+            limit,
+            &|_| vec![0.0, 0.5, 1.0],
+        )
     } else {
         rows::nodal(slave, &see, limit)
     };

@@ -6,7 +6,7 @@ use contact_proto::{self as proto, OutputKind, SolveRequest};
 use super::{finite, invalid, positive, Limits};
 use crate::error::{CoreError, InvalidKind, InvalidKind as K};
 use crate::scene::{
-    AccuracyTarget, Analysis, Body, Formulation, GapMeasure, Method, Outputs, Scales, Settings, Traction,
+    AccuracyTarget, Analysis, Body, Formulation, GapMeasure, Method, Outputs, Scales, Settings, T6Multipliers, Traction,
 };
 
 /// `units`: short printable names, if given.
@@ -105,6 +105,10 @@ pub fn settings(
         gap: match s.gap {
             proto::GapMeasure::SignedDistance => GapMeasure::SignedDistance,
             proto::GapMeasure::BodyNormal => GapMeasure::BodyNormal,
+        },
+        t6_multipliers: match s.t6_multipliers {
+            proto::T6Multipliers::EveryNode => T6Multipliers::EveryNode,
+            proto::T6Multipliers::Corners => T6Multipliers::Corners,
         },
         // ζ is a compliance [length / pressure], the barrier a pressure × length.
         penalty: match s.penalty {
