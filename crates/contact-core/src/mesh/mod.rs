@@ -3,7 +3,9 @@
 //! # Invariants
 //! - every element is counter-clockwise with positive area;
 //! - T6 elements list corners first, then the midsides of edges 01, 12, 20, and
-//!   midside nodes sit at the edge midpoints (affine elements);
+//!   midside nodes sit at the edge midpoints (affine elements), except on a
+//!   curved boundary (a disk's arc, a Gmsh order-2 mesh), whose elements are
+//!   isoparametric (`bisect` keeps their geometry);
 //! - boundary edges of an edge set are oriented with the body on their left, so
 //!   the outward normal of edge a→b is (dy, −dx)/|ab|.
 
