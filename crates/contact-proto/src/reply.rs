@@ -365,7 +365,7 @@ pub struct ContactPoint {
     /// Pairs with friction: tangential traction on the body [force/length²] along `tangent` or (−n_y, n_x).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tangential_traction: Option<f64>,
-    /// Friction against another body: the unit tangent, ⟂ the bisector of `normal` and the body's own normal.
+    /// Against another body: t ⟂ the bisector of `normal` and the body's normal (the traction has p's share on t).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tangent: Option<[f64; 2]>,
     /// Pairs with friction: slip in this load step [length] relative to the other surface, along the tangent.

@@ -106,9 +106,12 @@ fn assert_equilibrium(pr: &PairResult, res: &Resultant) {
     for q in &pr.points {
         let t = q.tangent.expect("a two-body friction row reports its tangent");
         assert!((t[0].hypot(t[1]) - 1.0).abs() < 1e-12, "{q:?}");
+        // The traction along t includes the normal force's share along t:
+        // the normal force's own part is what is left of it, n − (n · t) t.
         let ft = q.tangential_traction.unwrap() * q.weight;
-        fx += -q.force * q.normal[0] + ft * t[0];
-        fy += -q.force * q.normal[1] + ft * t[1];
+        let nt = q.normal[0] * t[0] + q.normal[1] * t[1];
+        fx += -q.force * (q.normal[0] - nt * t[0]) + ft * t[0];
+        fy += -q.force * (q.normal[1] - nt * t[1]) + ft * t[1];
     }
     assert!((fx - res.fx).abs() <= 1e-6 * p, "fx {fx} vs {}", res.fx);
     assert!((fy - res.fy).abs() <= 1e-6 * p, "fy {fy} vs {}", res.fy);
@@ -123,7 +126,7 @@ fn assert_equilibrium(pr: &PairResult, res: &Resultant) {
 /// c = 0.29–0.35, ≤ 1.2 %; node-to-segment on T6: every node, h/2 = 0.005
 /// apart at h = 0.01, ≤ 0.9 %), and a/R = 0.05 keeps the half-space
 /// idealisation's error near 0.3 % (measured P within 0.2 % of Hertz's for
-/// the zone). Measured: c within 0.2 and 0.7 % (mortar), 0.6 and 0.0 %
+/// the zone). Measured: c within 0.2 and 0.6 % (mortar), 0.2 and 0.0 %
 /// (node-to-segment) at Q/μP = 0.31 and 0.53.
 #[test]
 fn cattaneo_mindlin_between_two_cylinders() {
@@ -152,6 +155,43 @@ fn cattaneo_mindlin_between_two_cylinders() {
                 (c / expect - 1.0).abs() < 0.02,
                 "{discretization} step {k}: c {c} vs {expect} (Q/μP = {ratio})"
             );
+            // The peak tangential traction against Cattaneo–Mindlin's
+            // q(x) = μ p0 (√(1 − x²/a²) − (c/a) √(1 − x²/c²) on |x| < c),
+            // whose peak μ p0 √(Q/μP) is a kink at |x| = c: sampled at the
+            // points, so that the spacing does not enter.
+            let p0 = 2.0 * p / (std::f64::consts::PI * a);
+            let cm = |x: f64| {
+                let slip = MU * p0 * (1.0 - (x / a).powi(2)).max(0.0).sqrt();
+                let stick = MU * p0 * (expect / a) * (1.0 - (x / expect).powi(2)).max(0.0).sqrt();
+                slip - stick
+            };
+            let peak = pr
+                .points
+                .iter()
+                .map(|q| q.tangential_traction.unwrap().abs())
+                .fold(0.0, f64::max);
+            let sampled = pr.points.iter().map(|q| cm(q.x)).fold(0.0, f64::max);
+            println!(
+                "{discretization} Q/μP {ratio:.3}: c/c_CM − 1 = {:+.4}, stick centre {:+.4} a, peak {peak:.4} vs μ p0 √(Q/μP) {:.4} ({:+.4}), vs sampled {sampled:.4} ({:+.4})",
+                c / expect - 1.0,
+                stick_run(&pr.points).1 / a,
+                MU * p0 * ratio.sqrt(),
+                peak / (MU * p0 * ratio.sqrt()) - 1.0,
+                peak / sampled - 1.0
+            );
+            // The two cylinders are symmetric under the half-turn about the
+            // contact point, so the peak is Cattaneo–Mindlin's (the roller,
+            // moved at its top, shifts its stick zone and reads 4–16 % high).
+            // Mortar rows: 2 %, the bar of the stick zone (node-to-segment on
+            // T6 lets the pressure, and with it μ p, alternate between corner
+            // and midside nodes: measured +2 to +6 %). Measured: +0.6 and
+            // +0.9 % against the sampled peak (−1.3 and +0.3 % against
+            // μ p0 √(Q/μP)), the stick zone's centre at 0 to round-off.
+            if discretization == "mortar" {
+                assert!((peak / sampled - 1.0).abs() < 0.02, "peak {peak} vs {sampled}");
+                let (_, centre) = stick_run(&pr.points);
+                assert!(centre.abs() < 1e-9 * a, "stick zone centred: {centre}");
+            }
             assert_eq!(fr.stick_zones.len(), 1, "{:?}", fr.stick_zones);
             assert_eq!(fr.slip_zones.len(), 2, "slip on both sides: {:?}", fr.slip_zones);
             // The upper body moves +x over the lower one: its surface slips
@@ -222,25 +262,32 @@ fn two_bodies_held_only_by_contact_are_refused_with_friction() {
     solved(&r);
 }
 
-/// A vanishing μ on the frictional solver gives the frictionless pressures of
-/// the two-body solve: they differ by O(μ) times the normal–tangential
-/// coupling (here μ = 1e-9) plus round-off, so to 1e-7 of the peak, on both
-/// surfaces. (μ = 0 itself is the frictionless solve, reply for reply:
-/// `zero_friction_is_the_frictionless_reply` in `friction.rs`.)
+/// A vanishing μ (1e-9) on the frictional solver: the whole contact force
+/// is then normal to the bisector (its tangential traction vanishes to
+/// μ p), where the frictionless solve's acts along the rows' direction, which
+/// is tilted from it by up to a/(2R) = 0.026. The pressures differ by what
+/// that turn of the force does, 1.1e-3 of the peak (measured); tested at
+/// 2e-3, on both surfaces. (μ = 0 itself is the frictionless solve, reply
+/// for reply: `zero_friction_is_the_frictionless_reply` in `friction.rs`.)
 #[test]
-fn vanishing_friction_matches_the_frictionless_two_body_solve() {
+fn vanishing_friction_is_near_the_frictionless_two_body_solve() {
     let plain = solved(&cylinders(0.01, "mortar", &[0.0], None));
     let tiny = solved(&cylinders(0.01, "mortar", &[0.0], Some(1e-9)));
     let p0 = peak_pressure(&plain);
     let (a, b) = (&plain.pairs[0], &tiny.pairs[0]);
     assert_eq!(a.points.len(), b.points.len());
     for (x, y) in a.points.iter().zip(&b.points) {
-        assert!((x.pressure - y.pressure).abs() <= 1e-7 * p0, "{x:?} vs {y:?}");
-        assert!(y.tangential_traction.unwrap().abs() <= 1e-9 * y.pressure * (1.0 + 1e-9));
+        assert!((x.pressure - y.pressure).abs() <= 2e-3 * p0, "{x:?} vs {y:?}");
+        // |t| ≤ μ p, up to the round-off of the normal force's share along t
+        // (a/(2R) p) that τ cancels: measured 3e-15.
+        assert!(
+            y.tangential_traction.unwrap().abs() <= 1e-9 * y.pressure + 1e-12 * p0,
+            "{y:?}"
+        );
     }
     let (oa, ob) = (a.other_points.as_ref().unwrap(), b.other_points.as_ref().unwrap());
     assert_eq!(oa.len(), ob.len());
     for (x, y) in oa.iter().zip(ob) {
-        assert!((x.pressure - y.pressure).abs() <= 1e-7 * p0, "{x:?} vs {y:?}");
+        assert!((x.pressure - y.pressure).abs() <= 2e-3 * p0, "{x:?} vs {y:?}");
     }
 }

@@ -41,8 +41,14 @@ pub fn attach(report: &mut Report, scene: &Scene, model: &Model, t: &Tangents, s
             .iter()
             .map(|q| {
                 let i = by_node[&q.node];
+                // The whole contact force's tangential component, which the
+                // Coulomb law bounds (the friction force alone but against
+                // another body).
                 let (traction, slip) = match t.row_of[i] {
-                    Some(k) => (-s.tau[k] / cons.candidates[i].weight, s.slip[k]),
+                    Some(k) => (
+                        -t.along(k, s.lambda[i], s.tau[k]) / cons.candidates[i].weight,
+                        s.slip[k],
+                    ),
                     None => (0.0, 0.0),
                 };
                 let tangent = match (&pair.target, t.row_of[i]) {
@@ -156,13 +162,15 @@ pub fn residuals(t: &Tangents, lambda: &[f64], tau: &[f64], slip: &[f64], u_scal
     let ratio = |num: f64, den: f64| if num == 0.0 { 0.0 } else { num / den };
     let mut r = FrictionResiduals::default();
     for k in 0..t.len() {
-        let bound = t.mu[k] * lambda[t.of[k]].max(0.0);
-        r.cone = r.cone.max(ratio((tau[k].abs() - bound).max(0.0), lmax));
+        let l = lambda[t.of[k]];
+        let bound = t.bound(k, l.max(0.0));
+        let tk = t.along(k, l, tau[k]);
+        r.cone = r.cone.max(ratio((tk.abs() - bound).max(0.0), lmax));
         // The friction force −τ along t may not work with the slip: −τ Δs ≤ 0.
-        r.dissipation = r.dissipation.max(ratio((-tau[k] * slip[k]).max(0.0), lmax * d));
+        r.dissipation = r.dissipation.max(ratio((-tk * slip[k]).max(0.0), lmax * d));
         r.stick = r
             .stick
-            .max(ratio((bound - tau[k].abs()).max(0.0) * slip[k].abs(), lmax * d));
+            .max(ratio((bound - tk.abs()).max(0.0) * slip[k].abs(), lmax * d));
     }
     r
 }
