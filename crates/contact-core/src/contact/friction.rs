@@ -105,21 +105,17 @@ impl Tangents {
                 continue;
             }
             let n = c.normal;
-            let m = match own.get(&c.pair).and_then(|ns| ns.get(&c.node)) {
+            // The rotation taking n to the tangent, (cos φ, sin φ) = (n · t, n × t):
+            // exactly 90° but against another body.
+            let (tangent, cos, sin) = match own.get(&c.pair).and_then(|ns| ns.get(&c.node)) {
                 Some(o) => {
                     let b = [n[0] + o[0], n[1] + o[1]];
                     let l = b[0].hypot(b[1]);
-                    [b[0] / l, b[1] / l]
+                    let t = [-b[1] / l, b[0] / l];
+                    (t, n[0] * t[0] + n[1] * t[1], n[0] * t[1] - n[1] * t[0])
                 }
-                None => n,
+                None => ([-n[1], n[0]], 0.0, 1.0),
             };
-            let tangent = [-m[1], m[0]];
-            // The rotation taking n to the tangent: cos φ = n · t, sin φ = n × t
-            // (φ = 90° when m = n).
-            let (cos, sin) = (
-                n[0] * tangent[0] + n[1] * tangent[1],
-                n[0] * tangent[1] - n[1] * tangent[0],
-            );
             let terms: Vec<Term> = c
                 .terms
                 .iter()
