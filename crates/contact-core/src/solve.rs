@@ -282,7 +282,8 @@ fn punch_block(
     let mu: Vec<f64> = (0..n)
         .map(|i| tangents.row_of[i].map_or(0.0, |r| tangents.mu[r]))
         .collect();
-    let loose = fm.check_with_friction(scene, &model.dofs, &ct_by_candidate, &mu)?;
+    let tilt = body_normal_tilts(scene, model, &mu);
+    let loose = fm.check_with_friction(scene, &model.dofs, &ct_by_candidate, &mu, &tilt)?;
     let keep: Vec<usize> = (0..k).filter(|j| !loose.contains(j)).collect();
     let block = methods::friction::Block {
         cn: faer::Mat::<f64>::from_fn(n, keep.len(), |i, j| fm.c[(i, keep[j])]),
@@ -297,6 +298,38 @@ fn punch_block(
             .push((0..k).map(|i| f64::from(u8::from(i == j))).collect());
     }
     Ok(Some(block))
+}
+
+/// The signed angle from each candidate's row direction (the punch's normal
+/// at the point it faces) to the body's outward normal at the candidate's
+/// node, counter-clockwise (toward the row's tangent t = (−n_y, n_x)); 0 on
+/// rows without friction (`mu` 0), which keep the row direction alone in the
+/// compatibility check.
+fn body_normal_tilts(scene: &Scene, model: &Model, mu: &[f64]) -> Vec<f64> {
+    use crate::mesh::boundary::boundary_nodes;
+    let mut normal: std::collections::HashMap<(usize, usize), [f64; 2]> = std::collections::HashMap::new();
+    for pair in scene.pairs.iter().filter(|p| p.friction > 0.0) {
+        let mesh = &model.meshes[pair.body];
+        if let Some(edges) = mesh.edge_sets.get(&pair.edges) {
+            // Friction in axisymmetry is refused: the plane weights do.
+            for bn in boundary_nodes(mesh, edges, false) {
+                normal.insert((pair.body, bn.node), bn.normal);
+            }
+        }
+    }
+    model
+        .cons
+        .candidates
+        .iter()
+        .zip(mu)
+        .map(|(c, &m)| {
+            let Some(nb) = normal.get(&(c.body, c.node)).filter(|_| m > 0.0) else {
+                return 0.0;
+            };
+            let n = c.normal;
+            (n[0] * nb[1] - n[1] * nb[0]).atan2(n[0] * nb[0] + n[1] * nb[1])
+        })
+        .collect()
 }
 
 fn solve_once(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<Report, CoreError> {
@@ -409,12 +442,12 @@ fn solve_full(scene: &Scene, model: &Model, mut obs: Observer) -> Result<Report,
 }
 
 /// Why a frictional step with a load-controlled punch may not converge: a
-/// horizontal load beyond μ times the vertical one. On a flat face the
-/// frictional compatibility check refuses it; on a curved profile it admits
-/// it, the candidates beyond the zone carrying horizontal load through their
-/// tilted normals in the linear check (measured: the circular punch example
-/// with μ = 0.3 and Q = 1.05 μP ran to the iteration cap), while the punch
-/// most likely slides.
+/// horizontal load beyond μ times the vertical one. The frictional
+/// compatibility check refuses it on a flat face and on a curved punch over
+/// a flat block (each candidate's cone is taken about both normals,
+/// `FreeMotions::check_with_friction`); where the punch's and the body's
+/// normals are inclined together (a face and a surface both sloping) it can
+/// admit it, and a step that then does not converge gets this note.
 fn sliding_punches(scene: &Scene) -> Vec<String> {
     use crate::scene::{Control, Target};
     scene
@@ -435,8 +468,8 @@ fn sliding_punches(scene: &Scene) -> Vec<String> {
             (mu > 0.0 && q.abs() > mu * p.abs()).then(|| {
                 format!(
                     "punch '{}': its horizontal load is {:.4} times its vertical load, more than the friction coefficient {mu}: \
-                     on a flat face it would slide; on this curved profile the compatibility check admitted it, and the \
-                     frictional iteration did not converge; the punch most likely slides (keep |Q| below μ|P|)",
+                     on a flat face it would slide; on this profile the compatibility check admitted it (inclined normals), \
+                     and the frictional iteration did not converge; the punch most likely slides (keep |Q| below μ|P|)",
                     ob.name,
                     q.abs() / p.abs().max(f64::MIN_POSITIVE)
                 )

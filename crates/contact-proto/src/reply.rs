@@ -1,4 +1,7 @@
 //! The solve reply. Lengths, forces and pressures are in the request's units.
+//!
+//! Length: the whole reply in one file, so that its documentation (these doc
+//! comments, which become the JSON schema's descriptions) reads as one page.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -124,6 +127,22 @@ pub struct PairAccuracy {
     /// Estimated error of each zone's start and end along the surface, in
     /// the order of `zones_along` [length].
     pub zone_edges: Vec<[f64; 2]>,
+    /// Zone ends where the pressure is unbounded (a punch's sharp corner,
+    /// p ~ d^(-1/2)): its L2 norm is infinite there, so `pressure_l2` and
+    /// `peak` leave out the band of radius `band` around each (5 % of the
+    /// zone's length). Read the resultant and the zone there.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub singular_ends: Vec<SingularEnd>,
+}
+
+/// A zone end where the pressure is unbounded.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SingularEnd {
+    /// The end's position (x, y) [length].
+    pub at: [f64; 2],
+    /// Radius of the band left out of the pressure's estimate [length].
+    pub band: f64,
 }
 
 /// A violated assumption of the model, or a discretization too coarse to

@@ -16,10 +16,11 @@
 //! 2 size), the far field's share; the header states all three (DOF, time,
 //! differences). The finest T6 level of the bench is h_min = 0.00055 R, so
 //! 0.0001375 is 4× finer (3.7M DOF: above the service's 2.5M limit, which
-//! this run lifts; 8.6 GB and about a minute per scene, then 10 s for the
-//! checks). The far field at 0.03125 R moves fy by 8e-7 (disk) and 5e-6
-//! (ball) from 0.0625 R, and h_min 0.000275 R by 1.3e-6 and 2.4e-6. The
-//! block's finest T6 level is h_min 0.01: 0.0025 gives 1.4M DOF, 3 GB, 15 s.
+//! this run lifts; 8.6 GB and 2–4 minutes per scene on a loaded 2-core
+//! machine, then about a minute for the checks). The far field at 0.03125 R
+//! moves fy by 7.7e-7 (disk) and 5.6e-7 (ball) from 0.0625 R, and h_min
+//! 0.000275 R by 5e-8 and 2.7e-7. The block's finest T6 level is h_min 0.01:
+//! 0.0025 gives 1.4M DOF, 3 GB, 50 s.
 //! With `OVERKILL_POINTS=FILE` it also writes every candidate's x and pressure
 //! of the finest solve there (to study the fit).
 
@@ -126,7 +127,7 @@ fn main() {
             "ball_on_flat" => "ball",
             _ => "block",
         }),
-        format!("Stations: x (undeformed, along the flat) and nodal pressure of the corner nodes up to fit_from = the last node within {FIT_FROM} of the zone."),
+        format!("Stations: x (undeformed, along the flat) and nodal pressure of the surface nodes up to fit_from = the last node within {FIT_FROM} of the zone."),
         format!("Past fit_from: p = sqrt(fit_c0 + fit_c1 x + fit_c2 x^2), least squares on p^2 over the nodes in {FIT_WINDOW_START}-{FIT_FROM} of the zone; edge = its falling root."),
         format!("Between stations p^2 is interpolated by the cubic through the four nearest. Stations and fit differ by {jump:+.2e} p0 at fit_from;"),
         format!("past it the nodes in contact differ from the fit by up to {outer:.2e} p0 (the last ones, whose values depend on where the edge falls between them)."),

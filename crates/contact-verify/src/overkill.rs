@@ -3,28 +3,29 @@
 //! suite measures errors below Hertz's model floor (a finite disk differs from
 //! the half-plane formula by about 0.28 % in L2).
 //!
-//! A table holds the pressure at the overkill solution's corner nodes across
+//! A table holds the pressure at the overkill solution's surface nodes
+//! (corners and midsides: T6 carries a multiplier on each) across
 //! the zone up to `fit_from` (95 % of the zone), and beyond it the fit
 //! p² = c0 + c1 x + c2 x² over the nodes of the zone's outer 5–20 %, whose
 //! falling root is the zone's `edge`. Near a smooth edge p falls like a square
 //! root, so p² is linear in the distance to the edge (exactly quadratic in x
 //! for Hertz): the fit places the edge between nodes, where the nodal values
 //! of the last few nodes depend on where the edge happens to fall (measured
-//! at h_min = 0.0001375 R: the last node off the fit by 4.7e-3 p0 on the
-//! disk, 1.4e-3 on the ball, the fifth by 2e-4, the sixteenth by 1–2.5e-5;
-//! fit_from lies 23 nodes from the edge there, 14 on the block). The window stops short of those and
-//! starts where p² still follows a quadratic (on the ball, a window at 60–80 %
-//! moved the edge by 5e-6 R, one at 70–90 % left the nodes at 95 % 6e-5 p0
-//! off). Inside, p² is interpolated by the cubic through the four nearest
+//! at h_min = 0.0001375 R, each table's header: the nodes past fit_from off
+//! the fit by up to 1.3e-3 p0 on the disk, 1.0e-3 on the ball, 4.9e-3 on the
+//! block). The window stops short of those and starts where p² still
+//! follows a quadratic (on the ball, with the corner-only multipliers of an
+//! earlier table, a window at 60–80 % moved the edge by 5e-6 R, one at
+//! 70–90 % left the nodes at 95 % 6e-5 p0 off). Inside, p² is interpolated by the cubic through the four nearest
 //! stations.
 //!
 //! Measured uncertainty (each table's header: two levels, two far-field sizes,
-//! two fit windows): disk 2.4e-5 in L2, 2.0e-6 in fy, 6e-7 R at the edge;
-//! ball 2.6e-4, 6.9e-6, 3.6e-6 R; block (h_min 0.0025, far field 0.5, 1.4M
-//! DOF) 4.0e-4, 1.2e-5, 1.1e-4 (1.5e-4 a). The L2 of the ball and the block
+//! two fit windows): disk 1.4e-5 in L2, 8.2e-7 in fy, 2.6e-7 R at the edge;
+//! ball 1.7e-4, 8.3e-7, 2.3e-6 R; block (h_min 0.0025, far field 0.5, 1.4M
+//! DOF) 3.3e-4, 1.0e-5, 8.9e-5 (1.2e-4 a). The L2 of the ball and the block
 //! comes mostly from moving the fit's window inward, where p² departs from a
 //! quadratic by the finite body's O(a/R) terms.
-//! The ball's axis node reads 1.4e-4 below its neighbour (a local dip at
+//! The ball's axis node reads 3e-6 below its neighbour (a local dip at
 //! r = 0 whose ring weight is nil; left as computed).
 //!
 //! Tables are made by `cargo run --release -p contact-verify --example
@@ -46,7 +47,7 @@ pub struct Reference {
     pub header: Vec<String>,
     /// Weights are ring areas (a body of revolution): the L2 measure is 2πx dx.
     pub axisymmetric: bool,
-    /// Stations (corner nodes of the overkill mesh) up to `fit_from`.
+    /// Stations (surface nodes of the overkill mesh) up to `fit_from`.
     pub x: Vec<f64>,
     pub p: Vec<f64>,
     /// Past this x the pressure is sqrt(c0 + c1 x + c2 x²).

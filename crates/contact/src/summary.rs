@@ -122,6 +122,18 @@ pub fn reply(r: &SolveReply) -> String {
                 pct(a.resultant),
                 a.basis.replace('_', "-")
             );
+            if !a.singular_ends.is_empty() {
+                let at: Vec<String> = a
+                    .singular_ends
+                    .iter()
+                    .map(|e| format!("({}, {}) ±{}", num(e.at[0]), num(e.at[1]), num(e.band)))
+                    .collect();
+                let _ = writeln!(
+                    o,
+                    "  corners    pressure unbounded at {}: left out of the estimate",
+                    at.join(", ")
+                );
+            }
         }
         if let Some(f) = &p.friction {
             let runs = |z: &[[f64; 2]]| {

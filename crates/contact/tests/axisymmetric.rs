@@ -400,14 +400,15 @@ fn nearly_incompressible_seal_does_not_lock_on_t6() {
 }
 
 /// A ball on a rigid flat at ν = 0.49 and 0.4999 (T6: the P2–P0 element),
-/// against 3D Hertz at the axis r = 0 and at the next node (corner nodes
-/// 0.03 = a/21 apart), within 1 %. The volumetric constraint is the mean
-/// dilatation over the ring 2πr dA; with div u at the centroid it read +5.5 %
-/// and −9.6 % here, and refinement did not help (+5.3 %, −10.2 % at a/85).
-/// The tolerance: the same mesh at ν = 0.44 (plain T6, full integration) reads
-/// −0.29 % and −0.02 % (asked within 0.5 %), and the finite ball (a/R = 0.064)
-/// departs from the half-space by less than 0.1 % at the axis (measured at
-/// a/85: +0.04 % at ν = 0.49, −0.04 % at 0.44).
+/// against 3D Hertz at the axis r = 0 and at the next node (a midside: nodes
+/// 0.015 = a/42 apart), within 1 % (measured −0.21 % and +0.39 % at both ν).
+/// The volumetric constraint is the mean dilatation over the ring 2πr dA;
+/// with div u at the centroid it read +5.5 % and −9.6 % here (multipliers on
+/// the corners only, the next node a/21 out), and refinement did not help
+/// (+5.3 %, −10.2 % at a/85). The tolerance: the same mesh at ν = 0.44 (plain
+/// T6, full integration) reads +0.012 % and +0.026 % (asked within 0.5 %), and
+/// the finite ball (a/R = 0.064) departs from the half-space by less than
+/// 0.1 % at the axis (measured at a/85: +0.04 % at ν = 0.49, −0.04 % at 0.44).
 #[test]
 fn nearly_incompressible_ball_matches_hertz_on_the_axis() {
     let axis_errors = |nu: f64| -> [f64; 2] {

@@ -130,30 +130,46 @@ fn the_estimate_is_optional_and_the_targets_are_checked() {
     }
 }
 
-/// The estimates are the size of the true errors on the smooth-edged scenes
-/// of the effectivity table (`contact_verify::effectivity`), at its middle
-/// level (every element 4× the scene's own), T3 and T6, against the stored
-/// overkill tables (disk, ball, block) or the scene solved 4× finer (two
-/// cylinders): the pressure's, the zone ends' and the T3 resultant's within
-/// [0.5, 2] of the true error (measured 0.83–1.78, 0.84–1.00 and 1.12–1.24
-/// here; over all three levels the pressure's spans 0.56–4.5, the coarsest
-/// level's zone being 7 edges wide). The T6 resultant, 0.03–0.24 % off, is
-/// overestimated up to 28× and not tested.
+/// The estimates are the size of the true errors on every scene of the
+/// effectivity table (`contact_verify::effectivity`), at its middle level
+/// (every element 4× the scene's own), T3 and T6, against the stored overkill
+/// tables (disk, ball, block) or the scene solved 4× finer (the others): the
+/// pressure's, the zone ends' and the T3 resultant's within [0.5, 2] of the
+/// true error (measured 0.83–1.64, 0.84–1.09 and 1.12–1.26 here; over all
+/// three levels the pressure's spans 0.35–2.86, 39 of 42 rows within [0.5, 2]).
+/// The T6 resultant, 0.002–0.24 % off, is estimated 0.02–42× and not
+/// tested. At a flat punch's corners the pressure is unbounded: both the
+/// estimate and the true error leave out the band the reply names there
+/// (`singular_ends`, 5 % of the zone), which must sit at the corners x = ±1
+/// and nowhere else.
 #[test]
 fn the_estimates_are_the_size_of_the_true_errors() {
     use contact_verify::effectivity::{compare, scaled, SCENES};
-    for name in ["disk_on_flat", "ball_on_flat", "hertz_block", "two_cylinders"] {
-        let sc = SCENES.iter().find(|s| s.name == name).unwrap();
+    for sc in &SCENES {
+        let name = sc.name;
         let base = (sc.request)();
         let reference = contact_verify::overkill::reference(name)
             .is_none()
             .then(|| solve(&scaled(&base, 0.5, "t6")));
         for (element, label) in [("t3", "T3"), ("t6", "T6")] {
             let r = solve(&scaled(&base, 4.0, element));
+            let singular = &r.pairs[0].accuracy.as_ref().unwrap().singular_ends;
+            if name.starts_with("punch") {
+                assert!(!singular.is_empty(), "{name} {label}: no singular end");
+                for e in singular {
+                    assert!(
+                        (e.at[0].abs() - 1.0).abs() < 0.05,
+                        "{name} {label}: singular end at {:?}",
+                        e.at
+                    );
+                }
+            } else {
+                assert!(singular.is_empty(), "{name} {label}: singular ends {singular:?}");
+            }
             let row = compare(sc.name, label, 4.0, &r, reference.as_ref());
             let eff = row.eff_l2().unwrap();
             assert!(
-                (1.0 / 3.0..=3.0).contains(&eff),
+                (0.5..=2.0).contains(&eff),
                 "{name} {label}: pressure effectivity {eff:.3}"
             );
             if let Some(eff) = row.eff_edge() {
@@ -162,8 +178,12 @@ fn the_estimates_are_the_size_of_the_true_errors() {
                     "{name} {label}: zone end effectivity {eff:.3}"
                 );
             }
-            if element == "t3" {
-                let eff = row.eff_resultant().unwrap();
+            // Load-controlled scenes (the punches, the footing) have their
+            // resultant exact to round-off: nothing to estimate.
+            if let Some(eff) = row
+                .eff_resultant()
+                .filter(|_| element == "t3" && row.err_resultant > 1e-6)
+            {
                 assert!(
                     (0.5..=2.0).contains(&eff),
                     "{name} {label}: resultant effectivity {eff:.3}"

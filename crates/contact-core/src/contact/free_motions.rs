@@ -324,9 +324,26 @@ impl FreeMotions {
     /// Fichera's condition with Coulomb friction: some contact force inside
     /// the friction cone on every candidate balances the punches' loads. In
     /// 2D the cone |τ| ≤ μ λ is spanned by two rays, λ (n ± μ t), so the
-    /// forces are non-negative combinations of the columns C_N ± μ C_T and
+    /// forces are non-negative combinations of two columns per candidate and
     /// the frictionless LP decides (its ranges are then the frictional ones:
     /// a flat punch under P admits the horizontal loads [−μ|P|, μ|P|]).
+    ///
+    /// The cone is taken about both normals of a candidate, the punch's
+    /// (its row direction n) and the body's, and a force must lie in both:
+    /// the rays at angles [max(0, δ) − atan μ, min(0, δ) + atan μ] from n,
+    /// δ the angle from n to the body's normal (`tilt`), none if that is
+    /// empty. A force acts only where the two surfaces touch, and there, in
+    /// the small-displacement model, they share their normal up to the
+    /// surface's small rotation; a candidate whose two normals differ
+    /// (beyond the zone of a curved punch on a flat block, where the punch's
+    /// normal tilts by asin(x/R) and the block's stays vertical) would carry
+    /// its force along the punch's tilted normal only after a large
+    /// rotation of the surface. With the punch's normals alone, the LP let
+    /// those candidates carry a horizontal load through their tilt (the
+    /// wedge of a linearized gap, g(x − α1) ≈ g(x) − g′(x) α1, that a
+    /// cylinder translated over a flat does not have) and admitted Q = 1.05 μP
+    /// on the circular punch example, whose step then ran to the iteration
+    /// cap. Rows without friction (`mu` 0) keep their one direction n.
     /// `ct`: each candidate's tangential punch coefficients (0 without a
     /// tangential row), `mu` its coefficient. Returns the motions neither
     /// the normals nor friction resist and no load works on (a flat punch's
@@ -338,14 +355,29 @@ impl FreeMotions {
         dofs: &DofMap,
         ct: &Mat<f64>,
         mu: &[f64],
+        tilt: &[f64],
     ) -> Result<Vec<usize>, CoreError> {
         if self.is_empty() {
             return Ok(Vec::new());
         }
         let (m, k) = (self.c.nrows(), self.c.ncols());
+        // tan of each candidate's two ray angles from n, None: no ray.
+        let rays: Vec<Option<[f64; 2]>> = (0..m)
+            .map(|i| {
+                if mu[i] <= 0.0 {
+                    return Some([0.0, 0.0]);
+                }
+                if tilt[i] == 0.0 {
+                    return Some([mu[i], -mu[i]]);
+                }
+                let (half, d) = (mu[i].atan(), tilt[i]);
+                let (hi, lo) = (d.min(0.0) + half, d.max(0.0) - half);
+                (hi >= lo).then(|| [hi.tan(), lo.tan()])
+            })
+            .collect();
         let cone = Mat::<f64>::from_fn(2 * m, k, |r, j| {
-            let (i, sign) = (r / 2, if r % 2 == 0 { 1.0 } else { -1.0 });
-            self.c[(i, j)] + sign * mu[i] * ct[(i, j)]
+            let i = r / 2;
+            rays[i].map_or(0.0, |t| self.c[(i, j)] + t[r % 2] * ct[(i, j)])
         });
         let undetermined: Vec<usize> = (0..k)
             .filter(|&j| (0..2 * m).all(|r| cone[(r, j)] == 0.0) && self.rhs[j] == 0.0)

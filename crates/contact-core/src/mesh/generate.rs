@@ -9,7 +9,7 @@
 //! the focus of the rectangle where its neighbours had 3, and the Hertz
 //! pressure dipped 1.2 % there). A uniform rectangle stays a structured grid.
 //!
-//! Length: about 450 lines of generators (rectangle, half- and quarter-disk,
+//! Length: about 600 lines of generators (rectangle, half- and quarter-disk,
 //! grading) and their tests (node counts, symmetry, element quality).
 
 use std::collections::{BTreeMap, HashMap};
@@ -222,7 +222,19 @@ pub fn disk(
     for p in t.nodes.iter_mut() {
         *p = [center[0] + radius * p[0], center[1] + radius * p[1]];
     }
-    Ok(finish(t.nodes, t.elems, t.sets, order))
+    let mut mesh = finish(t.nodes, t.elems, t.sets, order);
+    // Isoparametric arc: the midsides of the arc's T6 edges on the circle, not
+    // on the chords. A midside multiplier (`contact::rows::T6Multiplier`)
+    // would see the chord's sagitta h²/8R as a bump in the gap.
+    if let Some(arc) = mesh.edge_sets.get("arc") {
+        for m in arc.iter().filter_map(|e| e.mid).collect::<Vec<_>>() {
+            let p = mesh.nodes[m];
+            let (dx, dy) = (p[0] - center[0], p[1] - center[1]);
+            let r = dx.hypot(dy);
+            mesh.nodes[m] = [center[0] + radius * dx / r, center[1] + radius * dy / r];
+        }
+    }
+    Ok(mesh)
 }
 
 /// A parameter of a mesh in its body's own units, rounded to 12 significant
@@ -534,6 +546,59 @@ mod tests {
                         &odd[..odd.len().min(4)]
                     );
                 }
+            }
+        }
+    }
+
+    /// A T6 disk's arc is isoparametric: every arc midside lies on the circle
+    /// (to round-off), between its corners (the middle third of the chord's
+    /// projection), while every other midside is its edge's midpoint; the
+    /// curved elements stay positively oriented (the Jacobian at the 3-point
+    /// rule's points and at the nodes).
+    #[test]
+    fn t6_arc_midsides_lie_on_the_circle() {
+        let (center, radius) = ([0.3, 2.0], 1.5);
+        let g = Grading {
+            h_min: 0.01,
+            ratio: 1.2,
+            extent: 0.1,
+        };
+        let m = disk(center, radius, true, DiskPart::Half, 0.5, Some(g), Order::T6).unwrap();
+        let arc: Vec<Edge> = m.edge_sets["arc"].clone();
+        assert!(arc.len() > 20);
+        let mut on_arc = std::collections::HashSet::new();
+        for e in &arc {
+            let (a, b, c) = (m.nodes[e.a], m.nodes[e.b], m.nodes[e.mid.unwrap()]);
+            on_arc.insert(e.mid.unwrap());
+            let r = (c[0] - center[0]).hypot(c[1] - center[1]);
+            assert!((r - radius).abs() < 1e-12 * radius, "midside at r = {r}");
+            let d = [b[0] - a[0], b[1] - a[1]];
+            let t = ((c[0] - a[0]) * d[0] + (c[1] - a[1]) * d[1]) / (d[0] * d[0] + d[1] * d[1]);
+            assert!((t - 0.5).abs() < 1e-6, "midside at {t} of its chord");
+        }
+        for e in 0..m.n_elems() {
+            let t = m.elem(e);
+            for (k, (p, q)) in [(0, 1), (1, 2), (2, 0)].into_iter().enumerate() {
+                let (a, b, c) = (m.nodes[t[p]], m.nodes[t[q]], m.nodes[t[3 + k]]);
+                if !on_arc.contains(&t[3 + k]) {
+                    assert!((c[0] - 0.5 * (a[0] + b[0])).abs() + (c[1] - 0.5 * (a[1] + b[1])).abs() < 1e-12);
+                }
+            }
+            let x: Vec<[f64; 2]> = t.iter().map(|&n| m.nodes[n]).collect();
+            let points = [
+                [1.0 / 6.0, 1.0 / 6.0],
+                [2.0 / 3.0, 1.0 / 6.0],
+                [1.0 / 6.0, 2.0 / 3.0],
+                [0.0, 0.0],
+                [1.0, 0.0],
+                [0.0, 1.0],
+            ];
+            for [xi, eta] in points {
+                let (mut n, mut dxi, mut deta) = ([0.0; 6], [0.0; 6], [0.0; 6]);
+                crate::fem::element::shape(Order::T6, xi, eta, &mut n, &mut dxi, &mut deta);
+                let j = |d: &[f64; 6], c: usize| (0..6).map(|i| d[i] * x[i][c]).sum::<f64>();
+                let det = j(&dxi, 0) * j(&deta, 1) - j(&dxi, 1) * j(&deta, 0);
+                assert!(det > 0.0, "element {e}: det J {det} at ({xi}, {eta})");
             }
         }
     }

@@ -3,6 +3,7 @@
 pub mod accuracy;
 pub mod certificate;
 pub mod compose;
+pub mod corners;
 pub mod friction;
 pub mod post;
 pub mod report;

@@ -334,6 +334,17 @@ pub struct PairAccuracy {
     pub peak: Option<f64>,
     pub resultant: Option<f64>,
     pub zone_edges: Vec<[f64; 2]>,
+    /// Zone ends where the pressure is unbounded (`solution::corners`):
+    /// `pressure_l2` and `peak` leave out the band around each.
+    pub singular_ends: Vec<SingularEnd>,
+}
+
+/// A zone end where the pressure is unbounded, and the radius of the band
+/// around it that the pressure's estimate leaves out (request's units).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SingularEnd {
+    pub at: [f64; 2],
+    pub band: f64,
 }
 
 /// Friction on one pair, in the request's units.

@@ -165,6 +165,11 @@ fn pair(pr: PairReport) -> p::PairResult {
             peak: a.peak,
             resultant: a.resultant,
             zone_edges: a.zone_edges,
+            singular_ends: a
+                .singular_ends
+                .iter()
+                .map(|e| p::SingularEnd { at: e.at, band: e.band })
+                .collect(),
         }),
         body: pr.body,
         obstacle,

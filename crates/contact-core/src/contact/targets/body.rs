@@ -24,7 +24,7 @@
 use std::collections::HashMap;
 
 use crate::contact::constraints::{Candidate, Link};
-use crate::contact::rows::{self, edge_point, shape01, Seen, Surface};
+use crate::contact::rows::{self, edge_point, shape01, Seen, Surface, T6Multiplier};
 use crate::fem::DofMap;
 use crate::mesh::boundary::boundary_nodes;
 use crate::scene::{Discretization, GapMeasure, Scene};
@@ -284,7 +284,7 @@ pub fn rows(
     };
     let rows = match discretization {
         Discretization::NodeToSegment => rows::nodal(slave, &see, limit),
-        Discretization::Mortar => rows::mortar(slave, &see, limit, &mortar_breaks(master)),
+        Discretization::Mortar => rows::mortar(slave, T6Multiplier::Halves, &see, limit, &mortar_breaks(master)),
     };
     let mut pruned = rows.pruned;
     for r in rows.rows {

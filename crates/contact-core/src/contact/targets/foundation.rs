@@ -18,7 +18,7 @@
 use std::collections::HashMap;
 
 use crate::contact::constraints::{Candidate, FoundationRow, Link};
-use crate::contact::rows::{self, Seen, Surface};
+use crate::contact::rows::{self, Seen, Surface, T6Multiplier};
 use crate::fem::DofMap;
 use crate::mesh::{Edge, Mesh2d, Order};
 use crate::scene::{GapMeasure, Scene};
@@ -83,7 +83,7 @@ pub fn rows(scene: &Scene, p: usize, f: usize, meshes: &[Mesh2d], dofs: &DofMap,
         })
     };
     let rows = if mesh.order == Order::T6 {
-        rows::mortar(&surface, &see, limit, &|_| vec![0.0, 0.5, 1.0])
+        rows::mortar(&surface, T6Multiplier::Corners, &see, limit, &|_| vec![0.0, 0.5, 1.0])
     } else {
         rows::nodal(&surface, &see, limit)
     };

@@ -6,7 +6,7 @@
 
 use crate::contact::constraints::{Candidate, Link};
 use crate::contact::gap::{closest, gap_along_normal};
-use crate::contact::rows::{self, punch_coefficients, Seen, Surface};
+use crate::contact::rows::{self, punch_coefficients, Seen, Surface, T6Multiplier};
 use crate::fem::DofMap;
 use crate::mesh::Order;
 use crate::scene::{Control, GapMeasure, Scene};
@@ -43,10 +43,11 @@ pub fn rows(
     };
     let rows = if slave.mesh.order == Order::T6 {
         // Nodal rows on quadratic faces let the pressure alternate between
-        // corners and midsides; the corners' dual mortar rows do not (see
-        // `rows`). Gauss points on each half of an edge: the normals turn
-        // along the quadratic edge.
-        rows::mortar(slave, &see, limit, &|_| vec![0.0, 0.5, 1.0])
+        // corners and midsides; dual mortar rows on each half of the edge do
+        // not, and resolve the zone edge at the full node spacing (see
+        // `rows::T6Multiplier`). Gauss points on each half of an edge: the
+        // normals turn along the quadratic edge.
+        rows::mortar(slave, T6Multiplier::Halves, &see, limit, &|_| vec![0.0, 0.5, 1.0])
     } else {
         rows::nodal(slave, &see, limit)
     };
