@@ -320,7 +320,7 @@ def contact(
     """A contact pair: the body's edge set against exactly one of a rigid
     ``obstacle``, another body's edge set ``against=(body, edges)``, or a
     ``foundation``. ``friction``: the Coulomb coefficient μ (against a rigid
-    obstacle or punch; frictionless without it)."""
+    obstacle, a punch or another body; frictionless without it)."""
     if sum(x is not None for x in (obstacle, against, foundation)) != 1:
         raise ValueError("a contact pair names exactly one of obstacle, against or foundation")
     c: dict = {"body": body, "edges": edges}

@@ -299,6 +299,9 @@ def two_cylinders(
     h_min: float = 0.01,
     element: str = "t3",
     discretization: str = "mortar",
+    *,
+    friction: float | None = None,
+    shifts: list[float] | None = None,
 ) -> dict:
     """Two elastic half-disks pressed together (plane strain).
 
@@ -310,19 +313,39 @@ def two_cylinders(
     upper arc carries the pressure (slave side); ``discretization`` is
     "mortar" or "node_to_segment". Units are the caller's, consistent.
     Compare with ``hertz_two_cylinders`` using P = reply["pairs"][0]["resultant"]["fy"].
+
+    ``friction``: Coulomb μ between the two surfaces. ``shifts``: after pressing,
+    the upper one's clamped top is moved sideways by each of these displacements
+    [length] in turn (a load path: pressed, then shifted, so that P stays about
+    constant while Q = -resultant.fx grows). With the same material on both sides
+    (E1 = E2, nu1 = nu2: Dundurs beta = 0) the contact then sticks on
+    |x| < a sqrt(1 - Q/(μP)), ``cattaneo_mindlin_stick`` with a from
+    ``hertz_two_cylinders``.
     """
 
     def half_disk(center, radius, facing, h):
         return rq.half_disk(center, radius, facing, radius / 16.0, element, rq.grading(h, 1.1, 0.15 * min(R1, R2)))
 
+    upper = [rq.support("flat", 0.0, -approach)]
+    path = None
+    if shifts is not None:
+        shifts = [float(s) for s in shifts]
+        if not shifts or not all(math.isfinite(s) for s in shifts):
+            raise ValueError(f"shifts must be a non-empty list of finite displacements, not {shifts!r}")
+        # The sideways motion as its own support on the top, scaled alone by the path.
+        upper = [rq.support("flat", uy=-approach), rq.support("flat", ux=1.0)]
+        path = [rq.load_step({"/bodies/0/supports/1": 0.0})] + [
+            rq.load_step({"/bodies/0/supports/1": s}) for s in shifts
+        ]
     return rq.request(
         bodies=[
-            rq.body("upper", rq.material(E1, nu1), half_disk([0.0, R1], R1, "down", h_min),
-                    [rq.support("flat", 0.0, -approach)]),
+            rq.body("upper", rq.material(E1, nu1), half_disk([0.0, R1], R1, "down", h_min), upper),
             rq.body("lower", rq.material(E2, nu2), half_disk([0.0, -R2], R2, "up", 1.3 * h_min),
                     [rq.support("flat", 0.0, 0.0)]),
         ],
-        contacts=[rq.contact("upper", "arc", against=("lower", "arc"), discretization=discretization)],
+        contacts=[rq.contact("upper", "arc", against=("lower", "arc"), discretization=discretization,
+                             friction=friction)],
+        load_path=path,
     )
 
 

@@ -1,5 +1,6 @@
-"""Coulomb friction from the builders: Cattaneo-Mindlin's stick zone, full sliding,
-and a punch pushed sideways below and beyond mu P (Fichera's condition with friction)."""
+"""Coulomb friction from the builders: Cattaneo-Mindlin's stick zone (a roller on a rigid
+floor, two identical cylinders), full sliding, and a punch pushed sideways below and
+beyond mu P (Fichera's condition with friction)."""
 
 from __future__ import annotations
 
@@ -93,7 +94,37 @@ def test_punch_pushed_beyond_mu_p_is_refused_with_its_range(client):
     assert bound["max"] == pytest.approx(mu * load, rel=1e-8)
 
 
+def test_two_cylinders_stick_zone_follows_cattaneo_mindlin(client):
+    # Two identical cylinders (R = 8, E = 200, nu = 0.3: the same material, so Dundurs
+    # beta = 0 and Cattaneo-Mindlin holds at nu = 0.3), T6, h = 0.007 at the contact (half
+    # a spacing is at most 1.2 % of c), as crates/contact/tests/friction_two_bodies.rs.
+    # Tolerance 2 % on c; a from Hertz for two cylinders with the reply's P. Each body's
+    # contact force, friction included, is minus the other's (round-off: 1e-12 of P).
+    radius, e, nu = 8.0, 200.0, 0.3
+    req = scenes.two_cylinders(R1=radius, R2=radius, E1=e, E2=e, nu1=nu, nu2=nu, element="t6", h_min=0.007,
+                               friction=MU, shifts=[0.02, 0.035])
+    r = client.solve(req)
+    assert r["status"] == "solved"
+    steps = r["steps"]
+    assert len(steps) == 3
+    assert steps[0]["pairs"][0]["friction"]["slip_zones"] == [], "nothing slips under P alone (beta = 0)"
+    for k, st in enumerate(steps[1:], start=1):
+        pair = st["pairs"][0]
+        p, q = st["resultant"]["fy"], -st["resultant"]["fx"]
+        assert 0.25 < q / (MU * p) < 0.75, f"step {k}: Q/muP = {q / (MU * p)}"
+        a, _ = scenes.hertz_two_cylinders(p, radius, radius, e, nu, e, nu)
+        c = _stick_half_width(pair["points"])
+        expect = scenes.cattaneo_mindlin_stick(a, q, MU, p)
+        assert c == pytest.approx(expect, rel=0.02), f"step {k}: Q/muP = {q / (MU * p)}"
+        other = pair["other_resultant"]
+        assert other["fx"] == pytest.approx(-pair["resultant"]["fx"], abs=1e-12 * p)
+        assert other["fy"] == pytest.approx(-pair["resultant"]["fy"], abs=1e-12 * p)
+        assert all(len(pt["tangent"]) == 2 for pt in pair["points"]), "two-body friction points carry their tangent"
+
+
 def test_shifts_need_displacement_control():
     with pytest.raises(ValueError):
         scenes.roller_on_floor(load=5.0, friction=MU, shifts=[0.01])
+    with pytest.raises(ValueError):
+        scenes.two_cylinders(friction=MU, shifts=[])
     assert math.isclose(scenes.cattaneo_mindlin_stick(1.0, 0.75, 1.0, 1.0), 0.5)

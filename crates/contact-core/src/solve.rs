@@ -117,7 +117,8 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
         return Err(CoreError::invalid(
             crate::error::InvalidKind::Request,
             format!("{}/friction", frictional.path),
-            "friction on a body held only by contact (rigid motions left free by its supports) is not supported yet: support the body, or remove 'friction'",
+            "friction on a body held only by contact (rigid motions left free by its supports) is not supported yet: \
+             its rigid motions would have to join the unknowns of the frictional problem; support the body, or remove 'friction'",
         ));
     }
     let stepped = !scene.load_factors.is_empty() || !scene.load_path.is_empty();
@@ -131,7 +132,7 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
     if stepped && loaded_punch {
         for (s, _, _) in step_scenes(scene) {
             let mut model = Model::build(&s, meshes.clone())?;
-            let tangents = crate::contact::friction::Tangents::new(&s, &model.cons, &model.dofs);
+            let tangents = crate::contact::friction::Tangents::new(&s, &model.meshes, &model.cons, &model.dofs);
             punch_block(&s, &mut model, &tangents)?;
         }
     }
@@ -146,7 +147,7 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
     for (s, k, loads) in steps_in {
         obs.enter(Stage::Assembly);
         let mut model = Model::build(&s, meshes.clone())?;
-        let tangents = crate::contact::friction::Tangents::new(&s, &model.cons, &model.dofs);
+        let tangents = crate::contact::friction::Tangents::new(&s, &model.meshes, &model.cons, &model.dofs);
         // Load-controlled punch motions join the step's unknowns, once
         // Fichera's condition with the friction cone admits their loads.
         let block = punch_block(&s, &mut model, &tangents)?;

@@ -381,13 +381,13 @@ pub struct ContactPoint {
     /// node with `settings.gap = signed_distance`, the body's outward normal at
     /// the node with `body_normal` (mean over the support for mortar rows).
     pub normal: [f64; 2],
-    /// Pairs with friction: tangential traction on the body [force/length²]
-    /// along the tangent (−normal_y, normal_x) (`normal` turned 90°
-    /// counter-clockwise).
+    /// Pairs with friction: tangential traction on the body [force/length²] along `tangent` or (−n_y, n_x).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tangential_traction: Option<f64>,
-    /// Pairs with friction: slip in this load step [length], the node's
-    /// tangential motion relative to the obstacle along the same tangent.
+    /// Against another body: t ⟂ the bisector of `normal` and the body's normal (the traction has p's share on t).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tangent: Option<[f64; 2]>,
+    /// Pairs with friction: slip in this load step [length] relative to the other surface, along the tangent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub slip: Option<f64>,
     /// Pairs with friction: stick, slip or open.

@@ -344,7 +344,7 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
                 println!("wrote {}", path.display());
                 // Friction: the stick zone against Cattaneo–Mindlin.
                 println!(
-                    "\nfriction: stick half-width c of a roller (nu = 0.499, mu = {}) pressed then shifted, against Cattaneo-Mindlin:",
+                    "\nfriction: stick half-width c of a roller (nu = 0.499) on a rigid floor, then of two identical cylinders (nu = 0.3), mu = {}, pressed then shifted, against Cattaneo-Mindlin:",
                     contact_verify::friction::MU
                 );
                 println!("{}", contact_verify::friction::Row::table_header());

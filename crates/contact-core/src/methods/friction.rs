@@ -14,7 +14,9 @@
 //!
 //! and the step's conditions are λ ≥ 0, w ≥ 0, λ w = 0 and, in contact,
 //! |τ| ≤ μ λ with Δs = 0 where |τ| < μ λ and τ = μ λ sign(Δs) where Δs ≠ 0
-//! (the friction force opposes the slip: −τ Δs ≤ 0). The slip is the
+//! (the friction force opposes the slip: −τ Δs ≤ 0). Against another body
+//! the law holds for τ + λ n · t instead of τ (`Tangents::along`: the normal
+//! rows' direction is not quite normal to the tangent there). The slip is the
 //! increment over the step (incremental, small-slip Coulomb law), measured
 //! from the tangential displacement the previous step ended with.
 //!
@@ -314,8 +316,8 @@ fn pdas(
                 match t.row_of[i] {
                     None => State::Stick,
                     Some(k) => {
-                        let z = tau[k] + ct * slip[k];
-                        if z.abs() <= t.mu[k] * lt {
+                        let z = t.along(k, lambda[i], tau[k]) + ct * slip[k];
+                        if z.abs() <= t.bound(k, lt) {
                             State::Stick
                         } else {
                             State::Slip(if z > 0.0 { 1 } else { -1 })
@@ -419,7 +421,8 @@ fn newton_step(
             State::Slip(sign) => {
                 m[(r, r)] = 1.0;
                 let li = on.iter().position(|&x| x == i).expect("a sliding point is in contact");
-                m[(r, li)] = -f64::from(sign) * t.mu[k];
+                // τ + λ n·t = ± μ λ n·m.
+                m[(r, li)] = t.along(k, 1.0, 0.0) - f64::from(sign) * t.bound(k, 1.0);
             }
             _ => {
                 for j in 0..a + b {

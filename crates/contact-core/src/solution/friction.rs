@@ -1,7 +1,8 @@
 //! Friction in the report: per point the tangential traction, the step's slip
 //! and the state; per pair the stick and slip zones and the tangential
 //! resultant (added to the pair's and the total resultant, which are the
-//! whole contact force on the bodies); and the Coulomb conditions'
+//! whole contact force on the bodies, and against another body to the force
+//! on that one); and the Coulomb conditions'
 //! residuals in the certificate, which decide the status like the others.
 
 use std::collections::HashMap;
@@ -9,7 +10,7 @@ use std::collections::HashMap;
 use crate::contact::friction::Tangents;
 use crate::methods::friction::{self as fr, State};
 use crate::model::Model;
-use crate::scene::Scene;
+use crate::scene::{Scene, Target};
 use crate::solution::report::{
     FrictionResiduals, FrictionState, PairFriction, PointFriction, Report, Resultant, Status,
 };
@@ -30,7 +31,6 @@ pub fn attach(report: &mut Report, scene: &Scene, model: &Model, t: &Tangents, s
         if pair.friction <= 0.0 {
             continue;
         }
-        let mesh = &model.meshes[pair.body];
         let by_node: HashMap<usize, usize> = (0..cons.len())
             .filter(|&i| cons.candidates[i].pair == p)
             .map(|i| (cons.candidates[i].node, i))
@@ -41,9 +41,19 @@ pub fn attach(report: &mut Report, scene: &Scene, model: &Model, t: &Tangents, s
             .iter()
             .map(|q| {
                 let i = by_node[&q.node];
+                // The whole contact force's tangential component, which the
+                // Coulomb law bounds (the friction force alone but against
+                // another body).
                 let (traction, slip) = match t.row_of[i] {
-                    Some(k) => (-s.tau[k] / cons.candidates[i].weight, s.slip[k]),
+                    Some(k) => (
+                        -t.along(k, s.lambda[i], s.tau[k]) / cons.candidates[i].weight,
+                        s.slip[k],
+                    ),
                     None => (0.0, 0.0),
+                };
+                let tangent = match (&pair.target, t.row_of[i]) {
+                    (Target::Body { .. }, Some(k)) => Some(t.tangent[k]),
+                    _ => None,
                 };
                 let st = match state.get(&(p, q.node)) {
                     _ if !s.in_contact[i] => FrictionState::Open,
@@ -52,6 +62,7 @@ pub fn attach(report: &mut Report, scene: &Scene, model: &Model, t: &Tangents, s
                 };
                 PointFriction {
                     traction: sc.stress(traction),
+                    tangent,
                     slip: sc.length(slip),
                     state: st,
                 }
@@ -73,28 +84,41 @@ pub fn attach(report: &mut Report, scene: &Scene, model: &Model, t: &Tangents, s
             }
             out
         };
-        // Friction forces on the nodes: −τ times the turned coefficients.
-        let mut r = Resultant::default();
-        for (k, terms) in t.terms.iter().enumerate() {
-            if cons.candidates[t.of[k]].pair != p {
-                continue;
+        // Friction forces on the nodes: −τ times the turned coefficients, on
+        // the pair's body (its resultant) and, against another body, on that
+        // one (the other resultant: the rows' terms on it carry the opposite
+        // force, so the two add up to zero).
+        let on = |body: usize| {
+            let mesh = &model.meshes[body];
+            let mut r = Resultant::default();
+            for (k, terms) in t.terms.iter().enumerate() {
+                if cons.candidates[t.of[k]].pair != p {
+                    continue;
+                }
+                for term in terms.iter().filter(|term| term.body == body) {
+                    let f = [-s.tau[k] * term.coef[0], -s.tau[k] * term.coef[1]];
+                    let x = mesh.nodes[term.node];
+                    r.fx += f[0];
+                    r.fy += f[1];
+                    r.m += x[0] * f[1] - x[1] * f[0];
+                }
             }
-            for term in terms {
-                let f = [-s.tau[k] * term.coef[0], -s.tau[k] * term.coef[1]];
-                let x = mesh.nodes[term.node];
-                r.fx += f[0];
-                r.fy += f[1];
-                r.m += x[0] * f[1] - x[1] * f[0];
+            Resultant {
+                fx: sc.force(r.fx),
+                fy: sc.force(r.fy),
+                m: sc.moment(r.m),
             }
-        }
-        let r = Resultant {
-            fx: sc.force(r.fx),
-            fy: sc.force(r.fy),
-            m: sc.moment(r.m),
         };
+        let r = on(pair.body);
         pr.resultant.fx += r.fx;
         pr.resultant.fy += r.fy;
         pr.resultant.m += r.m;
+        if let (Target::Body { body, .. }, Some(other)) = (&pair.target, pr.other_resultant.as_mut()) {
+            let o = on(*body);
+            other.fx += o.fx;
+            other.fy += o.fy;
+            other.m += o.m;
+        }
         total.fx += r.fx;
         total.fy += r.fy;
         total.m += r.m;
@@ -138,13 +162,15 @@ pub fn residuals(t: &Tangents, lambda: &[f64], tau: &[f64], slip: &[f64], u_scal
     let ratio = |num: f64, den: f64| if num == 0.0 { 0.0 } else { num / den };
     let mut r = FrictionResiduals::default();
     for k in 0..t.len() {
-        let bound = t.mu[k] * lambda[t.of[k]].max(0.0);
-        r.cone = r.cone.max(ratio((tau[k].abs() - bound).max(0.0), lmax));
+        let l = lambda[t.of[k]];
+        let bound = t.bound(k, l.max(0.0));
+        let tk = t.along(k, l, tau[k]);
+        r.cone = r.cone.max(ratio((tk.abs() - bound).max(0.0), lmax));
         // The friction force −τ along t may not work with the slip: −τ Δs ≤ 0.
-        r.dissipation = r.dissipation.max(ratio((-tau[k] * slip[k]).max(0.0), lmax * d));
+        r.dissipation = r.dissipation.max(ratio((-tk * slip[k]).max(0.0), lmax * d));
         r.stick = r
             .stick
-            .max(ratio((bound - tau[k].abs()).max(0.0) * slip[k].abs(), lmax * d));
+            .max(ratio((bound - tk.abs()).max(0.0) * slip[k].abs(), lmax * d));
     }
     r
 }

@@ -366,6 +366,8 @@ pub struct PairFriction {
 #[derive(Debug, Clone, Copy)]
 pub struct PointFriction {
     pub traction: f64,
+    /// The row's tangent where it is not the normal turned 90° (two bodies).
+    pub tangent: Option<[f64; 2]>,
     pub slip: f64,
     pub state: FrictionState,
 }

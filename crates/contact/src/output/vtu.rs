@@ -97,7 +97,7 @@ pub fn vtu(reply: &SolveReply, stress_zz: &[Vec<f64>], axisymmetric: bool) -> Ve
     }
 
     // With friction: the tangential traction along each point's tangent
-    // (−n_y, n_x), as a vector ParaView can draw as glyphs.
+    // (`tangent`, or (−n_y, n_x)), as a vector ParaView can draw as glyphs.
     let friction = reply.pairs.iter().any(|p| p.friction.is_some());
     let mut tangential = vec![0.0; points.len()];
     for pair in reply.pairs.iter().filter(|p| p.friction.is_some()) {
@@ -105,8 +105,9 @@ pub fn vtu(reply: &SolveReply, stress_zz: &[Vec<f64>], axisymmetric: bool) -> Ve
             for p in &pair.points {
                 let t = p.tangential_traction.unwrap_or(0.0);
                 let k = 3 * (first[b] + p.node);
-                tangential[k] += -t * p.normal[1];
-                tangential[k + 1] += t * p.normal[0];
+                let tan = p.tangent.unwrap_or([-p.normal[1], p.normal[0]]);
+                tangential[k] += t * tan[0];
+                tangential[k + 1] += t * tan[1];
             }
         }
     }

@@ -204,6 +204,7 @@ fn pair(pr: PairReport) -> p::PairResult {
                     node: c.node,
                     normal: c.normal,
                     tangential_traction: fr.map(|f| f.traction),
+                    tangent: fr.and_then(|f| f.tangent),
                     slip: fr.map(|f| f.slip),
                     state: fr.map(|f| match f.state {
                         r::FrictionState::Stick => p::FrictionState::Stick,

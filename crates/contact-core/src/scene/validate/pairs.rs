@@ -152,10 +152,11 @@ fn friction(req: &SolveRequest, c: &proto::ContactSpec, cp: &str, target: &Targe
             format!("friction {what} is not supported yet (remove 'friction' to solve the pair frictionless)"),
         ))
     };
-    match target {
-        Target::Body { .. } => return refuse("between two deformable bodies"),
-        Target::Foundation(_) => return refuse("on a foundation"),
-        Target::Obstacle(_) => {}
+    // Two bodies: the tangential rows are the normal ones turned by 90°,
+    // which turns the other body's terms too, so they read the relative
+    // tangential displacement of the two surfaces (`contact::friction`).
+    if let Target::Foundation(_) = target {
+        return refuse("on a foundation");
     }
     if !matches!(req.method, proto::MethodName::Auto | proto::MethodName::ActiveSet) {
         return refuse("with a method other than 'auto' or 'active_set'");
