@@ -111,3 +111,51 @@ pub fn assert_exact_methods_agree(req: &Value, tol: f64) {
         );
     }
 }
+
+/// The ends of the run of points in `state` (or, with None, in contact):
+/// midway between the run's end points and their outer neighbours, where the
+/// true transition lies to ± half a spacing.
+pub fn run_ends(
+    points: &[contact::proto::ContactPoint],
+    inside: impl Fn(&contact::proto::ContactPoint) -> bool,
+) -> [f64; 2] {
+    let idx: Vec<usize> = (0..points.len()).filter(|&i| inside(&points[i])).collect();
+    assert!(!idx.is_empty(), "no point in the run");
+    let (lo, hi) = (idx[0], idx[idx.len() - 1]);
+    assert_eq!(hi - lo + 1, idx.len(), "the run is not contiguous");
+    let x = |i: usize| points[i].x;
+    let l = if lo > 0 { 0.5 * (x(lo) + x(lo - 1)) } else { x(lo) };
+    let h = if hi + 1 < points.len() {
+        0.5 * (x(hi) + x(hi + 1))
+    } else {
+        x(hi)
+    };
+    [l, h]
+}
+
+/// The answer of every step (the reply's `steps`).
+pub fn steps(
+    r: &SolveReply,
+) -> Vec<(
+    Vec<contact::proto::PairResult>,
+    contact::proto::Resultant,
+    contact::proto::SolveStatus,
+)> {
+    r.steps
+        .as_ref()
+        .expect("a load path answers per step")
+        .iter()
+        .map(|s| (s.pairs.clone(), s.resultant, s.status))
+        .collect()
+}
+
+/// A load path whose steps scale the first body's second support (its
+/// sideways motion) by each of `shifts`.
+pub fn shift_path(shifts: &[f64]) -> Value {
+    Value::from(
+        shifts
+            .iter()
+            .map(|d| serde_json::json!({"loads": {"/bodies/0/supports/1": d}}))
+            .collect::<Vec<_>>(),
+    )
+}

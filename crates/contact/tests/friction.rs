@@ -14,7 +14,7 @@
 
 mod common;
 use common::*;
-use contact::proto::{FrictionState, SolveReply, SolveStatus};
+use contact::proto::{FrictionState, SolveStatus};
 use serde_json::{json, Value};
 
 const MU: f64 = 0.5;
@@ -40,44 +40,8 @@ fn roller_of(element: &str, nu: f64, h: f64, shifts: &[f64], mu: Option<f64>) ->
     if let Some(mu) = mu {
         r["contacts"][0]["friction"] = json!({"coefficient": mu});
     }
-    r["load_path"] = Value::from(
-        shifts
-            .iter()
-            .map(|d| json!({"loads": {"/bodies/0/supports/1": d}}))
-            .collect::<Vec<_>>(),
-    );
+    r["load_path"] = shift_path(shifts);
     r
-}
-
-/// The answer of every step (the reply's `steps`).
-fn steps(r: &SolveReply) -> Vec<(Vec<contact::proto::PairResult>, contact::proto::Resultant, SolveStatus)> {
-    r.steps
-        .as_ref()
-        .expect("a load path answers per step")
-        .iter()
-        .map(|s| (s.pairs.clone(), s.resultant, s.status))
-        .collect()
-}
-
-/// The ends of the run of points in `state` (or, with None, in contact):
-/// midway between the run's end points and their outer neighbours, where the
-/// true transition lies to ± half a spacing.
-fn run_ends(
-    points: &[contact::proto::ContactPoint],
-    inside: impl Fn(&contact::proto::ContactPoint) -> bool,
-) -> [f64; 2] {
-    let idx: Vec<usize> = (0..points.len()).filter(|&i| inside(&points[i])).collect();
-    assert!(!idx.is_empty(), "no point in the run");
-    let (lo, hi) = (idx[0], idx[idx.len() - 1]);
-    assert_eq!(hi - lo + 1, idx.len(), "the run is not contiguous");
-    let x = |i: usize| points[i].x;
-    let l = if lo > 0 { 0.5 * (x(lo) + x(lo - 1)) } else { x(lo) };
-    let h = if hi + 1 < points.len() {
-        0.5 * (x(hi) + x(hi + 1))
-    } else {
-        x(hi)
-    };
-    [l, h]
 }
 
 /// Cattaneo–Mindlin: under P then Q < μP the contact sticks on |x − x_s| < c

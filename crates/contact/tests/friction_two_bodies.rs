@@ -13,7 +13,7 @@
 
 mod common;
 use common::*;
-use contact::proto::{FrictionState, PairResult, Resultant, SolveReply, SolveStatus};
+use contact::proto::{FrictionState, PairResult, Resultant, SolveStatus};
 use serde_json::{json, Value};
 
 const MU: f64 = 0.5;
@@ -42,12 +42,7 @@ fn cylinders(h: f64, discretization: &str, shifts: &[f64], mu: Option<f64>) -> V
     if let Some(mu) = mu {
         r["contacts"][0]["friction"] = json!({"coefficient": mu});
     }
-    r["load_path"] = Value::from(
-        shifts
-            .iter()
-            .map(|d| json!({"loads": {"/bodies/0/supports/1": d}}))
-            .collect::<Vec<_>>(),
-    );
+    r["load_path"] = shift_path(shifts);
     r
 }
 
@@ -57,32 +52,11 @@ fn hertz_pair(p: f64) -> (f64, f64) {
     hertz(p, 0.5 * R, 0.5 * E, NU)
 }
 
-fn steps(r: &SolveReply) -> Vec<(Vec<PairResult>, Resultant, SolveStatus)> {
-    r.steps
-        .as_ref()
-        .expect("a load path answers per step")
-        .iter()
-        .map(|s| (s.pairs.clone(), s.resultant, s.status))
-        .collect()
-}
-
 /// Half the length of the one run of sticking points, its ends midway
 /// between the run's end points and their outer neighbours (the true
 /// transition lies there to half a spacing), and its centre.
 fn stick_run(points: &[contact::proto::ContactPoint]) -> (f64, f64) {
-    let idx: Vec<usize> = (0..points.len())
-        .filter(|&i| points[i].state == Some(FrictionState::Stick))
-        .collect();
-    assert!(!idx.is_empty(), "no point sticks");
-    let (lo, hi) = (idx[0], idx[idx.len() - 1]);
-    assert_eq!(hi - lo + 1, idx.len(), "the stick zone is not contiguous");
-    let x = |i: usize| points[i].x;
-    let l = if lo > 0 { 0.5 * (x(lo) + x(lo - 1)) } else { x(lo) };
-    let h = if hi + 1 < points.len() {
-        0.5 * (x(hi) + x(hi + 1))
-    } else {
-        x(hi)
-    };
+    let [l, h] = run_ends(points, |q| q.state == Some(FrictionState::Stick));
     (0.5 * (h - l), 0.5 * (h + l))
 }
 

@@ -3,7 +3,7 @@
 mod common;
 use common::*;
 use contact_verify::build::*;
-use serde_json::json;
+use serde_json::{json, Value};
 
 /// Hertz, rigid cylinder R = 8 into an elastic block (T3 and T6). The zone ends
 /// sit on nodes, so the half-width is quantised by the contact-zone element
@@ -553,42 +553,10 @@ fn an_edge_set_in_two_pieces_has_a_zone_on_each() {
 /// as two zones meeting at the seam, each "exact" there.
 #[test]
 fn a_zone_across_the_start_of_a_closed_rim_is_one_zone() {
-    let (rings, around) = (16usize, 256usize);
-    let mut nodes = vec![[0.0, 0.0]];
-    for k in 1..=rings {
-        let r = k as f64 / rings as f64;
-        for j in 0..around {
-            // From the bottom (−π/2), counter-clockwise.
-            let t = -std::f64::consts::FRAC_PI_2 + std::f64::consts::TAU * j as f64 / around as f64;
-            nodes.push([r * t.cos(), r * t.sin()]);
-        }
-    }
-    let at = |k: usize, j: usize| if k == 0 { 0 } else { 1 + (k - 1) * around + j % around };
-    let mut elements = Vec::new();
-    for j in 0..around {
-        elements.push(vec![0, at(1, j), at(1, j + 1)]);
-        for k in 1..rings {
-            elements.push(vec![at(k, j), at(k + 1, j), at(k + 1, j + 1)]);
-            elements.push(vec![at(k, j), at(k + 1, j + 1), at(k, j + 1)]);
-        }
-    }
-    let rim: Vec<[usize; 2]> = (0..around).map(|j| [at(rings, j), at(rings, j + 1)]).collect();
-    // The top eight rim edges carry the prescribed approach.
-    let top: Vec<[usize; 2]> = (around / 2 - 4..around / 2 + 4)
-        .map(|j| [at(rings, j), at(rings, j + 1)])
-        .collect();
-    let req = json!({
-        "version": "1",
-        "bodies": [{
-            "name": "disk",
-            "material": {"youngs_modulus": 1.0, "poisson_ratio": 0.3},
-            "mesh": {"inline": {"nodes": nodes, "elements": elements, "edge_sets": {"rim": rim, "top": top}}},
-            "supports": [{"edges": "top", "ux": 0.0, "uy": -0.04}]
-        }],
-        "obstacles": [{"name": "floor", "shape": {"line": {"point": [0.0, -1.0], "normal": [0.0, 1.0]}}}],
-        "contacts": [{"body": "disk", "edges": "rim", "obstacle": "floor"}]
-    });
-    let r = solved(&req);
+    let around = 256;
+    let (nodes, corners, rim, top) = inline_disk(16, around);
+    let elements: Vec<Vec<usize>> = corners.iter().map(|t| t.to_vec()).collect();
+    let r = solved(&inline_disk_on_floor(&nodes, &elements, &rim, &top, json!({})));
     let pair = &r.pairs[0];
     assert_eq!(pair.zones_along.len(), 1, "{:?}", pair.zones_along);
     assert_eq!(pair.zones.len(), 1, "{:?}", pair.zones);
@@ -619,28 +587,7 @@ fn a_zone_across_the_start_of_a_closed_rim_is_one_zone() {
 /// 0.04 %; the chords, a slightly different body, 0.19 % less).
 #[test]
 fn chords_of_a_curve_keep_their_midsides_out_of_contact() {
-    let (rings, around) = (16usize, 256usize);
-    let mut nodes = vec![[0.0, 0.0]];
-    for k in 1..=rings {
-        let r = k as f64 / rings as f64;
-        for j in 0..around {
-            let t = -std::f64::consts::FRAC_PI_2 + std::f64::consts::TAU * j as f64 / around as f64;
-            nodes.push([r * t.cos(), r * t.sin()]);
-        }
-    }
-    let at = |k: usize, j: usize| if k == 0 { 0 } else { 1 + (k - 1) * around + j % around };
-    let mut corners = Vec::new();
-    for j in 0..around {
-        corners.push([0, at(1, j), at(1, j + 1)]);
-        for k in 1..rings {
-            corners.push([at(k, j), at(k + 1, j), at(k + 1, j + 1)]);
-            corners.push([at(k, j), at(k + 1, j + 1), at(k, j + 1)]);
-        }
-    }
-    let rim: Vec<[usize; 2]> = (0..around).map(|j| [at(rings, j), at(rings, j + 1)]).collect();
-    let top: Vec<[usize; 2]> = (around / 2 - 4..around / 2 + 4)
-        .map(|j| [at(rings, j), at(rings, j + 1)])
-        .collect();
+    let (nodes, corners, rim, top) = inline_disk(16, 256);
     let solve = |curved: bool, multipliers: &str| {
         let mut nodes = nodes.clone();
         let mut mid: std::collections::HashMap<(usize, usize), usize> = Default::default();
@@ -665,19 +612,8 @@ fn chords_of_a_curve_keep_their_midsides_out_of_contact() {
             }
             elements.push(el);
         }
-        let req = json!({
-            "version": "1",
-            "bodies": [{
-                "name": "disk",
-                "material": {"youngs_modulus": 1.0, "poisson_ratio": 0.3},
-                "mesh": {"inline": {"nodes": nodes, "elements": elements, "edge_sets": {"rim": rim, "top": top}}},
-                "supports": [{"edges": "top", "ux": 0.0, "uy": -0.04}]
-            }],
-            "obstacles": [{"name": "floor", "shape": {"line": {"point": [0.0, -1.0], "normal": [0.0, 1.0]}}}],
-            "contacts": [{"body": "disk", "edges": "rim", "obstacle": "floor"}],
-            "settings": {"t6_multipliers": multipliers}
-        });
-        let r = solved(&req);
+        let settings = json!({"t6_multipliers": multipliers});
+        let r = solved(&inline_disk_on_floor(&nodes, &elements, &rim, &top, settings));
         let pair = &r.pairs[0];
         let mut pts: Vec<(f64, f64)> = pair
             .points
@@ -713,4 +649,55 @@ fn chords_of_a_curve_keep_their_midsides_out_of_contact() {
     // The polygon is a slightly different body: within 0.5 % (measured 0.19 %).
     assert!((fy_chord / fy_arc - 1.0).abs() < 5e-3, "{fy_chord} against {fy_arc}");
     assert!(w_arc < 0.1, "{w_arc}");
+}
+
+/// A unit disk of `rings` rings of `around` nodes (from the bottom,
+/// counter-clockwise) as T3 corners, its rim and the `top` eight rim edges
+/// (where the tests prescribe the approach).
+#[allow(clippy::type_complexity)]
+fn inline_disk(rings: usize, around: usize) -> (Vec<[f64; 2]>, Vec<[usize; 3]>, Vec<[usize; 2]>, Vec<[usize; 2]>) {
+    let mut nodes = vec![[0.0, 0.0]];
+    for k in 1..=rings {
+        let r = k as f64 / rings as f64;
+        for j in 0..around {
+            let t = -std::f64::consts::FRAC_PI_2 + std::f64::consts::TAU * j as f64 / around as f64;
+            nodes.push([r * t.cos(), r * t.sin()]);
+        }
+    }
+    let at = |k: usize, j: usize| if k == 0 { 0 } else { 1 + (k - 1) * around + j % around };
+    let mut corners = Vec::new();
+    for j in 0..around {
+        corners.push([0, at(1, j), at(1, j + 1)]);
+        for k in 1..rings {
+            corners.push([at(k, j), at(k + 1, j), at(k + 1, j + 1)]);
+            corners.push([at(k, j), at(k + 1, j + 1), at(k, j + 1)]);
+        }
+    }
+    let rim = (0..around).map(|j| [at(rings, j), at(rings, j + 1)]).collect();
+    let top = (around / 2 - 4..around / 2 + 4)
+        .map(|j| [at(rings, j), at(rings, j + 1)])
+        .collect();
+    (nodes, corners, rim, top)
+}
+
+/// The inline disk pressed 0.04 at its `top` onto a rigid floor at y = −1.
+fn inline_disk_on_floor(
+    nodes: &[[f64; 2]],
+    elements: &[Vec<usize>],
+    rim: &[[usize; 2]],
+    top: &[[usize; 2]],
+    settings: Value,
+) -> Value {
+    json!({
+        "version": "1",
+        "bodies": [{
+            "name": "disk",
+            "material": {"youngs_modulus": 1.0, "poisson_ratio": 0.3},
+            "mesh": {"inline": {"nodes": nodes, "elements": elements, "edge_sets": {"rim": rim, "top": top}}},
+            "supports": [{"edges": "top", "ux": 0.0, "uy": -0.04}]
+        }],
+        "obstacles": [{"name": "floor", "shape": {"line": {"point": [0.0, -1.0], "normal": [0.0, 1.0]}}}],
+        "contacts": [{"body": "disk", "edges": "rim", "obstacle": "floor"}],
+        "settings": settings
+    })
 }

@@ -22,6 +22,35 @@ pub fn rule(order: Order) -> &'static [[f64; 3]] {
     }
 }
 
+/// Where the tests check a T6 element's Jacobian: the 3-point rule's points,
+/// the corners and the midsides (det J of a quadratic map is quadratic, so
+/// these see a fold near any of them).
+#[cfg(test)]
+pub(crate) const T6_CHECK_POINTS: [[f64; 2]; 9] = [
+    [1.0 / 6.0, 1.0 / 6.0],
+    [2.0 / 3.0, 1.0 / 6.0],
+    [1.0 / 6.0, 2.0 / 3.0],
+    [0.0, 0.0],
+    [1.0, 0.0],
+    [0.0, 1.0],
+    [0.5, 0.0],
+    [0.5, 0.5],
+    [0.0, 0.5],
+];
+
+/// The isoparametric T6 map of the element with nodes `x` at (ξ, η): the
+/// point and det J.
+#[cfg(test)]
+pub(crate) fn t6_map(x: &[[f64; 2]], xi: f64, eta: f64) -> ([f64; 2], f64) {
+    let (mut n, mut dxi, mut deta) = ([0.0; 6], [0.0; 6], [0.0; 6]);
+    shape(Order::T6, xi, eta, &mut n, &mut dxi, &mut deta);
+    let s = |d: &[f64; 6], c: usize| (0..6).map(|i| d[i] * x[i][c]).sum::<f64>();
+    (
+        [s(&n, 0), s(&n, 1)],
+        s(&dxi, 0) * s(&deta, 1) - s(&dxi, 1) * s(&deta, 0),
+    )
+}
+
 /// Shape functions and their reference derivatives at (ξ, η).
 pub fn shape(order: Order, xi: f64, eta: f64, n: &mut [f64; 6], dxi: &mut [f64; 6], deta: &mut [f64; 6]) {
     let l1 = 1.0 - xi - eta;

@@ -361,15 +361,7 @@ mod tests {
     }
 
     /// T6 map of element `x` at (ξ, η): position and det J.
-    fn map(x: &[[f64; 2]], xi: f64, eta: f64) -> ([f64; 2], f64) {
-        let (mut n, mut dxi, mut deta) = ([0.0; 6], [0.0; 6], [0.0; 6]);
-        crate::fem::element::shape(Order::T6, xi, eta, &mut n, &mut dxi, &mut deta);
-        let s = |d: &[f64; 6], c: usize| (0..6).map(|i| d[i] * x[i][c]).sum::<f64>();
-        (
-            [s(&n, 0), s(&n, 1)],
-            s(&dxi, 0) * s(&deta, 1) - s(&dxi, 1) * s(&deta, 0),
-        )
-    }
+    use crate::fem::element::{t6_map as map, T6_CHECK_POINTS};
 
     /// Isoparametric area Σ_e Σ_q w_q det J: exact, det J of a quadratic map
     /// being quadratic and the 3-point rule of degree 2.
@@ -497,18 +489,7 @@ mod tests {
                 mid.push(t[3 + i]);
             }
             let x: Vec<[f64; 2]> = t.iter().map(|&n| m.nodes[n]).collect();
-            let points = [
-                [1.0 / 6.0, 1.0 / 6.0],
-                [2.0 / 3.0, 1.0 / 6.0],
-                [1.0 / 6.0, 2.0 / 3.0],
-                [0.0, 0.0],
-                [1.0, 0.0],
-                [0.0, 1.0],
-                [0.5, 0.0],
-                [0.5, 0.5],
-                [0.0, 0.5],
-            ];
-            for [xi, eta] in points {
+            for [xi, eta] in T6_CHECK_POINTS {
                 let det = map(&x, xi, eta).1 / (2.0 * signed_area(x[0], x[1], x[2]));
                 assert!(det > 0.0, "element {e}: det J {det} at ({xi}, {eta})");
                 min_det = min_det.min(det);

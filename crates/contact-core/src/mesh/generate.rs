@@ -586,22 +586,8 @@ mod tests {
                 }
             }
             let x: Vec<[f64; 2]> = t.iter().map(|&n| m.nodes[n]).collect();
-            let points = [
-                [1.0 / 6.0, 1.0 / 6.0],
-                [2.0 / 3.0, 1.0 / 6.0],
-                [1.0 / 6.0, 2.0 / 3.0],
-                [0.0, 0.0],
-                [1.0, 0.0],
-                [0.0, 1.0],
-                [0.5, 0.0],
-                [0.5, 0.5],
-                [0.0, 0.5],
-            ];
-            for [xi, eta] in points {
-                let (mut n, mut dxi, mut deta) = ([0.0; 6], [0.0; 6], [0.0; 6]);
-                crate::fem::element::shape(Order::T6, xi, eta, &mut n, &mut dxi, &mut deta);
-                let j = |d: &[f64; 6], c: usize| (0..6).map(|i| d[i] * x[i][c]).sum::<f64>();
-                let det = j(&dxi, 0) * j(&deta, 1) - j(&dxi, 1) * j(&deta, 0);
+            for [xi, eta] in crate::fem::element::T6_CHECK_POINTS {
+                let det = crate::fem::element::t6_map(&x, xi, eta).1;
                 assert!(det > 0.0, "element {e}: det J {det} at ({xi}, {eta})");
             }
         }
