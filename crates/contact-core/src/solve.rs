@@ -106,30 +106,17 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
     let meshes = crate::meshing::meshes(scene)?;
     obs.leave(Stage::Mesh)?;
     admit::meshes(&meshes, limits)?;
-    let frictional = scene
-        .pairs
-        .iter()
-        .find(|p| p.friction > 0.0)
-        .expect("a frictional pair");
-    // A body held only by contact would need its rigid motions among the
-    // unknowns of the frictional problem (a block pushed along a floor).
-    if !crate::fem::assembly::dof_map(scene, &meshes)?.rigid.is_empty() {
-        return Err(CoreError::invalid(
-            crate::error::InvalidKind::Request,
-            format!("{}/friction", frictional.path),
-            "friction on a body held only by contact (rigid motions left free by its supports) is not supported yet: \
-             its rigid motions would have to join the unknowns of the frictional problem; support the body, or remove 'friction'",
-        ));
-    }
     let stepped = !scene.load_factors.is_empty() || !scene.load_path.is_empty();
-    // A punch pushed beyond what friction holds in some step is refused
-    // before the first step is solved (Fichera's condition with friction).
+    // A punch pushed, or a body held only by contact loaded, beyond what
+    // friction holds in some step is refused before the first step is
+    // solved (Fichera's condition with friction).
     let loaded_punch = scene.obstacles.iter().any(|o| {
         o.punch
             .as_ref()
             .is_some_and(|p| p.controls.iter().any(|c| matches!(c, crate::scene::Control::Load(_))))
     });
-    if stepped && loaded_punch {
+    let free_body = !crate::fem::assembly::dof_map(scene, &meshes)?.rigid.is_empty();
+    if stepped && (loaded_punch || free_body) {
         for (s, _, _) in step_scenes(scene) {
             let mut model = Model::build(&s, meshes.clone())?;
             let tangents = crate::contact::friction::Tangents::new(&s, &model.meshes, &model.cons, &model.dofs);
@@ -148,8 +135,9 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
         obs.enter(Stage::Assembly);
         let mut model = Model::build(&s, meshes.clone())?;
         let tangents = crate::contact::friction::Tangents::new(&s, &model.meshes, &model.cons, &model.dofs);
-        // Load-controlled punch motions join the step's unknowns, once
-        // Fichera's condition with the friction cone admits their loads.
+        // Load-controlled punch motions and the rigid modes of bodies held
+        // only by contact join the step's unknowns, once Fichera's condition
+        // with the friction cone admits their loads.
         let block = punch_block(&s, &mut model, &tangents)?;
         if model.cons.len() + tangents.len() > limits.max_candidates {
             return Err(CoreError::TooLarge {
@@ -203,6 +191,9 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
                 beta[m] = sol.beta[j];
             }
             sol.beta = beta.clone();
+            // The next step's slip is measured from the whole displacement,
+            // the bodies' rigid motions R β included.
+            add_rigid_motions(&model, &beta, &mut friction.history.displacement);
             friction.beta = beta;
         }
         obs.leave(Stage::ContactSolve)?;
@@ -253,10 +244,11 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
     Ok(last)
 }
 
-/// The load-controlled punch motions of a frictional step (None without
-/// any): their columns in the normal and tangential rows and their loads,
-/// refused with `incompatible_loads` when no contact force inside the
-/// friction cone balances them (the punch would slide). A motion nothing
+/// The load-controlled punch motions and the free rigid modes of bodies
+/// held only by contact of a frictional step (None without any): their
+/// columns in the normal and tangential rows and their loads, refused with
+/// `incompatible_loads` when no contact force inside the friction cone
+/// balances them (the punch or body would slide). A motion nothing
 /// resists and nothing loads is left out, at 0, and marked not determined.
 fn punch_block(
     scene: &Scene,
@@ -267,15 +259,27 @@ fn punch_block(
     if fm.is_empty() {
         return Ok(None);
     }
-    let component = |j: usize| match fm.motions[j].0 {
-        crate::contact::free_motions::Motion::Punch { obstacle, component } => (obstacle, component),
-        // A body held only by contact is refused before.
-        crate::contact::free_motions::Motion::Body { .. } => unreachable!("no body motions with friction"),
-    };
+    use crate::contact::free_motions::Motion;
     let k = fm.motions.len();
-    let ct = faer::Mat::<f64>::from_fn(tangents.len(), k, |r, j| match tangents.punch[r] {
-        Some((o, c)) if o == component(j).0 => c[component(j).1],
-        _ => 0.0,
+    // A punch's motion moves the row's target by c_t · α along t (the row
+    // subtracts it); a body's rigid motion R moves the row's own points, so
+    // its slip gains B_T R β and its column is −B_T R (as C_N = −B_N R).
+    let ct = faer::Mat::<f64>::from_fn(tangents.len(), k, |r, j| match fm.motions[j].0 {
+        Motion::Punch { obstacle, component } => match tangents.punch[r] {
+            Some((o, c)) if o == obstacle => c[component],
+            _ => 0.0,
+        },
+        Motion::Body { set, dir } => {
+            let rm = &model.dofs.rigid[set];
+            tangents.terms[r]
+                .iter()
+                .filter(|t| t.body == rm.body)
+                .map(|t| {
+                    let d = rm.at_dir(dir, model.meshes[rm.body].nodes[t.node]);
+                    -(t.coef[0] * d[0] + t.coef[1] * d[1])
+                })
+                .sum()
+        }
     });
     let n = model.cons.len();
     let ct_by_candidate = faer::Mat::<f64>::from_fn(n, k, |i, j| tangents.row_of[i].map_or(0.0, |r| ct[(r, j)]));
@@ -289,6 +293,7 @@ fn punch_block(
         cn: faer::Mat::<f64>::from_fn(n, keep.len(), |i, j| fm.c[(i, keep[j])]),
         ct: faer::Mat::<f64>::from_fn(tangents.len(), keep.len(), |r, j| ct[(r, keep[j])]),
         rhs: keep.iter().map(|&j| fm.rhs[j]).collect(),
+        bodies: model.dofs.rigid.iter().map(|rm| rm.body).collect(),
         keep,
     };
     for j in loose {
@@ -298,6 +303,22 @@ fn punch_block(
             .push((0..k).map(|i| f64::from(u8::from(i == j))).collect());
     }
     Ok(Some(block))
+}
+
+/// Adds the rigid motions R β of the bodies held only by contact (β every
+/// free motion's amplitude) to a displacement of every DOF.
+fn add_rigid_motions(model: &Model, beta: &[f64], displacement: &mut [f64]) {
+    use crate::contact::free_motions::Motion;
+    for ((mo, _), &a) in model.free.motions.iter().zip(beta) {
+        if let Motion::Body { set, dir } = *mo {
+            let rm = &model.dofs.rigid[set];
+            for (n, &x) in model.meshes[rm.body].nodes.iter().enumerate() {
+                let d = rm.at_dir(dir, x);
+                displacement[model.dofs.dof(rm.body, n, 0)] += a * d[0];
+                displacement[model.dofs.dof(rm.body, n, 1)] += a * d[1];
+            }
+        }
+    }
 }
 
 /// The signed angle from each candidate's row direction (the punch's normal

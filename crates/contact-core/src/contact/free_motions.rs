@@ -139,7 +139,7 @@ impl FreeMotions {
     ) -> Result<Self, CoreError> {
         let (punch_free, c_punch) = cons.punch_block(scene);
         if scene.has_friction() {
-            return Ok(Self::frictional(&punch_free, c_punch));
+            return Ok(Self::frictional(&punch_free, c_punch, cons, dofs, meshes, external));
         }
         let m = cons.len();
         let mut motions: Vec<(Motion, f64)> = punch_free
@@ -300,20 +300,63 @@ impl FreeMotions {
     }
 
     /// The free motions of a frictional scene: every load-controlled punch
-    /// component as given (V = I), unchecked here. Friction resists motions no
-    /// normal does (a flat punch pushed sideways), so the null space and
-    /// Fichera's test of the frictionless case do not apply; the frictional
-    /// solve checks them with the tangential rows (`check_with_friction`).
-    fn frictional(punch_free: &[(usize, usize, f64)], c: Mat<f64>) -> Self {
-        let k = punch_free.len();
+    /// component as given, then every free rigid mode of every body held
+    /// only by contact (`fem::rigid_modes`, mode k of body set s as
+    /// `Motion::Body` with its basis direction; its column −B_N R_k and load
+    /// R_kᵀ f as in the frictionless case), all with V = I, unchecked here.
+    /// Friction resists motions no normal does (a flat punch pushed sideways,
+    /// a block pushed along a floor), so the null space and Fichera's test of
+    /// the frictionless case do not apply; the frictional solve checks them
+    /// with the tangential rows (`check_with_friction`).
+    fn frictional(
+        punch_free: &[(usize, usize, f64)],
+        c_punch: Mat<f64>,
+        cons: &ConstraintSet,
+        dofs: &DofMap,
+        meshes: &[Mesh2d],
+        external: &[f64],
+    ) -> Self {
+        let mut motions: Vec<(Motion, f64)> = punch_free
+            .iter()
+            .map(|&(obstacle, component, load)| (Motion::Punch { obstacle, component }, load))
+            .collect();
+        let m = cons.len();
+        let mut cols: Vec<Vec<f64>> = (0..punch_free.len())
+            .map(|j| (0..m).map(|i| c_punch[(i, j)]).collect())
+            .collect();
+        for (set, rm) in dofs.rigid.iter().enumerate() {
+            let mesh = &meshes[rm.body];
+            for (k, &dir) in rm.basis.iter().enumerate() {
+                let col = cons
+                    .candidates
+                    .iter()
+                    .map(|cand| {
+                        cand.terms
+                            .iter()
+                            .filter(|t| t.body == rm.body)
+                            .map(|t| {
+                                let d = rm.at(k, mesh.nodes[t.node]);
+                                -(t.coef[0] * d[0] + t.coef[1] * d[1])
+                            })
+                            .sum()
+                    })
+                    .collect();
+                let load = (0..mesh.nodes.len())
+                    .map(|n| {
+                        let d = rm.at(k, mesh.nodes[n]);
+                        external[dofs.dof(rm.body, n, 0)] * d[0] + external[dofs.dof(rm.body, n, 1)] * d[1]
+                    })
+                    .sum();
+                motions.push((Motion::Body { set, dir }, load));
+                cols.push(col);
+            }
+        }
+        let k = motions.len();
         Self {
-            motions: punch_free
-                .iter()
-                .map(|&(obstacle, component, load)| (Motion::Punch { obstacle, component }, load))
-                .collect(),
             v: Mat::<f64>::from_fn(k, k, |i, j| if i == j { 1.0 } else { 0.0 }),
-            c,
-            rhs: punch_free.iter().map(|f| -f.2).collect(),
+            c: Mat::<f64>::from_fn(m, k, |i, j| cols[j][i]),
+            rhs: motions.iter().map(|f| -f.1).collect(),
+            motions,
             undetermined: Vec::new(),
             notes: Vec::new(),
             unresisted: Vec::new(),
@@ -529,10 +572,12 @@ impl FreeMotions {
         } else {
             "non-negative contact pressure"
         };
-        let slides = if friction {
-            " (the punch would slide: no quasi-static equilibrium)"
-        } else {
+        let slides = if !friction {
             ""
+        } else if self.motions.iter().any(|(mo, _)| matches!(mo, Motion::Body { .. })) {
+            " (the body would slide or tip: no quasi-static equilibrium)"
+        } else {
+            " (the punch would slide: no quasi-static equilibrium)"
         };
         Err(CoreError::invalid(
             InvalidKind::IncompatibleLoads,

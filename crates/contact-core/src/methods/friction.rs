@@ -25,7 +25,10 @@
 //! punch is in equilibrium with its loads P under the normal and the
 //! friction forces, C_Nᵀλ + C_Tᵀτ = −P. The Newton system gains β and these
 //! equations; with |Q| > μ|P| on a sliding punch it has no solution, which
-//! Fichera's test with the friction cone refuses before (`solve`).
+//! Fichera's test with the friction cone refuses before (`solve`). The rigid
+//! modes R of a body held only by contact are motions of the same block,
+//! C_N = −B_N R and C_T = −B_T R (they move the rows' own points), with the
+//! equilibrium Rᵀ(f − B_Nᵀλ − B_Tᵀτ) = 0, i.e. P = Rᵀf.
 //!
 //! Why this method: in 2D the cone is an interval, so the Alart–Curnier
 //! functions min(λ, c w) = 0 and τ = proj_[−μλ̃, μλ̃](τ + c_t Δs), λ̃ = λ − c w,
@@ -81,7 +84,8 @@ pub struct History {
     pub punches: HashMap<usize, [f64; 3]>,
 }
 
-/// The free motions β of load-controlled punches in a step: their
+/// The free motions β of load-controlled punches and of bodies held only by
+/// contact in a step: their
 /// coefficients in the normal rows (C_N, candidates × motions) and in the
 /// tangential rows (C_T, tangential rows × motions), and the right-hand side
 /// −P of their equilibrium.
@@ -92,6 +96,9 @@ pub struct Block {
     pub cn: Mat<f64>,
     pub ct: Mat<f64>,
     pub rhs: Vec<f64>,
+    /// The bodies held only by contact whose rigid modes are among the
+    /// motions: they rest on their contacts at the start.
+    pub bodies: Vec<usize>,
 }
 
 impl Block {
@@ -146,10 +153,16 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
             let c = &p.cons.candidates[i];
             match previous.state.get(&(c.pair, c.node)) {
                 Some(&s) => s,
-                // A load-controlled punch rests at its reference position,
-                // where its candidates touch or almost: all start closed and
-                // the first Newton step opens those the loads do not press.
-                None if q[i] < 0.0 || (p.block.is_some() && c.punch().is_some()) => State::Stick,
+                // A load-controlled punch, or a body held only by contact,
+                // rests at its reference position, where its candidates touch
+                // or almost: all start closed and the first Newton step opens
+                // those the loads do not press.
+                None if q[i] < 0.0
+                    || p.block
+                        .is_some_and(|b| c.punch().is_some() || b.bodies.contains(&c.body)) =>
+                {
+                    State::Stick
+                }
                 None => State::Open,
             }
         })
@@ -301,9 +314,30 @@ fn pdas(
         converged: n == 0,
     };
     let mut seen: Vec<Vec<State>> = Vec::new();
+    // How far each point's trial force |z| lies beyond its cone's bound in
+    // the last update (∞ before the first and off the tangential rows).
+    let mut beyond = vec![f64::INFINITY; n];
     while !run.converged && run.iterations < budget && !crate::cancel::expired() {
         run.iterations += 1;
-        let Some((lambda, tau, beta)) = newton_step(w, q, e, t, block, &state) else {
+        let mut attempt = newton_step(w, q, e, t, block, &state);
+        // A free motion that only friction resists (a block's slide along a
+        // flat floor) has no equation left when every point slips: the
+        // system is singular. Some point must stick at a solution with
+        // |Q| < μP (where the slip changes sign), so the sliding point
+        // nearest its cone sticks instead, until the system is regular
+        // (measured: on the free block at μ ≤ 1e-3 the first update slid
+        // every point and the run stopped there).
+        while attempt.is_none() && block.is_some() {
+            let Some(i) = (0..n)
+                .filter(|&i| matches!(state[i], State::Slip(_)))
+                .min_by(|&a, &b| beyond[a].total_cmp(&beyond[b]))
+            else {
+                break;
+            };
+            state[i] = State::Stick;
+            attempt = newton_step(w, q, e, t, block, &state);
+        }
+        let Some((lambda, tau, beta)) = attempt else {
             break;
         };
         let (gap, slip) = gap_and_slip(w, q, e, block, &lambda, &tau, &beta);
@@ -311,12 +345,14 @@ fn pdas(
             .map(|i| {
                 let lt = lambda[i] - c * gap[i];
                 if lt <= 0.0 {
+                    beyond[i] = f64::INFINITY;
                     return State::Open;
                 }
                 match t.row_of[i] {
                     None => State::Stick,
                     Some(k) => {
                         let z = t.along(k, lambda[i], tau[k]) + ct * slip[k];
+                        beyond[i] = z.abs() / t.bound(k, lt);
                         if z.abs() <= t.bound(k, lt) {
                             State::Stick
                         } else {

@@ -1,0 +1,182 @@
+//! Coulomb friction on a body held only by contact: its rigid motions are
+//! unknowns of the frictional problem with their equilibrium, and loads no
+//! contact force inside the cone can balance are refused.
+//!
+//! The scene: an elastic 2 × 1 block with no supports on a rigid flat floor,
+//! a uniform pressure on its top (resultant P) and a uniform shear traction
+//! there (resultant Q). Statics alone fix the floor's resultant: −Q along x,
+//! P up, and the moment Q · 1 of Q's line of action at y = 1 about the
+//! origin; the block is in equilibrium if and only if |Q| ≤ μ P (the cone of
+//! a flat floor is the same at every point).
+
+mod common;
+use common::*;
+use contact::proto::{ErrorCode, FrictionState, SolveStatus};
+use contact_verify::build::*;
+use serde_json::{json, Value};
+
+/// A 2 × 1 elastic block with no supports on the rigid floor y = 0, pressed
+/// by the pressure `p` on its top (P = 2p) and pushed by the shear traction
+/// `q` there (Q = 2q); friction `mu` on the floor (frictionless with None).
+fn block(element: &str, p: f64, q: f64, mu: Option<f64>) -> Value {
+    let b = body("block", 1000.0, 0.25, rectangle([-1.0, 0.0], 2.0, 1.0, 0.1, element)).pressure("top", p);
+    let mut r = request(vec![b], vec![pair("block", "bottom").obstacle("floor")])
+        .with_obstacle(obstacle("floor", line([0.0, 0.0], [0.0, 1.0])))
+        .to_value();
+    if q != 0.0 {
+        r["bodies"][0]["tractions"]
+            .as_array_mut()
+            .unwrap()
+            .push(json!({"edges": "top", "traction": [q, 0.0]}));
+    }
+    if let Some(mu) = mu {
+        r["contacts"][0]["friction"] = json!({"coefficient": mu});
+    }
+    r
+}
+
+const MU: f64 = 0.3;
+/// The top pressure and P = 2 p, the floor's share of the pressure.
+const PRESSURE: f64 = 1.0;
+const P: f64 = 2.0 * PRESSURE;
+
+/// |Q| < μP: the block stands. The floor's resultant is (−Q, P) with moment
+/// Q (statics; what the free motions' equilibrium rows impose, to round-off:
+/// 1e-12 of P, measured ≤ 1e-15), the friction resultant alone −Q, every
+/// point inside the cone (|t| ≤ μ p to 1e-12 of μ p_max) and the
+/// certificate's residuals, friction's included, at round-off (1e-10;
+/// measured ≤ 4.1e-15). Both states appear: the floor's corners slip (the
+/// pressure's peak there), the middle sticks; near μP most of it slips.
+#[test]
+fn a_block_pushed_below_mu_p_is_held_by_friction() {
+    for element in ["t3", "t6"] {
+        for ratio in [0.0, 0.3, 0.6, -0.6, 0.95] {
+            let q = ratio * MU * P;
+            let r = solved(&block(element, PRESSURE, 0.5 * q, Some(MU)));
+            let what = format!("{element}, Q/μP {ratio}");
+            assert_eq!(r.status, SolveStatus::Solved, "{what}");
+            assert_kkt(&r, 1e-10);
+            let friction = r.certificate.friction.expect("friction residuals");
+            for v in [friction.cone, friction.dissipation, friction.stick] {
+                assert!(v <= 1e-10, "{what}: {friction:?}");
+            }
+            let res = r.resultant;
+            assert!((res.fx + q).abs() <= 1e-12 * P, "{what}: {res:?}");
+            assert!((res.fy - P).abs() <= 1e-12 * P, "{what}: {res:?}");
+            assert!((res.m - q).abs() <= 1e-12 * P, "{what}: {res:?}");
+            let pair = &r.pairs[0];
+            let f = pair.friction.as_ref().expect("friction on the pair");
+            assert!((f.tangential_resultant.fx + q).abs() <= 1e-12 * P, "{what}: {f:?}");
+            let p_max = pair.points.iter().map(|pt| pt.pressure).fold(0.0, f64::max);
+            for pt in &pair.points {
+                let t = pt.tangential_traction.expect("a tangential traction");
+                assert!(t.abs() <= MU * pt.pressure + 1e-12 * MU * p_max, "{what}: {pt:?}");
+            }
+            let has = |s: FrictionState| pair.points.iter().any(|pt| pt.state == Some(s));
+            assert!(has(FrictionState::Stick) && has(FrictionState::Slip), "{what}");
+        }
+    }
+}
+
+/// |Q| > μP: no contact force inside the cone balances Q, the block would
+/// slide: refused before any step is solved, with Q's admissible range
+/// [−μP, μP] in `details` (to the LP's tolerance: 1e-8 relative; measured
+/// 3.8e-10), on either side, and also when only a later step of a load path
+/// goes beyond it.
+#[test]
+fn a_block_pushed_beyond_mu_p_is_refused() {
+    let expect_range = |e: &contact::proto::ErrorReply, q: f64| {
+        assert_eq!(e.code, ErrorCode::IncompatibleLoads, "{e:?}");
+        assert_eq!(e.path, "/bodies/0/tractions", "{e:?}");
+        let loads = &e.details.as_ref().expect("details").loads;
+        let b = loads
+            .iter()
+            .find(|b| (b.value - q).abs() <= 1e-12 * P)
+            .unwrap_or_else(|| panic!("no range for Q = {q}: {loads:?}"));
+        let (lo, hi) = (b.min.expect("a lower bound"), b.max.expect("an upper bound"));
+        assert!((lo + MU * P).abs() <= 1e-8 * MU * P, "{b:?}");
+        assert!((hi - MU * P).abs() <= 1e-8 * MU * P, "{b:?}");
+    };
+    for q in [1.05 * MU * P, -1.05 * MU * P] {
+        let e = solve(&block("t3", PRESSURE, 0.5 * q, Some(MU))).expect_err("must be refused");
+        expect_range(&e, q);
+    }
+    let q = 1.05 * MU * P;
+    let mut path = block("t3", PRESSURE, 0.5 * q, Some(MU));
+    path["load_path"] = json!([{"loads": {"/bodies/0/tractions/1": 0.5}}, {"loads": {"/bodies/0/tractions/1": 1.0}}]);
+    let e = solve(&path).expect_err("must be refused");
+    expect_range(&e, q);
+}
+
+/// The slip of a step is measured from where the previous one left the
+/// body, its rigid motion included: the same loads again slip nowhere
+/// (|slip| ≤ 1e-12 of the first step's largest, measured 3.6e-14 relative)
+/// and leave the same tractions (1e-10 of p_max: the second step solves
+/// its states from the first one's, to round-off).
+#[test]
+fn the_same_loads_again_do_not_slip() {
+    let q = 0.8 * MU * P;
+    let mut path = block("t3", PRESSURE, 0.5 * q, Some(MU));
+    path["load_path"] = json!([{"loads": {"/bodies/0/tractions/1": 1.0}}, {"loads": {"/bodies/0/tractions/1": 1.0}}]);
+    let r = solved(&path);
+    let all = steps(&r);
+    let (first, second) = (&all[0].0[0], &all[1].0[0]);
+    let slip0 = first.points.iter().map(|pt| pt.slip.unwrap().abs()).fold(0.0, f64::max);
+    assert!(slip0 > 0.0);
+    let p_max = first.points.iter().map(|pt| pt.pressure).fold(0.0, f64::max);
+    for (a, b) in first.points.iter().zip(&second.points) {
+        assert!(b.slip.unwrap().abs() <= 1e-12 * slip0, "{b:?}");
+        assert!((a.pressure - b.pressure).abs() <= 1e-10 * p_max, "{a:?} vs {b:?}");
+        let (ta, tb) = (a.tangential_traction.unwrap(), b.tangential_traction.unwrap());
+        assert!((ta - tb).abs() <= 1e-10 * p_max, "{a:?} vs {b:?}");
+    }
+}
+
+/// μ = 0 is the frictionless solve, reply for reply, including its note that
+/// the block's horizontal translation, which nothing resists and nothing
+/// loads, is not determined.
+#[test]
+fn zero_friction_on_a_free_block_is_the_frictionless_reply() {
+    let (mut a, mut b) = (
+        solved(&block("t3", PRESSURE, 0.0, None)),
+        solved(&block("t3", PRESSURE, 0.0, Some(0.0))),
+    );
+    for r in [&mut a, &mut b] {
+        r.timings = Default::default();
+        r.diagnostics.factorization_predicted = None;
+    }
+    assert!(
+        b.notes
+            .iter()
+            .any(|n| n.contains("translation in x") && n.contains("not determined")),
+        "{:?}",
+        b.notes
+    );
+    assert_eq!(serde_json::to_value(&a).unwrap(), serde_json::to_value(&b).unwrap());
+}
+
+/// A small μ approaches the frictionless pressures (which are uniform, p = 1
+/// to round-off, on this block with its horizontal slide free): the friction
+/// tractions μ p change them by O(μ) through the block's normal–tangential
+/// coupling, measured max |p − 1| = 3.15 μ at μ = 1e-3 and 1e-6 (the
+/// corners); tested at 5 μ. At such μ the first update slides every point,
+/// which leaves the block's slide with no equation; the point nearest its
+/// cone sticks instead, and the run converges with the middle point stuck.
+#[test]
+fn small_friction_approaches_the_frictionless_pressures() {
+    let plain = solved(&block("t3", PRESSURE, 0.0, None));
+    for mu in [1e-3, 1e-6] {
+        let r = solved(&block("t3", PRESSURE, 0.0, Some(mu)));
+        for (a, b) in plain.pairs[0].points.iter().zip(&r.pairs[0].points) {
+            assert!(
+                (a.pressure - b.pressure).abs() <= 5.0 * mu * PRESSURE,
+                "μ {mu}: {a:?} vs {b:?}"
+            );
+        }
+        let stuck = r.pairs[0]
+            .points
+            .iter()
+            .filter(|pt| pt.state == Some(FrictionState::Stick));
+        assert!(stuck.count() >= 1, "μ {mu}");
+    }
+}
