@@ -208,7 +208,13 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
             let mut shares = vec![(0.0, 0.0); model.free.motions.len()];
             for (j, &m) in b.keep.iter().enumerate() {
                 let terms = (0..tangents.len()).map(|k| b.ct[(k, j)] * friction.tau[k]);
-                shares[m] = (terms.clone().sum(), terms.fold(0.0, |a: f64, v| a.max(v.abs())));
+                // A body's slide that only friction resists carries no load
+                // at Q = 0, and its friction terms are ~μ λ: judged against
+                // them alone the LU's round-off on λ read 1.2e-7 at μ = 1e-9
+                // (measured), so the size of the body's loads is a scale too.
+                let largest = terms.clone().fold(0.0, |a: f64, v| a.max(v.abs()));
+                let loads = model.free.load_scale.get(m).copied().unwrap_or(0.0);
+                shares[m] = (terms.sum(), largest.max(loads));
             }
             model.free.friction = shares;
         }

@@ -64,6 +64,10 @@ pub struct FreeMotions {
     /// equilibrium, C_Nᵀλ + C_Tᵀτ = −P, and its largest term max_k |C_T,kj τ_k|,
     /// the scale of that share (empty without friction).
     pub friction: Vec<(f64, f64)>,
+    /// With friction, the size of each motion's loads, Σ |f_n| |R_k(x_n)|
+    /// over a body's nodes (|P| for a punch): a scale of its equilibrium
+    /// beside the contact forces (empty without friction).
+    pub load_scale: Vec<f64>,
 }
 
 impl FreeMotions {
@@ -293,6 +297,7 @@ impl FreeMotions {
             notes,
             unresisted,
             friction: Vec::new(),
+            load_scale: Vec::new(),
         };
         fm.check_compatibility(scene, dofs, false)?;
         fm.check_held(scene, dofs)?;
@@ -324,6 +329,7 @@ impl FreeMotions {
         let mut cols: Vec<Vec<f64>> = (0..punch_free.len())
             .map(|j| (0..m).map(|i| c_punch[(i, j)]).collect())
             .collect();
+        let mut load_scale: Vec<f64> = punch_free.iter().map(|f| f.2.abs()).collect();
         for (set, rm) in dofs.rigid.iter().enumerate() {
             let mesh = &meshes[rm.body];
             for (k, &dir) in rm.basis.iter().enumerate() {
@@ -341,13 +347,15 @@ impl FreeMotions {
                             .sum()
                     })
                     .collect();
-                let load = (0..mesh.nodes.len())
-                    .map(|n| {
-                        let d = rm.at(k, mesh.nodes[n]);
-                        external[dofs.dof(rm.body, n, 0)] * d[0] + external[dofs.dof(rm.body, n, 1)] * d[1]
-                    })
-                    .sum();
+                let (mut load, mut scale) = (0.0, 0.0);
+                for (n, &x) in mesh.nodes.iter().enumerate() {
+                    let d = rm.at(k, x);
+                    let f = [external[dofs.dof(rm.body, n, 0)], external[dofs.dof(rm.body, n, 1)]];
+                    load += f[0] * d[0] + f[1] * d[1];
+                    scale += f[0].hypot(f[1]) * d[0].hypot(d[1]);
+                }
                 motions.push((Motion::Body { set, dir }, load));
+                load_scale.push(scale);
                 cols.push(col);
             }
         }
@@ -361,6 +369,7 @@ impl FreeMotions {
             notes: Vec::new(),
             unresisted: Vec::new(),
             friction: Vec::new(),
+            load_scale,
         }
     }
 
@@ -434,6 +443,7 @@ impl FreeMotions {
             notes: Vec::new(),
             unresisted: Vec::new(),
             friction: Vec::new(),
+            load_scale: Vec::new(),
         };
         with_cone.check_compatibility(scene, dofs, true)?;
         Ok(undetermined)
