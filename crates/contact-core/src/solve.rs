@@ -11,6 +11,10 @@
 //!
 //! Each stage is a typed value in and out; the [`Observer`] announces, times
 //! and deadline-checks them.
+//!
+//! Length: about 500 lines, the routes side by side (load steps, friction
+//! with its block of punch and free-body motions, condensed, full), so that
+//! the stages read in order in one place.
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
