@@ -128,14 +128,18 @@ impl Row {
             self.err_c,
             self.order.map_or(String::new(), |o| format!("{o:.3}")),
             self.resolution,
-            self.iterations
-                .iter()
-                .map(|i| i.to_string())
-                .collect::<Vec<_>>()
-                .join(" "),
+            self.iterations_joined(" "),
             self.t_total,
             self.status
         )
+    }
+
+    fn iterations_joined(&self, sep: &str) -> String {
+        self.iterations
+            .iter()
+            .map(|i| i.to_string())
+            .collect::<Vec<_>>()
+            .join(sep)
     }
 
     pub fn table_header() -> String {
@@ -170,11 +174,7 @@ impl Row {
             self.err_c,
             self.order.map_or("-".to_string(), |o| format!("{o:.2}")),
             self.resolution,
-            self.iterations
-                .iter()
-                .map(|i| i.to_string())
-                .collect::<Vec<_>>()
-                .join("/"),
+            self.iterations_joined("/"),
             self.t_total,
             self.status
         )

@@ -159,3 +159,16 @@ pub fn shift_path(shifts: &[f64]) -> Value {
             .collect::<Vec<_>>(),
     )
 }
+
+/// The load at `path` of an `incompatible_loads` refusal there, and its
+/// admissible range [min, max] (both bounds required).
+pub fn refused_range(e: &ErrorReply, path: &str) -> (f64, f64, f64) {
+    assert_eq!(e.code, contact::proto::ErrorCode::IncompatibleLoads, "{e:?}");
+    assert_eq!(e.path, path, "{e:?}");
+    let loads = &e.details.as_ref().expect("details").loads;
+    let b = loads
+        .iter()
+        .find(|b| b.path == e.path)
+        .unwrap_or_else(|| panic!("no range at {path}: {loads:?}"));
+    (b.value, b.min.expect("bounded below"), b.max.expect("bounded above"))
+}
