@@ -132,7 +132,10 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
     } else {
         Box::new(std::iter::once((scene.clone(), 1.0, None)))
     };
+    // The condensed operator of the first step serves every step; the full
+    // route keeps K.
     let mut op: Option<Arc<crate::cache::Prepared>> = None;
+    let mut full_k: Option<Arc<crate::fem::assembly::Stiffness>> = None;
     let mut history = methods::friction::History::default();
     let (mut steps, mut timings, mut last) = (Vec::new(), Timings::default(), None);
     for (s, k, loads) in steps_in {
@@ -143,51 +146,68 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
         // only by contact join the step's unknowns, once Fichera's condition
         // with the friction cone admits their loads.
         let block = punch_block(&s, &mut model, &tangents)?;
-        if model.cons.len() + tangents.len() > limits.max_candidates {
-            return Err(CoreError::TooLarge {
-                path: "/contacts".into(),
-                reason: format!(
-                    "{} contact rows ({} normal and {} tangential); this service accepts at most {} on the condensed formulation",
-                    model.cons.len() + tangents.len(),
-                    model.cons.len(),
-                    tangents.len(),
-                    limits.max_candidates
-                ),
-            });
-        }
-        let prepared = match &op {
-            Some(p) => p.clone(),
-            None => {
-                let stiffness = Arc::new(assemble_stiffness(&s, &model.meshes, &model.dofs)?);
-                obs.leave(Stage::Assembly)?;
-                obs.enter(Stage::Factorization);
-                let rows: Vec<&[(usize, f64)]> = model
-                    .cons
-                    .candidates
-                    .iter()
-                    .map(|c| c.row.as_slice())
-                    .chain(tangents.rows.iter().map(|r| r.as_slice()))
-                    .collect();
-                let p = Arc::new(methods::condensed::prepare_rows(stiffness, &rows, cache)?);
-                obs.timings.factorization = p.t_factorization;
-                obs.timings.condensation = p.t_condensation;
-                op = Some(p.clone());
-                p
+        let (route, why_full) =
+            admit::frictional_route(&s, &model.cons, &tangents, model.dofs.n_free, block.is_some(), limits)?;
+        let stiffness = match (route, &op, &full_k) {
+            (Route::Condensed, Some(p), _) => p.stiffness.clone(),
+            (Route::Full, _, Some(k)) => k.clone(),
+            _ => Arc::new(assemble_stiffness(&s, &model.meshes, &model.dofs)?),
+        };
+        obs.leave(Stage::Assembly)?;
+        let f = assemble_loads(&model.external, &model.dofs, &stiffness);
+        let (mut sol, mut friction, factor) = match route {
+            Route::Condensed => {
+                let prepared = match &op {
+                    Some(p) => p.clone(),
+                    None => {
+                        obs.enter(Stage::Factorization);
+                        let rows: Vec<&[(usize, f64)]> = model
+                            .cons
+                            .candidates
+                            .iter()
+                            .map(|c| c.row.as_slice())
+                            .chain(tangents.rows.iter().map(|r| r.as_slice()))
+                            .collect();
+                        let p = Arc::new(methods::condensed::prepare_rows(stiffness.clone(), &rows, cache)?);
+                        obs.timings.factorization = p.t_factorization;
+                        obs.timings.condensation = p.t_condensation;
+                        op = Some(p.clone());
+                        p
+                    }
+                };
+                obs.check(Stage::Factorization)?;
+                obs.enter(Stage::ContactSolve);
+                let step = methods::friction::Step {
+                    op: &prepared,
+                    f: &f,
+                    cons: &model.cons,
+                    tangents: &tangents,
+                    dofs: &model.dofs,
+                    settings: &s.settings,
+                    block: block.as_ref(),
+                };
+                let (sol, friction) = methods::friction::solve_step(&step, &history);
+                let factor = (prepared.pivot_ratio, prepared.chol.cost().predicted_secs());
+                (sol, friction, Some(factor))
+            }
+            Route::Full => {
+                // No factorization stage of its own: every Newton iteration
+                // factors the step's saddle-point system.
+                full_k = Some(stiffness.clone());
+                obs.enter(Stage::ContactSolve);
+                let step = methods::friction_full::Step {
+                    k: &stiffness.k,
+                    f: &f,
+                    cons: &model.cons,
+                    tangents: &tangents,
+                    dofs: &model.dofs,
+                    settings: &s.settings,
+                };
+                let (mut sol, friction) = methods::friction_full::solve_step(&step, &history)?;
+                sol.fallback = why_full;
+                (sol, friction, None)
             }
         };
-        obs.check(Stage::Factorization)?;
-        let f = assemble_loads(&model.external, &model.dofs, &prepared.stiffness);
-        obs.enter(Stage::ContactSolve);
-        let step = methods::friction::Step {
-            op: &prepared,
-            f: &f,
-            cons: &model.cons,
-            tangents: &tangents,
-            dofs: &model.dofs,
-            settings: &s.settings,
-            block: block.as_ref(),
-        };
-        let (mut sol, mut friction) = methods::friction::solve_step(&step, &history);
         // Every free motion's amplitude, 0 for those not determined.
         if let Some(b) = &block {
             let mut beta = vec![0.0; model.free.motions.len()];
@@ -230,10 +250,10 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
         }
         let composed = Solved {
             model: &model,
-            k: &prepared.stiffness.k,
+            k: &stiffness.k,
             f: &f_eff,
-            pivot_ratio: Some(prepared.pivot_ratio),
-            predicted: Some(prepared.chol.cost().predicted_secs()),
+            pivot_ratio: factor.map(|f| f.0),
+            predicted: factor.map(|f| f.1),
             compliance: None,
         };
         let mut r = compose::report(&s, &composed, sol, obs, CacheState::Off);

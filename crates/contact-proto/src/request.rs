@@ -557,7 +557,11 @@ pub struct SolverSettings {
     pub penalty: Option<f64>,
     /// `condensed` (default: one factorization, the LCP on the contact
     /// candidates) or `full` (active set / interior point on the whole system,
-    /// refactoring per iteration; for comparison, exact methods only).
+    /// refactoring per iteration; for comparison, exact methods only). With
+    /// friction, `full` is the frictional active set on the whole system
+    /// (nodal rows only: T3 against obstacles and punches with prescribed
+    /// motions), which also serves a frictional scene whose contact rows
+    /// exceed the condensed formulation's limit.
     pub formulation: Formulation,
     /// Barrier parameter ζ of `barrier` [pressure × length]: the pressure at a
     /// candidate is ζ / gap. Default: 1e-8 of E·L (largest modulus × body size).

@@ -4,8 +4,9 @@
 //! one symbolic + numeric Cholesky + one solve of the same K (AMD order,
 //! sequential: the solver's own kernels and parallelism), the ratios per
 //! stage (`r_fact`: factorization, `r_cont`: condensation and contact solve
-//! against the floor's solve). A row with Coulomb friction (one step, the
-//! active set of `methods::friction`) follows the frictionless ones of each mesh.
+//! against the floor's solve). Rows with Coulomb friction (one step, the
+//! active set of `methods::friction`, and on T3 of `methods::friction_full`)
+//! follow the frictionless ones of each mesh.
 //! The harness returns rows; the CLI prints and writes them.
 
 use std::time::Instant;
@@ -286,9 +287,16 @@ pub fn run(mode: Mode, repeat: usize, mut progress: impl FnMut(&Row)) -> Vec<Row
                 runs.push((MethodName::InteriorPoint, Formulation::Full, None));
             }
             // The same scene with Coulomb friction (μ = FRICTION), one step: its
-            // cost against the frictionless active set's row above it.
-            let frictional =
-                (mode != Mode::Floor).then_some((MethodName::ActiveSet, Formulation::Condensed, None, true));
+            // cost against the frictionless active set's row above it; on the
+            // full system too where its rows are nodal (a factorization and
+            // a GMRES run per iteration).
+            let mut frictional = Vec::new();
+            if mode != Mode::Floor {
+                frictional.push((MethodName::ActiveSet, Formulation::Condensed, None, true));
+            }
+            if nodal && n_free < 200_000 {
+                frictional.push((MethodName::ActiveSet, Formulation::Full, None, true));
+            }
             let all = runs.into_iter().map(|(m, f, z)| (m, f, z, false)).chain(frictional);
             for (method, formulation, zeta, with_friction) in all {
                 let name = serde_json::to_value(method).unwrap().as_str().unwrap().to_string();

@@ -16,6 +16,11 @@ pub fn solve_principal(w: &Mat<f64>, idx: &[usize], rhs: &[f64]) -> Option<Vec<f
     out.iter().all(|v| v.is_finite()).then_some(out)
 }
 
+/// x · y.
+pub fn dot(x: &[f64], y: &[f64]) -> f64 {
+    x.iter().zip(y).map(|(a, b)| a * b).sum()
+}
+
 /// y = W x.
 pub fn matvec(w: &Mat<f64>, x: &[f64]) -> Vec<f64> {
     let m = w.nrows();

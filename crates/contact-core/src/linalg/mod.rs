@@ -3,6 +3,7 @@
 
 pub mod cholesky;
 pub mod dense;
+pub mod gmres;
 mod numeric;
 pub mod rate;
 pub mod schur;

@@ -58,6 +58,7 @@ use super::Solution;
 use crate::cache::Prepared;
 use crate::contact::friction::Tangents;
 use crate::contact::ConstraintSet;
+use crate::error::CoreError;
 use crate::fem::assembly::{DofMap, FIXED};
 use crate::scene::Settings;
 
@@ -148,25 +149,60 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
         .collect();
     // Points known from the previous step start in their state; new ones in
     // contact where they penetrate without forces.
-    let state: Vec<State> = (0..n)
+    let state = starting_states(p.cons, previous, |i| {
+        let c = &p.cons.candidates[i];
+        // A load-controlled punch, or a body held only by contact, rests at
+        // its reference position, where its candidates touch or almost: all
+        // start closed and the first Newton step opens those the loads do
+        // not press.
+        if q[i] < 0.0
+            || p.block
+                .is_some_and(|b| c.punch().is_some() || b.bodies.contains(&c.body))
+        {
+            State::Stick
+        } else {
+            State::Open
+        }
+    });
+    let run = solve_states(w, &q, &e, p.tangents, p.block, state, p.settings.max_iterations);
+    // u = K⁻¹ (f − B_Nᵀ λ − B_Tᵀ τ): the condensed blocks hold both row sets.
+    let multipliers: Vec<f64> = run.lambda.iter().chain(&run.tau).copied().collect();
+    let mut yz = y;
+    p.op.condensed.subtract(&multipliers, &mut yz);
+    let u = p.op.chol.backward(&yz);
+    let mut ut = p.tangents.displacements(&u);
+    if let Some(b) = p.block {
+        for (k, v) in ut.iter_mut().enumerate() {
+            *v -= (0..b.len()).map(|j| b.ct[(k, j)] * run.beta[j]).sum::<f64>();
+        }
+    }
+    let slip: Vec<f64> = ut.iter().zip(&ut_before).map(|(a, b)| a - b).collect();
+    finish(p.cons, p.dofs, u, slip, run, ("active_set", t0))
+}
+
+/// The states a step starts from: a point known from the previous step in
+/// its state, a new one in `new(i)`.
+pub(super) fn starting_states(cons: &ConstraintSet, previous: &History, new: impl Fn(usize) -> State) -> Vec<State> {
+    (0..cons.len())
         .map(|i| {
-            let c = &p.cons.candidates[i];
-            match previous.state.get(&(c.pair, c.node)) {
-                Some(&s) => s,
-                // A load-controlled punch, or a body held only by contact,
-                // rests at its reference position, where its candidates touch
-                // or almost: all start closed and the first Newton step opens
-                // those the loads do not press.
-                None if q[i] < 0.0
-                    || p.block
-                        .is_some_and(|b| c.punch().is_some() || b.bodies.contains(&c.body)) =>
-                {
-                    State::Stick
-                }
-                None => State::Open,
-            }
+            let c = &cons.candidates[i];
+            previous.state.get(&(c.pair, c.node)).copied().unwrap_or_else(|| new(i))
         })
-        .collect();
+        .collect()
+}
+
+/// The step's answer from the displacement `u` of the free DOFs, the slip of
+/// the step per tangential row and the run's last iterate; `method` names
+/// what ran and when it started.
+pub(super) fn finish(
+    cons: &ConstraintSet,
+    dofs: &DofMap,
+    u: Vec<f64>,
+    slip: Vec<f64>,
+    run: Run,
+    (method, t0): (&'static str, Instant),
+) -> (Solution, Friction) {
+    let n = cons.len();
     let Run {
         lambda,
         tau,
@@ -174,27 +210,15 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
         state,
         converged,
         iterations,
-    } = solve_states(w, &q, &e, p.tangents, p.block, state, p.settings.max_iterations);
-    // u = K⁻¹ (f − B_Nᵀ λ − B_Tᵀ τ): the condensed blocks hold both row sets.
-    let multipliers: Vec<f64> = lambda.iter().chain(&tau).copied().collect();
-    let mut yz = y;
-    p.op.condensed.subtract(&multipliers, &mut yz);
-    let u = p.op.chol.backward(&yz);
-    let mut ut = p.tangents.displacements(&u);
-    if let Some(b) = p.block {
-        for (k, v) in ut.iter_mut().enumerate() {
-            *v -= (0..b.len()).map(|j| b.ct[(k, j)] * beta[j]).sum::<f64>();
-        }
-    }
-    let slip: Vec<f64> = ut.iter().zip(&ut_before).map(|(a, b)| a - b).collect();
-    let displacement: Vec<f64> = (0..p.dofs.free.len())
-        .map(|d| match p.dofs.free[d] {
-            FIXED => p.dofs.prescribed[d],
+    } = run;
+    let displacement: Vec<f64> = (0..dofs.free.len())
+        .map(|d| match dofs.free[d] {
+            FIXED => dofs.prescribed[d],
             k => u[k],
         })
         .collect();
     let by_node = (0..n)
-        .map(|i| ((p.cons.candidates[i].pair, p.cons.candidates[i].node), state[i]))
+        .map(|i| ((cons.candidates[i].pair, cons.candidates[i].node), state[i]))
         .collect();
     let in_contact: Vec<bool> = (0..n).map(|i| state[i] != State::Open && lambda[i] > 0.0).collect();
     let friction = Friction {
@@ -219,7 +243,7 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
         iterations,
         converged,
         breakdown: false,
-        method: "active_set",
+        method,
         exact: true,
         t_contact: t0.elapsed().as_secs_f64(),
         refinements: 0,
@@ -228,9 +252,8 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
     (sol, friction)
 }
 
-/// The step's problem for (W, q, e) from the states `state`: the active set,
-/// restarted with rescaled parameters after a cycle; the iterations of all
-/// its runs.
+/// The step's problem for (W, q, e) from the states `state`, on the
+/// condensed rows.
 fn solve_states(
     w: &Mat<f64>,
     q: &[f64],
@@ -246,6 +269,39 @@ fn solve_states(
         r.map(|i| w[(i, i)]).sum::<f64>() / len
     };
     let (c, ct) = (1.0 / mean(0..n), 1.0 / mean(n..n + nt).max(f64::MIN_POSITIVE));
+    let mut dense = Dense { w, q, e, t, block };
+    restarted(&mut dense, t, state, (&vec![c; n], &vec![ct; nt]), max_iterations)
+        .expect("the dense Newton step does not fail")
+}
+
+/// The linear algebra of one Newton step: the multipliers, free motions,
+/// gaps and slips of the system of a state set (None when singular).
+pub(super) trait NewtonSystem {
+    fn solve(&mut self, state: &[State]) -> Result<Option<Iterate>, CoreError>;
+    /// The number of free motions β among the unknowns.
+    fn free_motions(&self) -> usize;
+}
+
+/// One Newton iterate: λ, τ, β and the gaps w and slips Δs they give.
+pub(super) struct Iterate {
+    pub lambda: Vec<f64>,
+    pub tau: Vec<f64>,
+    pub beta: Vec<f64>,
+    pub gap: Vec<f64>,
+    pub slip: Vec<f64>,
+}
+
+/// The active set from the states `state`, restarted with rescaled
+/// parameters after a cycle; the iterations of all its runs. (c, c_t) are
+/// per point and per tangential row: they weigh gap against force and slip
+/// against friction force in the update.
+pub(super) fn restarted(
+    sys: &mut dyn NewtonSystem,
+    t: &Tangents,
+    state: Vec<State>,
+    (c, ct): (&[f64], &[f64]),
+    max_iterations: usize,
+) -> Result<Run, CoreError> {
     // Semismooth Newton on a piecewise linear function may cycle between
     // state sets when a step changes many points at once (measured at ν = 0.3,
     // where the normal load alone makes points slip: two steps out of four
@@ -259,7 +315,8 @@ fn solve_states(
         if budget == 0 || crate::cancel::expired() {
             break;
         }
-        let r = pdas((w, q, e), t, block, state.clone(), (scale * c, scale * ct), budget);
+        let scaled = |v: &[f64]| v.iter().map(|x| scale * x).collect::<Vec<f64>>();
+        let r = pdas(sys, t, state.clone(), (&scaled(c), &scaled(ct)), budget)?;
         iterations += r.iterations;
         let done = r.converged;
         run = Some(r);
@@ -268,47 +325,45 @@ fn solve_states(
         }
     }
     let mut run = run.unwrap_or_else(|| Run {
-        lambda: vec![0.0; n],
-        tau: vec![0.0; nt],
-        beta: vec![0.0; block.map_or(0, Block::len)],
+        lambda: vec![0.0; c.len()],
+        tau: vec![0.0; ct.len()],
+        beta: vec![0.0; sys.free_motions()],
         state,
         iterations: 0,
-        converged: n == 0,
+        converged: c.is_empty(),
     });
     run.iterations = iterations;
-    run
+    Ok(run)
 }
 
 /// Scalings of the update's parameters tried in turn after a cycle.
 const C_SCALES: [f64; 5] = [1.0, 0.1, 10.0, 0.01, 100.0];
 
 /// One run of the active set: its last iterate and states.
-struct Run {
-    lambda: Vec<f64>,
-    tau: Vec<f64>,
-    beta: Vec<f64>,
-    state: Vec<State>,
-    iterations: usize,
-    converged: bool,
+pub(super) struct Run {
+    pub lambda: Vec<f64>,
+    pub tau: Vec<f64>,
+    pub beta: Vec<f64>,
+    pub state: Vec<State>,
+    pub iterations: usize,
+    pub converged: bool,
 }
 
 /// Newton steps from the states `state` until they repeat (converged), cycle
-/// or exhaust `budget`; (w, q, e) are the step's compliance and right-hand
-/// sides; (c, c_t) weigh gap against force and slip against friction force
-/// in the update.
+/// or exhaust `budget`.
 fn pdas(
-    (w, q, e): (&Mat<f64>, &[f64], &[f64]),
+    sys: &mut dyn NewtonSystem,
     t: &Tangents,
-    block: Option<&Block>,
     mut state: Vec<State>,
-    (c, ct): (f64, f64),
+    (c, ct): (&[f64], &[f64]),
     budget: usize,
-) -> Run {
-    let (n, nt) = (q.len(), e.len());
+) -> Result<Run, CoreError> {
+    let (n, nt) = (c.len(), ct.len());
+    let nb = sys.free_motions();
     let mut run = Run {
         lambda: vec![0.0; n],
         tau: vec![0.0; nt],
-        beta: vec![0.0; block.map_or(0, Block::len)],
+        beta: vec![0.0; nb],
         state: Vec::new(),
         iterations: 0,
         converged: n == 0,
@@ -319,7 +374,7 @@ fn pdas(
     let mut beyond = vec![f64::INFINITY; n];
     while !run.converged && run.iterations < budget && !crate::cancel::expired() {
         run.iterations += 1;
-        let mut attempt = newton_step(w, q, e, t, block, &state);
+        let mut attempt = sys.solve(&state)?;
         // A free motion that only friction resists (a block's slide along a
         // flat floor) has no equation left when every point slips: the
         // system is singular. Some point must stick at a solution with
@@ -327,7 +382,7 @@ fn pdas(
         // nearest its cone sticks instead, until the system is regular
         // (measured: on the free block at μ ≤ 1e-3 the first update slid
         // every point and the run stopped there).
-        while attempt.is_none() && block.is_some() {
+        while attempt.is_none() && nb > 0 {
             let Some(i) = (0..n)
                 .filter(|&i| matches!(state[i], State::Slip(_)))
                 .min_by(|&a, &b| beyond[a].total_cmp(&beyond[b]))
@@ -335,15 +390,21 @@ fn pdas(
                 break;
             };
             state[i] = State::Stick;
-            attempt = newton_step(w, q, e, t, block, &state);
+            attempt = sys.solve(&state)?;
         }
-        let Some((lambda, tau, beta)) = attempt else {
+        let Some(Iterate {
+            lambda,
+            tau,
+            beta,
+            gap,
+            slip,
+        }) = attempt
+        else {
             break;
         };
-        let (gap, slip) = gap_and_slip(w, q, e, block, &lambda, &tau, &beta);
         let next: Vec<State> = (0..n)
             .map(|i| {
-                let lt = lambda[i] - c * gap[i];
+                let lt = lambda[i] - c[i] * gap[i];
                 if lt <= 0.0 {
                     beyond[i] = f64::INFINITY;
                     return State::Open;
@@ -351,7 +412,7 @@ fn pdas(
                 match t.row_of[i] {
                     None => State::Stick,
                     Some(k) => {
-                        let z = t.along(k, lambda[i], tau[k]) + ct * slip[k];
+                        let z = t.along(k, lambda[i], tau[k]) + ct[k] * slip[k];
                         beyond[i] = z.abs() / t.bound(k, lt);
                         if z.abs() <= t.bound(k, lt) {
                             State::Stick
@@ -362,7 +423,7 @@ fn pdas(
                 }
             })
             .collect();
-        let residual = (0..n).map(|i| lambda[i].min(c * gap[i]).abs()).fold(0.0, f64::max);
+        let residual = (0..n).map(|i| lambda[i].min(c[i] * gap[i]).abs()).fold(0.0, f64::max);
         crate::progress::iteration(run.iterations, residual);
         (run.lambda, run.tau, run.beta) = (lambda, tau, beta);
         if next == state {
@@ -375,7 +436,37 @@ fn pdas(
         seen.push(std::mem::replace(&mut state, next));
     }
     run.state = state;
-    run
+    Ok(run)
+}
+
+/// The Newton system on the condensed rows: W over [N; T], the right-hand
+/// sides q and e, and the free motions' block.
+struct Dense<'a> {
+    w: &'a Mat<f64>,
+    q: &'a [f64],
+    e: &'a [f64],
+    t: &'a Tangents,
+    block: Option<&'a Block>,
+}
+
+impl NewtonSystem for Dense<'_> {
+    fn solve(&mut self, state: &[State]) -> Result<Option<Iterate>, CoreError> {
+        let Some((lambda, tau, beta)) = newton_step(self.w, self.q, self.e, self.t, self.block, state) else {
+            return Ok(None);
+        };
+        let (gap, slip) = gap_and_slip(self.w, self.q, self.e, self.block, &lambda, &tau, &beta);
+        Ok(Some(Iterate {
+            lambda,
+            tau,
+            beta,
+            gap,
+            slip,
+        }))
+    }
+
+    fn free_motions(&self) -> usize {
+        self.block.map_or(0, Block::len)
+    }
 }
 
 /// The gaps w and slips Δs of (λ, τ) and the free motions β.

@@ -26,19 +26,19 @@ use crate::linalg::LinalgError;
 use crate::scene::Settings;
 
 /// K in coordinates where every candidate row acts on one coordinate.
-struct Rotated {
+pub(super) struct Rotated {
     /// K' = QᵀKQ, lower triangle.
-    k: SparseColMat<usize, f64>,
+    pub k: SparseColMat<usize, f64>,
     /// Per candidate: (constrained coordinate, coefficient c).
-    coord: Vec<(usize, f64)>,
+    pub coord: Vec<(usize, f64)>,
     /// Rotated node pairs (normal DOF, tangent DOF, nx, ny): the normal
     /// coordinate lives at the x DOF, the tangential one at the y DOF.
-    pairs: Vec<(usize, usize, f64, f64)>,
+    pub pairs: Vec<(usize, usize, f64, f64)>,
     /// Diagonal of K' (stiffness of each coordinate).
-    diag: Vec<f64>,
+    pub diag: Vec<f64>,
 }
 
-fn rotate(k: &SparseColMat<usize, f64>, cons: &ConstraintSet) -> Rotated {
+pub(super) fn rotate(k: &SparseColMat<usize, f64>, cons: &ConstraintSet) -> Rotated {
     let n = k.nrows();
     let mut spread: Vec<[(usize, f64); 2]> = (0..n).map(|a| [(a, 1.0), (usize::MAX, 0.0)]).collect();
     let mut coord = Vec::with_capacity(cons.len());
@@ -91,7 +91,7 @@ fn rotate(k: &SparseColMat<usize, f64>, cons: &ConstraintSet) -> Rotated {
 }
 
 /// u = Q u' (or f' = Qᵀ f with `transpose`).
-fn apply_q(rot: &Rotated, x: &[f64], transpose: bool) -> Vec<f64> {
+pub(super) fn apply_q(rot: &Rotated, x: &[f64], transpose: bool) -> Vec<f64> {
     let mut y = x.to_vec();
     for &(dn, dt, nx, ny) in &rot.pairs {
         let (a, b) = (x[dn], x[dt]);
@@ -104,6 +104,48 @@ fn apply_q(rot: &Rotated, x: &[f64], transpose: bool) -> Vec<f64> {
         }
     }
     y
+}
+
+/// K' with the coordinates `fixed` prescribes (finite entries) replaced by
+/// the identity, and f' moved accordingly: the pattern, and so the symbolic
+/// factorization, stay K''s.
+pub(super) fn prescribed(
+    k: &SparseColMat<usize, f64>,
+    fixed: &[f64],
+    f: &[f64],
+) -> (SparseColMat<usize, f64>, Vec<f64>) {
+    let n = k.nrows();
+    let mut kk = k.clone();
+    let mut rhs = f.to_vec();
+    let sym = k.symbolic();
+    let (col_ptr, row_idx) = (sym.col_ptr(), sym.row_idx());
+    let vals = kk.val_mut();
+    for j in 0..n {
+        for idx in col_ptr[j]..col_ptr[j + 1] {
+            let i = row_idx[idx];
+            let (fi, fj) = (fixed[i].is_finite(), fixed[j].is_finite());
+            if i == j {
+                if fi {
+                    vals[idx] = 1.0;
+                }
+            } else if fi || fj {
+                let v = vals[idx];
+                if fj && !fi {
+                    rhs[i] -= v * fixed[j];
+                }
+                if fi && !fj {
+                    rhs[j] -= v * fixed[i];
+                }
+                vals[idx] = 0.0;
+            }
+        }
+    }
+    for d in 0..n {
+        if fixed[d].is_finite() {
+            rhs[d] = fixed[d];
+        }
+    }
+    (kk, rhs)
 }
 
 struct ActiveSetRun {
@@ -127,7 +169,6 @@ fn active_set_full(
         SymbolicLlt::try_new(rot.k.symbolic(), Side::Lower).map_err(|e| LinalgError::Faer(format!("{e:?}")))?;
     // Every iteration refactors: each must fit in the time left.
     let cost = crate::linalg::cholesky::FactorCost::predict(&rot.k)?;
-    let sym = rot.k.symbolic();
     let diag = &rot.diag;
     let mut seen: Vec<Vec<bool>> = Vec::new();
     let mut last = None;
@@ -140,39 +181,7 @@ fn active_set_full(
                 fixed[d] = g[i] / c;
             }
         }
-        // K' with prescribed coordinates replaced by the identity; f' moved accordingly.
-        let mut kk = rot.k.clone();
-        let mut rhs = fp.clone();
-        {
-            let col_ptr = sym.col_ptr().to_vec();
-            let row_idx = sym.row_idx().to_vec();
-            let vals = kk.val_mut();
-            for j in 0..n {
-                for idx in col_ptr[j]..col_ptr[j + 1] {
-                    let i = row_idx[idx];
-                    let (fi, fj) = (fixed[i].is_finite(), fixed[j].is_finite());
-                    if i == j {
-                        if fi {
-                            vals[idx] = 1.0;
-                        }
-                    } else if fi || fj {
-                        let v = vals[idx];
-                        if fj && !fi {
-                            rhs[i] -= v * fixed[j];
-                        }
-                        if fi && !fj {
-                            rhs[j] -= v * fixed[i];
-                        }
-                        vals[idx] = 0.0;
-                    }
-                }
-            }
-        }
-        for d in 0..n {
-            if fixed[d].is_finite() {
-                rhs[d] = fixed[d];
-            }
-        }
+        let (kk, rhs) = prescribed(&rot.k, &fixed, &fp);
         cost.fits_in_time_left()?;
         let llt = Llt::try_new_with_symbolic(symbolic.clone(), kk.as_ref(), Side::Lower)
             .map_err(|_| LinalgError::NotPositiveDefinite)?;

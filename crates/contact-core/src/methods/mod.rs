@@ -22,6 +22,7 @@ pub mod active_set;
 pub mod barrier;
 pub mod condensed;
 pub mod friction;
+pub mod friction_full;
 pub mod full;
 pub mod interior_point;
 pub mod penalty;

@@ -161,9 +161,6 @@ fn friction(req: &SolveRequest, c: &proto::ContactSpec, cp: &str, target: &Targe
     if !matches!(req.method, proto::MethodName::Auto | proto::MethodName::ActiveSet) {
         return refuse("with a method other than 'auto' or 'active_set'");
     }
-    if req.settings.formulation == proto::Formulation::Full {
-        return refuse("on the full formulation (use 'condensed')");
-    }
     if req.analysis == proto::Analysis::Axisymmetric {
         return refuse("in axisymmetry");
     }
