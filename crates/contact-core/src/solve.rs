@@ -256,10 +256,12 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
             predicted: factor.map(|f| f.1),
             compliance: None,
         };
+        let sol_iterations = sol.iterations;
         let mut r = compose::report(&s, &composed, sol, obs, CacheState::Off);
         crate::solution::friction::attach(&mut r, &s, &model, &tangents, &friction);
         if r.status == Status::MaxIterations {
             r.notes.extend(sliding_punches(&s));
+            r.notes.extend(unsettled_bodies(&s, &model, sol_iterations));
         }
         history = friction.history;
         obs = Observer::new();
@@ -490,6 +492,27 @@ fn solve_full(scene: &Scene, model: &Model, mut obs: Observer) -> Result<Report,
         compliance: None,
     };
     Ok(compose::report(scene, &solved, sol, obs, CacheState::Off))
+}
+
+/// What a frictional step that ran out of iterations says of the bodies
+/// held only by contact: their loads passed the check with the friction cone
+/// (an equilibrium exists), so the iteration, not the loads, fell short; the
+/// remedies are more iterations or smaller steps (each starts from the
+/// previous one's states, so fewer points change state at once).
+fn unsettled_bodies(scene: &Scene, model: &Model, iterations: usize) -> Vec<String> {
+    let mut bodies: Vec<usize> = model.dofs.rigid.iter().map(|rm| rm.body).collect();
+    bodies.dedup();
+    bodies
+        .into_iter()
+        .map(|b| {
+            format!(
+                "body '{}' is held only by contact: the frictional iteration did not settle its points' stick and slip \
+                 states in {iterations} iterations; its loads pass the check with the friction cone, so an equilibrium \
+                 exists: raise settings.max_iterations ({}), or apply the loads in more steps (load_path)",
+                scene.bodies[b].name, scene.settings.max_iterations
+            )
+        })
+        .collect()
 }
 
 /// Why a frictional step with a load-controlled punch may not converge: a

@@ -181,3 +181,100 @@ fn small_friction_approaches_the_frictionless_pressures() {
         assert!(stuck.count() >= 1, "μ {mu}");
     }
 }
+
+/// A block twice as tall as it is wide (b = 1, h = 2) with μ = 1 tips before
+/// it slides. Statics with the floor's normal forces N_i at x_i and friction
+/// forces F_i: Σ N = P, Σ F = −F_x, and about the body's centre c = (0, h/2)
+/// (its rotation mode's) Σ x_i N_i = −M_c + (h/2) F_x, which the base holds
+/// while |Σ x N| ≤ P b/2 (tipping about a corner); sliding needs |F_x| ≤ μP.
+/// A shear Q on the top gives F_x = Q and M_c = −Q h/2, so the block stands
+/// while |Q| ≤ P b/(2h) = P/4 < μP. At Q = 1.05 P/4 the cone check's LP
+/// refuses it and gives each rigid mode's load range with the others held,
+/// the closed forms F_x ∈ [(2/h)(M_c − Pb/2), (2/h)(M_c + Pb/2)] ∩ [−μP, μP],
+/// M_c ∈ [(h/2)F_x − Pb/2, (h/2)F_x + Pb/2] and −F_y = P ≥ 2|Σ x N|/b, to the
+/// LP's tolerance (1e-8 relative; measured 1.3e-9). At Q = 0.9 P/4 it stands:
+/// the floor's resultant is (−Q, P) and the normal forces' centre at
+/// Q h / P (0.45 of the half base), to 1e-10.
+#[test]
+fn a_tall_block_tips_before_it_slides() {
+    let mu = 1.0;
+    let (b, h) = (1.0, 2.0);
+    let tall = |q: f64| {
+        let body = body("block", 1000.0, 0.25, rectangle([-0.5 * b, 0.0], b, h, 0.1, "t3")).pressure("top", PRESSURE);
+        let mut r = request(vec![body], vec![pair("block", "bottom").obstacle("floor")])
+            .with_obstacle(obstacle("floor", line([0.0, 0.0], [0.0, 1.0])))
+            .to_value();
+        r["bodies"][0]["tractions"]
+            .as_array_mut()
+            .unwrap()
+            .push(json!({"edges": "top", "traction": [q / b, 0.0]}));
+        r["contacts"][0]["friction"] = json!({"coefficient": mu});
+        r
+    };
+    let p = PRESSURE * b;
+    let limit = p * b / (2.0 * h);
+    for q in [1.05 * limit, -1.05 * limit] {
+        let e = solve(&tall(q)).expect_err("the block tips");
+        assert_eq!(e.code, ErrorCode::IncompatibleLoads, "{e:?}");
+        assert!(e.message.contains("tip"), "{}", e.message);
+        let loads = &e.details.as_ref().expect("details").loads;
+        let m_c = -q * h / 2.0;
+        let close = |v: Option<f64>, expect: f64| v.is_some_and(|v| (v - expect).abs() <= 1e-8 * p);
+        let of = |value: f64| {
+            loads
+                .iter()
+                .find(|l| (l.value - value).abs() <= 1e-12 * p)
+                .unwrap_or_else(|| panic!("no range for the load {value}: {loads:?}"))
+        };
+        let fx = of(q);
+        let (lo, hi) = ((2.0 / h) * (m_c - p * b / 2.0), (2.0 / h) * (m_c + p * b / 2.0));
+        assert!(
+            close(fx.min, lo.max(-mu * p)) && close(fx.max, hi.min(mu * p)),
+            "F_x: {fx:?}"
+        );
+        let m = of(m_c);
+        let (lo, hi) = (h / 2.0 * q - p * b / 2.0, h / 2.0 * q + p * b / 2.0);
+        assert!(close(m.min, lo) && close(m.max, hi), "M_c: {m:?}");
+        let fy = of(-p);
+        let needed = 2.0 * (-m_c + h / 2.0 * q).abs() / b;
+        assert!(close(fy.max, -needed) && fy.min.is_none(), "F_y: {fy:?}");
+    }
+    let q = 0.9 * limit;
+    let r = solved(&tall(q));
+    let res = r.resultant;
+    assert!(
+        (res.fx + q).abs() <= 1e-10 * p && (res.fy - p).abs() <= 1e-10 * p,
+        "{res:?}"
+    );
+    let points = &r.pairs[0].points;
+    let moment: f64 = points.iter().map(|pt| pt.x * pt.force).sum();
+    let normal: f64 = points.iter().map(|pt| pt.force).sum();
+    assert!(
+        (moment / normal - q * h / p).abs() <= 1e-10,
+        "centre {} vs {}",
+        moment / normal,
+        q * h / p
+    );
+}
+
+/// A step that runs out of iterations is not a silent answer: with one
+/// iteration allowed the block's step ends `max_iterations`, and the reply
+/// says that its loads pass the check with the friction cone (so the
+/// iteration fell short, not the loads) and what to change; with the
+/// default allowance the same request is solved.
+#[test]
+fn a_free_body_step_out_of_iterations_says_why() {
+    let mut req = block("t3", PRESSURE, 0.5 * 0.6 * MU * P, Some(MU));
+    req["settings"] = json!({"max_iterations": 1});
+    let r = solve(&req).expect("an answer");
+    assert_eq!(r.status, SolveStatus::MaxIterations);
+    assert!(
+        r.notes
+            .iter()
+            .any(|n| n.contains("body 'block'") && n.contains("max_iterations") && n.contains("equilibrium exists")),
+        "{:?}",
+        r.notes
+    );
+    req["settings"] = json!({});
+    assert!(solved(&req).notes.iter().all(|n| !n.contains("did not settle")));
+}
