@@ -364,7 +364,7 @@ fn body_normal_tilts(scene: &Scene, model: &Model, mu: &[f64]) -> Vec<f64> {
     for pair in scene.pairs.iter().filter(|p| p.friction > 0.0) {
         let mesh = &model.meshes[pair.body];
         if let Some(edges) = mesh.edge_sets.get(&pair.edges) {
-            // Friction in axisymmetry is refused: the plane weights do.
+            // Only the normals are read: the plane weights do.
             for bn in boundary_nodes(mesh, edges, false) {
                 normal.insert((pair.body, bn.node), bn.normal);
             }

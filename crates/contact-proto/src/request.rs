@@ -429,8 +429,10 @@ pub struct ContactSpec {
     /// (ignored for rigid obstacles).
     #[serde(default)]
     pub discretization: Discretization,
-    /// Coulomb friction on the pair (default: frictionless). Supported so far
-    /// against a fixed rigid obstacle, on the condensed active-set method.
+    /// Coulomb friction on the pair (default: frictionless): against rigid
+    /// obstacles, punches and other bodies, in plane strain, plane stress and
+    /// axisymmetry, with the methods `auto` and `active_set`; not on or
+    /// beside foundations.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub friction: Option<FrictionSpec>,
 }

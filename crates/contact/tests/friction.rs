@@ -284,7 +284,7 @@ fn unsupported_friction_is_refused() {
         r
     };
     refused(&with("foundation_winkler_footing.json"), "/contacts/0/friction");
-    refused(&with("axisymmetric_ball_on_flat.json"), "/contacts/0/friction");
+    // (Bodies of revolution are solved: `friction_axisymmetric.rs`.)
     let mut r = with("signorini_roller_on_flat.json");
     r["method"] = json!("interior_point");
     refused(&r, "/contacts/0/friction");

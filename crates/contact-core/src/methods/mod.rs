@@ -23,6 +23,7 @@ pub mod barrier;
 pub mod condensed;
 pub mod friction;
 pub mod friction_full;
+pub mod friction_gauss_seidel;
 pub mod full;
 pub mod interior_point;
 pub mod penalty;

@@ -19,6 +19,7 @@ use crate::solution::report::{
 /// forces, with the friction forces among the loads for its equilibrium).
 pub fn attach(report: &mut Report, scene: &Scene, model: &Model, t: &Tangents, s: &fr::Friction) {
     let sc = scene.scales;
+    let axisymmetric = scene.analysis == crate::scene::Analysis::Axisymmetric;
     let cons = &model.cons;
     let (lambda, state) = (&s.lambda, &s.history.state);
     let residuals = residuals(t, lambda, &s.tau, &s.slip, s.u_scale);
@@ -103,10 +104,12 @@ pub fn attach(report: &mut Report, scene: &Scene, model: &Model, t: &Tangents, s
                     r.m += x[0] * f[1] - x[1] * f[0];
                 }
             }
+            // A body of revolution's radial forces and moments cancel
+            // around each ring, as the normal forces' do (`post`).
             Resultant {
-                fx: sc.force(r.fx),
+                fx: if axisymmetric { 0.0 } else { sc.force(r.fx) },
                 fy: sc.force(r.fy),
-                m: sc.moment(r.m),
+                m: if axisymmetric { 0.0 } else { sc.moment(r.m) },
             }
         };
         let r = on(pair.body);

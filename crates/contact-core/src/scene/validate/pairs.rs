@@ -161,9 +161,6 @@ fn friction(req: &SolveRequest, c: &proto::ContactSpec, cp: &str, target: &Targe
     if !matches!(req.method, proto::MethodName::Auto | proto::MethodName::ActiveSet) {
         return refuse("with a method other than 'auto' or 'active_set'");
     }
-    if req.analysis == proto::Analysis::Axisymmetric {
-        return refuse("in axisymmetry");
-    }
     if req.contacts.iter().any(|p| p.foundation.is_some()) {
         return refuse("in a scene with foundations");
     }
