@@ -9,7 +9,9 @@
 //! two similar half-planes holds exactly even at ν = 0.3 (unlike the roller
 //! on a rigid floor, which needs ν = 0.499). The upper body's surface carries
 //! the pressure; its meshes are graded to h at the zone, the lower one's to
-//! 1.3 h, so the two do not match.
+//! 1.3 h, so the two do not match. Dissimilar materials (β ≠ 0): a stiff
+//! elastic flat punch on a deep block against Spence's stick zone
+//! (`dissimilar_materials_stick_like_spence`).
 
 mod common;
 use common::*;
@@ -267,4 +269,71 @@ fn vanishing_friction_is_near_the_frictionless_two_body_solve() {
     for (x, y) in oa.iter().zip(ob) {
         assert!((x.pressure - y.pressure).abs() <= 3e-3 * p0, "{x:?} vs {y:?}");
     }
+}
+
+/// Dissimilar materials: an elastic flat punch (half-width a = 1, 2 × 0.5,
+/// E = 2e5) pressed by a prescribed motion into the block of Spence's test
+/// (`friction.rs::spence_flat_punch_stick_zone`: E = 200, ν = 0.3, 1280a
+/// deep, graded to 0.01), μ = 0.3, both bodies meshed (mortar rows). The
+/// second Dundurs constant of the pair, β = [G₁(κ₂ − 1) − G₂(κ₁ − 1)] /
+/// [G₁(κ₂ + 1) + G₂(κ₁ + 1)] with G the shear moduli and κ = 3 − 4ν, is
+/// −0.2851 (a rigid punch's 0.2857 scaled by 1 − 2e-3): the normal load
+/// pulls the block's surface inward against the punch's, friction opposes
+/// it, and the contact sticks on |x| < c with c/a that of the half-plane's
+/// coupled integral equations at |β| (the panel reference, 200 and 400
+/// panels extrapolated, 0.689). A punch 1000 times stiffer is a half-plane
+/// only in its compliance's share, 1e-3 of the pair's. Tolerance 2 %, as in
+/// Spence's test (half a spacing 0.7 %, the reference 0.15 %, the finite
+/// block ≤ 0.7 %); measured c = 0.695 (+0.9 %). The slip is inward on the
+/// block, the friction on it μ p outward, and each body's contact force is
+/// minus the other's (1e-12 of P).
+#[test]
+fn dissimilar_materials_stick_like_spence() {
+    let (mu, nu): (f64, f64) = (0.3, 0.3);
+    let scale = 64.0;
+    let body = |name: &str, e: f64, corner: [f64; 2], size: [f64; 3], supports: Value| {
+        json!({
+            "name": name,
+            "material": {"youngs_modulus": e, "poisson_ratio": nu},
+            "mesh": {"rectangle": {"corner": corner, "width": size[0], "height": size[1], "size": size[2],
+                "grading": {"focus": [0.0, 0.0], "h_min": 0.01, "ratio": 1.1, "extent": 1.2}}},
+            "supports": supports
+        })
+    };
+    let req = json!({
+        "version": "1",
+        "bodies": [
+            body("block", 200.0, [-20.0 * scale, -20.0 * scale], [40.0 * scale, 20.0 * scale, scale],
+                json!([{"edges": "bottom", "ux": 0.0, "uy": 0.0}])),
+            body("punch", 2e5, [-1.0, 0.0], [2.0, 0.5, 0.1], json!([{"edges": "top", "ux": 0.0, "uy": -0.1}]))
+        ],
+        "contacts": [{"body": "block", "edges": "top", "against": {"body": "punch", "edges": "bottom"},
+            "friction": {"coefficient": mu}}]
+    });
+    let r = solved(&req);
+    let kappa = 3.0 - 4.0 * nu;
+    let (g1, g2) = (200.0 / (2.0 * (1.0 + nu)), 2e5 / (2.0 * (1.0 + nu)));
+    let beta = (g1 * (kappa - 1.0) - g2 * (kappa - 1.0)) / (g1 * (kappa + 1.0) + g2 * (kappa + 1.0));
+    let coarse = contact_verify::reference::flat_punch_with_friction(beta.abs(), mu, 200);
+    let fine = contact_verify::reference::flat_punch_with_friction(beta.abs(), mu, 400);
+    let expect = 2.0 * fine.c - coarse.c;
+    let pair = &r.pairs[0];
+    let stick = run_ends(&pair.points, |q| q.state == Some(FrictionState::Stick));
+    let c = 0.5 * (stick[1] - stick[0]);
+    assert!((c / expect - 1.0).abs() < 0.02, "c {c} vs {expect} (β {beta})");
+    assert!((stick[0] + stick[1]).abs() < 1e-9, "centred: {stick:?}");
+    let p = r.resultant.fy.abs();
+    for pt in pair.points.iter().filter(|q| q.state == Some(FrictionState::Slip)) {
+        let t = pt.tangential_traction.unwrap();
+        assert!((t.abs() - mu * pt.pressure).abs() <= 1e-9 * mu * pt.pressure, "{pt:?}");
+        // Slip inward: against the sign of x along the block's surface.
+        let slip_x = pt.slip.unwrap() * pt.tangent.unwrap()[0];
+        assert!(slip_x * pt.x < 0.0, "slip not inward: {pt:?}");
+    }
+    let other = pair.other_resultant.expect("the punch's force");
+    assert!(
+        (other.fx + pair.resultant.fx).abs() <= 1e-12 * p && (other.fy + pair.resultant.fy).abs() <= 1e-12 * p,
+        "{other:?} vs {:?}",
+        pair.resultant
+    );
 }
