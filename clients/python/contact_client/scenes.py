@@ -751,6 +751,64 @@ def flat_punch_of_revolution(
     )
 
 
+def press_fit(
+    shaft_radius: float = 1.0,
+    outer_radius: float = 2.0,
+    height: float = 1.0,
+    interference: float = 0.001,
+    youngs_modulus: float = 200.0,
+    poisson_ratio: float = 0.3,
+    size: float = 0.05,
+    element: str = "t3",
+    *,
+    friction: float | None = None,
+    push: float | None = None,
+) -> dict:
+    """A shaft of radius ``shaft_radius`` fitted into a ring of outer radius
+    ``outer_radius`` with the radial ``interference`` (a negative initial gap), both of
+    ``height``, the same material, their bottoms held axially (axisymmetric; the
+    ring's bore carries the pressure, mortar rows). Frictionless, the pressure is
+    ``lame_press_fit_pressure`` over the whole bore (free ends: plane stress).
+
+    ``friction``: Coulomb μ on the bore. ``push``: after the fit closes (first load
+    path step), the shaft's bottom is moved along the axis by ``push``; pushed beyond
+    the elastic slip (about interference / radius × height), the whole bore slides and
+    the push-out force, the friction resultant's axial part, is μ times the normal
+    ring force Σ force, about μ p 2π b L (Lamé's p, b the bore radius, L the height).
+    """
+    bore = shaft_radius - interference
+
+    def body(name: str, corner: float, width: float, uy: float) -> dict:
+        mesh = rq.rectangle([corner, 0.0], width, height, size, element)
+        return rq.body(name, rq.material(youngs_modulus, poisson_ratio), mesh, [rq.support("bottom", uy=uy)])
+
+    path = None
+    if push is not None:
+        if not math.isfinite(push):
+            raise ValueError(f"push must be a finite displacement, not {push!r}")
+        path = [rq.load_step({"/bodies/0/supports/0": 0.0}), rq.load_step({"/bodies/0/supports/0": 1.0})]
+    return rq.request(
+        bodies=[
+            body("shaft", 0.0, shaft_radius, push if push is not None else 0.0),
+            body("ring", bore, outer_radius - bore, 0.0),
+        ],
+        contacts=[rq.contact("ring", "left", against=("shaft", "right"), friction=friction)],
+        analysis="axisymmetric",
+        load_path=path,
+        description=f"press fit, shaft radius {shaft_radius} in a ring to {outer_radius}, interference {interference}"
+        + ("" if friction is None else f", friction mu = {friction}")
+        + ("" if push is None else f", pushed {push} along the axis"),
+    )
+
+
+def lame_press_fit_pressure(shaft_radius: float, outer_radius: float, interference: float,
+                            youngs_modulus: float) -> float:
+    """Lame's fit pressure of a solid shaft in a ring of the same material (plane
+    stress): E delta (c^2 - b^2) / (2 b c^2)."""
+    b, c = shaft_radius, outer_radius
+    return youngs_modulus * interference * (c * c - b * b) / (2.0 * b * c * c)
+
+
 def boussinesq_pressure(r: float, P: float, a: float) -> float:
     """Pressure under a rigid flat cylindrical punch of radius a with the total load P (r < a)."""
     return P / (2.0 * math.pi * a * math.sqrt(a * a - r * r)) if abs(r) < a else 0.0

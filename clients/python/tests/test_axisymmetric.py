@@ -12,6 +12,8 @@ from contact_client.scenes import (
     flat_punch_of_revolution,
     hertz_pressure,
     hertz_sphere_reference,
+    lame_press_fit_pressure,
+    press_fit,
 )
 
 
@@ -48,3 +50,35 @@ def test_flat_punch_of_revolution_matches_boussinesq():
             assert abs(q["pressure"] / boussinesq_pressure(q["x"], 100.0, 1.0) - 1) < 0.015, q
     settlement = -reply["punches"][0]["alpha2"]
     assert abs(settlement / boussinesq_settlement(100.0, 1.0, 200.0, 0.3) - 1) < 0.02
+
+
+def test_press_fit_matches_lame():
+    """Frictionless, free ends: plane stress, Lame's pressure over the whole bore; the
+    area-weighted mean within 0.5 % (the interference, 0.1 % of the radius, is the
+    ambiguity of b), as the Rust test holds it."""
+    reply = solve_local(press_fit())
+    assert reply["status"] == "solved"
+    points = reply["pairs"][0]["points"]
+    area = sum(q["weight"] for q in points)
+    mean = sum(q["pressure"] * q["weight"] for q in points) / area
+    assert abs(mean / lame_press_fit_pressure(1.0, 2.0, 0.001, 200.0) - 1) < 0.005
+
+
+def test_press_fit_pushed_out_slides_at_mu_times_the_fit_force():
+    """Closed with friction mu = 0.05, then pushed 0.01 along the axis (ten times the
+    elastic slip): every point of the bore slides at |t| = mu p (1e-9), the push-out
+    force (the friction resultant along the axis) is mu times the normal ring force
+    (1e-12), and within 1.5 % of mu p 2 pi b L with Lame's p (measured +0.93 %: the
+    friction's axial traction changes the fit through nu, by about 0.16 mu)."""
+    mu = 0.05
+    reply = solve_local(press_fit(friction=mu, push=0.01))
+    assert reply["status"] == "solved"
+    pushed = reply["steps"][1]["pairs"][0]
+    normal = sum(q["force"] for q in pushed["points"])
+    for q in pushed["points"]:
+        assert q["state"] == "slip"
+        assert abs(abs(q["tangential_traction"]) - mu * q["pressure"]) <= 1e-9 * mu * q["pressure"]
+    force = abs(pushed["friction"]["tangential_resultant"]["fy"])
+    assert abs(force - mu * normal) <= 1e-12 * mu * normal
+    lame = lame_press_fit_pressure(1.0, 2.0, 0.001, 200.0) * 2 * math.pi * 0.999 * 1.0
+    assert abs(force / (mu * lame) - 1) < 0.015

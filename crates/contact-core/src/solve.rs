@@ -132,10 +132,11 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
     } else {
         Box::new(std::iter::once((scene.clone(), 1.0, None)))
     };
-    // The condensed operator of the first step serves every step; the full
-    // route keeps K.
+    // K is the same in every step (the loads and prescribed values change,
+    // not the mesh or the materials): assembled once, and on the condensed
+    // route factored and condensed once for every step.
     let mut op: Option<Arc<crate::cache::Prepared>> = None;
-    let mut full_k: Option<Arc<crate::fem::assembly::Stiffness>> = None;
+    let mut k_once: Option<Arc<crate::fem::assembly::Stiffness>> = None;
     let mut history = methods::friction::History::default();
     let (mut steps, mut timings, mut last) = (Vec::new(), Timings::default(), None);
     for (s, k, loads) in steps_in {
@@ -148,11 +149,11 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
         let block = punch_block(&s, &mut model, &tangents)?;
         let (route, why_full) =
             admit::frictional_route(&s, &model.cons, &tangents, model.dofs.n_free, block.is_some(), limits)?;
-        let stiffness = match (route, &op, &full_k) {
-            (Route::Condensed, Some(p), _) => p.stiffness.clone(),
-            (Route::Full, _, Some(k)) => k.clone(),
-            _ => Arc::new(assemble_stiffness(&s, &model.meshes, &model.dofs)?),
+        let stiffness = match &k_once {
+            Some(k) => k.clone(),
+            None => Arc::new(assemble_stiffness(&s, &model.meshes, &model.dofs)?),
         };
+        k_once = Some(stiffness.clone());
         obs.leave(Stage::Assembly)?;
         let f = assemble_loads(&model.external, &model.dofs, &stiffness);
         let (mut sol, mut friction, factor) = match route {
@@ -192,8 +193,7 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
             }
             Route::Full => {
                 // No factorization stage of its own: every Newton iteration
-                // factors the step's saddle-point system.
-                full_k = Some(stiffness.clone());
+                // factors K with its state's prescribed coordinates.
                 obs.enter(Stage::ContactSolve);
                 let step = methods::friction_full::Step {
                     k: &stiffness.k,

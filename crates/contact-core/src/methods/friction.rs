@@ -44,7 +44,7 @@
 //! (the slip rows tie τ to λ), so it is solved by LU; its size is the number
 //! of points in contact plus those among them with a tangential row.
 //!
-//! Length (about 700 lines): the iteration on the states is written once
+//! Length: about 700 lines. The iteration on the states is written once
 //! for both linear algebras (`NewtonSystem`: the dense one here, the full
 //! system's in `friction_full`), with its restarts, the Alart–Curnier
 //! residual that ends it, the Gauss–Seidel fallback's hand-over, and the
