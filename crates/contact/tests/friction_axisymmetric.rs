@@ -2,37 +2,24 @@
 //! meridian's, so friction acts along the axis or the radius, never around
 //! it (no torsion in axisymmetry).
 //!
-//! The scene: the press fit of `axisymmetric.rs::press_fit_matches_lame`
-//! (shaft of radius b = 1 in a ring of outer radius c = 2, both of height
-//! L = 1, E = 200, ν = 0.3, radial interference δ = 0.001, mortar rows on the
-//! ring's bore) with friction μ, closed through its interference in the
-//! first step (the ends held axially), then pushed out: the shaft's end is
-//! moved 0.01 along the axis, far beyond the elastic slip (δ/b · L = 0.001).
+//! The scene (`proto/examples/friction_press_fit_pushed_out.json`): the press
+//! fit of `axisymmetric.rs::press_fit_matches_lame` (shaft of radius b = 1 in
+//! a ring of outer radius c = 2, both of height L = 1, E = 200, ν = 0.3,
+//! radial interference δ = 0.001, mortar rows on the ring's bore) with
+//! friction μ, closed through its interference in the first step (the ends
+//! held axially), then pushed out: the shaft's end is moved 0.01 along the
+//! axis, far beyond the elastic slip (δ/b · L = 0.001).
 
 mod common;
 use common::*;
 use contact::proto::{FrictionState, SolveStatus};
 use serde_json::{json, Value};
 
+/// `friction_press_fit_pushed_out.json` with friction `mu`.
 fn press_fit(mu: f64) -> Value {
-    let body = |name: &str, corner: f64, width: f64, uy: f64| {
-        json!({
-            "name": name,
-            "material": { "youngs_modulus": 200.0, "poisson_ratio": 0.3 },
-            "mesh": { "rectangle": { "corner": [corner, 0.0], "width": width, "height": 1.0, "size": 0.05 } },
-            "supports": [{ "edges": "bottom", "uy": uy }]
-        })
-    };
-    json!({
-        "version": "1",
-        "analysis": "axisymmetric",
-        "bodies": [body("shaft", 0.0, 1.0, 0.01), body("ring", 0.999, 1.001, 0.0)],
-        "contacts": [{
-            "body": "ring", "edges": "left", "against": { "body": "shaft", "edges": "right" },
-            "friction": { "coefficient": mu }
-        }],
-        "load_path": [{"loads": {"/bodies/0/supports/0": 0.0}}, {"loads": {"/bodies/0/supports/0": 1.0}}]
-    })
+    let mut r = example("friction_press_fit_pushed_out.json");
+    r["contacts"][0]["friction"]["coefficient"] = json!(mu);
+    r
 }
 
 /// Pushed out, the whole bore slides: every point at t = μ p (to 1e-9 of it,
