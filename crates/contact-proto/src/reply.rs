@@ -295,6 +295,14 @@ pub struct PairFriction {
     pub stick_zones: Vec<[f64; 2]>,
     /// Runs of consecutive points that slip, [x_start, x_end].
     pub slip_zones: Vec<[f64; 2]>,
+    /// The runs of `stick_zones` by their first and last points,
+    /// [[x, y], [x, y]]: on a surface that is not a graph over x (a vertical
+    /// bore, a re-entrant face) the x-intervals collapse, these do not.
+    #[serde(default)]
+    pub stick_runs: Vec<[[f64; 2]; 2]>,
+    /// The runs of `slip_zones` by their first and last points.
+    #[serde(default)]
+    pub slip_runs: Vec<[[f64; 2]; 2]>,
     /// Force and moment about the origin of the tangential (friction)
     /// tractions on the body.
     pub tangential_resultant: Resultant,

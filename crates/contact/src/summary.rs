@@ -136,12 +136,17 @@ pub fn reply(r: &SolveReply) -> String {
             }
         }
         if let Some(f) = &p.friction {
-            let runs = |z: &[[f64; 2]]| {
+            // A run along x as its x-interval; one whose ends share their x
+            // (a vertical bore) by its end points.
+            let runs = |z: &[[[f64; 2]; 2]]| {
                 if z.is_empty() {
                     "none".to_string()
                 } else {
                     z.iter()
-                        .map(|z| format!("[{}, {}]", num(z[0]), num(z[1])))
+                        .map(|[a, b]| match a[0] == b[0] && a[1] != b[1] {
+                            true => format!("({}, {})–({}, {})", num(a[0]), num(a[1]), num(b[0]), num(b[1])),
+                            false => format!("[{}, {}]", num(a[0]), num(b[0])),
+                        })
                         .collect::<Vec<_>>()
                         .join(" ")
                 }
@@ -151,8 +156,8 @@ pub fn reply(r: &SolveReply) -> String {
                 o,
                 "  friction   μ {}: stick {}; slip {}; friction force fx {}, fy {}",
                 num(f.coefficient),
-                runs(&f.stick_zones),
-                runs(&f.slip_zones),
+                runs(&f.stick_runs),
+                runs(&f.slip_runs),
                 num(r.fx),
                 num(r.fy)
             );

@@ -67,6 +67,11 @@ fn a_press_fit_pushed_out_slides_at_mu_times_the_fit_force() {
             mu * normal
         );
         assert!(f.fx == 0.0 && f.m == 0.0, "no radial resultant of a ring: {f:?}");
+        // The bore is vertical: its slip zone as an x-interval collapses to
+        // [0.999, 0.999]; by its end points it is the whole bore.
+        let fr = pair.friction.as_ref().unwrap();
+        assert_eq!(fr.slip_runs, vec![[[0.999, 0.0], [0.999, 1.0]]], "μ {mu}");
+        assert!(fr.stick_runs.is_empty(), "μ {mu}");
         let other = pair.other_resultant.expect("the shaft's force");
         assert!((other.fy + pair.resultant.fy).abs() <= 1e-12 * normal, "{other:?}");
         if mu == 0.05 {

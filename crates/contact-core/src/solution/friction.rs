@@ -69,14 +69,16 @@ pub fn attach(report: &mut Report, scene: &Scene, model: &Model, t: &Tangents, s
                 }
             })
             .collect();
-        let runs = |which: FrictionState| -> Vec<[f64; 2]> {
-            let mut out: Vec<[f64; 2]> = Vec::new();
+        // Runs of consecutive points in one state, by their first and last
+        // points (the points are in increasing x, then y).
+        let runs = |which: FrictionState| -> Vec<[[f64; 2]; 2]> {
+            let mut out: Vec<[[f64; 2]; 2]> = Vec::new();
             let mut open = false;
             for (q, f) in pr.points.iter().zip(&points) {
                 if f.state == which {
                     match out.last_mut() {
-                        Some(z) if open => z[1] = q.x,
-                        _ => out.push([q.x, q.x]),
+                        Some(z) if open => z[1] = [q.x, q.y],
+                        _ => out.push([[q.x, q.y], [q.x, q.y]]),
                     }
                     open = true;
                 } else {
@@ -85,6 +87,8 @@ pub fn attach(report: &mut Report, scene: &Scene, model: &Model, t: &Tangents, s
             }
             out
         };
+        let xs = |r: &[[[f64; 2]; 2]]| r.iter().map(|z| [z[0][0], z[1][0]]).collect::<Vec<[f64; 2]>>();
+        let (stick_runs, slip_runs) = (runs(FrictionState::Stick), runs(FrictionState::Slip));
         // Friction forces on the nodes: −τ times the turned coefficients, on
         // the pair's body (its resultant) and, against another body, on that
         // one (the other resultant: the rows' terms on it carry the opposite
@@ -127,8 +131,10 @@ pub fn attach(report: &mut Report, scene: &Scene, model: &Model, t: &Tangents, s
         total.m += r.m;
         pr.friction = Some(PairFriction {
             coefficient: pair.friction,
-            stick_zones: runs(FrictionState::Stick),
-            slip_zones: runs(FrictionState::Slip),
+            stick_zones: xs(&stick_runs),
+            slip_zones: xs(&slip_runs),
+            stick_runs,
+            slip_runs,
             tangential_resultant: r,
             points,
         });

@@ -354,6 +354,9 @@ pub struct PairFriction {
     /// Runs of sticking and of slipping points, [x_first, x_last].
     pub stick_zones: Vec<[f64; 2]>,
     pub slip_zones: Vec<[f64; 2]>,
+    /// The same runs by their first and last points (x, y).
+    pub stick_runs: Vec<[[f64; 2]; 2]>,
+    pub slip_runs: Vec<[[f64; 2]; 2]>,
     /// Of the friction forces on the body.
     pub tangential_resultant: Resultant,
     /// One per entry of `PairReport::points`, in the same order.

@@ -248,6 +248,8 @@ mod tests {
             coefficient: 0.5,
             stick_zones: vec![],
             slip_zones: vec![[0.0, 1.0]],
+            stick_runs: vec![],
+            slip_runs: vec![[[0.0, 0.0], [1.0, 0.0]]],
             tangential_resultant: Default::default(),
         });
         // Normal (0, −1): the tangent is (1, 0).

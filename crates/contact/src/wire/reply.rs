@@ -234,6 +234,8 @@ fn pair(pr: PairReport) -> p::PairResult {
             coefficient: f.coefficient,
             stick_zones: f.stick_zones,
             slip_zones: f.slip_zones,
+            stick_runs: f.stick_runs,
+            slip_runs: f.slip_runs,
             tangential_resultant: resultant(f.tangential_resultant),
         }),
     }
