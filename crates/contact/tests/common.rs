@@ -172,3 +172,23 @@ pub fn refused_range(e: &ErrorReply, path: &str) -> (f64, f64, f64) {
         .unwrap_or_else(|| panic!("no range at {path}: {loads:?}"));
     (b.value, b.min.expect("bounded below"), b.max.expect("bounded above"))
 }
+
+/// The roller of `signorini_roller_on_flat.json` (R = 8, E = 200) with
+/// `element` (T3: nodal rows; T6: mortar rows) and Poisson ratio `nu`, graded
+/// to `h` at the contact, pressed by 0.05 onto the rigid floor and then moved
+/// sideways by each of `shifts` in turn (its own support, so that the path
+/// scales it alone), with friction `mu` (frictionless with None).
+pub fn friction_roller(element: &str, nu: f64, h: f64, shifts: &[f64], mu: Option<f64>) -> Value {
+    let mut r = example("signorini_roller_on_flat.json");
+    let b = &mut r["bodies"][0];
+    b["material"]["poisson_ratio"] = serde_json::json!(nu);
+    let mesh = &mut b["mesh"]["half_disk"];
+    mesh["element"] = serde_json::json!(element);
+    mesh["grading"] = serde_json::json!({"h_min": h, "ratio": 1.2, "extent": 0.6});
+    b["supports"] = serde_json::json!([{"edges": "flat", "uy": -0.05}, {"edges": "flat", "ux": 1.0}]);
+    if let Some(mu) = mu {
+        r["contacts"][0]["friction"] = serde_json::json!({"coefficient": mu});
+    }
+    r["load_path"] = shift_path(shifts);
+    r
+}

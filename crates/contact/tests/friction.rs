@@ -24,24 +24,7 @@ const E: f64 = 200.0;
 /// The roller (T6, contact-zone element size `h`, Poisson ratio `nu`) pressed
 /// by 0.05, then moved sideways by each of `shifts` in turn.
 fn roller(nu: f64, h: f64, shifts: &[f64], mu: Option<f64>) -> Value {
-    roller_of("t6", nu, h, shifts, mu)
-}
-
-/// `roller` with the given element (T3: nodal rows; T6: mortar rows).
-fn roller_of(element: &str, nu: f64, h: f64, shifts: &[f64], mu: Option<f64>) -> Value {
-    let mut r = example("signorini_roller_on_flat.json");
-    let b = &mut r["bodies"][0];
-    b["material"]["poisson_ratio"] = json!(nu);
-    let mesh = &mut b["mesh"]["half_disk"];
-    mesh["element"] = json!(element);
-    mesh["grading"] = json!({"h_min": h, "ratio": 1.2, "extent": 0.6});
-    // The sideways motion as its own support, so that the path scales it alone.
-    b["supports"] = json!([{"edges": "flat", "uy": -0.05}, {"edges": "flat", "ux": 1.0}]);
-    if let Some(mu) = mu {
-        r["contacts"][0]["friction"] = json!({"coefficient": mu});
-    }
-    r["load_path"] = shift_path(shifts);
-    r
+    friction_roller("t6", nu, h, shifts, mu)
 }
 
 /// Cattaneo–Mindlin: under P then Q < μP the contact sticks on |x − x_s| < c
@@ -132,7 +115,7 @@ fn unloading_follows_mindlin_deresiewicz() {
 #[test]
 fn full_sliding_traction_is_mu_p() {
     for (element, nu) in [("t6", 0.499), ("t3", 0.3)] {
-        full_sliding(&roller_of(element, nu, 0.01, &[0.0, 0.06], Some(MU)));
+        full_sliding(&friction_roller(element, nu, 0.01, &[0.0, 0.06], Some(MU)));
     }
 }
 
@@ -162,7 +145,7 @@ fn full_sliding(req: &Value) {
 #[test]
 fn point_forces_add_up_to_the_resultant() {
     for element in ["t3", "t6"] {
-        point_forces(&roller_of(element, 0.3, 0.01, &[0.0, 0.02], Some(MU)));
+        point_forces(&friction_roller(element, 0.3, 0.01, &[0.0, 0.02], Some(MU)));
     }
 }
 
@@ -217,6 +200,7 @@ fn zero_friction_is_the_frictionless_reply() {
         "signorini_roller_on_flat.json",
         "indentation_flat_punch.json",
         "two_bodies_cylinders.json",
+        "axisymmetric_ball_on_flat.json",
     ] {
         let plain = example(name);
         let mut zero = plain.clone();

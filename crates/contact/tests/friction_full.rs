@@ -12,21 +12,9 @@ use serde_json::{json, Value};
 
 const MU: f64 = 0.5;
 
-/// The roller of `signorini_roller_on_flat.json` (R = 8, E = 200) with
-/// `element` and Poisson ratio `nu`, graded to `h` at the contact, pressed
-/// by 0.05 onto the rigid floor and then moved sideways by each of
-/// `shifts`, with μ = 0.5.
+/// The roller of `common::friction_roller` with μ = 0.5.
 fn roller(element: &str, nu: f64, h: f64, shifts: &[f64]) -> Value {
-    let mut r = example("signorini_roller_on_flat.json");
-    let b = &mut r["bodies"][0];
-    b["material"]["poisson_ratio"] = json!(nu);
-    let mesh = &mut b["mesh"]["half_disk"];
-    mesh["element"] = json!(element);
-    mesh["grading"] = json!({"h_min": h, "ratio": 1.2, "extent": 0.6});
-    b["supports"] = json!([{"edges": "flat", "uy": -0.05}, {"edges": "flat", "ux": 1.0}]);
-    r["contacts"][0]["friction"] = json!({"coefficient": MU});
-    r["load_path"] = shift_path(shifts);
-    r
+    friction_roller(element, nu, h, shifts, Some(MU))
 }
 
 fn on_full(req: &Value) -> Value {
