@@ -300,13 +300,15 @@ pub fn frictional_route(
 /// Whether a frictional step is cheaper on the full system. A condensed
 /// Newton iteration factors the dense system of the points in contact (up
 /// to all r rows: about 1.85e-11 r³ s here), a full one K and runs GMRES
-/// (about twice a factorization, 3.6e-7 n^1.2 s), both about as many times.
-/// Measured on a T3 strip on a rigid floor, three steps of pressing and
-/// shearing with every bottom node in contact (condensed against full):
-/// 20k DOF, 1002 rows, 0.75 s against 0.59 s; 40k, 2002 rows, 3.4 against
-/// 1.3 s; 80k, 3998 rows, 24 against 2.8 s (the condensed W alone 1 GB).
-/// The rule puts the switch between the first two; the Hertz and roller
-/// scenes (a few hundred rows) stay condensed.
+/// (about twice a factorization, 3.6e-7 n^1.2 s), both about as many times:
+/// equal at r³ = 2e4 n^1.2. Measured on a T3 strip on a rigid floor, three
+/// steps of pressing and shearing with every bottom node in contact
+/// (condensed against full): 20k DOF, 1002 rows, 0.75 s against 0.59 s;
+/// 40k, 2002 rows, 3.4 against 1.3 s; 80k, 3998 rows, 24 against 2.8 s (the
+/// condensed W alone 1 GB). The full system wins earlier than the model
+/// says (the condensed path also builds W), so the constant is set to 1e4,
+/// between the first two strips (r³/n^1.2 = 0.69e4 and 2.4e4); the Hertz and
+/// roller scenes (a few hundred rows, r³/n^1.2 < 1e3) stay condensed.
 fn frictional_full_is_cheaper(n_free: usize, rows: usize) -> bool {
     (rows as f64).powi(3) > 1e4 * (n_free as f64).powf(1.2)
 }

@@ -101,7 +101,7 @@ fn step_scenes(scene: &Scene) -> Box<dyn Iterator<Item = StepScene> + '_> {
 /// Coulomb friction: the load steps in order (one step, the loads as given,
 /// without `load_factors` or `load_path`), each starting from the state the
 /// previous one left, on one factorization of K condensed onto the normal
-/// and tangential rows together.
+/// and tangential rows together, or on K itself (`admit::frictional_route`).
 fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<Report, CoreError> {
     let t6 = scene.bodies.iter().any(|b| b.is_t6());
     crate::progress::plan(observer::predicted(scene.estimated_nodes, t6));
@@ -501,6 +501,7 @@ fn solve_full(scene: &Scene, model: &Model, mut obs: Observer) -> Result<Report,
 /// previous one's states, so fewer points change state at once).
 fn unsettled_bodies(scene: &Scene, model: &Model, iterations: usize) -> Vec<String> {
     let mut bodies: Vec<usize> = model.dofs.rigid.iter().map(|rm| rm.body).collect();
+    bodies.sort_unstable();
     bodies.dedup();
     bodies
         .into_iter()

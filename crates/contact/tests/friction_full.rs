@@ -39,6 +39,7 @@ fn assert_same_steps(a: &SolveReply, b: &SolveReply, tol: f64) {
         assert_eq!(y.2, SolveStatus::Solved, "step {k}");
         for (pa, pb) in x.0.iter().zip(&y.0) {
             let peak = pa.points.iter().fold(0.0f64, |m, p| m.max(p.pressure));
+            assert!(peak > 0.0, "step {k}: nothing pressed");
             assert_eq!(pa.points.len(), pb.points.len(), "step {k}");
             for (p, q) in pa.points.iter().zip(&pb.points) {
                 assert_eq!(p.state, q.state, "step {k} at x = {}", p.x);

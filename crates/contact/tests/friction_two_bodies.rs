@@ -284,7 +284,9 @@ fn vanishing_friction_is_near_the_frictionless_two_body_solve() {
 /// panels extrapolated, 0.689). A punch 1000 times stiffer is a half-plane
 /// only in its compliance's share, 1e-3 of the pair's. Tolerance 2 %, as in
 /// Spence's test (half a spacing 0.7 %, the reference 0.15 %, the finite
-/// block ≤ 0.7 %); measured c = 0.695 (+0.9 %). The slip is inward on the
+/// block ≤ 0.7 %); measured c = 0.695 (+0.9 %). |β| is the rigid punch's
+/// to 0.2 %, so this checks two meshed bodies' friction with the coupling
+/// at full strength, not the reference's dependence on β. The slip is inward on the
 /// block, the friction on it μ p outward, and each body's contact force is
 /// minus the other's (1e-12 of P).
 #[test]

@@ -34,6 +34,16 @@ pub enum LinalgError {
         left_s
     )]
     Overrun { cost: FactorCost, left_s: f64 },
+    /// An iterative solve stopped short of its tolerance.
+    #[error(
+        "{what}: GMRES reached a relative residual of {residual:.1e} in {steps} steps, not the {tolerance:.0e} asked"
+    )]
+    Iterative {
+        what: &'static str,
+        steps: usize,
+        residual: f64,
+        tolerance: f64,
+    },
     /// The numeric factorization was stopped at the deadline (a `timeout`).
     #[error("the factorization was stopped at the time limit of {} s", .0.limit_s)]
     Deadline(crate::cancel::Timeout),

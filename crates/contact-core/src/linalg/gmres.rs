@@ -16,6 +16,8 @@ pub struct Gmres {
     pub iterations: usize,
     /// Whether ‖b − A x‖ ≤ tol ‖b‖ (as the rotations compute it).
     pub converged: bool,
+    /// ‖b − A x‖ / ‖b‖ as the rotations compute it.
+    pub residual: f64,
 }
 
 /// Solves A x = b from `x0`, `apply` computing A v.
@@ -31,11 +33,13 @@ pub fn gmres(
     let ax0 = apply(&x0);
     let r0: Vec<f64> = b.iter().zip(&ax0).map(|(b, a)| b - a).collect();
     let beta = norm(&r0);
+    let b_norm = norm(b).max(f64::MIN_POSITIVE);
     if beta <= target || !beta.is_finite() {
         return Gmres {
             x: x0,
             iterations: 1,
             converged: beta <= target,
+            residual: beta / b_norm,
         };
     }
     let mut basis = vec![r0.iter().map(|v| v / beta).collect::<Vec<f64>>()];
@@ -71,16 +75,23 @@ pub fn gmres(
         g[j] = c * gj;
         g.push(-s * gj);
         h.push(col);
+        // A breakdown (next = 0) ends the Krylov space: exact when the
+        // rotated diagonal is not 0, and then g[j + 1] = 0 already.
         if g[j + 1].abs() <= target || next == 0.0 || !next.is_finite() {
-            converged = g[j + 1].abs() <= target || next == 0.0;
+            converged = g[j + 1].abs() <= target && r != 0.0;
             break;
         }
         basis.push(w.iter().map(|v| v / next).collect());
     }
-    // Back substitution of the triangular system H y = g.
+    // Back substitution of the triangular system H y = g (a zero on its
+    // diagonal: the operator is singular on the Krylov space; not converged).
     let k = h.len();
     let mut y = vec![0.0; k];
     for i in (0..k).rev() {
+        if h[i][i] == 0.0 {
+            converged = false;
+            break;
+        }
         let s: f64 = (i + 1..k).map(|l| h[l][i] * y[l]).sum();
         y[i] = (g[i] - s) / h[i][i];
     }
@@ -92,6 +103,7 @@ pub fn gmres(
         x,
         iterations: k + 1,
         converged,
+        residual: g[k].abs() / b_norm,
     }
 }
 

@@ -46,10 +46,10 @@
 //!
 //! Length: about 700 lines. The iteration on the states is written once
 //! for both linear algebras (`NewtonSystem`: the dense one here, the full
-//! system's in `friction_full`), with its restarts, the Alart–Curnier
-//! residual that ends it, the Gauss–Seidel fallback's hand-over, and the
-//! test of the discrete Coulomb law on random compliances, which needs the
-//! private run and residual functions.
+//! system's in `friction_full`), with its restarts and the Alart–Curnier
+//! residual that ends it; the condensed path's hand-over to the Gauss–Seidel
+//! fallback, and the test of the discrete Coulomb law on random
+//! compliances, which needs the private run and residual functions.
 
 use std::collections::HashMap;
 use std::time::Instant;
@@ -274,13 +274,15 @@ fn solve_states(
     let (c, ct) = (vec![c; n], vec![ct; nt]);
     let mut dense = Dense { w, q, e, t, block };
     let run = restarted(&mut dense, t, state, (&c, &ct), max_iterations).expect("the dense Newton step does not fail");
-    if run.converged || block.is_some() || crate::cancel::expired() {
+    // Out of iterations is the caller's limit: no more work past it.
+    if run.converged || run.iterations >= max_iterations || block.is_some() || crate::cancel::expired() {
         return run;
     }
-    // The Newton iteration cycled from these states: nonsmooth Gauss–Seidel
-    // finds states near the answer, from which it converges.
+    // The Newton iteration cycled from these states under every rescaling:
+    // nonsmooth Gauss–Seidel finds states near the answer, from which it
+    // converges.
     let sweeps = super::friction_gauss_seidel::sweep(w, q, e, t, GAUSS_SEIDEL_SWEEPS, GAUSS_SEIDEL_TOL);
-    let budget = max_iterations.saturating_sub(run.iterations).max(1);
+    let budget = max_iterations - run.iterations;
     let mut again =
         restarted(&mut dense, t, sweeps.state, (&c, &ct), budget).expect("the dense Newton step does not fail");
     again.iterations += run.iterations;
@@ -383,7 +385,7 @@ fn pdas(
         lambda: vec![0.0; n],
         tau: vec![0.0; nt],
         beta: vec![0.0; nb],
-        state: Vec::new(),
+        state: state.clone(),
         iterations: 0,
         converged: n == 0,
     };
@@ -452,7 +454,8 @@ fn pdas(
         // Alart–Curnier equations, whatever the labels.
         let solved = alart_curnier_residual(t, (&lambda, &tau), (&gap, &slip), (c, ct))
             <= AC_TOLERANCE * lambda.iter().chain(&tau).fold(0.0f64, |m, v| m.max(v.abs()));
-        (run.lambda, run.tau, run.beta) = (lambda, tau, beta);
+        // The run answers with this iterate and the states it solved.
+        (run.lambda, run.tau, run.beta, run.state) = (lambda, tau, beta, state.clone());
         if next == state || solved {
             run.converged = true;
             break;
@@ -462,7 +465,6 @@ fn pdas(
         }
         seen.push(std::mem::replace(&mut state, next));
     }
-    run.state = state;
     Ok(run)
 }
 
