@@ -192,3 +192,21 @@ pub fn friction_roller(element: &str, nu: f64, h: f64, shifts: &[f64], mu: Optio
     r["load_path"] = shift_path(shifts);
     r
 }
+
+/// The flat punch of `indentation_flat_punch.json` (half-width a = 1, P = 10)
+/// with friction `mu` on a block of Poisson ratio `nu`, made `scale` times
+/// larger (its element size too) so that it approaches the half-plane of
+/// Spence's theory, graded to `h` under the punch.
+pub fn spence_block(nu: f64, mu: f64, h: f64, scale: f64) -> Value {
+    let mut r = example("indentation_flat_punch.json");
+    let b = &mut r["bodies"][0];
+    b["material"]["poisson_ratio"] = serde_json::json!(nu);
+    let m = &mut b["mesh"]["rectangle"];
+    m["corner"] = serde_json::json!([-20.0 * scale, -20.0 * scale]);
+    m["width"] = serde_json::json!(40.0 * scale);
+    m["height"] = serde_json::json!(20.0 * scale);
+    m["size"] = serde_json::json!(scale);
+    m["grading"]["h_min"] = serde_json::json!(h);
+    r["contacts"][0]["friction"] = serde_json::json!({"coefficient": mu});
+    r
+}

@@ -482,16 +482,7 @@ fn frictionless_punch_beside_a_frictional_pair() {
 /// theory, graded to `h` under the punch; pressed in two proportional steps
 /// (P/2, then P).
 fn spence_punch(nu: f64, mu: f64, h: f64, scale: f64) -> Value {
-    let mut r = example("indentation_flat_punch.json");
-    let b = &mut r["bodies"][0];
-    b["material"]["poisson_ratio"] = json!(nu);
-    let m = &mut b["mesh"]["rectangle"];
-    m["corner"] = json!([-20.0 * scale, -20.0 * scale]);
-    m["width"] = json!(40.0 * scale);
-    m["height"] = json!(20.0 * scale);
-    m["size"] = json!(scale);
-    m["grading"]["h_min"] = json!(h);
-    r["contacts"][0]["friction"] = json!({"coefficient": mu});
+    let mut r = spence_block(nu, mu, h, scale);
     r["load_path"] = json!([
         {"loads": {"/obstacles/0/punch/vertical": 0.5}},
         {"loads": {"/obstacles/0/punch/vertical": 1.0}}

@@ -127,17 +127,7 @@ fn the_full_system_gives_the_condensed_answer() {
 #[test]
 fn rows_past_the_condensed_limit_are_solved_on_the_full_system() {
     let (nu, mu) = (0.3, 0.3);
-    let mut req = example("indentation_flat_punch.json");
-    let scale = 64.0;
-    let b = &mut req["bodies"][0];
-    b["material"]["poisson_ratio"] = json!(nu);
-    let m = &mut b["mesh"]["rectangle"];
-    m["corner"] = json!([-20.0 * scale, -20.0 * scale]);
-    m["width"] = json!(40.0 * scale);
-    m["height"] = json!(20.0 * scale);
-    m["size"] = json!(scale);
-    m["grading"]["h_min"] = json!(0.01);
-    req["contacts"][0]["friction"] = json!({"coefficient": mu});
+    let mut req = spence_block(nu, mu, 0.01, 64.0);
     req["obstacles"][0]["punch"] = json!({
         "reference": [0.0, 0.0],
         "horizontal": {"displacement": 0.0},
