@@ -264,24 +264,27 @@ pub fn frictional_route(
 ) -> Result<(Route, Option<String>), CoreError> {
     const CONDENSED_ONLY: &str =
         "load-controlled punches and bodies held only by contact are solved with friction on the condensed formulation only";
-    let unfit = if block {
-        Some(CONDENSED_ONLY)
-    } else {
-        crate::methods::friction_full::unfit(cons, tangents)
+    // Why the full system cannot take the step; asked only where it might.
+    let unfit = || {
+        if block {
+            Some(CONDENSED_ONLY)
+        } else {
+            crate::methods::friction_full::unfit(cons, tangents)
+        }
     };
     let (normal, tangential) = (cons.len(), tangents.len());
     let rows = normal + tangential;
     if scene.settings.formulation == Formulation::Full {
-        return match unfit {
+        return match unfit() {
             Some(why) => Err(CoreError::invalid(InvalidKind::Request, "/settings/formulation", why)),
             None => Ok((Route::Full, None)),
         };
     }
     if rows <= limits.max_candidates {
-        let cheaper = scene.method == Method::Auto && unfit.is_none() && frictional_full_is_cheaper(n_free, rows);
+        let cheaper = scene.method == Method::Auto && frictional_full_is_cheaper(n_free, rows) && unfit().is_none();
         return Ok((if cheaper { Route::Full } else { Route::Condensed }, None));
     }
-    if let Some(why) = unfit {
+    if let Some(why) = unfit() {
         return Err(CoreError::TooLarge {
             path: "/contacts".into(),
             reason: format!(

@@ -151,9 +151,10 @@ fn solve_frictional(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache
             admit::frictional_route(&s, &model.cons, &tangents, model.dofs.n_free, block.is_some(), limits)?;
         let stiffness = match &k_once {
             Some(k) => k.clone(),
-            None => Arc::new(assemble_stiffness(&s, &model.meshes, &model.dofs)?),
+            None => k_once
+                .insert(Arc::new(assemble_stiffness(&s, &model.meshes, &model.dofs)?))
+                .clone(),
         };
-        k_once = Some(stiffness.clone());
         obs.leave(Stage::Assembly)?;
         let f = assemble_loads(&model.external, &model.dofs, &stiffness);
         let (mut sol, mut friction, factor) = match route {

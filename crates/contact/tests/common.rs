@@ -14,7 +14,12 @@ pub fn example(name: &str) -> Value {
 }
 
 pub fn solve(req: &Value) -> Result<SolveReply, ErrorReply> {
-    contact::solve_bytes(serde_json::to_string(req).unwrap().as_bytes(), &Limits::default())
+    solve_with(req, &Limits::default())
+}
+
+/// `solve` under the deployment limits `limits`.
+pub fn solve_with(req: &Value, limits: &Limits) -> Result<SolveReply, ErrorReply> {
+    contact::solve_bytes(serde_json::to_string(req).unwrap().as_bytes(), limits)
 }
 
 pub fn solved(req: &Value) -> SolveReply {

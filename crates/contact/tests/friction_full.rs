@@ -23,10 +23,6 @@ fn on_full(req: &Value) -> Value {
     r
 }
 
-fn solve_with(req: &Value, limits: &Limits) -> Result<SolveReply, contact::proto::ErrorReply> {
-    contact::solve_bytes(serde_json::to_string(req).unwrap().as_bytes(), limits)
-}
-
 /// Every step of `a` and `b` has the same states at every point, and the
 /// same pressures, tangential tractions and resultants to `tol` of the
 /// largest pressure (of the largest force for the resultants).

@@ -444,7 +444,7 @@ fn pdas(
                 }
             })
             .collect();
-        let residual = (0..n).map(|i| lambda[i].min(c[i] * gap[i]).abs()).fold(0.0, f64::max);
+        let residual = alart_curnier_residual(t, (&lambda, &tau), (&gap, &slip), (c, ct));
         crate::progress::iteration(run.iterations, residual);
         // A point exactly on its cone's edge with no slip (|τ| = μλ, Δs = 0)
         // is both sticking and sliding: round-off picks its next state, and
@@ -452,8 +452,7 @@ fn pdas(
         // (measured on a press fit closing through its interference with
         // friction). The iterate is the answer when it solves the
         // Alart–Curnier equations, whatever the labels.
-        let solved = alart_curnier_residual(t, (&lambda, &tau), (&gap, &slip), (c, ct))
-            <= AC_TOLERANCE * lambda.iter().chain(&tau).fold(0.0f64, |m, v| m.max(v.abs()));
+        let solved = residual <= AC_TOLERANCE * lambda.iter().chain(&tau).fold(0.0f64, |m, v| m.max(v.abs()));
         // The run answers with this iterate and the states it solved.
         (run.lambda, run.tau, run.beta, run.state) = (lambda, tau, beta, state.clone());
         if next == state || solved {

@@ -48,9 +48,6 @@
 
 use std::time::Instant;
 
-use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
-use faer::Side;
-
 use super::friction::{finish, restarted, starting_states, Friction, History, Iterate, NewtonSystem, State};
 use super::full::{apply_q, prescribed, rotate, Rotated};
 use super::Solution;
@@ -58,9 +55,9 @@ use crate::contact::friction::Tangents;
 use crate::contact::ConstraintSet;
 use crate::error::CoreError;
 use crate::fem::assembly::DofMap;
-use crate::linalg::cholesky::FactorCost;
+use crate::linalg::cholesky::SymbolicFactor;
 use crate::linalg::sparse::sym_lower_matvec;
-use crate::linalg::LinalgError;
+use crate::linalg::{Cholesky, LinalgError};
 use crate::scene::Settings;
 
 /// The data of one step on the full system.
@@ -172,8 +169,9 @@ struct Rows<'a> {
     fp: Vec<f64>,
     /// Tangential coordinate and c_t of each tangential row.
     tangential: Vec<(usize, f64)>,
-    symbolic: SymbolicLlt<usize>,
-    cost: FactorCost,
+    /// The analysis of K''s pattern, which prescribing coordinates keeps:
+    /// one per step, its factorizations' cost checked against the time left.
+    analysis: std::sync::Arc<SymbolicFactor>,
     /// u_t(before) − ū_t of each tangential row: c_t u'_t where it sticks.
     stick_rhs: Vec<f64>,
     g: Vec<f64>,
@@ -185,16 +183,12 @@ impl<'a> Rows<'a> {
     fn new(p: &'a Step<'a>, ut_before: &[f64]) -> Result<Self, CoreError> {
         let rot = rotate(p.k, p.cons);
         let tangential = tangential_coordinates(p.cons, p.tangents).expect("`unfit` admitted the rows");
-        let symbolic =
-            SymbolicLlt::try_new(rot.k.symbolic(), Side::Lower).map_err(|e| LinalgError::Faer(format!("{e:?}")))?;
-        // Every iteration refactors: each must fit in the time left.
-        let cost = FactorCost::predict(&rot.k)?;
+        let analysis = std::sync::Arc::new(SymbolicFactor::try_new(&rot.k)?);
         Ok(Rows {
             fp: apply_q(&rot, p.f, true),
             rot,
             tangential,
-            symbolic,
-            cost,
+            analysis,
             stick_rhs: (0..p.tangents.len())
                 .map(|k| ut_before[k] - p.tangents.prescribed[k])
                 .collect(),
@@ -235,26 +229,24 @@ impl NewtonSystem for Rows<'_> {
                 _ => fixed[dt] = self.stick_rhs[k] / ct,
             }
         }
-        let (kk, _) = prescribed(&rot.k, &fixed, &self.fp);
-        self.cost.fits_in_time_left()?;
         // K with coordinates prescribed stays positive definite: a failure is
-        // the linear algebra's, not the states', and no iteration mends it.
-        let llt = Llt::try_new_with_symbolic(self.symbolic.clone(), kk.as_ref(), Side::Lower)
-            .map_err(|_| LinalgError::NotPositiveDefinite)?;
-        let solve = |z: &[f64]| -> Vec<f64> {
-            let x = faer::linalg::solvers::Solve::solve(&llt, &faer::Col::<f64>::from_fn(n, |i| z[i]));
-            (0..n).map(|i| x[i]).collect()
-        };
+        // the linear algebra's, not the states', and no iteration mends it
+        // (the factorization checks the time left and polls the deadline).
+        let (kk, rhs) = prescribed(&rot.k, &fixed, &self.fp);
+        let chol = Cholesky::with_symbolic(self.analysis.clone(), &kk)?;
+        let solve = |z: &[f64]| chol.solve(z);
         // u' = x_P + y, y zero on the prescribed coordinates: the free rows
-        // read (K'y)_j = f'_j − (K'x_P)_j, a sliding one less α times its
-        // normal row, r_t − α r_n = 0.
+        // read (K'y)_j = f'_j − (K'x_P)_j (`prescribed`'s right-hand side), a
+        // sliding one less α times its normal row, r_t − α r_n = 0.
         let x_p: Vec<f64> = fixed.iter().map(|v| if v.is_finite() { *v } else { 0.0 }).collect();
-        let kx = sym_lower_matvec(&rot.k, &x_p);
         let mut b: Vec<f64> = (0..n)
-            .map(|j| if fixed[j].is_finite() { 0.0 } else { self.fp[j] - kx[j] })
+            .map(|j| if fixed[j].is_finite() { 0.0 } else { rhs[j] })
             .collect();
-        for &(dt, dn, alpha) in &sliding {
-            b[dt] -= alpha * (self.fp[dn] - kx[dn]);
+        if !sliding.is_empty() {
+            let kx = sym_lower_matvec(&rot.k, &x_p);
+            for &(dt, dn, alpha) in &sliding {
+                b[dt] -= alpha * (self.fp[dn] - kx[dn]);
+            }
         }
         let y = if sliding.is_empty() {
             solve(&b)
