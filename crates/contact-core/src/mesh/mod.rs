@@ -16,6 +16,7 @@ pub mod generate;
 pub mod gmsh;
 pub mod quality;
 pub mod refine;
+pub mod uniform;
 
 use std::collections::BTreeMap;
 
