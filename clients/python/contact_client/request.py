@@ -105,11 +105,13 @@ def accuracy(
     max_rounds: int | None = None,
     max_dofs: int | None = None,
 ) -> dict:
-    """``settings.accuracy``: refine the generated meshes (bisect given ones around
-    the zones) round by round until every pair's estimated relative L2 error of
-    the pressure is at most ``pressure_l2`` and every zone end's estimated error
-    at most ``zone_edge`` [length], or a limit stops the rounds (the reply then
-    warns ``tolerance_not_reached``). Pass as ``settings={"accuracy": accuracy(...)}``
+    """``settings.accuracy``: refine the meshes round by round (generated ones
+    near the zones and, less, away from them; given inline or Gmsh ones by
+    splitting every triangle in four) until every pair's estimated relative L2
+    error of the pressure is within 0.6 of ``pressure_l2`` and every zone end's
+    estimated error within 0.6 of ``zone_edge`` [length] (the estimate is a best
+    guess, not a bound: the margin keeps the true error under the target), or a
+    limit stops the rounds (the reply then warns ``tolerance_not_reached``). Pass as ``settings={"accuracy": accuracy(...)}``
     or the ``accuracy=`` of the scene builders."""
     if pressure_l2 is None and zone_edge is None:
         raise ValueError("accuracy needs pressure_l2 and/or zone_edge")

@@ -81,16 +81,19 @@ pub struct SolveReply {
 }
 
 /// Tolerance-driven refinement: each round halves the generated meshes'
-/// element sizes (near the contact zones and away from them) and solves again.
+/// element sizes near the contact zones (and shrinks them by √2 away from
+/// them), or splits every triangle of a given (inline or Gmsh) mesh in four,
+/// and solves again.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Refinement {
     /// Whether every estimate met its target.
     pub reached: bool,
-    /// Why the rounds stopped: `reached`, `max_rounds`, `max_dofs`,
-    /// `size_limit`, `time_limit`, `not_converging` (two rounds without
-    /// progress), `not_solved` or `round_failed` (the next round could not be
-    /// solved; the warning says why).
+    /// Why the rounds stopped: `reached` (every estimate within 0.6 of its
+    /// target), `no_contact` (nothing touches: no contact error to reduce),
+    /// `max_rounds`, `max_dofs`, `size_limit`, `time_limit`, `not_converging`
+    /// (two rounds without progress), `not_solved` or `round_failed` (the
+    /// next round could not be solved; the warning says why).
     pub stopped: String,
     pub rounds: Vec<RefinementRound>,
 }
@@ -115,8 +118,11 @@ pub struct RefinementRound {
 #[serde(deny_unknown_fields)]
 pub struct PairAccuracy {
     /// How the estimate was made: `two_level` (this solve against one with
-    /// every generated element twice as large, Richardson-scaled) or
-    /// `zone_edges` (meshes that cannot be coarsened: only the zone ends).
+    /// every generated element twice as large, Richardson-scaled),
+    /// `two_level_finer` (a given inline or Gmsh mesh against the same mesh
+    /// with every triangle split in four) or `zone_edges` (the companion
+    /// could not be solved or would be too large, as the reply's notes say:
+    /// only the zone ends).
     pub basis: String,
     /// Estimated relative L2 error of the nodal pressure over the zone.
     pub pressure_l2: Option<f64>,

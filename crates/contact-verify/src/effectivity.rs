@@ -40,7 +40,7 @@ fn example(name: &str) -> Value {
     serde_json::from_str(&text).expect("example JSON")
 }
 
-pub const SCENES: [Scene; 7] = [
+pub const SCENES: [Scene; 9] = [
     Scene {
         name: "disk_on_flat",
         request: || crate::convergence::disk_request(0.0011, "t3"),
@@ -72,6 +72,18 @@ pub const SCENES: [Scene; 7] = [
             req["bodies"][0]["material"]["youngs_modulus"] = json!(200.0);
             req
         },
+    },
+    // The disk and the block given inline, as a user's own mesher would send
+    // them (`run::inlined` at each level): their estimate's companion is the
+    // mesh bisected twice over, and their errors are read against the
+    // generated scenes' overkill tables (`table_of`).
+    Scene {
+        name: "disk_on_flat_inline",
+        request: || crate::convergence::disk_request(0.0011, "t3"),
+    },
+    Scene {
+        name: "hertz_block_inline",
+        request: || crate::bench::hertz_request(0.02, "t3", "auto"),
     },
     Scene {
         name: "punch_under_moment",
@@ -130,13 +142,17 @@ pub struct Row {
     pub est_edge: f64,
     pub err_resultant: f64,
     pub est_resultant: Option<f64>,
+    /// Relative error of the largest nodal pressure (outside the singular
+    /// bands) against the reference's peak, and its estimate.
+    pub err_peak: f64,
+    pub est_peak: Option<f64>,
     /// Seconds of the estimate over seconds of the solve.
     pub cost: f64,
 }
 
 impl Row {
     pub const HEADER: &'static str =
-        "scene,element,factor,dofs,err_l2,est_l2,eff_l2,err_edge,est_edge,eff_edge,err_resultant,est_resultant,eff_resultant,cost";
+        "scene,element,factor,dofs,err_l2,est_l2,eff_l2,err_edge,est_edge,eff_edge,err_resultant,est_resultant,eff_resultant,err_peak,est_peak,eff_peak,cost";
 
     fn eff(est: Option<f64>, err: f64) -> Option<f64> {
         est.filter(|_| err > 0.0).map(|e| e / err)
@@ -150,11 +166,14 @@ impl Row {
     pub fn eff_resultant(&self) -> Option<f64> {
         Self::eff(self.est_resultant, self.err_resultant)
     }
+    pub fn eff_peak(&self) -> Option<f64> {
+        Self::eff(self.est_peak, self.err_peak)
+    }
 
     pub fn csv(&self) -> String {
         let o = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.6e}"));
         format!(
-            "{},{},{},{},{:.6e},{},{},{},{:.6e},{},{:.6e},{},{},{:.4}",
+            "{},{},{},{},{:.6e},{},{},{},{:.6e},{},{:.6e},{},{},{:.6e},{},{},{:.4}",
             self.scene,
             self.element,
             self.factor,
@@ -168,13 +187,16 @@ impl Row {
             self.err_resultant,
             o(self.est_resultant),
             o(self.eff_resultant()),
+            self.err_peak,
+            o(self.est_peak),
+            o(self.eff_peak()),
             self.cost
         )
     }
 
     pub fn table_header() -> String {
         format!(
-            "{:<20} {:<3} {:>4} {:>8} {:>8} {:>8} {:>6} {:>9} {:>9} {:>6} {:>8} {:>8} {:>6} {:>5}",
+            "{:<20} {:<3} {:>4} {:>8} {:>8} {:>8} {:>6} {:>9} {:>9} {:>6} {:>8} {:>8} {:>6} {:>8} {:>8} {:>6} {:>5}",
             "scene",
             "el",
             "f",
@@ -188,6 +210,9 @@ impl Row {
             "err_res",
             "est_res",
             "eff",
+            "err_peak",
+            "est_peak",
+            "eff",
             "cost"
         )
     }
@@ -196,7 +221,7 @@ impl Row {
         let pct = |v: Option<f64>| v.map_or("-".into(), |v| format!("{:.3}%", 100.0 * v));
         let e = |v: Option<f64>| v.map_or("-".into(), |v| format!("{v:.2}"));
         format!(
-            "{:<20} {:<3} {:>4} {:>8} {:>8} {:>8} {:>6} {:>9} {:>9.2e} {:>6} {:>8} {:>8} {:>6} {:>5.2}",
+            "{:<20} {:<3} {:>4} {:>8} {:>8} {:>8} {:>6} {:>9} {:>9.2e} {:>6} {:>8} {:>8} {:>6} {:>8} {:>8} {:>6} {:>5.2}",
             self.scene,
             self.element,
             self.factor,
@@ -210,6 +235,9 @@ impl Row {
             pct(Some(self.err_resultant)),
             pct(self.est_resultant),
             e(self.eff_resultant()),
+            pct(Some(self.err_peak)),
+            pct(self.est_peak),
+            e(self.eff_peak()),
             self.cost
         )
     }
@@ -237,7 +265,20 @@ pub fn compare(scene: &'static str, element: &'static str, factor: f64, r: &Repo
         .iter()
         .flat_map(|z| [(z.start[0], z.uncertainty[0]), (z.end[0], z.uncertainty[1])])
         .max_by(|a, b| a.0.total_cmp(&b.0));
-    let (err_l2, err_edge, est_edge, err_resultant) = match crate::overkill::reference_error(scene, r) {
+    let singular = acc.map_or(&[][..], |a| &a.singular_ends[..]);
+    let top = |pts: &[contact_core::solution::report::ContactPoint],
+               singular: &[contact_core::solution::report::SingularEnd]| {
+        pts.iter()
+            .filter(|c| !in_band(singular, c.x, c.y))
+            .map(|c| c.pressure)
+            .fold(0.0, f64::max)
+    };
+    let err_peak = match (crate::overkill::reference(table_of(scene)), reference) {
+        (Some(t), _) => (top(&p.points, singular) / t.pressure(0.0) - 1.0).abs(),
+        (None, Some(q)) => (top(&p.points, singular) / top(&q.pairs[0].points, singular) - 1.0).abs(),
+        (None, None) => f64::NAN,
+    };
+    let (err_l2, err_edge, est_edge, err_resultant) = match crate::overkill::reference_error(table_of(scene), r) {
         Some(e) => (e.l2, Some(e.edge.abs()), outer.map_or(0.0, |o| o.1), e.resultant.abs()),
         None => {
             let q = &reference.expect("a solved reference where no table is stored").pairs[0];
@@ -245,7 +286,6 @@ pub fn compare(scene: &'static str, element: &'static str, factor: f64, r: &Repo
             let (mut num, mut den) = (0.0, 0.0);
             // Not within the bands the estimate leaves out around an
             // unbounded pressure (`corners`), where the L2 error has no limit.
-            let singular = acc.map_or(&[][..], |a| &a.singular_ends[..]);
             for c in p.points.iter().filter(|c| !in_band(singular, c.x, c.y)) {
                 let pr = along_polyline(&rf, c.x, c.y);
                 num += c.weight * (c.pressure - pr).powi(2);
@@ -296,8 +336,30 @@ pub fn compare(scene: &'static str, element: &'static str, factor: f64, r: &Repo
         est_edge,
         err_resultant,
         est_resultant: acc.and_then(|a| a.resultant),
+        err_peak,
+        est_peak: acc.and_then(|a| a.peak),
         cost: r.timings.estimate / (r.timings.total - r.timings.estimate).max(1e-12),
     }
+}
+
+/// A scene's request at a level: `scaled`, then given inline where the
+/// scene's name says so.
+pub fn level(sc: &Scene, base: &Value, factor: f64, element: &str) -> Value {
+    let req = scaled(base, factor, element);
+    if sc.name.ends_with("_inline") {
+        crate::run::inlined(&req)
+    } else {
+        req
+    }
+}
+
+/// The overkill table a scene is measured against: its own, or that of the
+/// generated scene it gives inline (`_inline`) or through Gmsh (`_gmsh`).
+pub fn table_of(scene: &str) -> &str {
+    scene
+        .strip_suffix("_inline")
+        .or_else(|| scene.strip_suffix("_gmsh"))
+        .unwrap_or(scene)
 }
 
 /// Every scene (or those named in `only`), T3 and T6, at every level.
@@ -305,14 +367,14 @@ pub fn run(only: &[&str], mut progress: impl FnMut(&Row)) -> Vec<Row> {
     let mut rows = Vec::new();
     for sc in SCENES.iter().filter(|s| only.is_empty() || only.contains(&s.name)) {
         let base = (sc.request)();
-        let reference = crate::overkill::reference(sc.name).is_none().then(|| {
+        let reference = crate::overkill::reference(table_of(sc.name)).is_none().then(|| {
             let mut req = scaled(&base, REFERENCE, "t6");
             req["settings"]["estimate"] = json!(false);
             solve(&req)
         });
         for element in ["t3", "t6"] {
             for factor in LEVELS {
-                let r = solve(&scaled(&base, factor, element));
+                let r = solve(&level(sc, &base, factor, element));
                 let row = compare(
                     sc.name,
                     if element == "t3" { "T3" } else { "T6" },

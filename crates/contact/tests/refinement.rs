@@ -67,24 +67,29 @@ fn a_round_limit_stops_short_with_a_warning() {
     assert!(w["message"].as_str().unwrap().contains("max_rounds"), "{w}");
 }
 
-/// A given (inline) mesh carries only its zone ends' estimate by default, and
-/// with a target is bisected around its zone: the block on a vee
-/// refined to a zone-end error of 0.01 keeps its edge sets (the same pair
-/// solves on every round) and each round's zone end lies within twice its
+/// A given (inline) mesh cannot be coarsened: its estimate is made against
+/// the same mesh with every element split in four (`two_level_finer`), and
+/// with a target it is refined that way round after round: the block on a
+/// vee refined to a zone-end error of 0.02 keeps its edge sets (the same pair
+/// solves on every round), each round has about four times the unknowns of
+/// the one before, and each round's zone end lies within twice its
 /// estimated error of the final round's (the estimate's effectivity bound).
 #[test]
-fn an_inline_mesh_is_bisected_around_its_zone() {
+fn an_inline_mesh_is_refined_uniformly() {
     let base = example("signorini_inline_block_on_vee.json");
-    // Without a target a given mesh is not coarsened: the zone ends alone.
     let plain = solve(&base);
     let acc = plain.pairs[0].accuracy.as_ref().unwrap();
-    assert_eq!((acc.basis, acc.pressure_l2), ("zone_edges", None));
+    assert_eq!(acc.basis, "two_level_finer");
+    assert!(
+        acc.pressure_l2.is_some() && acc.peak.is_some() && acc.resultant.is_some(),
+        "{acc:?}"
+    );
     assert_eq!(acc.zone_edges.len(), plain.pairs[0].zones_along.len());
     let mut ends = Vec::new();
     let mut estimates = Vec::new();
     for rounds in 1..=5 {
         let mut req = base.clone();
-        req["settings"] = json!({"accuracy": {"zone_edge": 0.01, "max_rounds": rounds}});
+        req["settings"] = json!({"accuracy": {"zone_edge": 0.02, "max_rounds": rounds}});
         let r = solve(&req);
         let z = r.pairs[0].zones_along[0];
         ends.push(z.end[0]);
@@ -92,7 +97,14 @@ fn an_inline_mesh_is_bisected_around_its_zone() {
         if rounds == 5 {
             let refinement = r.refinement.unwrap();
             assert!(refinement.reached, "{refinement:?}");
-            assert!(estimates[4] <= 0.01);
+            // Met with the margin of `adapt::SAFETY` (0.6 of the target).
+            assert!(estimates[4] <= 0.012);
+            // Uniform refinement of a 2D mesh: every side halved, four times
+            // the elements; the DOFs grow by 4 less the boundary's share.
+            for w in refinement.rounds.windows(2) {
+                let growth = w[1].dofs as f64 / w[0].dofs as f64;
+                assert!((3.0..=4.5).contains(&growth), "{:?}", refinement.rounds);
+            }
         }
     }
     let last = *ends.last().unwrap();
@@ -105,17 +117,16 @@ fn an_inline_mesh_is_bisected_around_its_zone() {
     }
 }
 
-/// A curved inline T6 mesh keeps its arc through bisection: the quarter disk
-/// on a flat (h_min = 0.02 R, arc midsides on the circle) given inline and
-/// solved in three rounds (the given mesh, then twice bisected around its
-/// zone) has every contact node within the original arc's interpolation
+/// A curved inline T6 mesh keeps its arc through refinement: the quarter
+/// disk on a flat (h_min = 0.02 R, arc midsides on the circle) given inline
+/// and solved in three rounds (the given mesh, then twice refined) has every contact node within the original arc's interpolation
 /// error R θ⁴/32 of the circle (θ the largest half angle of an original arc
 /// edge; measured 1.1e-9 R, was 1.5e-3 R when bisection put midsides on
 /// chords), and its pressure's L2 error against the overkill table is under
 /// half the unrefined mesh's (measured 0.37 % from 1.37 %; chord midsides
 /// made it 10.5 %: the sagitta read as a gap bump).
 #[test]
-fn a_curved_inline_t6_mesh_keeps_its_arc_when_bisected() {
+fn a_curved_inline_t6_mesh_keeps_its_arc_when_refined() {
     use contact_core::mesh::generate::{disk, DiskPart, Grading};
     let h_min = 0.02;
     let grading = Grading {
@@ -200,27 +211,32 @@ fn the_estimate_is_optional_and_the_targets_are_checked() {
 /// The estimates are the size of the true errors on every scene of the
 /// effectivity table (`contact_verify::effectivity`), at its middle level
 /// (every element 4× the scene's own), T3 and T6, against the stored overkill
-/// tables (disk, ball, block) or the scene solved 4× finer (the others): the
-/// pressure's, the zone ends' and the T3 resultant's within [0.5, 2] of the
-/// true error (measured 0.83–1.64, 0.84–1.09 and 1.12–1.26 here; over all
-/// three levels the pressure's spans 0.35–2.86, 39 of 42 rows within [0.5, 2]).
-/// The T6 resultant, 0.002–0.24 % off, is estimated 0.02–42× and not
-/// tested. At a flat punch's corners the pressure is unbounded: both the
-/// estimate and the true error leave out the band the reply names there
-/// (`singular_ends`, 5 % of the zone), which must sit at the corners x = ±1
-/// (two on the plane punch, the rim of the punch of revolution) and nowhere
-/// else.
+/// tables (disk, ball, block, and the disk and the block given inline) or the
+/// scene solved 4× finer (the others). Smooth-edged scenes: the pressure's,
+/// the zone ends' and the T3 resultant's within [0.5, 2] of the true error
+/// (measured 0.89–1.71, 0.84–1.09 and 0.92–1.26 here; over all three levels
+/// the pressure's spans 0.56–2.86). At a flat punch's corners the order
+/// assumed is 1 (`two_level::two_level`), which errs on the safe side: the
+/// punches' pressure reads 2.5–4.9 of the true error at this level, tested
+/// within [0.5, 5]. The peak's within [0.5, 3] (1.19–2.74 here) except on
+/// the two cylinders, whose T3 peak at this level is 0.018 % off between
+/// levels 0.48 % and 0.054 % off (a crossing no estimate can foresee). The
+/// T6 resultant, 0.002–0.24 % off, is estimated 0.02–42× and not tested. At
+/// a flat punch's corners the pressure is unbounded: both the estimate and
+/// the true error leave out the band the reply names there (`singular_ends`,
+/// 5 % of the zone), which must sit at the corners x = ±1 (two on the plane
+/// punch, the rim of the punch of revolution) and nowhere else.
 #[test]
 fn the_estimates_are_the_size_of_the_true_errors() {
-    use contact_verify::effectivity::{compare, scaled, SCENES};
+    use contact_verify::effectivity::{compare, level, scaled, table_of, SCENES};
     for sc in &SCENES {
         let name = sc.name;
         let base = (sc.request)();
-        let reference = contact_verify::overkill::reference(name)
+        let reference = contact_verify::overkill::reference(table_of(name))
             .is_none()
             .then(|| solve(&scaled(&base, 0.5, "t6")));
         for (element, label) in [("t3", "T3"), ("t6", "T6")] {
-            let r = solve(&scaled(&base, 4.0, element));
+            let r = solve(&level(sc, &base, 4.0, element));
             let singular = &r.pairs[0].accuracy.as_ref().unwrap().singular_ends;
             if name.starts_with("punch") {
                 // Both corners of the plane punch; the rim of the one of
@@ -239,10 +255,14 @@ fn the_estimates_are_the_size_of_the_true_errors() {
             }
             let row = compare(sc.name, label, 4.0, &r, reference.as_ref());
             let eff = row.eff_l2().unwrap();
+            let most = if name.starts_with("punch") { 5.0 } else { 2.0 };
             assert!(
-                (0.5..=2.0).contains(&eff),
+                (0.5..=most).contains(&eff),
                 "{name} {label}: pressure effectivity {eff:.3}"
             );
+            if let Some(eff) = row.eff_peak().filter(|_| name != "two_cylinders") {
+                assert!((0.5..=3.0).contains(&eff), "{name} {label}: peak effectivity {eff:.3}");
+            }
             if let Some(eff) = row.eff_edge() {
                 assert!(
                     (0.5..=2.0).contains(&eff),
@@ -262,4 +282,116 @@ fn the_estimates_are_the_size_of_the_true_errors() {
             }
         }
     }
+}
+
+/// A user's own graded mesh of the disk on a flat (given inline, h_min
+/// 0.0015 R, far field R/8: about 7.7k DOF, as a user's mesher made it)
+/// carries a full estimate, and it sees the far field's error: against the
+/// disk's overkill table (its own L2 uncertainty 1.4e-5) the pressure's and
+/// the resultant's estimates are within [0.5, 2] of their true errors
+/// (measured 0.78 % against 0.74 %, 0.59 % against 0.57 %; the resultant's
+/// error is the far field's stiffness, which a companion refined only around
+/// the zone did not see: it said 0.0003 %). Asked for 0.3 %, the rounds stop
+/// with the true error below it (measured 0.22 %).
+#[test]
+fn a_users_graded_mesh_has_its_far_field_error_estimated() {
+    let req = contact_verify::run::inlined(&disk_request(0.0015, "t3"));
+    let r = solve(&req);
+    let acc = r.pairs[0].accuracy.as_ref().unwrap();
+    assert_eq!(acc.basis, "two_level_finer");
+    let e = contact_verify::overkill::reference_error("disk_on_flat", &r).unwrap();
+    for (what, est, err) in [
+        ("pressure", acc.pressure_l2.unwrap(), e.l2),
+        ("resultant", acc.resultant.unwrap(), e.resultant.abs()),
+    ] {
+        assert!(
+            (0.5..=2.0).contains(&(est / err)),
+            "{what}: estimate {est:.3e}, true {err:.3e}"
+        );
+    }
+    let mut refined = req.clone();
+    refined["settings"] = json!({"accuracy": {"pressure_l2": 0.003}});
+    let r = solve(&refined);
+    assert!(r.refinement.as_ref().unwrap().reached, "{:?}", r.refinement);
+    let e = contact_verify::overkill::reference_error("disk_on_flat", &r).unwrap();
+    assert!(e.l2 <= 0.003, "true error {:.3e} above the target reached", e.l2);
+}
+
+/// The Gmsh example (the Hertz block meshed by Gmsh, 8.4k DOF) carries its
+/// pressure's, peak's and resultant's estimates, each within [0.5, 2] of its
+/// true error against the block's overkill table (measured 0.44 % against
+/// 0.42 %, 0.38 % against 0.39 %, 0.29 % against 0.30 %).
+#[test]
+fn the_gmsh_example_has_its_error_estimated() {
+    let r = solve(&example("signorini_hertz_cylinder_gmsh.json"));
+    let acc = r.pairs[0].accuracy.as_ref().unwrap();
+    assert_eq!(acc.basis, "two_level_finer");
+    let table = contact_verify::overkill::reference("hertz_block").unwrap();
+    let e = contact_verify::overkill::errors(table, &r);
+    let peak = r.pairs[0].points.iter().map(|q| q.pressure).fold(0.0, f64::max);
+    for (what, est, err) in [
+        ("pressure", acc.pressure_l2.unwrap(), e.l2),
+        ("resultant", acc.resultant.unwrap(), e.resultant.abs()),
+        ("peak", acc.peak.unwrap(), (peak / table.pressure(0.0) - 1.0).abs()),
+    ] {
+        assert!(
+            (0.5..=2.0).contains(&(est / err)),
+            "{what}: estimate {est:.3e}, true {err:.3e}"
+        );
+    }
+}
+
+/// With nothing in contact there is no contact error to reduce: a target
+/// stops after the first round, says so in a note, and warns of nothing
+/// (it refined to 383k DOF before, with a warning whose value was 1.8e308).
+#[test]
+fn nothing_in_contact_stops_the_refinement_at_once() {
+    let mut req = disk_request(0.02, "t3");
+    // The flat pulled up: the disk is lifted clear of the floor.
+    req["bodies"][0]["supports"][0]["uy"] = json!(0.0075);
+    req["settings"] = json!({"accuracy": {"pressure_l2": 0.001}});
+    let r = solve(&req);
+    assert!(r.pairs[0].zones_along.is_empty(), "{:?}", r.pairs[0].zones_along);
+    let f = r.refinement.as_ref().unwrap();
+    assert_eq!((f.stopped, f.reached, f.rounds.len()), ("no_contact", false, 1));
+    assert!(r.warnings.is_empty(), "{:?}", r.warnings);
+    assert!(
+        r.notes.iter().any(|n| n.contains("nothing is in contact")),
+        "{:?}",
+        r.notes
+    );
+}
+
+/// Refinement keeps the time limit by predicting each round before building
+/// it: with a limit of twice the given mesh's own solve, neither the
+/// estimate's finer companion nor the next round (each about 5× the solve:
+/// four times the unknowns, time growing like DOF^1.2) can fit, so both are
+/// left out at once, and the reply says why (the limit is set from the solve
+/// measured here, so a slower machine moves both alike).
+#[test]
+fn refinement_predicts_its_rounds_within_the_time_limit() {
+    let mut req = contact_verify::run::inlined(&disk_request(0.0008, "t3"));
+    let t = std::time::Instant::now();
+    req["settings"] = json!({"estimate": false});
+    solve(&req);
+    let limit = 2.0 * t.elapsed().as_secs_f64() + 0.05;
+    req["settings"] = json!({"accuracy": {"pressure_l2": 0.001}});
+    req["time_limit"] = json!(limit);
+    let t = std::time::Instant::now();
+    let r = solve(&req);
+    let took = t.elapsed().as_secs_f64();
+    let f = r.refinement.as_ref().unwrap();
+    assert_eq!((f.stopped, f.rounds.len()), ("time_limit", 1), "{f:?}");
+    assert!(took <= limit, "answered after {took:.3} s, limit {limit:.3} s");
+    assert!(
+        r.notes.iter().any(|n| n.contains("left of the time limit")),
+        "{:?}",
+        r.notes
+    );
+    let w = r
+        .warnings
+        .iter()
+        .find(|w| w.code == "tolerance_not_reached")
+        .expect("warned");
+    assert!(w.message.contains("time limit"), "{}", w.message);
 }

@@ -32,7 +32,7 @@ use crate::solution::report::{PairAccuracy, PairReport};
 /// Outer fraction of a zone whose nodes the fit uses.
 const WINDOW: f64 = 0.3;
 /// Fewest nodes in contact the fit needs (three coefficients and one more).
-const MIN_FIT: usize = 4;
+pub(crate) const MIN_FIT: usize = 4;
 
 /// A node along the pair's surface: arc length, pressure, in contact.
 #[derive(Debug, Clone, Copy)]
@@ -134,143 +134,6 @@ pub fn zone_edges_only(pair: &PairReport) -> PairAccuracy {
     }
 }
 
-/// The two-level estimate of a pair's error: the same pair solved on meshes
-/// whose elements are `ratio` times as large (`coarse`) differs from the
-/// finer solution (`fine`) by about (ratio^q − 1) times the finer one's
-/// error, for an error of order q in the element size (`ORDER`: the
-/// pressure's error is dominated by where the zone edge falls between nodes
-/// and by the graded field's stiffness, both O(h²) for T3; for T6, whose
-/// multipliers sit on every surface node, the estimate with q = 2 kept its
-/// effectivity within 0.67–1.64 on the disk, ball, block and two cylinders
-/// at three levels each, measured against the overkill tables or the scene
-/// solved 4× finer).
-///
-/// The nodal L2 difference is taken both ways and the larger kept: at the
-/// fine candidates (the coarse pressure interpolated along its surface,
-/// weighed by the fine tributary weights) and at the coarse ones (the fine
-/// interpolated). Where the edge's placement dominates, the two levels'
-/// errors are not in Richardson's ratio and either comparison alone can miss
-/// it: on the T6 disk (multipliers on the corners then) at h = 0.0088 R the
-/// coarse-node comparison gave 0.15 % for a true 1.08 %, the fine-node one
-/// 0.57 %; at h = 0.0044 R the fine-node
-/// comparison gave 1.54 % for a true 0.20 % (a linear segment across the
-/// coarse zone's square-root edge), the coarse-node one 0.29 %. Keeping the
-/// larger errs on the safe side.
-///
-/// The zone ends' own nodal error (`edge_deviation`) is a second, direct
-/// estimate; the larger of the two is the pressure's. Over seven scenes at
-/// three levels each, T3 and T6 (`contact bench --convergence`,
-/// effectivity.csv), the pressure's effectivity is 0.35–2.86, 39 of 42 rows
-/// within [0.5, 2]; without this term the finer levels' last-node error went
-/// unseen (measured with T6 multipliers on the corners only: 0.19 at worst
-/// on the smooth-edged scenes, against 0.56 with it). Zone ends where the
-/// pressure is unbounded are left out with a band around them (`corners`).
-pub fn two_level(fine: &PairReport, coarse: &PairReport, ratio: f64) -> PairAccuracy {
-    let singular = corners::singular_ends(fine);
-    // The same order next to a corner (outside its band): on the two punch
-    // scenes at three levels each, T3 and T6, q = 2 gave effectivities
-    // 0.35–1.64 (11 of 12 within [0.5, 2]), q = 1, which the pollution of
-    // the local error by a d^(−1/2) singularity would suggest, 1.04–4.9.
-    let scale = ratio.powf(ORDER) - 1.0;
-    let counted = |x: f64, y: f64| !corners::in_band(&singular, x, y);
-    // Relative L2 difference of `at`'s nodal pressure from `other`'s
-    // field, weighed at `at`'s candidates; None without pressure.
-    let relative = |at: &PairReport, other: &PairReport| {
-        let (pts, reach) = field_with_reach(other);
-        let (mut num, mut den) = (0.0, 0.0);
-        for q in at.points.iter().filter(|q| counted(q.x, q.y)) {
-            let po = along(&pts, Some(&reach), q.x, q.y);
-            if q.pressure > 0.0 || po > 0.0 {
-                num += q.weight * (q.pressure - po).powi(2);
-                den += q.weight * q.pressure.max(po).powi(2);
-            }
-        }
-        (den > 0.0).then(|| (num / den).sqrt())
-    };
-    let l2 = match (relative(fine, coarse), relative(coarse, fine)) {
-        (Some(a), Some(b)) => Some(a.max(b)),
-        (a, b) => a.or(b),
-    };
-    let peak = |pts: &[crate::solution::report::ContactPoint]| {
-        pts.iter()
-            .filter(|q| counted(q.x, q.y))
-            .map(|q| q.pressure)
-            .fold(0.0, f64::max)
-    };
-    let (pf, pc) = (peak(&fine.points), peak(&coarse.points));
-    let norm = |r: &crate::solution::report::Resultant| r.fx.hypot(r.fy);
-    let (rf, rc) = (norm(&fine.resultant), norm(&coarse.resultant));
-    let dr = (fine.resultant.fx - coarse.resultant.fx).hypot(fine.resultant.fy - coarse.resultant.fy);
-    // The zone ends' own nodal error, which the two levels' steps hide.
-    let den: f64 = fine
-        .points
-        .iter()
-        .filter(|q| counted(q.x, q.y))
-        .map(|q| q.weight * q.pressure * q.pressure)
-        .sum();
-    let edge = if den > 0.0 { edge_deviation(fine) / den } else { 0.0 };
-    PairAccuracy {
-        basis: "two_level",
-        pressure_l2: l2.map(|v| (v / scale).max(edge.sqrt())),
-        peak: (pf > 0.0).then(|| (pf - pc).abs() / pf / scale),
-        resultant: (rf > 0.0 && rc.is_finite()).then(|| dr / rf / scale),
-        zone_edges: fine.zones_along.iter().map(|z| z.uncertainty).collect(),
-        singular_ends: singular,
-    }
-}
-
-/// Σ w (p − p_fit)² over the last node in contact at each smooth zone end
-/// and the open node beyond it, where p_fit is the square-root profile
-/// fitted (p² quadratic in the distance to the end) on the nodes inward of
-/// the end alone. The last node's value depends on where the edge falls
-/// between it and the next (a node 0.37 spacings inside the edge read 15 %
-/// below the profile on the T3 disk at h_min = 0.00125 R, 97 % of that
-/// solution's squared L2 error), which neither level of `two_level` sees when
-/// both ends fall alike; the nodes further in are off by 20× less.
-fn edge_deviation(pair: &PairReport) -> f64 {
-    let mut pts: Vec<(f64, f64, f64, f64)> = pair.points.iter().map(|q| (q.x, q.y, q.pressure, q.weight)).collect();
-    pts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-    let dist = |a: (f64, f64, f64, f64), b: (f64, f64, f64, f64)| (a.0 - b.0).hypot(a.1 - b.1);
-    let mut sum = 0.0;
-    for z in &pair.zones_along {
-        for end in [z.start, z.end] {
-            let Some(i) = pts.iter().position(|p| p.0 == end[0] && p.1 == end[1] && p.2 > 0.0) else {
-                continue;
-            };
-            // Inward: the neighbour in contact; outward: the open one.
-            let inside = |k: Option<usize>| k.filter(|&k| k < pts.len() && pts[k].2 > 0.0);
-            let (dir, open) = match (inside(i.checked_sub(1)), inside(i.checked_add(1))) {
-                (Some(_), None) => (-1isize, (i + 1 < pts.len()).then_some(i + 1)),
-                (None, Some(_)) => (1isize, i.checked_sub(1)),
-                _ => continue,
-            };
-            // The nodes inward, after the end: distance along the surface, p².
-            let mut window = Vec::new();
-            let (mut k, mut t) = (i, 0.0);
-            while let Some(next) = k.checked_add_signed(dir).filter(|&n| n < pts.len() && pts[n].2 > 0.0) {
-                t += dist(pts[k], pts[next]);
-                window.push((t, pts[next].2 * pts[next].2));
-                k = next;
-            }
-            let n = window.len().clamp(MIN_FIT, 12);
-            if window.len() < MIN_FIT + 1 {
-                continue;
-            }
-            let Some(c) = fit_quadratic(&window[..n]) else { continue };
-            // p² must grow inward at the end: a smooth edge, not a corner.
-            if c[1] <= 0.0 {
-                continue;
-            }
-            let profile = |t: f64| (c[0] + c[1] * t + c[2] * t * t).max(0.0).sqrt();
-            sum += pts[i].3 * (pts[i].2 - profile(0.0)).powi(2);
-            if let Some(o) = open {
-                sum += pts[o].3 * profile(-dist(pts[i], pts[o])).powi(2);
-            }
-        }
-    }
-    sum
-}
-
 /// Least-squares y = c0 + c1 x + c2 x² through the points, centred and
 /// scaled for conditioning; None if they do not determine it.
 pub fn fit_quadratic(pts: &[(f64, f64)]) -> Option<[f64; 3]> {
@@ -308,7 +171,7 @@ pub fn field(pair: &PairReport) -> Vec<(f64, f64, f64)> {
 
 /// `field`, with each point's distance to its zone's estimated edge where it
 /// ends a zone (`zones_along`'s uncertainty), else 0.
-fn field_with_reach(pair: &PairReport) -> (Vec<(f64, f64, f64)>, Vec<f64>) {
+pub(crate) fn field_with_reach(pair: &PairReport) -> (Vec<(f64, f64, f64)>, Vec<f64>) {
     let pts = field(pair);
     let reach = pts
         .iter()
@@ -323,10 +186,6 @@ fn field_with_reach(pair: &PairReport) -> (Vec<(f64, f64, f64)>, Vec<f64>) {
     (pts, reach)
 }
 
-/// Observed order of the nodal pressure error in the element size (see
-/// `two_level`).
-const ORDER: f64 = 2.0;
-
 /// The value at (x, y) of the piecewise-linear field through `pts` (x, y,
 /// value; sorted by x, then y, which is their order along a surface that is
 /// a graph over x or a vertical face): on the segment nearest the point among
@@ -340,7 +199,7 @@ pub fn along_polyline(pts: &[(f64, f64, f64)], x: f64, y: f64) -> f64 {
 /// a square root to zero at `reach[i]` from the end: the estimated edge
 /// (`end_error`), not linearly to the open point (which puts pressure where
 /// the zone has ended).
-fn along(pts: &[(f64, f64, f64)], reach: Option<&[f64]>, x: f64, y: f64) -> f64 {
+pub(crate) fn along(pts: &[(f64, f64, f64)], reach: Option<&[f64]>, x: f64, y: f64) -> f64 {
     if pts.len() < 2 {
         return pts
             .first()

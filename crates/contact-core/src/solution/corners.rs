@@ -8,7 +8,7 @@
 //! measured on the flat punch of revolution and the flat punch under a moment
 //! against the same scenes solved 4× finer, it stayed at 20–80 % over three
 //! levels while the estimate of the same quantity said 8–27 %. The estimate
-//! (`accuracy::two_level`) and its check (`contact-verify`'s effectivity) both
+//! (`two_level::two_level`) and its check (`contact-verify`'s effectivity) both
 //! leave out a band at each such end, `BAND` of the zone's length, which the
 //! reply names, so that what is estimated converges; the corner's own
 //! pressure is the singular solution's and is not estimated.

@@ -7,4 +7,5 @@ pub mod corners;
 pub mod friction;
 pub mod post;
 pub mod report;
+pub mod two_level;
 pub mod validity;

@@ -1,0 +1,70 @@
+//! `settings.accuracy` against the truth: scenes with an overkill table
+//! (`contact_verify::overkill`), generated from a coarse start or given
+//! inline / through Gmsh, refined to each target; prints whether the target
+//! was reported reached, the estimate, the true nodal L2 error and the
+//! resultant's, the DOFs and the time. `cargo run --release -p
+//! contact-verify --example targets`.
+
+use contact_verify::{bench, convergence, run};
+use serde_json::{json, Value};
+
+fn main() {
+    let gmsh: Value = serde_json::from_str(
+        &std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../proto/examples/signorini_hertz_cylinder_gmsh.json"
+        ))
+        .expect("example"),
+    )
+    .expect("JSON");
+    let scenes: Vec<(&str, &str, Value)> = vec![
+        ("disk T3", "disk_on_flat", convergence::disk_request(0.02, "t3")),
+        ("disk T6", "disk_on_flat", convergence::disk_request(0.04, "t6")),
+        (
+            "disk inline T3",
+            "disk_on_flat",
+            run::inlined(&convergence::disk_request(0.0088, "t3")),
+        ),
+        (
+            "disk inline T6",
+            "disk_on_flat",
+            run::inlined(&convergence::disk_request(0.0176, "t6")),
+        ),
+        ("ball T3", "ball_on_flat", convergence::ball_request(0.02, "t3")),
+        ("block T3", "hertz_block", bench::hertz_request(0.08, "t3", "auto")),
+        ("block gmsh T3", "hertz_block", gmsh),
+    ];
+    println!(
+        "{:<16} {:>7} {:>8} {:>8} {:>9} {:>9} {:>9} {:>7} {:>8}",
+        "scene", "target", "reached", "dofs", "estimate", "true_l2", "true_fy", "rounds", "seconds"
+    );
+    for (name, table, base) in &scenes {
+        for target in [0.005, 0.003, 0.002] {
+            let mut req = base.clone();
+            req["settings"] = json!({"accuracy": {"pressure_l2": target}});
+            let t = std::time::Instant::now();
+            let r = run::solve(&req, &Default::default()).expect("solved");
+            let seconds = t.elapsed().as_secs_f64();
+            let e = contact_verify::overkill::reference_error(table, &r).expect("table");
+            let f = r.refinement.as_ref().expect("refined");
+            let est = r.pairs[0].accuracy.as_ref().and_then(|a| a.pressure_l2);
+            let flag = if f.reached && e.l2 > target {
+                "  <-- true error above target"
+            } else {
+                ""
+            };
+            println!(
+                "{:<16} {:>7} {:>8} {:>8} {:>8.3}% {:>8.3}% {:>8.3}% {:>7} {:>8.3}{flag}",
+                name,
+                target,
+                if f.reached { "yes" } else { f.stopped },
+                r.size.dofs,
+                100.0 * est.unwrap_or(f64::NAN),
+                100.0 * e.l2,
+                100.0 * e.resultant.abs(),
+                f.rounds.len(),
+                seconds
+            );
+        }
+    }
+}
