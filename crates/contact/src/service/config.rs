@@ -4,6 +4,14 @@
 //! a zenoh client of that router: several instances then run on one machine
 //! without competing for a port. A zenoh JSON5 file replaces the defaults;
 //! `--listen`/`--connect` still override its endpoints.
+//!
+//! TLS (`--tls-cert`, `--tls-key`, `--tls-ca`) is zenoh's own: the paths go
+//! into `transport/link/tls`, and `tls/HOST:PORT` endpoints use them. With all
+//! three the links are mutual TLS, which is what lets a router's access control
+//! tell solvers from clients by their certificates' common names.
+//! Plain TCP is refused on any endpoint that is not loopback unless the caller
+//! says `--insecure`: on a network it authenticates no one, so anyone who
+//! reaches the port can answer solves or read progress.
 
 use std::path::PathBuf;
 use std::time::Duration;
@@ -35,6 +43,54 @@ pub struct ServiceConfig {
     pub max_solve_time: Duration,
     /// Memory bound of the factorization cache (0 disables it).
     pub cache_bytes: usize,
+    pub tls: Tls,
+    /// Accept plain TCP on endpoints that are not loopback.
+    pub insecure: bool,
+}
+
+/// Certificate, private key and CA paths (PEM) for zenoh's TLS links.
+#[derive(Debug, Clone, Default)]
+pub struct Tls {
+    pub cert: Option<PathBuf>,
+    pub key: Option<PathBuf>,
+    pub ca: Option<PathBuf>,
+}
+
+impl Tls {
+    fn is_empty(&self) -> bool {
+        self.cert.is_none() && self.key.is_none() && self.ca.is_none()
+    }
+
+    /// Writes the paths into `transport/link/tls`. The same certificate serves
+    /// both directions: a solver may listen and connect, and with mTLS the
+    /// router must see the same common name whichever side opened the link.
+    pub fn apply(&self, c: &mut zenoh::Config) -> anyhow::Result<()> {
+        if self.cert.is_some() != self.key.is_some() {
+            anyhow::bail!("--tls-cert and --tls-key go together");
+        }
+        let mut set = |key: &str, path: &PathBuf| -> anyhow::Result<()> {
+            // zenoh would only say so when a link is opened, possibly never.
+            std::fs::metadata(path).map_err(|e| anyhow::anyhow!("{key}: cannot read {}: {e}", path.display()))?;
+            let path = path
+                .to_str()
+                .ok_or_else(|| anyhow::anyhow!("{key}: the path {} is not UTF-8", path.display()))?;
+            c.insert_json5(&format!("transport/link/tls/{key}"), &serde_json::to_string(path)?)
+                .map_err(zerr)
+        };
+        if let Some(ca) = &self.ca {
+            set("root_ca_certificate", ca)?;
+        }
+        if let (Some(cert), Some(key)) = (&self.cert, &self.key) {
+            set("listen_certificate", cert)?;
+            set("listen_private_key", key)?;
+            set("connect_certificate", cert)?;
+            set("connect_private_key", key)?;
+            if self.ca.is_some() {
+                c.insert_json5("transport/link/tls/enable_mtls", "true").map_err(zerr)?;
+            }
+        }
+        Ok(())
+    }
 }
 
 pub const DEFAULT_LISTEN: &str = "tcp/127.0.0.1:7447";
@@ -53,6 +109,8 @@ impl Default for ServiceConfig {
             limits: Limits::default(),
             max_solve_time: Duration::from_secs(300),
             cache_bytes: 2 << 30,
+            tls: Tls::default(),
+            insecure: false,
         }
     }
 }
@@ -74,8 +132,67 @@ impl ServiceConfig {
             c.insert_json5("connect/endpoints", &serde_json::to_string(&self.connect)?)
                 .map_err(zerr)?;
         }
+        if !self.tls.is_empty() {
+            self.tls.apply(&mut c)?;
+        }
+        if !self.insecure {
+            refuse_plain_tcp_off_loopback(&c)?;
+        }
         Ok(c)
     }
+}
+
+/// Every endpoint the session would listen on or connect to that is plain TCP
+/// on an address other than loopback is an error naming it.
+pub fn refuse_plain_tcp_off_loopback(c: &zenoh::Config) -> anyhow::Result<()> {
+    let mode: Option<String> = c.get_json("mode").ok().and_then(|m| serde_json::from_str(&m).ok());
+    let mode = mode.unwrap_or_else(|| "peer".into());
+    let mut exposed = Vec::new();
+    for side in ["listen", "connect"] {
+        let value: serde_json::Value = c
+            .get_json(&format!("{side}/endpoints"))
+            .ok()
+            .and_then(|v| serde_json::from_str(&v).ok())
+            .unwrap_or_default();
+        // A list, or one list per mode (zenoh's mode-dependent form).
+        let list = match &value {
+            serde_json::Value::Object(m) => m.get(&mode).cloned().unwrap_or_default(),
+            v => v.clone(),
+        };
+        let endpoints: Vec<String> = serde_json::from_value(list).unwrap_or_default();
+        // A peer or router given no listen endpoint listens on zenoh's default,
+        // TCP on every interface.
+        if side == "listen" && endpoints.is_empty() && mode != "client" {
+            exposed.push("zenoh's default listen endpoint (TCP on every interface)".to_string());
+        }
+        exposed.extend(endpoints.into_iter().filter(|e| is_plain_tcp_off_loopback(e)));
+    }
+    if exposed.is_empty() {
+        return Ok(());
+    }
+    anyhow::bail!(
+        "refusing plain TCP off loopback ({}): unencrypted and unauthenticated, anyone who reaches it can read \
+         the requests and progress and answer solves in the service's place. Use tls/ endpoints with \
+         --tls-cert, --tls-key and --tls-ca (README, \"The service\"), or pass --insecure to accept this",
+        exposed.join(", ")
+    )
+}
+
+/// `tcp/HOST:PORT[#…]` with HOST neither localhost nor a loopback address.
+pub fn is_plain_tcp_off_loopback(endpoint: &str) -> bool {
+    let Some(addr) = endpoint.strip_prefix("tcp/") else {
+        return false;
+    };
+    let addr = addr.split(['#', '?']).next().unwrap_or(addr);
+    let host = match addr.rsplit_once(':') {
+        Some((h, _)) => h,
+        None => addr,
+    };
+    let host = host.trim_start_matches('[').trim_end_matches(']');
+    if host.eq_ignore_ascii_case("localhost") {
+        return false;
+    }
+    !host.parse::<std::net::IpAddr>().is_ok_and(|ip| ip.is_loopback())
 }
 
 fn zerr(e: Box<dyn std::error::Error + Send + Sync>) -> anyhow::Error {
@@ -99,7 +216,11 @@ fn loopback_defaults(mode: &str, listen: &[String], connect: &[String]) -> anyho
 
 /// A zenoh router (`contact router`): zenoh's own routing, as `zenohd` does it,
 /// listening on `listen` (default tcp/127.0.0.1:7447), multicast scouting off.
-pub fn router_config(config_file: Option<&std::path::Path>, listen: &[String]) -> anyhow::Result<zenoh::Config> {
+pub fn router_config(
+    config_file: Option<&std::path::Path>,
+    listen: &[String],
+    tls: &Tls,
+) -> anyhow::Result<zenoh::Config> {
     let mut c = match config_file {
         Some(p) => zenoh::Config::from_file(p).map_err(zerr)?,
         None => loopback_defaults("router", &[DEFAULT_LISTEN.to_string()], &[])?,
@@ -108,5 +229,50 @@ pub fn router_config(config_file: Option<&std::path::Path>, listen: &[String]) -
         c.insert_json5("listen/endpoints", &serde_json::to_string(listen)?)
             .map_err(zerr)?;
     }
+    tls.apply(&mut c)?;
     Ok(c)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_plain_tcp_off_loopback_counts_as_exposed() {
+        for e in [
+            "tcp/0.0.0.0:7447",
+            "tcp/[::]:7447",
+            "tcp/10.0.0.3:7447",
+            "tcp/router.example:7447",
+        ] {
+            assert!(is_plain_tcp_off_loopback(e), "{e}");
+        }
+        for e in [
+            "tcp/127.0.0.1:7447",
+            "tcp/127.3.2.1:1",
+            "tcp/[::1]:7447",
+            "tcp/localhost:7447",
+            "tls/0.0.0.0:7447",
+            "tcp/127.0.0.1:7447#iface=lo",
+        ] {
+            assert!(!is_plain_tcp_off_loopback(e), "{e}");
+        }
+    }
+
+    #[test]
+    fn the_defaults_pass_and_a_public_listen_needs_insecure() {
+        assert!(ServiceConfig::default().zenoh_config().is_ok());
+        let public = ServiceConfig {
+            listen: Some(vec!["tcp/0.0.0.0:7447".into()]),
+            ..Default::default()
+        };
+        let err = public.zenoh_config().unwrap_err().to_string();
+        assert!(err.contains("tcp/0.0.0.0:7447") && err.contains("--insecure"), "{err}");
+        assert!(ServiceConfig {
+            insecure: true,
+            ..public
+        }
+        .zenoh_config()
+        .is_ok());
+    }
 }

@@ -3,11 +3,11 @@
 //! mode), not a dispatcher of ours: services and clients connect to it and
 //! zenoh routes every query to one complete queryable.
 
-use super::config::router_config;
+use super::config::{router_config, Tls};
 
 /// Routes until ctrl-c (or SIGTERM).
-pub async fn run(config_file: Option<std::path::PathBuf>, listen: Vec<String>) -> anyhow::Result<()> {
-    let conf = router_config(config_file.as_deref(), &listen)?;
+pub async fn run(config_file: Option<std::path::PathBuf>, listen: Vec<String>, tls: Tls) -> anyhow::Result<()> {
+    let conf = router_config(config_file.as_deref(), &listen, &tls)?;
     let session = zenoh::open(conf)
         .await
         .map_err(|e| anyhow::anyhow!("cannot open the zenoh router: {e}"))?;
