@@ -131,6 +131,9 @@ enum Cmd {
         /// CA certificate (PEM) the peers' certificates must be signed by.
         #[arg(long, value_name = "PEM")]
         tls_ca: Option<PathBuf>,
+        /// JSON5 file with zenoh's `access_control` block (e.g. deploy/router-acl.json5).
+        #[arg(long, value_name = "FILE")]
+        acl: Option<PathBuf>,
         #[arg(long, value_enum, default_value_t = LogFormat::Text)]
         log_format: LogFormat,
     },
@@ -322,6 +325,7 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
             tls_cert,
             tls_key,
             tls_ca,
+            acl,
             log_format,
         } => {
             init_logging(log_format);
@@ -331,7 +335,7 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
                 ca: tls_ca,
             };
             let rt = tokio::runtime::Builder::new_multi_thread().enable_all().build()?;
-            rt.block_on(crate::service::router::run(config, listen, tls))?;
+            rt.block_on(crate::service::router::run(config, listen, tls, acl))?;
             Ok(0)
         }
         Cmd::Bench {

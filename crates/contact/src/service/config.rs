@@ -215,11 +215,13 @@ fn loopback_defaults(mode: &str, listen: &[String], connect: &[String]) -> anyho
 }
 
 /// A zenoh router (`contact router`): zenoh's own routing, as `zenohd` does it,
-/// listening on `listen` (default tcp/127.0.0.1:7447), multicast scouting off.
+/// listening on `listen` (default tcp/127.0.0.1:7447), multicast scouting off;
+/// `acl` is a JSON5 file holding zenoh's `access_control` block.
 pub fn router_config(
     config_file: Option<&std::path::Path>,
     listen: &[String],
     tls: &Tls,
+    acl: Option<&std::path::Path>,
 ) -> anyhow::Result<zenoh::Config> {
     let mut c = match config_file {
         Some(p) => zenoh::Config::from_file(p).map_err(zerr)?,
@@ -230,7 +232,29 @@ pub fn router_config(
             .map_err(zerr)?;
     }
     tls.apply(&mut c)?;
+    if let Some(p) = acl {
+        c.insert_json5("access_control", &acl_block(p)?).map_err(zerr)?;
+    }
     Ok(c)
+}
+
+/// The `access_control` object of an ACL file, which may hold it bare or
+/// under an `access_control` key (a zenoh config fragment).
+fn acl_block(path: &std::path::Path) -> anyhow::Result<String> {
+    let text = std::fs::read_to_string(path).map_err(|e| anyhow::anyhow!("--acl {}: {e}", path.display()))?;
+    // Parsed by zenoh's own JSON5 reader: a whole config that holds only the block.
+    let c = zenoh::Config::from_json5(&text)
+        .or_else(|_| zenoh::Config::from_json5(&format!("{{access_control: {text}}}")))
+        .map_err(|e| anyhow::anyhow!("--acl {}: not a zenoh access_control block: {e}", path.display()))?;
+    let block = c.get_json("access_control").map_err(zerr)?;
+    let enabled = serde_json::from_str::<serde_json::Value>(&block)?["enabled"] == serde_json::Value::Bool(true);
+    if !enabled {
+        anyhow::bail!(
+            "--acl {}: access_control.enabled is not true, so it would allow everything",
+            path.display()
+        );
+    }
+    Ok(block)
 }
 
 #[cfg(test)]
@@ -257,6 +281,22 @@ mod tests {
         ] {
             assert!(!is_plain_tcp_off_loopback(e), "{e}");
         }
+    }
+
+    #[test]
+    fn the_shipped_acl_loads_and_denies_by_default() {
+        let shipped = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../deploy/router-acl.json5"));
+        let c = router_config(None, &[], &Tls::default(), Some(shipped)).unwrap();
+        let acl: serde_json::Value = serde_json::from_str(&c.get_json("access_control").unwrap()).unwrap();
+        assert_eq!(acl["default_permission"], "deny");
+        assert_eq!(acl["subjects"][0]["cert_common_names"][0], "contact-solver");
+        let off = std::env::temp_dir().join(format!("acl-off-{}.json5", std::process::id()));
+        std::fs::write(&off, "{enabled: false, default_permission: 'deny'}").unwrap();
+        let err = router_config(None, &[], &Tls::default(), Some(&off))
+            .unwrap_err()
+            .to_string();
+        let _ = std::fs::remove_file(&off);
+        assert!(err.contains("enabled"), "{err}");
     }
 
     #[test]
