@@ -159,12 +159,9 @@ pub fn refuse_plain_tcp_off_loopback(c: &zenoh::Config) -> anyhow::Result<()> {
             serde_json::Value::Object(m) => m.get(&mode).cloned().unwrap_or_default(),
             v => v.clone(),
         };
+        // zenoh's default for a peer or router that names none (tcp/[::]:0 or
+        // :7447, every interface) is listed here too.
         let endpoints: Vec<String> = serde_json::from_value(list).unwrap_or_default();
-        // A peer or router given no listen endpoint listens on zenoh's default,
-        // TCP on every interface.
-        if side == "listen" && endpoints.is_empty() && mode != "client" {
-            exposed.push("zenoh's default listen endpoint (TCP on every interface)".to_string());
-        }
         exposed.extend(endpoints.into_iter().filter(|e| is_plain_tcp_off_loopback(e)));
     }
     if exposed.is_empty() {
@@ -281,6 +278,32 @@ mod tests {
         ] {
             assert!(!is_plain_tcp_off_loopback(e), "{e}");
         }
+    }
+
+    #[test]
+    fn a_config_file_is_held_to_the_same_rule() {
+        let dir = std::env::temp_dir();
+        let file = |name: &str, text: &str| {
+            let p = dir.join(format!("contact-{name}-{}.json5", std::process::id()));
+            std::fs::write(&p, text).unwrap();
+            p
+        };
+        let tls = file(
+            "tls",
+            r#"{mode: "peer", listen: {endpoints: ["tls/0.0.0.0:7447"]},
+                transport: {link: {tls: {enable_mtls: true}}}}"#,
+        );
+        let open = file("open", r#"{mode: "peer"}"#);
+        let with = |p: &std::path::PathBuf| ServiceConfig {
+            config_file: Some(p.clone()),
+            ..Default::default()
+        };
+        let tls_ok = with(&tls).zenoh_config();
+        let open_err = with(&open).zenoh_config().map(|_| ()).unwrap_err().to_string();
+        let _ = (std::fs::remove_file(&tls), std::fs::remove_file(&open));
+        assert!(tls_ok.is_ok(), "{:?}", tls_ok.err());
+        // zenoh's own default for a peer that names no listen endpoint: every interface.
+        assert!(open_err.contains("tcp/[::]:0"), "{open_err}");
     }
 
     #[test]
