@@ -79,6 +79,10 @@ def test_solves_go_through_mtls_and_the_acl(secured, hertz_example):
         assert "reply" in c.schema()
         assert len(c.instances()) == 1
         assert len(c.health_all()) == 1
+    # Through the instance's own key, as scale-out's spread=True sends it.
+    with Client(endpoint, timeout=60.0, tls=certs["client"], spread=True) as c:
+        assert c.solve({**hertz_example, "client_id": "tls-spread"})["client_id"] == "tls-spread"
+        assert c._solve_key().startswith("contact/instance/")
 
 
 def test_a_rogue_without_a_solver_certificate_gets_no_query(secured, hertz_example):
