@@ -216,3 +216,37 @@ def test_the_timeout_becomes_the_time_limit():
     assert _with_time_limit('{"version": "1"}', 60.0) == '{"version": "1"}'
     # Below a second there is nothing sensible to ask for.
     assert "time_limit" not in _with_time_limit({"version": "1"}, 1.0)
+
+
+def test_answers_that_are_not_the_services_are_refused(hertz_reply):
+    """A reply that does not validate against the reply schema, or that echoes
+    another client_id, is a TransportError, not an answer; an unread refusal
+    (busy) carries no client_id and passes."""
+    from contact_client.client import _verify
+
+    ours = hertz_reply.get("client_id")
+    _verify("reply", dict(hertz_reply), "contact/solve", ours, True)
+    forged = {"version": hertz_reply["version"], "status": "solved", "pairs": []}
+    with pytest.raises(TransportError, match="does not validate"):
+        _verify("reply", forged, "contact/solve", None, True)
+    with pytest.raises(TransportError, match="client_id"):
+        _verify("reply", {**hertz_reply, "client_id": "someone-else"}, "contact/solve", "mine", True)
+    busy = {"version": hertz_reply["version"], "code": "busy", "message": "retry later", "path": ""}
+    _verify("error", busy, "contact/solve", "mine", True)
+    with pytest.raises(TransportError, match="client_id"):
+        _verify("error", {**busy, "client_id": "someone-else"}, "contact/solve", "mine", True)
+
+
+def test_tls_options_are_checked_before_connecting(tmp_path):
+    pem = tmp_path / "x.pem"
+    pem.write_text("-")
+    with pytest.raises(ValueError, match="tls/"):
+        client_mod.make_config("tcp/127.0.0.1:7447", {"ca": str(pem)})
+    with pytest.raises(ValueError, match="go together"):
+        client_mod.make_config("tls/127.0.0.1:7447", {"ca": str(pem), "cert": str(pem)})
+    with pytest.raises(ValueError, match="keys"):
+        client_mod.make_config("tls/127.0.0.1:7447", {"certificate": str(pem)})
+    with pytest.raises(FileNotFoundError):
+        client_mod.make_config("tls/127.0.0.1:7447", {"ca": str(tmp_path / "missing.pem")})
+    conf = client_mod.make_config("tls/127.0.0.1:7447", {"ca": str(pem), "cert": str(pem), "key": str(pem)})
+    assert conf.get_json("transport/link/tls/enable_mtls") == "true"

@@ -121,3 +121,13 @@ def test_service_schema_matches_checked_in_files(client, proto_schemas):
     assert set(served) == {"request", "reply", "error"}
     for kind in ("request", "reply", "error"):
         assert served[kind] == proto_schemas[kind], f"contact/schema {kind} differs from proto/{kind}.schema.json"
+
+
+@pytest.mark.parametrize("kind", ["reply", "error"])
+def test_the_packaged_schemas_are_the_checked_in_ones(proto_schemas, kind):
+    """The client checks answers against its own copies (contact_client/schemas/): they must not drift."""
+    import json
+    from importlib import resources
+
+    packaged = json.loads(resources.files("contact_client").joinpath("schemas", f"{kind}.schema.json").read_text())
+    assert packaged == proto_schemas[kind], f"copy proto/{kind}.schema.json to contact_client/schemas/"

@@ -63,6 +63,19 @@ enum Cmd {
         /// Connect endpoint(s), e.g. a zenohd router (repeatable).
         #[arg(long)]
         connect: Vec<String>,
+        /// TLS certificate (PEM) of this process, for tls/ endpoints; with
+        /// --tls-key and --tls-ca the links are mutual TLS.
+        #[arg(long, value_name = "PEM", requires = "tls_key")]
+        tls_cert: Option<PathBuf>,
+        /// Private key (PEM) of --tls-cert.
+        #[arg(long, value_name = "PEM", requires = "tls_cert")]
+        tls_key: Option<PathBuf>,
+        /// CA certificate (PEM) the peers' certificates must be signed by.
+        #[arg(long, value_name = "PEM")]
+        tls_ca: Option<PathBuf>,
+        /// Allow plain tcp/ endpoints that are not loopback (unencrypted, unauthenticated).
+        #[arg(long)]
+        insecure: bool,
         /// Solver threads (default: number of cores).
         #[arg(long)]
         workers: Option<usize>,
@@ -108,6 +121,19 @@ enum Cmd {
         /// Listen endpoint(s) (default tcp/127.0.0.1:7447; repeatable).
         #[arg(long)]
         listen: Vec<String>,
+        /// TLS certificate (PEM) of this process, for tls/ endpoints; with
+        /// --tls-key and --tls-ca the links are mutual TLS.
+        #[arg(long, value_name = "PEM", requires = "tls_key")]
+        tls_cert: Option<PathBuf>,
+        /// Private key (PEM) of --tls-cert.
+        #[arg(long, value_name = "PEM", requires = "tls_cert")]
+        tls_key: Option<PathBuf>,
+        /// CA certificate (PEM) the peers' certificates must be signed by.
+        #[arg(long, value_name = "PEM")]
+        tls_ca: Option<PathBuf>,
+        /// JSON5 file with zenoh's `access_control` block (e.g. deploy/router-acl.json5).
+        #[arg(long, value_name = "FILE")]
+        acl: Option<PathBuf>,
         #[arg(long, value_enum, default_value_t = LogFormat::Text)]
         log_format: LogFormat,
     },
@@ -233,6 +259,10 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
             config,
             listen,
             connect,
+            tls_cert,
+            tls_key,
+            tls_ca,
+            insecure,
             workers,
             queue_limit,
             max_dofs,
@@ -259,6 +289,12 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
                     .max(max_request_bytes),
                 max_solve_time: std::time::Duration::from_secs_f64(max_solve_s),
                 cache_bytes: cache_mb << 20,
+                tls: crate::service::Tls {
+                    cert: tls_cert,
+                    key: tls_key,
+                    ca: tls_ca,
+                },
+                insecure,
                 ..Default::default()
             };
             if let Some(w) = workers {
@@ -286,11 +322,20 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
         Cmd::Router {
             config,
             listen,
+            tls_cert,
+            tls_key,
+            tls_ca,
+            acl,
             log_format,
         } => {
             init_logging(log_format);
+            let tls = crate::service::Tls {
+                cert: tls_cert,
+                key: tls_key,
+                ca: tls_ca,
+            };
             let rt = tokio::runtime::Builder::new_multi_thread().enable_all().build()?;
-            rt.block_on(crate::service::router::run(config, listen))?;
+            rt.block_on(crate::service::router::run(config, listen, tls, acl))?;
             Ok(0)
         }
         Cmd::Bench {

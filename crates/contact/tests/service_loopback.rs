@@ -385,3 +385,26 @@ fn a_burst_of_huge_requests_is_answered_in_bounded_memory() {
     );
     assert!(peak < 1536 << 20, "peak RSS {peak} bytes");
 }
+
+/// Plain TCP off loopback is refused before anything is measured or opened:
+/// the port stays free, the exit is prompt (no start-up calibration) and the
+/// message says why and what to do instead.
+#[test]
+fn serve_refuses_plain_tcp_off_loopback_without_insecure() {
+    let port = free_port();
+    let start = Instant::now();
+    let out = Command::new(env!("CARGO_BIN_EXE_contact"))
+        .args(["serve", "--listen", &format!("tcp/0.0.0.0:{port}")])
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    assert!(start.elapsed() < Duration::from_secs(5), "took {:?}", start.elapsed());
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    for word in [&format!("tcp/0.0.0.0:{port}"), "unauthenticated", "tls/", "--insecure"] {
+        assert!(err.contains(word), "{word:?} missing from: {err}");
+    }
+    assert!(!err.contains("serving"), "{err}");
+    // Nothing bound it: the port is still ours to take.
+    TcpListener::bind(("0.0.0.0", port)).expect("the refused service left the port bound");
+}

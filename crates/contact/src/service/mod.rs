@@ -26,7 +26,7 @@ use std::sync::Arc;
 
 use zenoh::Wait;
 
-pub use config::ServiceConfig;
+pub use config::{ServiceConfig, Tls};
 use health::State;
 
 pub const KEY_SOLVE: &str = "contact/solve";
@@ -37,11 +37,12 @@ pub const KEY_INSTANCES: &str = "contact/instance";
 
 /// Runs the service until ctrl-c (or SIGTERM).
 pub async fn run(cfg: ServiceConfig) -> anyhow::Result<()> {
+    // First, so that a refused configuration stops the process before it measures or opens anything.
+    let zconf = cfg.zenoh_config()?;
     // This machine's factorization speed, before the first deadline needs it
     // (measured again by every factorization; `linalg::rate`).
     let scale = tokio::task::spawn_blocking(contact_core::linalg::rate::calibrate).await?;
     tracing::info!(factorization_scale = scale, "factorization speed calibrated");
-    let zconf = cfg.zenoh_config()?;
     let session = zenoh::open(zconf)
         .await
         .map_err(|e| anyhow::anyhow!("cannot open zenoh session: {e}"))?;
