@@ -163,7 +163,10 @@ pub struct Warning {
     /// displacement over the body's size), `large_contact_zone` (how far the
     /// zone reaches onto the obstacle's curved part, over its radius of
     /// curvature), `gap_linearization` (largest displacement of a contact
-    /// point over the obstacle's radius): each fires when value > limit;
+    /// point over the obstacle's radius), `rolling` (a body held only by
+    /// contact turning under its loads: its rotation times its surface's
+    /// radius of curvature at a contact zone, over the zone's half-width):
+    /// each fires when value > limit;
     /// `coarse_contact_zone` (element edges across a contact zone) fires when
     /// value < limit.
     pub code: String,

@@ -10,12 +10,10 @@
 //! - `contact schema`: writes the JSON Schemas into proto/.
 
 use std::io::{Read, Write};
-use std::path::{Path, PathBuf};
-
-const DEFAULT_BENCH_CSV: &str = "bench_out/bench.csv";
+use std::path::PathBuf;
 
 use anyhow::Context;
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use crate::cli_files;
 use crate::service::ServiceConfig;
@@ -31,6 +29,31 @@ struct Cli {
 enum LogFormat {
     Text,
     Json,
+}
+
+/// The TLS files of `serve` and `router`.
+#[derive(Args)]
+struct TlsArgs {
+    /// TLS certificate (PEM) of this process, for tls/ endpoints; with
+    /// --tls-key and --tls-ca the links are mutual TLS.
+    #[arg(long, value_name = "PEM", requires = "tls_key")]
+    tls_cert: Option<PathBuf>,
+    /// Private key (PEM) of --tls-cert.
+    #[arg(long, value_name = "PEM", requires = "tls_cert")]
+    tls_key: Option<PathBuf>,
+    /// CA certificate (PEM) the peers' certificates must be signed by.
+    #[arg(long, value_name = "PEM")]
+    tls_ca: Option<PathBuf>,
+}
+
+impl From<TlsArgs> for crate::service::Tls {
+    fn from(a: TlsArgs) -> Self {
+        Self {
+            cert: a.tls_cert,
+            key: a.tls_key,
+            ca: a.tls_ca,
+        }
+    }
 }
 
 #[derive(Subcommand)]
@@ -63,16 +86,8 @@ enum Cmd {
         /// Connect endpoint(s), e.g. a zenohd router (repeatable).
         #[arg(long)]
         connect: Vec<String>,
-        /// TLS certificate (PEM) of this process, for tls/ endpoints; with
-        /// --tls-key and --tls-ca the links are mutual TLS.
-        #[arg(long, value_name = "PEM", requires = "tls_key")]
-        tls_cert: Option<PathBuf>,
-        /// Private key (PEM) of --tls-cert.
-        #[arg(long, value_name = "PEM", requires = "tls_cert")]
-        tls_key: Option<PathBuf>,
-        /// CA certificate (PEM) the peers' certificates must be signed by.
-        #[arg(long, value_name = "PEM")]
-        tls_ca: Option<PathBuf>,
+        #[command(flatten)]
+        tls: TlsArgs,
         /// Allow plain tcp/ endpoints that are not loopback (unencrypted, unauthenticated).
         #[arg(long)]
         insecure: bool,
@@ -121,16 +136,8 @@ enum Cmd {
         /// Listen endpoint(s) (default tcp/127.0.0.1:7447; repeatable).
         #[arg(long)]
         listen: Vec<String>,
-        /// TLS certificate (PEM) of this process, for tls/ endpoints; with
-        /// --tls-key and --tls-ca the links are mutual TLS.
-        #[arg(long, value_name = "PEM", requires = "tls_key")]
-        tls_cert: Option<PathBuf>,
-        /// Private key (PEM) of --tls-cert.
-        #[arg(long, value_name = "PEM", requires = "tls_cert")]
-        tls_key: Option<PathBuf>,
-        /// CA certificate (PEM) the peers' certificates must be signed by.
-        #[arg(long, value_name = "PEM")]
-        tls_ca: Option<PathBuf>,
+        #[command(flatten)]
+        tls: TlsArgs,
         /// JSON5 file with zenoh's `access_control` block (e.g. deploy/router-acl.json5).
         #[arg(long, value_name = "FILE")]
         acl: Option<PathBuf>,
@@ -150,7 +157,7 @@ enum Cmd {
         #[arg(long, default_value_t = 1)]
         threads: usize,
         /// CSV output path.
-        #[arg(long, default_value = DEFAULT_BENCH_CSV)]
+        #[arg(long, default_value = crate::cli_bench::DEFAULT_BENCH_CSV)]
         csv: PathBuf,
         /// Runs per row; the median is reported.
         #[arg(long, default_value_t = 1)]
@@ -259,9 +266,7 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
             config,
             listen,
             connect,
-            tls_cert,
-            tls_key,
-            tls_ca,
+            tls,
             insecure,
             workers,
             queue_limit,
@@ -289,11 +294,7 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
                     .max(max_request_bytes),
                 max_solve_time: std::time::Duration::from_secs_f64(max_solve_s),
                 cache_bytes: cache_mb << 20,
-                tls: crate::service::Tls {
-                    cert: tls_cert,
-                    key: tls_key,
-                    ca: tls_ca,
-                },
+                tls: tls.into(),
                 insecure,
                 ..Default::default()
             };
@@ -322,18 +323,12 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
         Cmd::Router {
             config,
             listen,
-            tls_cert,
-            tls_key,
-            tls_ca,
+            tls,
             acl,
             log_format,
         } => {
             init_logging(log_format);
-            let tls = crate::service::Tls {
-                cert: tls_cert,
-                key: tls_key,
-                ca: tls_ca,
-            };
+            let tls = tls.into();
             let rt = tokio::runtime::Builder::new_multi_thread().enable_all().build()?;
             rt.block_on(crate::service::router::run(config, listen, tls, acl))?;
             Ok(0)
@@ -346,110 +341,15 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
             repeat,
             stability,
             convergence,
-        } => {
-            let (header, lines) = if convergence {
-                println!("{}", contact_verify::convergence::Row::table_header());
-                let rows = contact_verify::convergence::run(quick, |r| println!("{}", r.table_line()));
-                println!(
-                    "model floor of disk_on_flat (finite disk against the half-plane formula): about {:.1} % in L2, {:.2} % in the moment half-width",
-                    100.0 * contact_verify::convergence::DISK_FLOOR_L2,
-                    100.0 * contact_verify::convergence::DISK_FLOOR_MOMENT
-                );
-                for line in contact_verify::overkill::summary() {
-                    println!("{line}");
-                }
-                // Time to a tolerance, over the levels the table above ran.
-                let levels = if quick { 3 } else { contact_verify::convergence::LEVELS };
-                println!("\ntime to a tolerance, disk on a flat (error against its overkill table):");
-                println!("{}", contact_verify::tolerance::Row::table_header());
-                let tol = contact_verify::tolerance::run(levels, |r| println!("{}", r.table_line()));
-                let mut text = format!("{}\n", contact_verify::tolerance::Row::HEADER);
-                for r in &tol {
-                    text.push_str(&r.csv());
-                    text.push('\n');
-                }
-                // Beside the convergence CSV.
-                let path = csv.with_file_name("tolerance.csv");
-                std::fs::create_dir_all(path.parent().unwrap_or(Path::new(".")))?;
-                std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))?;
-                println!("wrote {}", path.display());
-                // The estimate against the true error on every kind of scene.
-                println!(
-                    "\nerror estimate against the true error (reference: T6, every element half the scene's own):"
-                );
-                println!("{}", contact_verify::effectivity::Row::table_header());
-                let eff = contact_verify::effectivity::run(&[], |r| println!("{}", r.table_line()));
-                let mut text = format!("{}\n", contact_verify::effectivity::Row::HEADER);
-                for r in &eff {
-                    text.push_str(&r.csv());
-                    text.push('\n');
-                }
-                let path = csv.with_file_name("effectivity.csv");
-                std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))?;
-                println!("wrote {}", path.display());
-                // Friction: the stick zone against Cattaneo–Mindlin.
-                println!(
-                    "\nfriction: stick half-width c of a roller (nu = 0.499) on a rigid floor, then of two identical cylinders (nu = 0.3), mu = {}, pressed then shifted, against Cattaneo-Mindlin:",
-                    contact_verify::friction::MU
-                );
-                println!("{}", contact_verify::friction::Row::table_header());
-                let fr = contact_verify::friction::run(|r| println!("{}", r.table_line()));
-                let mut text = format!("{}\n", contact_verify::friction::Row::HEADER);
-                for r in &fr {
-                    text.push_str(&r.csv());
-                    text.push('\n');
-                }
-                let path = csv.with_file_name("friction_convergence.csv");
-                std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))?;
-                println!("wrote {}", path.display());
-                (
-                    contact_verify::convergence::Row::HEADER,
-                    rows.iter().map(|r| r.csv()).collect::<Vec<_>>(),
-                )
-            } else if stability {
-                println!("{}", contact_verify::stability::Row::table_header());
-                let rows = contact_verify::stability::run(quick, |r| println!("{}", r.table_line()));
-                let unclear = rows.iter().filter(|r| !r.is_clear()).count();
-                println!(
-                    "{} rows, {unclear} neither certified nor refused with a clear status",
-                    rows.len()
-                );
-                (
-                    contact_verify::stability::Row::HEADER,
-                    rows.iter().map(|r| r.csv()).collect::<Vec<_>>(),
-                )
-            } else {
-                println!("{}", contact_verify::bench::Row::table_header());
-                let mode = match (quick, floor) {
-                    (true, _) => contact_verify::bench::Mode::Quick,
-                    (_, true) => contact_verify::bench::Mode::Floor,
-                    _ => contact_verify::bench::Mode::Full,
-                };
-                contact_core::linalg::set_threads(threads);
-                let rows = contact_verify::bench::run(mode, repeat, |r| println!("{}", r.table_line()));
-                (
-                    contact_verify::bench::Row::HEADER,
-                    rows.iter().map(|r| r.csv()).collect(),
-                )
-            };
-            let csv = match (stability, convergence) {
-                (true, _) if csv == Path::new(DEFAULT_BENCH_CSV) => PathBuf::from("bench_out/stability.csv"),
-                (_, true) if csv == Path::new(DEFAULT_BENCH_CSV) => PathBuf::from("bench_out/convergence.csv"),
-                _ => csv,
-            };
-            if let Some(dir) = csv.parent() {
-                std::fs::create_dir_all(dir)?;
-            }
-            let mut text = String::from(header);
-            text.push('\n');
-            for l in &lines {
-                text.push_str(l);
-                text.push('\n');
-            }
-            std::fs::write(&csv, text).with_context(|| format!("writing {}", csv.display()))?;
-            println!("wrote {}", csv.display());
-            Ok(0)
-        }
+        } => crate::cli_bench::run(crate::cli_bench::Bench {
+            quick,
+            floor,
+            threads,
+            csv,
+            repeat,
+            stability,
+            convergence,
+        }),
         Cmd::Schema { out } => {
             std::fs::create_dir_all(&out)?;
             for (name, text) in crate::proto::schema::schemas() {

@@ -11,6 +11,7 @@ pub use contact_proto as proto;
 
 #[cfg(feature = "service")]
 pub mod cli;
+pub mod cli_bench;
 pub mod cli_files;
 pub mod output;
 pub mod parse;

@@ -283,3 +283,57 @@ fn a_free_body_step_out_of_iterations_says_why() {
     req["settings"] = json!({});
     solved(&req);
 }
+
+/// A steel roller (R 20) held only by contact on a plate, pressed by
+/// P = 12.5 × 40 and pushed at its axle (the half disk's flat, through the
+/// centre) by Q = 0.5 μ P: the loads' moment about the contact, Q R = 2 P
+/// (mm), is six times what its zone of half-width 0.33 can carry (P a), so
+/// the linearized roller turns until its pressure centre sits Q R / P aside
+/// and the answer is not Cattaneo–Mindlin's (stick zone −72 %, measured).
+/// The reply must say so: a `rolling` warning at the roller, its value the
+/// roll over the half-width (measured 6.0). Pressed alone (Q = 0), nothing
+/// turns and nothing warns.
+#[test]
+fn a_free_roller_pushed_at_its_axle_is_said_to_roll() {
+    let roller = |q: f64| {
+        json!({
+            "version": "1", "analysis": "plane_strain",
+            "bodies": [
+                {"name": "roller", "material": {"youngs_modulus": 210000.0, "poisson_ratio": 0.3},
+                 "mesh": {"half_disk": {"center": [0.0, 20.0], "radius": 20.0, "facing": "down", "size": 1.25,
+                                        "element": "t3",
+                                        "grading": {"h_min": 0.011, "ratio": 1.1, "extent": 0.66}}},
+                 "tractions": [{"edges": "flat", "pressure": 12.5}, {"edges": "flat", "traction": [q, 0.0]}]},
+                {"name": "plate", "material": {"youngs_modulus": 210000.0, "poisson_ratio": 0.3},
+                 "mesh": {"rectangle": {"corner": [-30.0, -10.0], "width": 60.0, "height": 10.0, "size": 1.0,
+                                        "element": "t3",
+                                        "grading": {"focus": [0, 0], "h_min": 0.0144, "ratio": 1.1, "extent": 0.66}}},
+                 "supports": [{"edges": "bottom", "ux": 0.0, "uy": 0.0}]}
+            ],
+            "contacts": [{"body": "roller", "edges": "arc", "against": {"body": "plate", "edges": "top"},
+                          "friction": {"coefficient": 0.2}}],
+            "load_path": [{"loads": {"/bodies/0/tractions/1": 0.0}}, {"loads": {"/bodies/0/tractions/1": 1.0}}],
+            "settings": {"estimate": false}
+        })
+    };
+    let pushed = common::solve(&roller(1.25)).expect("solved");
+    let w = pushed
+        .warnings
+        .iter()
+        .find(|w| w.code == "rolling")
+        .unwrap_or_else(|| panic!("no rolling warning: {:?}", pushed.warnings));
+    assert_eq!(w.location, "/bodies/0");
+    // The pressure centre moves by Q R / P = 2 against a half-width of 0.33.
+    assert!(w.value > 3.0, "{w:?}");
+    assert!(
+        w.message.contains("roller") && w.message.contains("rotation"),
+        "{}",
+        w.message
+    );
+    let pressed = common::solve(&roller(0.0)).expect("solved");
+    assert!(
+        pressed.warnings.iter().all(|w| w.code != "rolling"),
+        "{:?}",
+        pressed.warnings
+    );
+}

@@ -4,15 +4,12 @@
 //! factor is the same as for K alone (the floor of any direct method).
 
 use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky,
     supernodal::{SupernodalLltRef, SymbolicSupernodalCholesky},
-    CholeskySymbolicParams, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
+    SymbolicCholesky, SymbolicCholeskyRaw,
 };
-use faer::sparse::linalg::{amd, SupernodalThreshold};
 use faer::sparse::SparseColMat;
-use faer::{Conj, Mat, MatMut, Side};
+use faer::{Conj, Mat, MatMut};
 use std::hash::{Hash, Hasher};
 use std::sync::Arc;
 
@@ -82,7 +79,7 @@ impl FactorCost {
     /// from a symbolic analysis alone (for factorizations that faer orders
     /// itself: the full formulation's).
     pub fn predict(a: &SparseColMat<usize, f64>) -> Result<Self, LinalgError> {
-        Ok(Self::of(&symbolic(a)?))
+        Ok(Self::of(&super::symbolic::symbolic(a)?))
     }
 
     /// A numeric factorization does not poll the clock: start it only if it
@@ -139,7 +136,7 @@ pub struct SymbolicFactor {
 impl SymbolicFactor {
     /// Orders `a` (lower triangle) and analyzes the factor's structure.
     pub fn try_new(a: &SparseColMat<usize, f64>) -> Result<Self, LinalgError> {
-        let symbolic = symbolic(a)?;
+        let symbolic = super::symbolic::symbolic(a)?;
         let SymbolicCholeskyRaw::Supernodal(sym) = symbolic.raw() else {
             unreachable!("factorization is forced supernodal")
         };
@@ -374,44 +371,6 @@ fn free_beside(values: Vec<f64>) {
     let _ = std::thread::Builder::new()
         .name("free-factor".into())
         .spawn(move || drop(values));
-}
-
-/// Supernodal symbolic factorization of `a` in AMD order.
-fn symbolic(a: &SparseColMat<usize, f64>) -> Result<SymbolicCholesky<usize>, LinalgError> {
-    let started = std::time::Instant::now();
-    let (fwd, inv) = ordering(a)?;
-    // Neither the ordering nor faer's symbolic factorization after it polls
-    // (measured on T3 grids: 0.55 s then 0.47 s at 1M DOF, 1.07 s then 0.92 s
-    // at 2M): a deadline passed during the ordering stops the solve here, and
-    // so does one the symbolic factorization, about as long, would pass.
-    let took = started.elapsed().as_secs_f64();
-    crate::cancel::check("factorization").map_err(LinalgError::Deadline)?;
-    crate::cancel::check_room("factorization", took).map_err(LinalgError::Deadline)?;
-    let perm = PermRef::new_checked(&fwd, &inv, a.nrows());
-    let params = CholeskySymbolicParams {
-        supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-        ..Default::default()
-    };
-    factorize_symbolic_cholesky(a.symbolic(), Side::Lower, SymmetricOrdering::Custom(perm), params)
-        .map_err(|e| LinalgError::Faer(format!("{e:?}")))
-}
-
-fn ordering(a: &SparseColMat<usize, f64>) -> Result<(Vec<usize>, Vec<usize>), LinalgError> {
-    let n = a.nrows();
-    let sym = a.symbolic();
-    let nnz = sym.compute_nnz();
-    let req = amd::order_maybe_unsorted_scratch::<usize>(n, nnz);
-    let mut mem = MemBuffer::try_new(req).map_err(|_| LinalgError::Faer("out of memory".into()))?;
-    let (mut fwd, mut inv) = (vec![0usize; n], vec![0usize; n]);
-    amd::order_maybe_unsorted(
-        &mut fwd,
-        &mut inv,
-        sym,
-        amd::Control::default(),
-        MemStack::new(&mut mem),
-    )
-    .map_err(|e| LinalgError::Faer(format!("{e:?}")))?;
-    Ok((fwd, inv))
 }
 
 #[cfg(test)]

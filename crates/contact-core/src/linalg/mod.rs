@@ -8,6 +8,7 @@ mod numeric;
 pub mod rate;
 pub mod schur;
 pub mod sparse;
+mod symbolic;
 
 pub use cholesky::{Cholesky, LinalgError};
 

@@ -96,7 +96,8 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
         .filter(|&o| scene.obstacles[o].punch.is_some())
         .map(|o| (o, free_motions::punch_motion(scene, &m.free, &beta, o)))
         .collect();
-    let warnings = validity::check(scene, &m.meshes, &disp, &m.cons, &punch_motions, &pairs);
+    let turns = body_turns(&m.dofs, free.map(|p| (p, beta.as_slice())));
+    let warnings = validity::check(scene, &m.meshes, &disp, &m.cons, &punch_motions, &turns, &pairs);
     let bodies = body_outputs(scene, &m.meshes, &disp);
     // The post stage has no deadline check: its answer is ready.
     let _ = obs.leave(Stage::Post);
@@ -196,6 +197,23 @@ fn punch_results(
                 )
             }),
         });
+    }
+    out
+}
+
+/// Every body held only by contact with its rigid rotation θ (the sum over
+/// its free motions of β times their rotation).
+fn body_turns(dofs: &fem::DofMap, free: Option<(&FreeMotions, &[f64])>) -> Vec<(usize, f64)> {
+    let mut out: Vec<(usize, f64)> = Vec::new();
+    let Some((fm, beta)) = free else { return out };
+    for ((mo, _), a) in fm.motions.iter().zip(beta) {
+        if let Motion::Body { set, dir } = *mo {
+            let rm = &dofs.rigid[set];
+            match out.iter_mut().find(|t| t.0 == rm.body) {
+                Some(t) => t.1 += a * dir[2],
+                None => out.push((rm.body, a * dir[2])),
+            }
+        }
     }
     out
 }

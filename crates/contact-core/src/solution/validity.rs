@@ -50,6 +50,17 @@ pub const MAX_ROTATION: f64 = 0.15;
 pub const MAX_DISPLACEMENT: f64 = 5e-2;
 pub const MAX_ZONE_OVER_RADIUS: f64 = 0.3;
 pub const MAX_CONTACT_MOTION_OVER_RADIUS: f64 = 5e-2;
+/// Largest roll of a curved surface over its zone's half-width a: a body of
+/// radius of curvature ρ at the contact that turns by θ brings material
+/// points θ ρ away into contact, while the linear model keeps every contact
+/// force's lever about the body on the undeformed shape: the moment of the
+/// pressure is misplaced by its normal force times θ ρ, against the P a the
+/// zone can carry at most.
+pub const MAX_ROLL: f64 = 5e-2;
+/// Below this curvature times the zone's half-width (radius of curvature over
+/// 10⁴ half-widths), the surface at the zone is flat: a turning flat face
+/// tilts, as its linearized rotation says.
+const FLAT: f64 = 1e-4;
 /// Fewest element edges across a contact zone: the pressure's L2 error on
 /// Hertz measured 4.4 % with about 5 edges across the zone and 1.2 % with 10
 /// (generated half disk, T3), so below 8 an answer needs the user's eye.
@@ -58,14 +69,16 @@ pub const MIN_ZONE_EDGES: f64 = 8.0;
 const PATCH_OVER_ZONE: f64 = 0.1;
 
 /// `disp[b][n]`: nodal displacements of body b (rigid motions included);
-/// `punch_motions`: (obstacle, (α1, α2, θ)) of every punch; `pairs`: the pairs'
-/// reports (zones and points in the request's units).
+/// `punch_motions`: (obstacle, (α1, α2, θ)) of every punch; `turns`: (body,
+/// θ) of every body held only by contact; `pairs`: the pairs' reports (zones
+/// and points in the request's units).
 pub fn check(
     scene: &Scene,
     meshes: &[Mesh2d],
     disp: &[Vec<[f64; 2]>],
     cons: &ConstraintSet,
     punch_motions: &[(usize, [f64; 3])],
+    turns: &[(usize, f64)],
     pairs: &[PairReport],
 ) -> Vec<Warning> {
     let to_scene = 1.0 / scene.scales.length;
@@ -149,6 +162,28 @@ pub fn check(
                 theta.abs()
             ),
         );
+    }
+    for &(b, theta) in turns {
+        for (p, pair) in scene.pairs.iter().enumerate() {
+            let Some((roll, half)) = rolled(pair, &pairs[p], b, theta, to_scene) else {
+                continue;
+            };
+            let length = scene.scales.length;
+            let name = &scene.bodies[b].name;
+            warn(
+                "rolling",
+                roll / half,
+                MAX_ROLL,
+                scene.bodies[b].path.clone(),
+                format!(
+                    "body '{name}', held only by contact, turns by {:.3e} rad under its loads: its curved surface has rolled its contact by {} along itself, {:.2}× the zone's half-width {}, beyond the {MAX_ROLL} of it up to which the linear model, which takes the contact forces' levers on the undeformed shape, misplaces their moment by under 5 % of what the zone can carry. The loads' moment about the contact exceeds what a zone this wide can carry (its normal force times its half-width): the body rolls, and the zone, pressure and friction of this answer are those of the linearized roll, not of the scene. Hold the body's rotation (a support on it) or apply the load through the contact's line of action",
+                    theta.abs(),
+                    shown(roll * length),
+                    roll / half,
+                    shown(half * length)
+                ),
+            );
+        }
     }
     for (p, pair) in scene.pairs.iter().enumerate() {
         let midsides: HashSet<usize> = meshes[pair.body]
@@ -244,6 +279,50 @@ pub fn check(
     }
     out.extend(coarse);
     out
+}
+
+/// How far body `b`'s contact in `pair` rolls under its rotation `theta`
+/// (nondimensional): (θ times the surface's radius of curvature across the
+/// zone, the zone's half-width), where that surface is curved (`FLAT`); None
+/// without three points in contact.
+fn rolled(pair: &crate::scene::Pair, report: &PairReport, b: usize, theta: f64, to_scene: f64) -> Option<(f64, f64)> {
+    let mut pts: Vec<[f64; 2]> = if pair.body == b {
+        report
+            .points
+            .iter()
+            .filter(|q| q.pressure > 0.0)
+            .map(|q| [q.x, q.y])
+            .collect()
+    } else if matches!(pair.target, Target::Body { body, .. } if body == b) {
+        report
+            .other_points
+            .iter()
+            .flatten()
+            .filter(|q| q.pressure > 0.0)
+            .map(|q| [q.x, q.y])
+            .collect()
+    } else {
+        return None;
+    };
+    if pts.len() < 3 {
+        return None;
+    }
+    for p in pts.iter_mut() {
+        *p = [p[0] * to_scene, p[1] * to_scene];
+    }
+    // Along a surface that is a graph over x, or a vertical face.
+    pts.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+    let (first, middle, last) = (pts[0], pts[pts.len() / 2], pts[pts.len() - 1]);
+    let dist = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
+    let half = 0.5 * dist(first, last);
+    // The circle through the three points: κ = 4 area / (product of sides).
+    let area =
+        0.5 * ((middle[0] - first[0]) * (last[1] - first[1]) - (last[0] - first[0]) * (middle[1] - first[1])).abs();
+    let sides = dist(first, middle) * dist(middle, last) * dist(first, last);
+    if half <= 0.0 || sides <= 0.0 || 4.0 * area / sides * half < FLAT {
+        return None;
+    }
+    Some((theta.abs() * sides / (4.0 * area), half))
 }
 
 /// Element edges across each zone of a pair (`zones_along`): its points in

@@ -1,0 +1,129 @@
+//! `contact bench`: the benchmark, convergence and stability suites of
+//! `contact-verify` run from the command line, their tables printed and
+//! written as CSV.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+
+/// Where the bench's CSV goes unless told (the convergence and stability
+/// suites' defaults sit beside it).
+pub const DEFAULT_BENCH_CSV: &str = "bench_out/bench.csv";
+
+/// The options of `contact bench`.
+pub struct Bench {
+    pub quick: bool,
+    pub floor: bool,
+    pub threads: usize,
+    pub csv: PathBuf,
+    pub repeat: usize,
+    pub stability: bool,
+    pub convergence: bool,
+}
+
+/// Writes a CSV table (header, then one line per row) and says so.
+fn write_csv(path: &Path, header: &str, rows: impl IntoIterator<Item = String>) -> anyhow::Result<()> {
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir)?;
+    }
+    let mut text = format!("{header}\n");
+    for r in rows {
+        text.push_str(&r);
+        text.push('\n');
+    }
+    std::fs::write(path, text).with_context(|| format!("writing {}", path.display()))?;
+    println!("wrote {}", path.display());
+    Ok(())
+}
+
+pub fn run(opts: Bench) -> anyhow::Result<u8> {
+    let Bench {
+        quick,
+        floor,
+        threads,
+        csv,
+        repeat,
+        stability,
+        convergence,
+    } = opts;
+    let (header, lines) = if convergence {
+        println!("{}", contact_verify::convergence::Row::table_header());
+        let rows = contact_verify::convergence::run(quick, |r| println!("{}", r.table_line()));
+        println!(
+            "model floor of disk_on_flat (finite disk against the half-plane formula): about {:.1} % in L2, {:.2} % in the moment half-width",
+            100.0 * contact_verify::convergence::DISK_FLOOR_L2,
+            100.0 * contact_verify::convergence::DISK_FLOOR_MOMENT
+        );
+        for line in contact_verify::overkill::summary() {
+            println!("{line}");
+        }
+        // Time to a tolerance, over the levels the table above ran.
+        let levels = if quick { 3 } else { contact_verify::convergence::LEVELS };
+        println!("\ntime to a tolerance, disk on a flat (error against its overkill table):");
+        println!("{}", contact_verify::tolerance::Row::table_header());
+        let tol = contact_verify::tolerance::run(levels, |r| println!("{}", r.table_line()));
+        // Beside the convergence CSV.
+        write_csv(
+            &csv.with_file_name("tolerance.csv"),
+            contact_verify::tolerance::Row::HEADER,
+            tol.iter().map(|r| r.csv()),
+        )?;
+        // The estimate against the true error on every kind of scene.
+        println!("\nerror estimate against the true error (reference: T6, every element half the scene's own):");
+        println!("{}", contact_verify::effectivity::Row::table_header());
+        let eff = contact_verify::effectivity::run(&[], |r| println!("{}", r.table_line()));
+        write_csv(
+            &csv.with_file_name("effectivity.csv"),
+            contact_verify::effectivity::Row::HEADER,
+            eff.iter().map(|r| r.csv()),
+        )?;
+        // Friction: the stick zone against Cattaneo–Mindlin.
+        println!(
+            "\nfriction: stick half-width c of a roller (nu = 0.499) on a rigid floor, then of two identical cylinders (nu = 0.3), mu = {}, pressed then shifted, against Cattaneo-Mindlin:",
+            contact_verify::friction::MU
+        );
+        println!("{}", contact_verify::friction::Row::table_header());
+        let fr = contact_verify::friction::run(|r| println!("{}", r.table_line()));
+        write_csv(
+            &csv.with_file_name("friction_convergence.csv"),
+            contact_verify::friction::Row::HEADER,
+            fr.iter().map(|r| r.csv()),
+        )?;
+        (
+            contact_verify::convergence::Row::HEADER,
+            rows.iter().map(|r| r.csv()).collect::<Vec<_>>(),
+        )
+    } else if stability {
+        println!("{}", contact_verify::stability::Row::table_header());
+        let rows = contact_verify::stability::run(quick, |r| println!("{}", r.table_line()));
+        let unclear = rows.iter().filter(|r| !r.is_clear()).count();
+        println!(
+            "{} rows, {unclear} neither certified nor refused with a clear status",
+            rows.len()
+        );
+        (
+            contact_verify::stability::Row::HEADER,
+            rows.iter().map(|r| r.csv()).collect::<Vec<_>>(),
+        )
+    } else {
+        println!("{}", contact_verify::bench::Row::table_header());
+        let mode = match (quick, floor) {
+            (true, _) => contact_verify::bench::Mode::Quick,
+            (_, true) => contact_verify::bench::Mode::Floor,
+            _ => contact_verify::bench::Mode::Full,
+        };
+        contact_core::linalg::set_threads(threads);
+        let rows = contact_verify::bench::run(mode, repeat, |r| println!("{}", r.table_line()));
+        (
+            contact_verify::bench::Row::HEADER,
+            rows.iter().map(|r| r.csv()).collect(),
+        )
+    };
+    let csv = match (stability, convergence) {
+        (true, _) if csv == Path::new(DEFAULT_BENCH_CSV) => PathBuf::from("bench_out/stability.csv"),
+        (_, true) if csv == Path::new(DEFAULT_BENCH_CSV) => PathBuf::from("bench_out/convergence.csv"),
+        _ => csv,
+    };
+    write_csv(&csv, header, lines)?;
+    Ok(0)
+}
