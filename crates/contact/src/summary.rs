@@ -161,6 +161,37 @@ pub fn reply(r: &SolveReply) -> String {
                 num(r.fx),
                 num(r.fy)
             );
+            let shear = p
+                .points
+                .iter()
+                .filter_map(|q| q.tangential_traction.map(|t| (t, q)))
+                .max_by(|a, b| a.0.abs().total_cmp(&b.0.abs()));
+            if let Some((t, q)) = shear {
+                // Where the peak sits says whether it is at a slip zone's
+                // edge (as Cattaneo–Mindlin's is) or inside the stick zone;
+                // μp beside it says how close to slipping it is.
+                let state = q.state.map_or(String::new(), |s| {
+                    format!(
+                        ", {}",
+                        serde_json::to_value(s)
+                            .ok()
+                            .and_then(|v| v.as_str().map(String::from))
+                            .unwrap_or_default()
+                    )
+                });
+                let at = if flat {
+                    format!("x = {}", num(q.x))
+                } else {
+                    format!("({}, {})", num(q.x), num(q.y))
+                };
+                let _ = writeln!(
+                    o,
+                    "  shear      peak |t| {} at {at} (t {}, μp {}{state})",
+                    num(t.abs()),
+                    num(t),
+                    num(f.coefficient * q.pressure)
+                );
+            }
         }
     }
     if let Some(rf) = &r.refinement {
