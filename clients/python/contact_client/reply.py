@@ -50,21 +50,25 @@ def _target(pair: dict) -> str:
 
 def _fallback_summary(r: dict) -> str:
     """The summary's main lines for a reply the built-in solver cannot read."""
+    units = r.get("units") or {}
+    length, force, stress = (f" {units[k]}" if units.get(k) else "" for k in ("length", "force", "stress"))
     lines = [f"status       {r.get('status')}", f"method       {r.get('method')} ({r.get('iterations')} iterations)"]
     res = r.get("resultant") or {}
     if res:
-        lines.append(f"contact load fx {_num(res.get('fx', 0.0))}, fy {_num(res.get('fy', 0.0))}, "
-                     f"m {_num(res.get('m', 0.0))} (on the bodies, moment about the origin)")
+        moment = f" {units['force']}·{units['length']}" if units.get("force") and units.get("length") else ""
+        lines.append(f"contact load fx {_num(res.get('fx', 0.0))}{force}, fy {_num(res.get('fy', 0.0))}{force}, "
+                     f"m {_num(res.get('m', 0.0))}{moment} (on the bodies, moment about the origin)")
     for k, p in enumerate(r.get("pairs", [])):
-        zones = " ".join(f"[{_num(a)}, {_num(b)}]" for a, b in p.get("zones", [])) or "none"
+        zones = " ".join(f"[{_num(a)}, {_num(b)}]" for a, b in p.get("zones", []))
+        zones = zones + length if zones else "none"
         pts = p.get("points", [])
         peak = max(pts, key=lambda q: q["pressure"]) if pts else None
-        at = f"{_num(peak['pressure'])} at x = {_num(peak['x'])}" if peak else "-"
+        at = f"{_num(peak['pressure'])}{stress} at x = {_num(peak['x'])}{length}" if peak else "-"
         lines.append(f"pair {k}       body '{p.get('body')}' against {_target(p)}: zones {zones}; peak pressure {at}")
         shear = [q for q in pts if q.get("tangential_traction") is not None]
         if shear:
             q = max(shear, key=lambda q: abs(q["tangential_traction"]))
-            lines.append(f"  shear      peak |t| {_num(abs(q['tangential_traction']))} at x = {_num(q['x'])}")
+            lines.append(f"  shear      peak |t| {_num(abs(q['tangential_traction']))}{stress} at x = {_num(q['x'])}{length}")
     for w in r.get("warnings", []):
         lines.append(f"WARNING      {w.get('code')} at {w.get('location')}: {w.get('message')}")
     for n in r.get("notes", []):

@@ -104,6 +104,21 @@ def test_the_summary_prints_the_peak_shear_and_where(cattaneo, contact_bin):
     assert _peak_shear(_fallback_summary(Reply({**cattaneo, "field_of_a_newer_service": 1}))) == (t, x)
 
 
+def test_the_summary_names_the_units(cattaneo):
+    req = json.loads(EXAMPLE.read_text())
+    req["units"] = {"length": "mm", "force": "N", "stress": "MPa"}
+    req["settings"] = {**req.get("settings", {}), "estimate": False}
+    text = repr(solve_local(req))
+    assert re.search(r"contact load fx \S+ N, fy \S+ N, m \S+ N·mm", text), text
+    assert re.search(r"zones \[\S+, \S+\] mm; peak pressure \S+ MPa at x = \S+ mm", text), text
+    assert re.search(r"shear +peak \|t\| \S+ MPa at x = \S+ mm", text), text
+    assert re.search(r"friction force fx \S+ N", text), text
+    fallback = _fallback_summary(solve_local(req))
+    assert re.search(r"fy \S+ N, m \S+ N·mm", fallback) and re.search(r"peak pressure \S+ MPa at x = \S+ mm", fallback)
+    # Without units, no names: the numbers alone, as before.
+    assert " MPa" not in repr(cattaneo) and " mm" not in repr(cattaneo)
+
+
 def test_plot_pressure_draws_the_shear_panel(cattaneo, tmp_path):
     pytest.importorskip("matplotlib")
     import matplotlib
