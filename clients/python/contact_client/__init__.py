@@ -9,6 +9,7 @@ service over zenoh (``solve``, ``Client(connect)``), with the same replies.
 
 from .client import (
     DEFAULT_CONNECT,
+    STAGES,
     Client,
     ContactError,
     NotSolved,
@@ -19,6 +20,7 @@ from .client import (
     schema,
     solve,
     solve_local,
+    work_fraction,
 )
 from . import scenes
 from .results import plot_pressure, save_vtu, to_numpy
@@ -27,6 +29,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "DEFAULT_CONNECT",
+    "STAGES",
     "Client",
     "ContactError",
     "NotSolved",
@@ -41,4 +44,5 @@ __all__ = [
     "plot_pressure",
     "save_vtu",
     "to_numpy",
+    "work_fraction",
 ]

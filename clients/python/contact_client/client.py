@@ -71,6 +71,7 @@ __all__ = [
     "KEY_SCHEMA",
     "KEY_PROGRESS",
     "STAGES",
+    "work_fraction",
     "Client",
     "ContactError",
     "NotSolved",
@@ -586,8 +587,9 @@ def _decode(payload: zenoh.ZBytes) -> dict:
     return value if isinstance(value, dict) else {"stage": "?", "raw": _payload_text(payload)}
 
 
-#: The stages a solve reports, in order (factorization and condensation are skipped on a cache hit).
-STAGES = ("mesh", "assembly", "factorization", "condensation", "contact_solve", "post")
+#: The stages a solve reports, in order (factorization and condensation are skipped on a cache hit;
+#: ``estimate``, the error estimate's companion solve, runs with ``settings.estimate``, the default).
+STAGES = ("mesh", "assembly", "factorization", "condensation", "contact_solve", "post", "estimate")
 
 
 def work_fraction(msg: dict) -> float | None:
@@ -612,11 +614,16 @@ class _ProgressBar:
 
         self.bar = tqdm(total=100.0, unit="%", desc="solve", bar_format="{desc}: {percentage:3.0f}%|{bar}| "
                         "[{elapsed}<{remaining}{postfix}]")
+        self.stage = None
 
     def __call__(self, msg: dict) -> None:
         stage = msg.get("stage")
-        if stage in STAGES:
-            self.bar.set_description(stage, refresh=False)
+        if stage in STAGES and stage != self.stage:
+            self.stage = stage
+            # set_description would add its own ": " to the format's: "assembly: :".
+            self.bar.set_description_str(stage, refresh=False)
+            # The contact iterations belong to contact_solve, not to the stages after it.
+            self.bar.set_postfix_str("", refresh=False)
         f = work_fraction(msg)
         if f is not None and 100.0 * f > self.bar.n:
             self.bar.update(100.0 * f - self.bar.n)

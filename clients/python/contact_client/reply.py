@@ -17,11 +17,18 @@ from __future__ import annotations
 import json
 from typing import Any
 
-__all__ = ["Reply", "POINT_COLUMNS"]
+__all__ = ["Reply", "POINT_COLUMNS", "FRICTION_COLUMNS"]
 
 #: The columns of :meth:`Reply.points` and :meth:`Reply.to_dataframe`, one row per
-#: candidate point: the pair's index, body and target, then the point's fields.
-POINT_COLUMNS = ("pair", "body", "target", "x", "y", "gap", "pressure", "force", "weight", "node", "nx", "ny")
+#: candidate point: the pair's index, body and target, then the point's fields, and
+#: on a pair with friction its ``tangential_traction``, ``slip`` (in the last load
+#: step) and ``state`` (``"stick"``, ``"slip"`` or ``"open"``).
+POINT_COLUMNS = ("pair", "body", "target", "x", "y", "gap", "pressure", "force", "weight", "node", "nx", "ny",
+                 "tangential_traction", "slip", "state")
+
+#: The friction columns: None in :meth:`Reply.points` on a pair without friction
+#: (NaN in a DataFrame's float columns).
+FRICTION_COLUMNS = ("tangential_traction", "slip", "state")
 
 
 def _num(v: float) -> str:
@@ -43,17 +50,25 @@ def _target(pair: dict) -> str:
 
 def _fallback_summary(r: dict) -> str:
     """The summary's main lines for a reply the built-in solver cannot read."""
+    units = r.get("units") or {}
+    length, force, stress = (f" {units[k]}" if units.get(k) else "" for k in ("length", "force", "stress"))
     lines = [f"status       {r.get('status')}", f"method       {r.get('method')} ({r.get('iterations')} iterations)"]
     res = r.get("resultant") or {}
     if res:
-        lines.append(f"contact load fx {_num(res.get('fx', 0.0))}, fy {_num(res.get('fy', 0.0))}, "
-                     f"m {_num(res.get('m', 0.0))} (on the bodies, moment about the origin)")
+        moment = f" {units['force']}·{units['length']}" if units.get("force") and units.get("length") else ""
+        lines.append(f"contact load fx {_num(res.get('fx', 0.0))}{force}, fy {_num(res.get('fy', 0.0))}{force}, "
+                     f"m {_num(res.get('m', 0.0))}{moment} (on the bodies, moment about the origin)")
     for k, p in enumerate(r.get("pairs", [])):
-        zones = " ".join(f"[{_num(a)}, {_num(b)}]" for a, b in p.get("zones", [])) or "none"
+        zones = " ".join(f"[{_num(a)}, {_num(b)}]" for a, b in p.get("zones", []))
+        zones = zones + length if zones else "none"
         pts = p.get("points", [])
         peak = max(pts, key=lambda q: q["pressure"]) if pts else None
-        at = f"{_num(peak['pressure'])} at x = {_num(peak['x'])}" if peak else "-"
+        at = f"{_num(peak['pressure'])}{stress} at x = {_num(peak['x'])}{length}" if peak else "-"
         lines.append(f"pair {k}       body '{p.get('body')}' against {_target(p)}: zones {zones}; peak pressure {at}")
+        shear = [q for q in pts if q.get("tangential_traction") is not None]
+        if shear:
+            q = max(shear, key=lambda q: abs(q["tangential_traction"]))
+            lines.append(f"  shear      peak |t| {_num(abs(q['tangential_traction']))}{stress} at x = {_num(q['x'])}{length}")
     for w in r.get("warnings", []):
         lines.append(f"WARNING      {w.get('code')} at {w.get('location')}: {w.get('message')}")
     for n in r.get("notes", []):
@@ -115,8 +130,11 @@ class Reply(dict):
         """Every pair's candidate points as columns (plain lists, no dependency):
         ``{"pair": [...], "body": [...], "target": [...], "x": [...], ...}``, one
         entry per point in pair order, columns ``POINT_COLUMNS`` (``target`` is the
-        obstacle, other body or foundation; ``nx``, ``ny`` the row's normal). Units
-        are the request's."""
+        obstacle, other body or foundation; ``nx``, ``ny`` the row's normal). On a
+        pair with friction, ``tangential_traction`` (along the point's tangent,
+        (−ny, nx) unless the reply gives one), ``slip`` (in the last load step,
+        along the same tangent) and ``state`` (``"stick"``, ``"slip"``, ``"open"``);
+        None on a pair without. Units are the request's."""
         cols: dict[str, list] = {c: [] for c in POINT_COLUMNS}
         for k, pair in enumerate(self.get("pairs", [])):
             target = pair.get("obstacle") or pair.get("against") or pair.get("foundation")
@@ -129,17 +147,24 @@ class Reply(dict):
                 nx, ny = q.get("normal", (float("nan"), float("nan")))
                 cols["nx"].append(nx)
                 cols["ny"].append(ny)
+                for c in FRICTION_COLUMNS:
+                    cols[c].append(q.get(c))
         return cols
 
     def to_dataframe(self):
         """The pressure points as a pandas DataFrame, columns ``POINT_COLUMNS``
-        (see :meth:`points`). Needs pandas, which the package does not install."""
+        (see :meth:`points`; ``tangential_traction`` and ``slip`` are NaN, ``state``
+        None, on a pair without friction). Needs pandas, which the package does not
+        install."""
         try:
             import pandas as pd
         except ImportError as e:
             raise ImportError("Reply.to_dataframe needs pandas (`pip install pandas`); "
                               "Reply.points() gives the same table as plain lists") from e
-        return pd.DataFrame(self.points(), columns=list(POINT_COLUMNS))
+        df = pd.DataFrame(self.points(), columns=list(POINT_COLUMNS))
+        for c in ("tangential_traction", "slip"):
+            df[c] = df[c].astype(float)
+        return df
 
     def __reduce__(self) -> tuple[Any, ...]:
         return (Reply, (dict(self), self.request))

@@ -112,7 +112,7 @@ def accuracy(
     estimated error within 0.6 of ``zone_edge`` [length] (the estimate is a best
     guess, not a bound: the margin keeps the true error under the target), or a
     limit stops the rounds (the reply then warns ``tolerance_not_reached``). Pass as ``settings={"accuracy": accuracy(...)}``
-    or the ``accuracy=`` of the scene builders."""
+    or the ``accuracy=`` of ``scenes.hertz_cylinder`` and ``scenes.ball_on_flat``."""
     if pressure_l2 is None and zone_edge is None:
         raise ValueError("accuracy needs pressure_l2 and/or zone_edge")
     return _given(pressure_l2=pressure_l2, zone_edge=zone_edge, max_rounds=max_rounds, max_dofs=max_dofs)
@@ -253,7 +253,15 @@ def polyline(points: list[list[float]]) -> dict:
 
 def profile(psi: dict, reference: list[float] = (0.0, 0.0)) -> dict:
     """Punch surface y = y_r + psi(x - x_r), rigid above; ``psi`` is e.g.
-    ``{"flat": {"half_width": 1.0}}`` or ``{"circle": {"radius": 8.0}}``."""
+    ``{"flat": {"half_width": 1.0}}`` or ``{"circle": {"radius": 8.0}}``.
+
+    ``{"flat": {"half_width": b, "corner_radius": r}}`` rounds the flat's corners
+    (r = 0, the default: sharp; 0 <= r <= b, else ``invalid_geometry``). ``half_width``
+    includes the rounding: the face is flat (psi = 0) for |t| <= b - r, then each
+    corner is a quarter circle of radius r (centre at t = ±(b - r), r above the flat)
+    rising to psi = r at |t| = b, where it turns vertical and the punch ends. The gap
+    is the distance to these arcs themselves; a zone running more than 0.3 r onto an
+    arc is warned about (``large_contact_zone``)."""
     return {"profile": {"reference": list(reference), "psi": psi}}
 
 

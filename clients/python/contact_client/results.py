@@ -25,6 +25,13 @@ def to_numpy(result: dict) -> list[dict]:
     arc length [s_start, s_end] along the pair's edge set, in its order) with ``zone_ends``
     (k x 2 x 2: the [x, y] of each zone's start and end), and ``body`` plus the pair's target
     (``obstacle``, ``against`` or ``foundation``) as strings. Units are the request's.
+
+    Friction: ``tangential_traction`` and ``slip`` (float arrays: the tangential traction on
+    the body and the slip in the last load step, along the point's tangent) and ``state``
+    (str array: ``"stick"``, ``"slip"`` or ``"open"``), ``mu``, the pair's coefficient, and
+    ``stick_zones`` (k x 2 x-intervals of the runs that stick). On a pair without friction
+    the float arrays and ``mu`` are NaN, ``state`` holds ``""`` and ``stick_zones`` is empty,
+    so the keys are the same on every reply.
     """
     import numpy as np
 
@@ -33,6 +40,12 @@ def to_numpy(result: dict) -> list[dict]:
         pts = pair["points"]
         d: dict[str, Any] = {k: np.array([p[k] for p in pts], dtype=float) for k in _POINT_FIELDS}
         d["node"] = np.array([p["node"] for p in pts], dtype=int)
+        for k in ("tangential_traction", "slip"):
+            d[k] = np.array([math.nan if p.get(k) is None else p[k] for p in pts], dtype=float)
+        d["state"] = np.array([p.get("state") or "" for p in pts], dtype=str)
+        fr = pair.get("friction") or {}
+        d["mu"] = fr.get("coefficient", math.nan)
+        d["stick_zones"] = np.array(fr.get("stick_zones", []), dtype=float).reshape(-1, 2)
         d["normal"] = np.array([p["normal"] for p in pts], dtype=float).reshape(-1, 2)
         d["zones"] = np.array(pair["zones"], dtype=float).reshape(-1, 2)
         along = pair.get("zones_along", [])
@@ -140,9 +153,16 @@ def _zoom_range(zones: list, x_min: float, x_max: float) -> tuple[float, float] 
 
 def plot_pressure(result: dict, ax=None, reference: str | bool | Callable[[float], float] | None = None,
                   request: dict | None = None, pairs: list[int] | None = None, title: str | None = None,
-                  zoom: bool | None = None):
+                  zoom: bool | None = None, shear: bool | None = None, shear_ax=None):
     """Contact pressure against x (r in axisymmetry), one line per pair, contact zones
-    shaded; returns the axes.
+    shaded; returns the axes (of the pressure).
+
+    With friction on a pair drawn (``shear`` None, the default; ``shear=False`` leaves
+    it out), a second panel below, sharing x, draws each such pair's tangential
+    traction t with the Coulomb bounds ±μp dashed and its stick zones shaded: t
+    touches a bound where the contact slips. It is ``ax.figure.axes[1]`` of the figure
+    made here; with ``ax`` given, the panel is drawn on ``shear_ax`` if given, and not
+    drawn otherwise.
 
     ``request`` is the request the reply answers; a :class:`~contact_client.Reply`
     from ``solve_local`` or ``Client.solve`` knows its own (``result.request``), so it
@@ -184,11 +204,17 @@ def plot_pressure(result: dict, ax=None, reference: str | bool | Callable[[float
     if request is None:
         request = getattr(result, "request", None)
     axi = (request or {}).get("analysis") == "axisymmetric"
-    if ax is None:
-        _, ax = plt.subplots(figsize=(6.4, 4.0))
-    ax.axhline(0.0, color="0.6", lw=0.5)
     arrays = to_numpy(result)
     chosen = list(range(len(arrays)) if pairs is None else pairs)
+    frictional = [k for k in chosen if not math.isnan(arrays[k]["mu"])]
+    if shear is None:
+        shear = bool(frictional)
+    if ax is None:
+        if shear:
+            _, (ax, shear_ax) = plt.subplots(2, 1, sharex=True, figsize=(6.4, 6.4), height_ratios=[3, 2])
+        else:
+            _, ax = plt.subplots(figsize=(6.4, 4.0))
+    ax.axhline(0.0, color="0.6", lw=0.5)
     xs_all, zones_all = [], []
     for k in chosen:
         d = arrays[k]
@@ -229,14 +255,45 @@ def plot_pressure(result: dict, ax=None, reference: str | bool | Callable[[float
             raise ValueError(f"reference must be True, 'closed_form', 'hertz' or a callable p(x), not {reference!r}")
         x = np.linspace(shown[0], shown[1], 801)
         ax.plot(x, [p_ref(v) for v in x], "k--", lw=1, label=label)
-    ax.set_xlabel(("r" if axi else "x") + _unit(result, "length"))
+    xlabel = ("r" if axi else "x") + _unit(result, "length")
+    ax.set_xlabel(xlabel)
     ax.set_ylabel("contact pressure" + _unit(result, "stress"))
+    if shear and shear_ax is not None:
+        _shear_panel(shear_ax, arrays, frictional, shown if zoom else None)
+        ax.set_xlabel("")
+        shear_ax.set_xlabel(xlabel)
+        shear_ax.set_ylabel("tangential traction" + _unit(result, "stress"))
     if title is None:
         title = (request or {}).get("description") or "Contact pressure"
     ax.set_title(textwrap.fill(title, 80), fontsize=8)
     # Zoomed, the upper corners are beside the zone, where the pressure is zero.
     ax.legend(fontsize=8, loc="upper right" if zoom else "best")
     return ax
+
+
+def _shear_panel(ax, arrays: list[dict], frictional: list[int], window: tuple[float, float] | None) -> None:
+    """The tangential traction of every pair in ``frictional`` with ±μp and its stick
+    zones, on ``ax`` (x limited to ``window`` when zoomed)."""
+    import numpy as np
+
+    ax.axhline(0.0, color="0.6", lw=0.5)
+    tops = []
+    for n, k in enumerate(frictional):
+        d = arrays[k]
+        order = np.argsort(d["x"])
+        x, t, bound = d["x"][order], d["tangential_traction"][order], d["mu"] * d["pressure"][order]
+        marker = "osD^v"[k % 5]
+        ax.plot(x, t, "-", marker=marker, ms=3.5, lw=1, markerfacecolor="none", label=f"t, pair {k}")
+        ax.plot(x, bound, "k--", lw=0.8, label=f"±μp (μ = {d['mu']:g})" if n == 0 else None)
+        ax.plot(x, -bound, "k--", lw=0.8)
+        for i, (x0, x1) in enumerate(d["stick_zones"]):
+            ax.axvspan(x0, x1, color="tab:blue", alpha=0.08, lw=0, label="stick" if i == 0 and n == 0 else None)
+        inside = (x >= window[0]) & (x <= window[1]) if window else np.ones_like(x, dtype=bool)
+        tops.append(np.nanmax(np.abs(np.concatenate([t[inside], bound[inside]])), initial=0.0))
+    top = max(tops, default=0.0)
+    if top > 0.0:
+        ax.set_ylim(-1.15 * top, 1.7 * top)  # room for the legend above +μp
+    ax.legend(fontsize=8, loc="upper right", ncol=3)
 
 
 def save_vtu(result: dict, path: str) -> None:

@@ -233,8 +233,11 @@ def punch_on_block(
     with its bottom fixed, plane strain. The punch's reference point is the
     origin; its profile is one of the protocol's ``psi`` forms, e.g.
     ``{"flat": {"half_width": 1.0}}`` (Sadowsky) or ``{"circle": {"radius": 8.0}}``
-    (Hertz). ``moment`` (counter-clockwise, about the origin) and
-    ``horizontal_load`` act on the punch; all three motions are load-controlled.
+    (Hertz); ``{"flat": {"half_width": 1.0, "corner_radius": 0.3}}`` rounds the flat's
+    corners within the half-width (flat over |x| <= 0.7, see ``request.profile``), and
+    the pressure stays bounded where the zone ends on the rounding. ``moment``
+    (counter-clockwise, about the origin) and ``horizontal_load`` act on the punch;
+    all three motions are load-controlled.
     The mesh is uniform at ``h_min`` within ``extent`` of the origin (cover the
     contact zone) and graded by 1.1 up to size 1 elsewhere.
 
@@ -695,6 +698,7 @@ def ball_on_flat(
     method: str = "auto",
     *,
     load: float | None = None,
+    accuracy: dict | None = None,
 ) -> dict:
     """An elastic ball on a rigid flat (proto/examples/axisymmetric_ball_on_flat.json).
 
@@ -706,7 +710,8 @@ def ball_on_flat(
     rigid motion). The mesh is ``h_min`` within ``extent`` of the contact point,
     graded by 1.1 up to ``radius`` / 8. Reference: ``hertz_sphere_reference`` with
     P = resultant.fy (``load`` under load control); the contact zone is [0, a] on
-    the section.
+    the section. ``accuracy`` (``request.accuracy(pressure_l2=...)``) refines until
+    the reply's error estimate meets it.
     """
     mesh = rq.quarter_disk([0.0, radius], radius, "down", radius / 8.0, element, rq.grading(h_min, 1.1, extent))
     held, how = _held_by_contact("flat", radius, approach, load, 0.04, axisymmetric=True)
@@ -716,6 +721,7 @@ def ball_on_flat(
         contacts=[rq.contact("ball", "arc", obstacle="floor")],
         analysis="axisymmetric",
         method=method,
+        settings=None if accuracy is None else {"accuracy": accuracy},
         description=f"elastic ball R={radius} {how} onto a rigid flat (axisymmetric)",
     )
 

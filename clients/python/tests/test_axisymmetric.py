@@ -82,3 +82,29 @@ def test_press_fit_pushed_out_slides_at_mu_times_the_fit_force():
     assert abs(force - mu * normal) <= 1e-12 * mu * normal
     lame = lame_press_fit_pressure(1.0, 2.0, 0.001, 200.0) * 2 * math.pi * 0.999 * 1.0
     assert abs(force / (mu * lame) - 1) < 0.015
+
+
+def _hertz_l2(reply: dict, a: float, p0: float) -> float:
+    """Relative L2 error of the nodal pressure over [0, a] against Hertz, weighted by
+    the ring's tributary area (weight times r)."""
+    pts = [q for q in reply["pairs"][0]["points"] if q["x"] < a]
+    err = sum(q["weight"] * q["x"] * (q["pressure"] - hertz_pressure(q["x"], a, p0)) ** 2 for q in pts)
+    ref = sum(q["weight"] * q["x"] * hertz_pressure(q["x"], a, p0) ** 2 for q in pts)
+    return math.sqrt(err / ref)
+
+
+def test_ball_on_flat_takes_an_accuracy_and_meets_it():
+    # ball_on_flat(accuracy=) raised TypeError though request.accuracy's docstring
+    # sends users to the builders' accuracy=. Under load control P = 2 exactly, so
+    # Hertz's a and p0 are known before the solve: the default mesh is 1.3 % off in
+    # L2 (above a 1 % target), the refined answer 0.4 % (measured).
+    from contact_client import request as rq
+
+    a, p0 = hertz_sphere_reference(2.0, 10.0, 200.0, 0.3)
+    plain = solve_local(ball_on_flat(load=2.0))
+    assert _hertz_l2(plain, a, p0) > 0.01
+    req = ball_on_flat(load=2.0, accuracy=rq.accuracy(pressure_l2=0.01))
+    assert req["settings"] == {"accuracy": {"pressure_l2": 0.01}}
+    reply = solve_local(req)
+    assert reply["refinement"]["reached"] and len(reply["refinement"]["rounds"]) >= 2
+    assert _hertz_l2(reply, a, p0) < 0.01

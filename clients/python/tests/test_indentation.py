@@ -41,3 +41,27 @@ def test_moment_out_of_range_is_refused(client):
     assert moment["value"] == 20.0
     assert abs(moment["min"] + 10.0) < 1e-7 and abs(moment["max"] - 10.0) < 1e-7
     assert client.health()["solves_served"] >= 1  # still up
+
+
+def test_a_rounded_punch_keeps_its_rounding_within_half_width():
+    # request.profile's and the README's description of corner_radius: the flat is
+    # |x| <= half_width - corner_radius (0.7), the quarter circles reach to half_width
+    # (1.0). Under a light load the zone ends on the rounding, and the pressure there
+    # stays bounded: halving h moves the peak by 0.3 % (measured 18.55 -> 18.60),
+    # where the sharp punch's corner peak grows like h^(-1/2) (29.3 -> 41.4, 1.41).
+    from contact_client import ContactError, solve_local
+
+    def peak(corner_radius: float, h: float) -> tuple[float, list]:
+        req = scenes.punch_on_block({"flat": {"half_width": 1.0, "corner_radius": corner_radius}}, load=10.0,
+                                    h_min=h)
+        pair = solve_local(req)["pairs"][0]
+        return max(q["pressure"] for q in pair["points"]), pair["zones"]
+
+    (rounded, zones), (finer, _) = peak(0.3, 0.02), peak(0.3, 0.01)
+    assert len(zones) == 1 and 0.7 < zones[0][1] < 1.0 and zones[0][0] == pytest.approx(-zones[0][1])
+    assert finer == pytest.approx(rounded, rel=0.01)
+    sharp, finer_sharp = peak(0.0, 0.02)[0], peak(0.0, 0.01)[0]
+    assert finer_sharp / sharp > 1.3
+    with pytest.raises(ContactError) as e:
+        solve_local(scenes.punch_on_block({"flat": {"half_width": 1.0, "corner_radius": 1.2}}, load=10.0))
+    assert e.value.code == "invalid_geometry" and e.value.path.endswith("flat/corner_radius")

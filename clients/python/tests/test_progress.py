@@ -29,7 +29,8 @@ def test_a_large_solve_reports_its_stages_in_order(client):
     work = [work_fraction(m) for m in seen]
     assert all(w is not None for w in work) and work == sorted(work), work
     at = {m["stage"]: work_fraction(m) for m in reversed(seen)}  # first report of each stage
-    assert at["condensation"] - at["factorization"] > 0.5, at
+    # Of the solve's own stages (the estimate, planned after them, begins where they end).
+    assert (at["condensation"] - at["factorization"]) / at["estimate"] > 0.5, at
     revised = [m for m in seen if m["stage"] == "factorization"][-1]  # after the symbolic analysis
     assert 0.5 < revised["total"] / r["timings"]["total"] < 2.0
 
@@ -82,3 +83,42 @@ def test_an_in_process_progress_bar_and_a_failing_callback():
     with pytest.raises(RuntimeError, match="a callback that fails"):
         solve_local(req, progress=broken)
     assert len(calls) == 1
+
+
+def test_the_bar_reads_the_stage_once_then_the_percentage():
+    pytest.importorskip("tqdm")
+    from contact_client.client import _ProgressBar
+
+    bar = _ProgressBar()
+    try:
+        bar({"stage": "contact_solve", "done": 6.0, "total": 10.0, "iteration": 3, "residual": 1e-3})
+        assert str(bar.bar).startswith("contact_solve:  60%|") and "iteration=3" in str(bar.bar)
+        bar({"stage": "post", "done": 7.0, "total": 10.0})
+        line = str(bar.bar)
+        # Was "post: :  70%", the iteration of the stage before still shown.
+        assert line.startswith("post:  70%|") and ": :" not in line and "iteration" not in line, line
+    finally:
+        bar.close()
+
+
+def test_the_estimate_is_a_stage_of_its_own_share():
+    from contact_client import STAGES as exported, solve_local, work_fraction as exported_fraction
+
+    assert exported == STAGES and exported_fraction is work_fraction
+    req = scenes.hertz_cylinder(h_min=0.02)
+    seen: list[dict] = []
+    solve_local(req, progress=seen.append)
+    stages = [m["stage"] for m in seen]
+    assert stages[-1] == "estimate" and stages.count("estimate") >= 1
+    # The estimate's companion is planned at half the solve's time (its upper bound,
+    # adapt::ESTIMATE_SHARE): the bar enters it at 2/3, not at the end of post (was 99 %).
+    entered = next(m for m in seen if m["stage"] == "estimate")
+    assert work_fraction(entered) == pytest.approx(1.0 / 1.5, rel=1e-12)
+    during = [work_fraction(m) for m in seen if m["stage"] == "estimate"]
+    assert during == sorted(during) and during[-1] <= 1.0, during
+    # Without an estimate the plan has no share for it, and no stage.
+    seen.clear()
+    solve_local(req | {"settings": {"estimate": False}}, progress=seen.append)
+    order = [s for i, s in enumerate(m["stage"] for m in seen) if i == 0 or seen[i - 1]["stage"] != s]
+    assert order == list(STAGES[:-1]), order
+    assert work_fraction(seen[-1]) < 1.0

@@ -9,6 +9,7 @@
 //! previous sink back on drop, also when unwinding.
 
 use std::cell::RefCell;
+use std::rc::Rc;
 use std::time::Instant;
 
 /// One report: the stage being run, and within `contact_solve` the iteration
@@ -43,6 +44,13 @@ pub const STAGES: [&str; 6] = [
     "post",
 ];
 
+/// The stage after `STAGES` when the reply's error is estimated: the
+/// companion solve (`adapt::estimate`), whose own stages move the bar across
+/// this one's share of the plan (`Sink::nested`). Without it the bar sat at
+/// the end of `post` for the whole companion solve, up to five times the
+/// solve's own time on a given mesh.
+pub const ESTIMATE: &str = "estimate";
+
 struct Installed {
     sink: Box<dyn FnMut(&Progress)>,
     start: Instant,
@@ -58,6 +66,8 @@ struct Installed {
     /// When the sink was last told.
     told: Instant,
     round: Option<usize>,
+    /// Predicted seconds of the `ESTIMATE` stage over those of `plan`.
+    estimate_share: f64,
 }
 
 /// Contact iterations a solve is expected to take (the Hertz scenes take 7 to
@@ -65,7 +75,25 @@ struct Installed {
 const EXPECTED_ITERATIONS: f64 = 12.0;
 
 impl Installed {
+    fn new(sink: Box<dyn FnMut(&Progress)>) -> Self {
+        Self {
+            sink,
+            start: Instant::now(),
+            stage: "",
+            plan: [0.0; 6],
+            iterations: 0,
+            credit: 0.0,
+            base: 0.0,
+            told: Instant::now(),
+            round: None,
+            estimate_share: 0.0,
+        }
+    }
+
     fn done(&self) -> f64 {
+        if self.stage == ESTIMATE {
+            return self.plan.iter().sum::<f64>() + self.credit;
+        }
         let k = STAGES.iter().position(|s| *s == self.stage).unwrap_or(0);
         let before: f64 = self.plan[..k].iter().sum();
         let within = if self.stage == "contact_solve" {
@@ -74,6 +102,32 @@ impl Installed {
             0.0
         };
         before + within + self.credit
+    }
+
+    /// Predicted seconds of the current stage.
+    fn current(&self) -> f64 {
+        if self.stage == ESTIMATE {
+            return self.estimate_share * self.plan.iter().sum::<f64>();
+        }
+        self.plan[STAGES.iter().position(|s| *s == self.stage).unwrap_or(0)]
+    }
+
+    fn total(&self) -> f64 {
+        (1.0 + self.estimate_share) * self.plan.iter().sum::<f64>()
+    }
+
+    fn tell(&mut self, iteration: Option<usize>, residual: Option<f64>) {
+        self.told = Instant::now();
+        let p = Progress {
+            stage: self.stage,
+            iteration,
+            residual,
+            elapsed: self.start.elapsed().as_secs_f64(),
+            done: self.done(),
+            total: self.total(),
+            round: self.round,
+        };
+        (self.sink)(&p);
     }
 }
 
@@ -85,30 +139,55 @@ thread_local! {
 #[must_use = "the sink is removed when the guard is dropped"]
 pub struct Sink {
     previous: Option<Installed>,
+    /// `nested`: the sink it reports to, put back on drop.
+    outer: Option<Rc<RefCell<Option<Installed>>>>,
 }
 
 impl Sink {
     pub fn install(sink: impl FnMut(&Progress) + 'static) -> Self {
-        let new = Installed {
-            sink: Box::new(sink),
-            start: Instant::now(),
-            stage: "",
-            plan: [0.0; 6],
-            iterations: 0,
-            credit: 0.0,
-            base: 0.0,
-            told: Instant::now(),
-            round: None,
-        };
         Self {
-            previous: SINK.with(|s| s.replace(Some(new))),
+            previous: SINK.with(|s| s.replace(Some(Installed::new(Box::new(sink))))),
+            outer: None,
+        }
+    }
+
+    /// While alive, a solve run inside the current one (the error estimate's
+    /// companion) moves the current sink's bar across its current stage by
+    /// the inner solve's own fraction done, told at most every
+    /// `WITHIN_EVERY_S`: the inner stages would restart the bar.
+    pub fn nested() -> Self {
+        let Some(outer) = SINK.with(|s| s.try_borrow_mut().ok().and_then(|mut slot| slot.take())) else {
+            return Self::install(|_| {});
+        };
+        let shared = Rc::new(RefCell::new(Some(outer)));
+        let to = shared.clone();
+        let inner = Installed::new(Box::new(move |p: &Progress| {
+            if p.total <= 0.0 {
+                return;
+            }
+            let Ok(mut slot) = to.try_borrow_mut() else { return };
+            let Some(o) = slot.as_mut() else { return };
+            // Forward only: the inner plan's revision (its factorization's
+            // cost once analysed) can lower its fraction done.
+            o.credit = o.credit.max((p.done / p.total).clamp(0.0, 1.0) * o.current());
+            if o.told.elapsed().as_secs_f64() >= WITHIN_EVERY_S {
+                o.tell(None, None);
+            }
+        }));
+        SINK.with(|s| *s.borrow_mut() = Some(inner));
+        Self {
+            previous: None,
+            outer: Some(shared),
         }
     }
 }
 
 impl Drop for Sink {
     fn drop(&mut self) {
-        let previous = self.previous.take();
+        let previous = match self.outer.take() {
+            Some(shared) => shared.borrow_mut().take(),
+            None => self.previous.take(),
+        };
         SINK.with(|s| *s.borrow_mut() = previous);
     }
 }
@@ -124,20 +203,10 @@ fn emit(stage: Option<&'static str>, iteration: Option<usize>, residual: Option<
                 i.credit = 0.0;
                 i.base = 0.0;
             }
-            i.told = Instant::now();
             if let Some(k) = iteration {
                 i.iterations = k;
             }
-            let p = Progress {
-                stage: i.stage,
-                iteration,
-                residual,
-                elapsed: i.start.elapsed().as_secs_f64(),
-                done: i.done(),
-                total: i.plan.iter().sum(),
-                round: i.round,
-            };
-            (i.sink)(&p);
+            i.tell(iteration, residual);
         }
     });
 }
@@ -145,6 +214,12 @@ fn emit(stage: Option<&'static str>, iteration: Option<usize>, residual: Option<
 /// The predicted seconds of every stage (in `STAGES` order), replacing any plan.
 pub fn plan(seconds: [f64; 6]) {
     with_installed(|i| i.plan = seconds);
+}
+
+/// The solve will end with the `ESTIMATE` stage, predicted to take `share`
+/// of the planned stages' time (kept when the plan is replaced).
+pub fn expect_estimate(share: f64) {
+    with_installed(|i| i.estimate_share = share.max(0.0));
 }
 
 /// A better prediction of one stage, once the solve knows more (the
@@ -178,8 +253,7 @@ pub fn within(fraction: f64) {
     let due = SINK.with(|s| {
         let Ok(mut slot) = s.try_borrow_mut() else { return false };
         let Some(i) = slot.as_mut() else { return false };
-        let k = STAGES.iter().position(|s| *s == i.stage).unwrap_or(0);
-        i.credit = i.base + fraction.clamp(0.0, 1.0) * (i.plan[k] - i.base).max(0.0);
+        i.credit = i.base + fraction.clamp(0.0, 1.0) * (i.current() - i.base).max(0.0);
         i.told.elapsed().as_secs_f64() >= WITHIN_EVERY_S
     });
     if due {
@@ -256,5 +330,44 @@ mod tests {
         within(0.5);
         // mesh + assembly (2) + the credit (2) + half of the remaining 8.
         assert_eq!(*seen.lock().unwrap(), vec![2.0, 8.0]);
+    }
+
+    /// The estimate's companion solve moves the caller's bar across the
+    /// estimate's share by its own fraction done, under the stage name
+    /// `estimate`, instead of restarting it; the caller's sink is back after.
+    #[test]
+    fn a_nested_solve_moves_the_bar_across_the_estimate() {
+        let seen = Arc::new(Mutex::new(Vec::new()));
+        let s = seen.clone();
+        let _g = Sink::install(move |p| s.lock().unwrap().push((p.stage, p.done, p.total)));
+        plan([1.0; 6]);
+        expect_estimate(0.5);
+        stage("post");
+        stage(ESTIMATE);
+        {
+            let _inner = Sink::nested();
+            plan([1.0, 0.0, 0.0, 0.0, 0.0, 1.0]);
+            stage("mesh");
+            std::thread::sleep(std::time::Duration::from_millis(260));
+            stage("post");
+            // A revision that lowers the companion's fraction done (1 of 4)
+            // does not move the bar back.
+            std::thread::sleep(std::time::Duration::from_millis(260));
+            revise("post", 3.0);
+            report();
+        }
+        report();
+        // 6 planned seconds and half of them again for the estimate (9); the
+        // companion half done is half the estimate's 3.
+        assert_eq!(
+            *seen.lock().unwrap(),
+            vec![
+                ("post", 5.0, 9.0),
+                (ESTIMATE, 6.0, 9.0),
+                (ESTIMATE, 7.5, 9.0),
+                (ESTIMATE, 7.5, 9.0),
+                (ESTIMATE, 7.5, 9.0)
+            ]
+        );
     }
 }

@@ -44,6 +44,9 @@ pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
     // of their own: they bypass the service's operator cache (which would
     // keep operators no later request asks for).
     let uncached = |s: &Scene| solve_steps(s, limits, None);
+    if scene.settings.estimate || scene.settings.accuracy.is_some() {
+        crate::progress::expect_estimate(crate::adapt::estimate_share(scene));
+    }
     if let Some(target) = scene.settings.accuracy {
         return crate::adapt::refine(scene, target, &uncached);
     }

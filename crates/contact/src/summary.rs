@@ -19,8 +19,24 @@ fn num(v: f64) -> String {
     }
 }
 
+/// ` name` of a unit the request named, else nothing: the numbers are in
+/// the request's units either way, and a name read beside them saves a
+/// reader from looking the request up.
+fn unit(name: Option<&String>) -> String {
+    name.map_or(String::new(), |n| format!(" {n}"))
+}
+
 pub fn reply(r: &SolveReply) -> String {
     let mut o = String::new();
+    let units = r.units.as_ref();
+    let length = unit(units.and_then(|u| u.length.as_ref()));
+    let force = unit(units.and_then(|u| u.force.as_ref()));
+    let stress = unit(units.and_then(|u| u.stress.as_ref()));
+    // A moment is a force times a length; named only when both are.
+    let moment = match units.map(|u| (&u.force, &u.length)) {
+        Some((Some(f), Some(l))) => format!(" {f}·{l}"),
+        _ => String::new(),
+    };
     let status = match r.status {
         SolveStatus::Solved => "solved",
         SolveStatus::MaxIterations => "NOT SOLVED: iteration cap reached (see the certificate)",
@@ -35,7 +51,7 @@ pub fn reply(r: &SolveReply) -> String {
     );
     let _ = writeln!(
         o,
-        "contact load fx {}, fy {}, m {} (on the bodies, moment about the origin)",
+        "contact load fx {}{force}, fy {}{force}, m {}{moment} (on the bodies, moment about the origin)",
         num(r.resultant.fx),
         num(r.resultant.fy),
         num(r.resultant.m)
@@ -84,10 +100,10 @@ pub fn reply(r: &SolveReply) -> String {
             if zones.is_empty() {
                 "none".to_string()
             } else {
-                zones.join(" ")
+                format!("{}{length}", zones.join(" "))
             },
-            peak.map_or("-".into(), |q| num(q.pressure)),
-            peak.map_or(String::new(), |q| format!(" at x = {}", num(q.x)))
+            peak.map_or("-".into(), |q| format!("{}{stress}", num(q.pressure))),
+            peak.map_or(String::new(), |q| format!(" at x = {}{length}", num(q.x)))
         );
         let ends: Vec<String> = p
             .zones_along
@@ -95,7 +111,7 @@ pub fn reply(r: &SolveReply) -> String {
             .filter(|z| z.uncertainty.iter().any(|u| *u > 0.0))
             .map(|z| {
                 format!(
-                    "({}, {}) ±{}, ({}, {}) ±{}",
+                    "({}, {}) ±{}, ({}, {}) ±{}{length}",
                     num(z.start[0]),
                     num(z.start[1]),
                     num(z.uncertainty[0]),
@@ -154,13 +170,44 @@ pub fn reply(r: &SolveReply) -> String {
             let r = &f.tangential_resultant;
             let _ = writeln!(
                 o,
-                "  friction   μ {}: stick {}; slip {}; friction force fx {}, fy {}",
+                "  friction   μ {}: stick {}; slip {}; friction force fx {}{force}, fy {}{force}",
                 num(f.coefficient),
                 runs(&f.stick_runs),
                 runs(&f.slip_runs),
                 num(r.fx),
                 num(r.fy)
             );
+            let shear = p
+                .points
+                .iter()
+                .filter_map(|q| q.tangential_traction.map(|t| (t, q)))
+                .max_by(|a, b| a.0.abs().total_cmp(&b.0.abs()));
+            if let Some((t, q)) = shear {
+                // Where the peak sits says whether it is at a slip zone's
+                // edge (as Cattaneo–Mindlin's is) or inside the stick zone;
+                // μp beside it says how close to slipping it is.
+                let state = q.state.map_or(String::new(), |s| {
+                    format!(
+                        ", {}",
+                        serde_json::to_value(s)
+                            .ok()
+                            .and_then(|v| v.as_str().map(String::from))
+                            .unwrap_or_default()
+                    )
+                });
+                let at = if flat {
+                    format!("x = {}{length}", num(q.x))
+                } else {
+                    format!("({}, {}){length}", num(q.x), num(q.y))
+                };
+                let _ = writeln!(
+                    o,
+                    "  shear      peak |t| {}{stress} at {at} (t {}, μp {}{state})",
+                    num(t.abs()),
+                    num(t),
+                    num(f.coefficient * q.pressure)
+                );
+            }
         }
     }
     if let Some(rf) = &r.refinement {
@@ -180,7 +227,7 @@ pub fn reply(r: &SolveReply) -> String {
     for pu in &r.punches {
         let _ = writeln!(
             o,
-            "punch        '{}': alpha1 {}, alpha2 {}, theta {}; loads p1 {}, p2 {}, m {}",
+            "punch        '{}': alpha1 {}{length}, alpha2 {}{length}, theta {} rad; loads p1 {}{force}, p2 {}{force}, m {}{moment}",
             pu.name,
             num(pu.alpha1),
             num(pu.alpha2),
@@ -194,7 +241,7 @@ pub fn reply(r: &SolveReply) -> String {
         let w = f.w.iter().fold(0.0f64, |a, v| a.max(*v));
         let _ = writeln!(
             o,
-            "foundation   '{}' ({}): load {}, largest deflection {}",
+            "foundation   '{}' ({}): load {}{force}, largest deflection {}{length}",
             f.name,
             f.model,
             num(f.load),

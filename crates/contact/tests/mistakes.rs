@@ -192,6 +192,11 @@ fn each_warning_fires_only_where_its_assumption_fails() {
     let z = heavy.pairs[0].zones[0];
     let reach = (z[1].abs().max(z[0].abs()) - 0.7) / 0.3;
     assert!((w.value - reach).abs() < 1e-9, "{w:?} against {reach}");
+    // The gap is the distance to the rounding itself (`Psi::Flat`'s arcs), no
+    // parabola: the message names the turn of the surface the zone reached.
+    assert!(!w.message.contains("parabolic"), "{}", w.message);
+    let turned = format!("turned by {:.1}°", reach.min(1.0).asin().to_degrees());
+    assert!(w.message.contains(&turned), "{turned} not in {}", w.message);
 
     // Every warning says what it measured, in words.
     for w in deep.warnings.iter().chain(&vee.warnings).chain(&heavy.warnings) {

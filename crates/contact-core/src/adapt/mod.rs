@@ -87,6 +87,17 @@ pub fn estimate(scene: &Scene, report: &mut Report, solve: &Solver) {
     estimate_with(scene, report, solve);
 }
 
+/// The estimate's companion solve over the solve's own time, for the
+/// progress plan: at most `ESTIMATE_SHARE` for a coarser companion, the
+/// growth of four times the unknowns for a given mesh's finer one.
+pub fn estimate_share(scene: &Scene) -> f64 {
+    if given(scene) {
+        (RATIO * RATIO).powf(TIME_GROWTH)
+    } else {
+        ESTIMATE_SHARE
+    }
+}
+
 /// Whether a body of the scene has a given (inline or Gmsh) mesh, which
 /// cannot be coarsened.
 fn given(scene: &Scene) -> bool {
@@ -125,8 +136,10 @@ fn estimate_with(scene: &Scene, report: &mut Report, solve: &Solver) -> Option<(
             )));
         }
         let companion = resized(scene, [ratio; 3], None).expect("a companion of its kind");
-        // The companion's progress would restart the caller's bar.
-        let _mute = crate::progress::Sink::install(|_| {});
+        // The companion's own stages would restart the caller's bar: they
+        // move it across the estimate's share instead.
+        crate::progress::stage(crate::progress::ESTIMATE);
+        let _nested = crate::progress::Sink::nested();
         match solve(&companion) {
             Ok(c) if c.status == Status::Solved && c.pairs.len() == report.pairs.len() => {
                 for (f, cp) in report.pairs.iter_mut().zip(&c.pairs) {

@@ -14,8 +14,9 @@
 //!   of their distance to the centre of rotation;
 //! - displacement 5e-2 of the body's size: equilibrium is written on the
 //!   undeformed shape;
-//! - contact half-width 0.3 of a curved obstacle's radius: the Hertz-type gap
-//!   x²/2R is off by (a/R)²/4 ≈ 2 % there;
+//! - contact half-width 0.3 of a curved obstacle's radius: the obstacle's
+//!   surface there has turned by 17°, and the body's pressed onto it as much
+//!   (the gap itself is the distance to the true surface, linearized);
 //! - contact motion across the obstacle, relative to it (a punch carries its
 //!   surface along), 5e-2 of its local radius of curvature: the linearized
 //!   distance d + ∇d·u errs by |u_t|²/2R, 2.5 % of u_t.
@@ -234,8 +235,10 @@ pub fn check(
             MAX_ZONE_OVER_RADIUS,
             pair.path.clone(),
             format!(
-                "the contact zone reaches {:.3} of the obstacle's radius of curvature onto its curved part, beyond the {MAX_ZONE_OVER_RADIUS} up to which the parabolic gap x²/2R is within 2 %",
-                onto / radius
+                "the contact zone reaches {:.3} of the obstacle's radius of curvature onto its curved part, where the obstacle's surface has turned by {:.1}°, beyond the {MAX_ZONE_OVER_RADIUS} ({:.1}°) the model is meant for: the gap is the distance to the obstacle's true surface, linearized in the displacement, but the body's surface pressed onto it turns as much, a rotation the small-rotation theory follows only approximately, and half-space closed forms (Hertz) no longer describe the scene",
+                onto / radius,
+                (onto / radius).min(1.0).asin().to_degrees(),
+                MAX_ZONE_OVER_RADIUS.asin().to_degrees()
             ),
         );
         // The linearized distance errs by u_t²/2R, u_t the point's motion
