@@ -87,7 +87,7 @@ fn a_block_pushed_below_mu_p_is_held_by_friction() {
 fn a_block_pushed_beyond_mu_p_is_refused() {
     let expect_range = |e: &contact::proto::ErrorReply, q: f64| {
         assert_eq!(e.code, ErrorCode::IncompatibleLoads, "{e:?}");
-        assert_eq!(e.path, "/bodies/0/tractions", "{e:?}");
+        assert_eq!(e.path, "/bodies/0/tractions/1", "{e:?}");
         let loads = &e.details.as_ref().expect("details").loads;
         let b = loads
             .iter()

@@ -41,9 +41,9 @@ fn a_forgotten_support_is_named_with_the_motion_it_leaves_free() {
     let mut lower_free = example("two_bodies_cylinders.json");
     lower_free["bodies"][1]["supports"] = json!([]);
     for (req, path, body) in [
-        (&none, "/bodies/0/supports", "'block'"),
+        (&none, "/bodies/0", "'block'"),
         (&ux_only, "/bodies/0/supports", "'block'"),
-        (&lower_free, "/bodies/1/supports", "'lower'"),
+        (&lower_free, "/bodies/1", "'lower'"),
     ] {
         let message = refused(req, ErrorCode::NoSupport, path);
         assert!(
@@ -255,7 +255,7 @@ fn a_body_pulled_off_its_support_is_told_its_load_in_its_units() {
     let e = solve(&req).expect_err("refused");
     assert_eq!(
         (e.code, e.path.as_str()),
-        (ErrorCode::IncompatibleLoads, "/bodies/0/tractions"),
+        (ErrorCode::IncompatibleLoads, "/bodies/0/tractions/0"),
         "{e:?}"
     );
     let bound = &e.details.as_ref().expect("details").loads[0];
@@ -266,4 +266,68 @@ fn a_body_pulled_off_its_support_is_told_its_load_in_its_units() {
         "{}",
         e.message
     );
+}
+
+/// A refusal's path resolves in the request and names a load it has. The
+/// inline block held only by its floor (no `supports` key) with its weight
+/// as its only load was refused at `/bodies/0/tractions`, which the request
+/// does not have: tilted sideways (the floor's normals cannot carry F_x) and
+/// pulled up alike. Now the path is the load doing most work on the motion
+/// contact cannot hold (`/bodies/0/body_force`; a traction outweighing it,
+/// `/bodies/0/tractions/0`), every `details.loads` path resolves too, and a
+/// body with no load and no supports is told `no_support` at the body.
+#[test]
+fn a_refusal_points_at_a_load_the_request_has() {
+    let held_by_floor = |body_force: [f64; 2], pull: Option<f64>| {
+        let mut req = example("signorini_inline_block_on_vee.json");
+        let body = req["bodies"][0].as_object_mut().unwrap();
+        body.remove("supports");
+        body.insert("body_force".into(), json!(body_force));
+        if let Some(t) = pull {
+            body.insert("tractions".into(), json!([{"edges": "top", "traction": [0.0, t]}]));
+        }
+        req
+    };
+    let resolves = |req: &Value, e: &contact::proto::ErrorReply| {
+        assert!(
+            req.pointer(&e.path).is_some(),
+            "{} is not in the request: {e:?}",
+            e.path
+        );
+        for b in e.details.iter().flat_map(|d| &d.loads) {
+            assert!(
+                req.pointer(&b.path).is_some(),
+                "{} is not in the request: {e:?}",
+                b.path
+            );
+        }
+    };
+    // Weight tilted sideways, pulled up by it, pulled up by a traction of 5
+    // on the top (10 in all) against a weight of 2 × 1 = 2.
+    for (req, code, path) in [
+        (
+            held_by_floor([1.0, -1.0], None),
+            ErrorCode::IncompatibleLoads,
+            "/bodies/0/body_force",
+        ),
+        (
+            held_by_floor([0.0, 1.0], None),
+            ErrorCode::IncompatibleLoads,
+            "/bodies/0/body_force",
+        ),
+        (
+            held_by_floor([0.0, -1.0], Some(5.0)),
+            ErrorCode::IncompatibleLoads,
+            "/bodies/0/tractions/0",
+        ),
+        (held_by_floor([0.0, 0.0], None), ErrorCode::NoSupport, "/bodies/0"),
+    ] {
+        let e = solve(&req).expect_err("refused");
+        assert_eq!((e.code, e.path.as_str()), (code, path), "{e:?}");
+        resolves(&req, &e);
+    }
+    // The bound of the body pulled up by its weight is that weight, 2 along +y.
+    let e = solve(&held_by_floor([0.0, 1.0], None)).expect_err("refused");
+    let bound = &e.details.as_ref().expect("details").loads[0];
+    assert!((bound.value - 2.0).abs() < 1e-9, "{bound:?}");
 }

@@ -20,6 +20,7 @@ use faer::Mat;
 use super::{fichera, ConstraintSet};
 use crate::error::LoadBound;
 use crate::error::{CoreError, InvalidKind};
+use crate::fem::loads::{self, Located};
 use crate::fem::rigid_modes::{self, Kind, RigidModes};
 use crate::fem::DofMap;
 use crate::linalg::dense::sym_eigen_small;
@@ -68,6 +69,11 @@ pub struct FreeMotions {
     /// over a body's nodes (|P| for a punch): a scale of its equilibrium
     /// beside the contact forces (empty without friction).
     pub load_scale: Vec<f64>,
+    /// Per rigid set (`dofs.rigid`), each load of its body with its
+    /// resultant (Fx, Fy, M about the set's centre): a refusal names the one
+    /// doing most work on the motion, a load the request has (`body_force`
+    /// alone left `/tractions` pointing at nothing).
+    pub body_loads: Vec<Vec<(String, [f64; 3])>>,
 }
 
 impl FreeMotions {
@@ -139,11 +145,31 @@ impl FreeMotions {
         cons: &ConstraintSet,
         dofs: &DofMap,
         meshes: &[Mesh2d],
+        points: &[Vec<Located>],
         external: &[f64],
     ) -> Result<Self, CoreError> {
         let (punch_free, c_punch) = cons.punch_block(scene);
+        let body_loads: Vec<Vec<(String, [f64; 3])>> = dofs
+            .rigid
+            .iter()
+            .map(|rm| {
+                let body = &scene.bodies[rm.body];
+                loads::resultants(scene, rm.body, &meshes[rm.body], &points[rm.body], rm.center)
+                    .into_iter()
+                    .map(|(src, r)| (src.path(body), r))
+                    .collect()
+            })
+            .collect();
         if scene.has_friction() {
-            return Ok(Self::frictional(&punch_free, c_punch, cons, dofs, meshes, external));
+            return Ok(Self::frictional(
+                &punch_free,
+                c_punch,
+                cons,
+                dofs,
+                meshes,
+                external,
+                body_loads,
+            ));
         }
         let m = cons.len();
         let mut motions: Vec<(Motion, f64)> = punch_free
@@ -166,7 +192,7 @@ impl FreeMotions {
         let mut notes = Vec::new();
         let mut unresisted = Vec::new();
         for (set, rm) in dofs.rigid.iter().enumerate() {
-            let resisted = body_directions(scene, cons, dofs, rm, &meshes[rm.body], external)?;
+            let resisted = body_directions(scene, cons, dofs, rm, &meshes[rm.body], external, &body_loads[set])?;
             for d in resisted {
                 match d {
                     Direction::Resisted { dir, col, load, scale } => {
@@ -198,7 +224,7 @@ impl FreeMotions {
             if motions[k].1.abs() > 1e-12 * load_scale[k] && motions[k].1 != 0.0 {
                 let (mo, load) = motions[k];
                 let bound = LoadBound {
-                    path: motion_path(scene, dofs, mo),
+                    path: motion_path(scene, dofs, &body_loads, mo),
                     value: load_value(scene, mo, load),
                     min: Some(0.0),
                     max: Some(0.0),
@@ -254,7 +280,7 @@ impl FreeMotions {
                     let names: Vec<String> = (0..n).filter(|&i| dir[i] != 0.0).map(describe).collect();
                     return Err(CoreError::invalid(
                         InvalidKind::IncompatibleLoads,
-                        motion_path(scene, dofs, motions[live[0]].0),
+                        motion_path(scene, dofs, &body_loads, motions[live[0]].0),
                         format!(
                             "the {} can move together without moving any contact candidate along its normal, and their loads do work on that motion: contact cannot balance them",
                             names.join(" and ")
@@ -298,6 +324,7 @@ impl FreeMotions {
             unresisted,
             friction: Vec::new(),
             load_scale: Vec::new(),
+            body_loads,
         };
         fm.check_compatibility(scene, dofs, false)?;
         fm.check_held(scene, dofs)?;
@@ -320,6 +347,7 @@ impl FreeMotions {
         dofs: &DofMap,
         meshes: &[Mesh2d],
         external: &[f64],
+        body_loads: Vec<Vec<(String, [f64; 3])>>,
     ) -> Self {
         let mut motions: Vec<(Motion, f64)> = punch_free
             .iter()
@@ -370,6 +398,7 @@ impl FreeMotions {
             unresisted: Vec::new(),
             friction: Vec::new(),
             load_scale,
+            body_loads,
         }
     }
 
@@ -444,6 +473,7 @@ impl FreeMotions {
             unresisted: Vec::new(),
             friction: Vec::new(),
             load_scale: Vec::new(),
+            body_loads: self.body_loads.clone(),
         };
         with_cone.check_compatibility(scene, dofs, true)?;
         Ok(undetermined)
@@ -484,7 +514,7 @@ impl FreeMotions {
                         }
                     }
                     let body = &scene.bodies[dofs.rigid[set].body];
-                    path.get_or_insert_with(|| format!("{}/supports", body.path));
+                    path.get_or_insert_with(|| body.supports_path());
                     parts.push(format!(
                         "{} of body '{}'",
                         dofs.rigid[set].describe(dir, scene.scales.length(1.0)),
@@ -532,7 +562,7 @@ impl FreeMotions {
                 let (min, max) = load_range(scene, mo, r.min, r.max);
                 let (min, max) = (snap(min), snap(max));
                 let b = LoadBound {
-                    path: motion_path(scene, dofs, mo),
+                    path: motion_path(scene, dofs, &self.body_loads, mo),
                     value,
                     min,
                     max,
@@ -565,7 +595,7 @@ impl FreeMotions {
             .iter()
             .max_by(|a, b| a.0.total_cmp(&b.0))
             .map(|(_, b)| b.path.clone())
-            .unwrap_or_else(|| motion_path(scene, dofs, self.motions[first].0));
+            .unwrap_or_else(|| motion_path(scene, dofs, &self.body_loads, self.motions[first].0));
         let what: Vec<String> =
             self.motions
                 .iter()
@@ -701,16 +731,29 @@ fn outside(value: f64, min: Option<f64>, max: Option<f64>) -> f64 {
     }
 }
 
-fn motion_path(scene: &Scene, dofs: &DofMap, mo: Motion) -> String {
+/// The JSON pointer of a motion's load: a punch's load component, or the
+/// load of the body doing most work on the motion (the body when none does).
+fn motion_path(scene: &Scene, dofs: &DofMap, body_loads: &[Vec<(String, [f64; 3])>], mo: Motion) -> String {
     match mo {
         Motion::Punch { obstacle, component } => {
             format!("/obstacles/{obstacle}/punch/{}/load", COMPONENT[component])
         }
-        Motion::Body { set, .. } => {
-            let b = &scene.bodies[dofs.rigid[set].body];
-            format!("{}/tractions", b.path)
+        Motion::Body { set, dir } => {
+            heaviest(&body_loads[set], dir).unwrap_or_else(|| scene.bodies[dofs.rigid[set].body].path.clone())
         }
     }
+}
+
+/// The path of the load with the largest |work| on the rigid motion `dir`
+/// = (ux, uy, rotation about the centre its resultants are taken about):
+/// Fx ux + Fy uy + M θ. None when no load works on it.
+fn heaviest(loads: &[(String, [f64; 3])], dir: [f64; 3]) -> Option<String> {
+    loads
+        .iter()
+        .map(|(path, r)| (path, (r[0] * dir[0] + r[1] * dir[1] + r[2] * dir[2]).abs()))
+        .filter(|(_, w)| *w > 0.0)
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(path, _)| path.clone())
 }
 
 /// Prescribed or solved amplitude of every punch component: (α1, α2, θ).
@@ -766,6 +809,7 @@ fn body_directions(
     rm: &RigidModes,
     mesh: &Mesh2d,
     external: &[f64],
+    loads: &[(String, [f64; 3])],
 ) -> Result<Vec<Direction>, CoreError> {
     let r = rm.basis.len();
     let m = cons.len();
@@ -835,7 +879,7 @@ fn body_directions(
         if load.abs() > 1e-12 * scale && load != 0.0 {
             return Err(CoreError::invalid(
                 InvalidKind::IncompatibleLoads,
-                format!("{}/tractions", body.path),
+                heaviest(loads, dir).unwrap_or_else(|| body.path.clone()),
                 format!(
                     "contact does not resist the {words} of body '{}' (held only by contact): no contact normal moves with it (beyond the discretization's {:.0e} of its motion), so contact cannot carry the loads' work on it; balance the loads on the body or support it",
                     body.name, WEAK_LEVER
