@@ -264,7 +264,8 @@ fn a_tall_block_tips_before_it_slides() {
 
 /// A step that runs out of iterations is not a silent answer: with one
 /// iteration allowed the block's step ends `max_iterations`, and the reply
-/// says that its loads pass the check with the friction cone (so the
+/// says that its loads pass the check with the friction cone and that the
+/// step's normal forces leave friction enough to carry them (so the
 /// iteration fell short, not the loads) and what to change; with the
 /// default allowance the same request is solved.
 #[test]
@@ -276,10 +277,51 @@ fn a_free_body_step_out_of_iterations_says_why() {
     assert!(
         r.notes
             .iter()
-            .any(|n| n.contains("body 'block'") && n.contains("max_iterations") && n.contains("equilibrium exists")),
+            .any(|n| n.contains("body 'block'") && n.contains("max_iterations") && n.contains("friction enough")),
         "{:?}",
         r.notes
     );
     req["settings"] = json!({});
     solved(&req);
+}
+
+/// The check of the loads with the friction cone sees loads, not the normal
+/// force a prescribed displacement makes: the block pressed down by uy =
+/// −0.001 on its top (P ≈ 2.28, from the reply) and pushed by Q = 1 =
+/// 1.46 μP passes it, and its step runs out of iterations. Its note said
+/// "an equilibrium exists"; now it checks the cone against the step's own
+/// normal forces and says the block most likely slides, with |Q| / (μ P)
+/// as the ratio (a flat floor: every point's cone gives μ λ along x), to
+/// 1e-3. Below μP (Q = 0.2) the same block solves.
+#[test]
+fn a_block_pressed_by_a_displacement_and_pushed_beyond_mu_p_is_not_said_to_hold() {
+    let pressed = |q: f64| {
+        let mut r = block("t3", 0.0, 0.0, Some(MU));
+        r["bodies"][0]["supports"] = json!([{"edges": "top", "uy": -0.001}]);
+        r["bodies"][0]["tractions"] = json!([{"edges": "top", "traction": [0.5 * q, 0.0]}]);
+        r
+    };
+    let r = solve(&pressed(1.0)).expect("answered");
+    assert_eq!(r.status, SolveStatus::MaxIterations, "{:?}", r.notes);
+    let note = r
+        .notes
+        .iter()
+        .find(|n| n.contains("'block'"))
+        .expect("a note on the block");
+    assert!(!note.contains("equilibrium exists"), "{note}");
+    assert!(
+        note.contains("most likely slides") && note.contains("translation in x"),
+        "{note}"
+    );
+    let words: Vec<&str> = note.split_whitespace().collect();
+    let at = words.iter().position(|w| *w == "times").expect("a ratio");
+    let ratio: f64 = words[at - 1].parse().expect("a number");
+    let expected = 1.0 / (MU * r.resultant.fy.abs());
+    assert!(
+        (ratio - expected).abs() <= 1e-3 * expected,
+        "{ratio} against {expected}"
+    );
+    assert!(expected > 1.4, "{expected}");
+    let held = solved(&pressed(0.2));
+    assert_eq!(held.status, SolveStatus::Solved);
 }
