@@ -331,3 +331,38 @@ fn a_refusal_points_at_a_load_the_request_has() {
     let bound = &e.details.as_ref().expect("details").loads[0];
     assert!((bound.value - 2.0).abs() < 1e-9, "{bound:?}");
 }
+
+/// A plate left without supports under a roller pressed onto it (P = 12.5 ×
+/// 40 = 500, the roller held in x) was refused `incompatible_loads` at the
+/// roller's tractions, in a sentence of four motions that never said the
+/// plate had no support. Now it is `no_support` at the plate, naming its
+/// translation in y (which moves with the roller without opening any
+/// contact) and a support that stops it on an edge set away from the
+/// contact; with that support added the request solves and the plate
+/// carries the roller's 500.
+#[test]
+fn a_forgotten_plate_support_names_the_plate_and_the_support() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/plate_support_forgotten_under_loaded_roller.json"
+    );
+    let mut req: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let message = refused(&req, ErrorCode::NoSupport, "/bodies/1");
+    assert!(req.pointer("/bodies/1").is_some());
+    for words in [
+        "body 'plate'",
+        "translation in y",
+        "body 'roller'",
+        r#"{"edges": "bottom", "uy": 0}"#,
+    ] {
+        assert!(message.contains(words), "{words}: {message}");
+    }
+    req["bodies"][1]["supports"] = json!([{"edges": "bottom", "uy": 0.0}]);
+    let r = solved(&req);
+    assert_kkt(&r, 1e-8);
+    assert!(
+        (r.resultant.fy.abs() - 500.0).abs() <= 1e-6 * 500.0,
+        "{:?}",
+        r.resultant
+    );
+}

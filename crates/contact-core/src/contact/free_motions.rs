@@ -264,19 +264,37 @@ impl FreeMotions {
         let v = if null.is_empty() {
             Mat::<f64>::from_fn(n, l, |i, j| if i == live[j] { 1.0 } else { 0.0 })
         } else {
-            for &e in &null {
-                // The eigenvector is accurate to about ε / (eigenvalue gap):
-                // components at that level are round-off, not part of the motion.
-                let biggest = (0..l).map(|a| vecs[(a, e)].abs()).fold(0.0, f64::max);
-                let dir: Vec<f64> = (0..n)
-                    .map(|i| live.iter().position(|&k| k == i).map_or(0.0, |a| vecs[(a, e)]))
-                    .map(|v| if v.abs() <= 1e-9 * biggest { 0.0 } else { v })
-                    .enumerate()
-                    .map(|(i, v)| if v == 0.0 { 0.0 } else { v / norms[i] })
-                    .collect();
-                let work: f64 = (0..n).map(|i| dir[i] * motions[i].1).sum();
-                let scale: f64 = (0..n).map(|i| (dir[i] * load_scale[i]).abs()).sum();
-                if work.abs() > 1e-12 * scale && work != 0.0 {
+            // Each null combination, its loads' work and the scale of that work.
+            let combos: Vec<(Vec<f64>, f64, f64)> = null
+                .iter()
+                .map(|&e| {
+                    // The eigenvector is accurate to about ε / (eigenvalue gap):
+                    // components at that level are round-off, not part of the motion.
+                    let biggest = (0..l).map(|a| vecs[(a, e)].abs()).fold(0.0, f64::max);
+                    let dir: Vec<f64> = (0..n)
+                        .map(|i| live.iter().position(|&k| k == i).map_or(0.0, |a| vecs[(a, e)]))
+                        .map(|v| if v.abs() <= 1e-9 * biggest { 0.0 } else { v })
+                        .enumerate()
+                        .map(|(i, v)| if v == 0.0 { 0.0 } else { v / norms[i] })
+                        .collect();
+                    let work: f64 = (0..n).map(|i| dir[i] * motions[i].1).sum();
+                    let scale: f64 = (0..n).map(|i| (dir[i] * load_scale[i]).abs()).sum();
+                    (dir, work, scale)
+                })
+                .collect();
+            let loaded = |w: f64, scale: f64| w.abs() > 1e-12 * scale && w != 0.0;
+            if combos.iter().any(|c| loaded(c.1, c.2)) {
+                // The combination the loads push along, Σ work_e dir_e: the
+                // eigenvectors are any basis of the null space (on a roller
+                // over an unsupported plate, a turn of both about the contact),
+                // this is the motion the loads make (the two sinking together).
+                let pushed: Vec<f64> = (0..n).map(|i| combos.iter().map(|c| c.1 * c.0[i]).sum()).collect();
+                if let Some(e) = carried_body(scene, dofs, meshes, &motions, &load_scale, &pushed) {
+                    return Err(e);
+                }
+            }
+            for (dir, work, scale) in combos {
+                if loaded(work, scale) {
                     let names: Vec<String> = (0..n).filter(|&i| dir[i] != 0.0).map(describe).collect();
                     return Err(CoreError::invalid(
                         InvalidKind::IncompatibleLoads,
@@ -637,6 +655,92 @@ impl FreeMotions {
         )
         .with_loads(loads))
     }
+}
+
+/// A body the loads of others push along with them: in a combination `dir`
+/// of free motions that moves no candidate and that the loads work on, a
+/// body held by nothing but contact whose own loads do no work on its part
+/// (one without supports first), refused `no_support` with its part of the
+/// motion and a support that stops it. A plate left unsupported under a
+/// roller pressed onto it was refused `incompatible_loads` at the roller's
+/// tractions, in a sentence of four motions that never said the plate had
+/// no support.
+fn carried_body(
+    scene: &Scene,
+    dofs: &DofMap,
+    meshes: &[Mesh2d],
+    motions: &[(Motion, f64)],
+    load_scale: &[f64],
+    dir: &[f64],
+) -> Option<CoreError> {
+    let mut sets: Vec<usize> = motions
+        .iter()
+        .zip(dir)
+        .filter_map(|((mo, _), &c)| match mo {
+            Motion::Body { set, .. } if c != 0.0 => Some(*set),
+            _ => None,
+        })
+        .collect();
+    sets.dedup();
+    let part = |set: usize| {
+        let (mut d, mut work, mut scale) = ([0.0; 3], 0.0, 0.0);
+        for (i, (mo, load)) in motions.iter().enumerate() {
+            if let Motion::Body { set: s, dir: b } = mo {
+                if *s == set {
+                    (0..3).for_each(|q| d[q] += dir[i] * b[q]);
+                    work += dir[i] * load;
+                    scale += (dir[i] * load_scale[i]).abs();
+                }
+            }
+        }
+        (d, work.abs() <= 1e-12 * scale)
+    };
+    let carried: Vec<(usize, [f64; 3])> = sets
+        .iter()
+        .map(|&s| (s, part(s)))
+        .filter(|(_, (_, unloaded))| *unloaded)
+        .map(|(s, (d, _))| (s, d))
+        .collect();
+    let &(set, d) = carried
+        .iter()
+        .find(|(s, _)| scene.bodies[dofs.rigid[*s].body].supports.is_empty())
+        .or(carried.first())?;
+    let rm = &dofs.rigid[set];
+    let (b, body) = (rm.body, &scene.bodies[rm.body]);
+    let words = rm.describe(d, scene.scales.length(1.0));
+    let others: Vec<String> = sets
+        .iter()
+        .filter(|&&s| dofs.rigid[s].body != b)
+        .map(|&s| format!("'{}'", scene.bodies[dofs.rigid[s].body].name))
+        .collect();
+    // An edge set away from the body's contacts to put the support on.
+    let in_contact = |name: &str| {
+        scene.pairs.iter().any(|p| {
+            (p.body == b && p.edges == name)
+                || matches!(&p.target, crate::scene::Target::Body { body, edges, .. } if *body == b && edges == name)
+        })
+    };
+    let mut free_sets: Vec<&String> = meshes[b].edge_sets.keys().filter(|k| !in_contact(k)).collect();
+    free_sets.sort();
+    let components = match rigid_modes::kind(d) {
+        Kind::X(_) => "\"ux\": 0",
+        Kind::Y(_) => "\"uy\": 0",
+        _ => "\"ux\": 0, \"uy\": 0",
+    };
+    let example = free_sets.first().map_or_else(
+        || format!("{{{components}}} on one of its edge sets"),
+        |e| format!("{{\"edges\": \"{e}\", {components}}}"),
+    );
+    Some(CoreError::invalid(
+        InvalidKind::NoSupport,
+        body.supports_path(),
+        format!(
+            "body '{}' is held by nothing but contact: its {words} moves together with body {} without opening or closing any contact, and no load of its own works on it, so nothing balances the loads that push them; add a support to body '{}' that stops its {words}, e.g. {example}",
+            body.name,
+            others.join(" and body "),
+            body.name
+        ),
+    ))
 }
 
 fn unit(n: usize, k: usize) -> Vec<f64> {
