@@ -366,3 +366,36 @@ fn a_forgotten_plate_support_names_the_plate_and_the_support() {
         r.resultant
     );
 }
+
+/// A unit slip (E in Pa, lengths in mm: the roller's P = 500 is 6e-11 of E
+/// per unit area) was diagnosed `no_support` ("add a support"), and at
+/// E × 1e4 `numerical_error`. The escape LP's load row had coefficients of
+/// 1e-10, inside its feasibility tolerance; and once solved, a combination
+/// of the free motions carrying round-off alone read an equilibrium
+/// residual of 0.12. Now it solves: the floor carries the 500, at one node,
+/// with the certificate at round-off, and the reply warns that the zone is
+/// narrower than an element, naming the unit slip; at E × 1e4 as well.
+#[test]
+fn a_unit_slip_is_solved_and_named() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/unit_slip_E_in_Pa_roller_load_control.json"
+    );
+    let mut req: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    for scale in [1.0, 1e4] {
+        req["bodies"][0]["material"]["youngs_modulus"] = json!(2.1e11 * scale);
+        let r = solved(&req);
+        assert_kkt(&r, 1e-8);
+        assert!(
+            (r.resultant.fy - 500.0).abs() <= 1e-9 * 500.0,
+            "E × {scale}: {:?}",
+            r.resultant
+        );
+        let w = r
+            .warnings
+            .iter()
+            .find(|w| w.code == "coarse_contact_zone")
+            .unwrap_or_else(|| panic!("E × {scale}: {:?}", codes(&r)));
+        assert!(w.message.contains("unit slip"), "{}", w.message);
+    }
+}

@@ -31,6 +31,14 @@ use crate::scene::Scene;
 
 pub const COMPONENT: [&str; 3] = ["horizontal", "vertical", "rotation"];
 
+/// Fraction of the largest free motion's terms below which a motion's
+/// equilibrium residual is judged against this much of the largest instead
+/// of its own terms. Round-off of the λ solve is a few ε of the largest
+/// terms, so it then reads at most about 1e-12; a motion whose terms are
+/// above it keeps its own scale. (At 1e-8 the roller below read 4.1e-9, at
+/// E × 1e4 1.1e-8: round-off at the tolerance.)
+const FLOOR: f64 = 1e-4;
+
 /// Relative Gram eigenvalue below which a combination of free motions moves no
 /// candidate: a lever of 1e-6 of the motion, far above round-off (ε‖G‖) and far
 /// below any real lever (a circular punch's horizontal shift has n_x ≈ x/R).
@@ -99,7 +107,8 @@ impl FreeMotions {
     /// forces λ, for the certificate: (CV)ᵀλ = −VᵀP on the motions solved for,
     /// and no net force on the motions treated as unresisted (`unbalanced`).
     pub fn equilibrium(&self, lambda: &[f64]) -> f64 {
-        let mut worst = self.unbalanced(lambda);
+        let worst = self.unbalanced(lambda);
+        let mut residuals = Vec::with_capacity(self.c.ncols());
         for j in 0..self.c.ncols() {
             let (mut ct, mut scale) = (0.0, self.rhs[j].abs());
             for (i, l) in lambda.iter().enumerate() {
@@ -110,11 +119,18 @@ impl FreeMotions {
                 ct += fr;
                 scale = scale.max(largest);
             }
-            if scale > 0.0 {
-                worst = worst.max((ct - self.rhs[j]).abs() / scale);
-            }
+            residuals.push(((ct - self.rhs[j]).abs(), scale));
         }
-        worst
+        // Each motion's residual against its own terms, but never against
+        // less than round-off of the largest motion's: a combination that
+        // carries round-off alone (load 1e-27 beside 2.9e-12 on a roller
+        // pressed at one node, E in Pa) read 0.12, round-off over round-off,
+        // and a right answer was `numerical_error`.
+        let floor = FLOOR * residuals.iter().fold(0.0f64, |a, r| a.max(r.1));
+        residuals
+            .iter()
+            .filter(|r| r.1.max(floor) > 0.0)
+            .fold(worst, |w, r| w.max(r.0 / r.1.max(floor)))
     }
 
     /// The largest net contact force on an unresisted motion, relative to the
