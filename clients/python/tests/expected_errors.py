@@ -30,7 +30,7 @@ EXPECTED: dict[str, tuple[str, tuple[str, ...]]] = {
                                                     "/bodies/0/mesh/inline/elements/0/2")),
     # A body held only by contact whose loads no contact pressure can balance
     # (Fichera's condition fails).
-    "held_by_contact_pulled_off": ("incompatible_loads", ("/bodies/0/tractions",)),
+    "held_by_contact_pulled_off": ("incompatible_loads", ("/bodies/0/tractions/0",)),
     # A body whose supports leave rigid motions free and that no contact pair
     # involves: nothing can hold it.
     "unsupported_body_without_contact": ("no_support", ("/bodies/1", "/bodies/1/supports")),

@@ -52,7 +52,7 @@ def test_footing_pulled_off_its_foundation_is_refused(client):
     with pytest.raises(ContactError) as err:
         client.solve(req)
     assert err.value.code == "incompatible_loads"
-    assert err.value.path == "/bodies/0/tractions"
+    assert err.value.path == "/bodies/0/tractions/0"
 
 
 @pytest.mark.parametrize("length, stress", [(1.0, 1.0), (1000.0, 1e-6)])
@@ -67,7 +67,7 @@ def test_an_upward_pull_is_reported_as_the_force_it_is_in_the_request_units(clie
     with pytest.raises(ContactError) as err:
         client.solve(req)
     e = err.value
-    assert e.code == "incompatible_loads" and e.path == "/bodies/0/tractions"
+    assert e.code == "incompatible_loads" and e.path == "/bodies/0/tractions/0"
     (load,) = e.details["loads"]
     force = q * B
     # The value is the load itself (1e-9: the request's numbers scaled in and out).

@@ -55,4 +55,4 @@ def test_body_held_only_by_contact_and_pulled_away_is_refused(client):
     with pytest.raises(ContactError) as err:
         client.solve(req)
     assert err.value.code == "incompatible_loads"
-    assert err.value.path == "/bodies/0/tractions"
+    assert err.value.path == "/bodies/0/tractions/0"

@@ -45,11 +45,16 @@ pub struct Deadline {
 
 impl Deadline {
     pub fn install(limit: Duration) -> Self {
-        let now = Instant::now();
+        Self::install_from(Instant::now(), limit)
+    }
+
+    /// As `install`, with the clock started at `start` (a request's arrival:
+    /// its time in the queue counts against its limit).
+    pub fn install_from(start: Instant, limit: Duration) -> Self {
         let new = Limit {
-            at: now
+            at: start
                 .checked_add(limit)
-                .unwrap_or(now + Duration::from_secs(86_400 * 365)),
+                .unwrap_or(start + Duration::from_secs(86_400 * 365)),
             limit,
         };
         let previous = DEADLINE.with(|d| d.get());

@@ -41,7 +41,7 @@ impl Model {
         let points = admit::point_loads(scene, &meshes)?;
         admit::traction_ranges(scene, &meshes)?;
         let external = fem::loads::external(scene, &meshes, &dofs, &points);
-        let free = FreeMotions::try_new(scene, &cons, &dofs, &meshes, &external)?;
+        let free = FreeMotions::try_new(scene, &cons, &dofs, &meshes, &points, &external)?;
         let foundations = Foundations::try_new(scene, &cons)?;
         Ok(Model {
             meshes,

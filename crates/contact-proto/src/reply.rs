@@ -448,7 +448,7 @@ pub struct FrictionResiduals {
     /// relative to (largest normal force × displacement scale).
     pub dissipation: f64,
     /// Largest (μ p − |t|) · |slip| (slip inside the cone) relative to
-    /// (largest normal force × displacement scale).
+    /// (largest of the normal forces and the cone bounds μ p × displacement scale).
     pub stick: f64,
 }
 

@@ -442,7 +442,10 @@ pub struct ContactSpec {
 #[derive(Debug, Clone, Copy, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FrictionSpec {
-    /// μ ≥ 0 (0: frictionless).
+    /// 0 ≤ μ ≤ 1e6 (0: frictionless); beyond 1e6 the request is refused
+    /// (`invalid_request`): the friction a normal force at round-off carries,
+    /// μ ε, would no longer be round-off. A large μ sticks wherever the
+    /// surfaces press, which 1e6 already gives.
     pub coefficient: f64,
 }
 

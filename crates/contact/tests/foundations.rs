@@ -253,7 +253,7 @@ fn a_load_pulling_the_body_off_is_refused() {
     req["bodies"][0]["tractions"] = json!([{ "edges": "top", "traction": [0.0, 1.0] }]);
     let e = solve(&req).expect_err("nothing holds the footing down");
     assert_eq!(e.code, ErrorCode::IncompatibleLoads, "{e:?}");
-    assert_eq!(e.path, "/bodies/0/tractions");
+    assert_eq!(e.path, "/bodies/0/tractions/0");
 }
 
 /// Bad foundation parameters are refused with a path.

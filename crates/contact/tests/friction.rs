@@ -741,3 +741,44 @@ fn an_accuracy_target_refines_a_frictional_path() {
     let expect = a * (1.0 - ratio).sqrt();
     assert!((c / expect - 1.0).abs() < 0.02, "c {c} vs {expect} (Q/μP = {ratio})");
 }
+
+/// μ lies in [0, 1e6]. Beyond, the request is refused at the coefficient
+/// (μ = 1e308 came back `numerical_error` with a push-out force of −1.8e48,
+/// μ = 1e10 on the T3 roller a correct answer as `numerical_error`). Inside,
+/// a large μ sticks: the T3 roller pressed and shifted twice ended
+/// `max_iterations` at μ = 1e3 and 1e4 (an edge node alternating between
+/// sticking in tension and penetrating open); now μ = 1e2, 1e3 and 1e6 each
+/// solve with the certificate at round-off (1e-10) and give the same answer
+/// (tangential resultant to 1e-9 of P, every point the same state): no point
+/// slides far enough from its cone for μ to matter.
+#[test]
+fn a_large_friction_coefficient_sticks_and_an_absurd_one_is_refused() {
+    let roller = |mu: f64| friction_roller("t3", 0.3, 0.05, &[0.0, 0.01, 0.02], Some(mu));
+    for mu in [1e6 * (1.0 + 1e-15), 1e10, 1e308] {
+        refused(&roller(mu), "/contacts/0/friction/coefficient");
+    }
+    let answers: Vec<SolveReplyParts> = [1e2, 1e3, 1e6]
+        .iter()
+        .map(|&mu| {
+            let r = solved(&roller(mu));
+            assert_eq!(r.status, SolveStatus::Solved, "μ = {mu}");
+            assert_kkt(&r, 1e-10);
+            let f = r.pairs[0].friction.as_ref().expect("friction");
+            let states: Vec<Option<FrictionState>> = r.pairs[0].points.iter().map(|p| p.state).collect();
+            assert!(states.contains(&Some(FrictionState::Stick)), "μ = {mu}: {states:?}");
+            (r.resultant.fy, f.tangential_resultant.fx, states)
+        })
+        .collect();
+    let p = answers[0].0.abs();
+    for (mu, a) in [1e3, 1e6].iter().zip(&answers[1..]) {
+        assert!(
+            (a.1 - answers[0].1).abs() <= 1e-9 * p,
+            "μ = {mu}: Q {} against {}",
+            a.1,
+            answers[0].1
+        );
+        assert_eq!(a.2, answers[0].2, "μ = {mu}");
+    }
+}
+
+type SolveReplyParts = (f64, f64, Vec<Option<FrictionState>>);

@@ -87,7 +87,7 @@ fn a_block_pushed_below_mu_p_is_held_by_friction() {
 fn a_block_pushed_beyond_mu_p_is_refused() {
     let expect_range = |e: &contact::proto::ErrorReply, q: f64| {
         assert_eq!(e.code, ErrorCode::IncompatibleLoads, "{e:?}");
-        assert_eq!(e.path, "/bodies/0/tractions", "{e:?}");
+        assert_eq!(e.path, "/bodies/0/tractions/1", "{e:?}");
         let loads = &e.details.as_ref().expect("details").loads;
         let b = loads
             .iter()
@@ -264,7 +264,8 @@ fn a_tall_block_tips_before_it_slides() {
 
 /// A step that runs out of iterations is not a silent answer: with one
 /// iteration allowed the block's step ends `max_iterations`, and the reply
-/// says that its loads pass the check with the friction cone (so the
+/// says that its loads pass the check with the friction cone and that the
+/// step's normal forces leave friction enough to carry them (so the
 /// iteration fell short, not the loads) and what to change; with the
 /// default allowance the same request is solved.
 #[test]
@@ -276,7 +277,7 @@ fn a_free_body_step_out_of_iterations_says_why() {
     assert!(
         r.notes
             .iter()
-            .any(|n| n.contains("body 'block'") && n.contains("max_iterations") && n.contains("equilibrium exists")),
+            .any(|n| n.contains("body 'block'") && n.contains("max_iterations") && n.contains("friction enough")),
         "{:?}",
         r.notes
     );
@@ -291,7 +292,7 @@ fn a_free_body_step_out_of_iterations_says_why() {
 /// the linearized roller turns until its pressure centre sits Q R / P aside
 /// and the answer is not Cattaneo–Mindlin's (stick zone −72 %, measured).
 /// The reply must say so: a `rolling` warning at the roller, its value the
-/// roll over the half-width (measured 6.0). Pressed alone (Q = 0), nothing
+/// roll over the half-width (measured 7.2). Pressed alone (Q = 0), nothing
 /// turns and nothing warns.
 #[test]
 fn a_free_roller_pushed_at_its_axle_is_said_to_roll() {
@@ -336,4 +337,45 @@ fn a_free_roller_pushed_at_its_axle_is_said_to_roll() {
         "{:?}",
         pressed.warnings
     );
+}
+
+/// The check of the loads with the friction cone sees loads, not the normal
+/// force a prescribed displacement makes: the block pressed down by uy =
+/// −0.001 on its top (P ≈ 2.28, from the reply) and pushed by Q = 1 =
+/// 1.46 μP passes it, and its step runs out of iterations. Its note said
+/// "an equilibrium exists"; now it checks the cone against the step's own
+/// normal forces and says the block most likely slides, with |Q| / (μ P)
+/// as the ratio (a flat floor: every point's cone gives μ λ along x), to
+/// 1e-3. Below μP (Q = 0.2) the same block solves.
+#[test]
+fn a_block_pressed_by_a_displacement_and_pushed_beyond_mu_p_is_not_said_to_hold() {
+    let pressed = |q: f64| {
+        let mut r = block("t3", 0.0, 0.0, Some(MU));
+        r["bodies"][0]["supports"] = json!([{"edges": "top", "uy": -0.001}]);
+        r["bodies"][0]["tractions"] = json!([{"edges": "top", "traction": [0.5 * q, 0.0]}]);
+        r
+    };
+    let r = solve(&pressed(1.0)).expect("answered");
+    assert_eq!(r.status, SolveStatus::MaxIterations, "{:?}", r.notes);
+    let note = r
+        .notes
+        .iter()
+        .find(|n| n.contains("'block'"))
+        .expect("a note on the block");
+    assert!(!note.contains("equilibrium exists"), "{note}");
+    assert!(
+        note.contains("most likely slides") && note.contains("translation in x"),
+        "{note}"
+    );
+    let words: Vec<&str> = note.split_whitespace().collect();
+    let at = words.iter().position(|w| *w == "times").expect("a ratio");
+    let ratio: f64 = words[at - 1].parse().expect("a number");
+    let expected = 1.0 / (MU * r.resultant.fy.abs());
+    assert!(
+        (ratio - expected).abs() <= 1e-3 * expected,
+        "{ratio} against {expected}"
+    );
+    assert!(expected > 1.4, "{expected}");
+    let held = solved(&pressed(0.2));
+    assert_eq!(held.status, SolveStatus::Solved);
 }

@@ -41,9 +41,9 @@ fn a_forgotten_support_is_named_with_the_motion_it_leaves_free() {
     let mut lower_free = example("two_bodies_cylinders.json");
     lower_free["bodies"][1]["supports"] = json!([]);
     for (req, path, body) in [
-        (&none, "/bodies/0/supports", "'block'"),
+        (&none, "/bodies/0", "'block'"),
         (&ux_only, "/bodies/0/supports", "'block'"),
-        (&lower_free, "/bodies/1/supports", "'lower'"),
+        (&lower_free, "/bodies/1", "'lower'"),
     ] {
         let message = refused(req, ErrorCode::NoSupport, path);
         assert!(
@@ -260,7 +260,7 @@ fn a_body_pulled_off_its_support_is_told_its_load_in_its_units() {
     let e = solve(&req).expect_err("refused");
     assert_eq!(
         (e.code, e.path.as_str()),
-        (ErrorCode::IncompatibleLoads, "/bodies/0/tractions"),
+        (ErrorCode::IncompatibleLoads, "/bodies/0/tractions/0"),
         "{e:?}"
     );
     let bound = &e.details.as_ref().expect("details").loads[0];
@@ -271,4 +271,136 @@ fn a_body_pulled_off_its_support_is_told_its_load_in_its_units() {
         "{}",
         e.message
     );
+}
+
+/// A refusal's path resolves in the request and names a load it has. The
+/// inline block held only by its floor (no `supports` key) with its weight
+/// as its only load was refused at `/bodies/0/tractions`, which the request
+/// does not have: tilted sideways (the floor's normals cannot carry F_x) and
+/// pulled up alike. Now the path is the load doing most work on the motion
+/// contact cannot hold (`/bodies/0/body_force`; a traction outweighing it,
+/// `/bodies/0/tractions/0`), every `details.loads` path resolves too, and a
+/// body with no load and no supports is told `no_support` at the body.
+#[test]
+fn a_refusal_points_at_a_load_the_request_has() {
+    let held_by_floor = |body_force: [f64; 2], pull: Option<f64>| {
+        let mut req = example("signorini_inline_block_on_vee.json");
+        let body = req["bodies"][0].as_object_mut().unwrap();
+        body.remove("supports");
+        body.insert("body_force".into(), json!(body_force));
+        if let Some(t) = pull {
+            body.insert("tractions".into(), json!([{"edges": "top", "traction": [0.0, t]}]));
+        }
+        req
+    };
+    let resolves = |req: &Value, e: &contact::proto::ErrorReply| {
+        assert!(
+            req.pointer(&e.path).is_some(),
+            "{} is not in the request: {e:?}",
+            e.path
+        );
+        for b in e.details.iter().flat_map(|d| &d.loads) {
+            assert!(
+                req.pointer(&b.path).is_some(),
+                "{} is not in the request: {e:?}",
+                b.path
+            );
+        }
+    };
+    // Weight tilted sideways, pulled up by it, pulled up by a traction of 5
+    // on the top (10 in all) against a weight of 2 × 1 = 2.
+    for (req, code, path) in [
+        (
+            held_by_floor([1.0, -1.0], None),
+            ErrorCode::IncompatibleLoads,
+            "/bodies/0/body_force",
+        ),
+        (
+            held_by_floor([0.0, 1.0], None),
+            ErrorCode::IncompatibleLoads,
+            "/bodies/0/body_force",
+        ),
+        (
+            held_by_floor([0.0, -1.0], Some(5.0)),
+            ErrorCode::IncompatibleLoads,
+            "/bodies/0/tractions/0",
+        ),
+        (held_by_floor([0.0, 0.0], None), ErrorCode::NoSupport, "/bodies/0"),
+    ] {
+        let e = solve(&req).expect_err("refused");
+        assert_eq!((e.code, e.path.as_str()), (code, path), "{e:?}");
+        resolves(&req, &e);
+    }
+    // The bound of the body pulled up by its weight is that weight, 2 along +y.
+    let e = solve(&held_by_floor([0.0, 1.0], None)).expect_err("refused");
+    let bound = &e.details.as_ref().expect("details").loads[0];
+    assert!((bound.value - 2.0).abs() < 1e-9, "{bound:?}");
+}
+
+/// A plate left without supports under a roller pressed onto it (P = 12.5 ×
+/// 40 = 500, the roller held in x) was refused `incompatible_loads` at the
+/// roller's tractions, in a sentence of four motions that never said the
+/// plate had no support. Now it is `no_support` at the plate, naming its
+/// translation in y (which moves with the roller without opening any
+/// contact) and a support that stops it on an edge set away from the
+/// contact; with that support added the request solves and the plate
+/// carries the roller's 500.
+#[test]
+fn a_forgotten_plate_support_names_the_plate_and_the_support() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/plate_support_forgotten_under_loaded_roller.json"
+    );
+    let mut req: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let message = refused(&req, ErrorCode::NoSupport, "/bodies/1");
+    assert!(req.pointer("/bodies/1").is_some());
+    for words in [
+        "body 'plate'",
+        "translation in y",
+        "body 'roller'",
+        r#"{"edges": "bottom", "uy": 0}"#,
+    ] {
+        assert!(message.contains(words), "{words}: {message}");
+    }
+    req["bodies"][1]["supports"] = json!([{"edges": "bottom", "uy": 0.0}]);
+    let r = solved(&req);
+    assert_kkt(&r, 1e-8);
+    assert!(
+        (r.resultant.fy.abs() - 500.0).abs() <= 1e-6 * 500.0,
+        "{:?}",
+        r.resultant
+    );
+}
+
+/// A unit slip (E in Pa, lengths in mm: the roller's P = 500 is 6e-11 of E
+/// per unit area) was diagnosed `no_support` ("add a support"), and at
+/// E × 1e4 `numerical_error`. The escape LP's load row had coefficients of
+/// 1e-10, inside its feasibility tolerance; and once solved, a combination
+/// of the free motions carrying round-off alone read an equilibrium
+/// residual of 0.12. Now it solves: the floor carries the 500, at one node,
+/// with the certificate at round-off, and the reply warns that the zone is
+/// narrower than an element, naming the unit slip; at E × 1e4 as well.
+#[test]
+fn a_unit_slip_is_solved_and_named() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/unit_slip_E_in_Pa_roller_load_control.json"
+    );
+    let mut req: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    for scale in [1.0, 1e4] {
+        req["bodies"][0]["material"]["youngs_modulus"] = json!(2.1e11 * scale);
+        let r = solved(&req);
+        assert_kkt(&r, 1e-8);
+        assert!(
+            (r.resultant.fy - 500.0).abs() <= 1e-9 * 500.0,
+            "E × {scale}: {:?}",
+            r.resultant
+        );
+        let w = r
+            .warnings
+            .iter()
+            .find(|w| w.code == "coarse_contact_zone")
+            .unwrap_or_else(|| panic!("E × {scale}: {:?}", codes(&r)));
+        assert!(w.message.contains("unit slip"), "{}", w.message);
+    }
 }

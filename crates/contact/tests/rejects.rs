@@ -107,18 +107,18 @@ fn missing_supports_and_candidates() {
     free_body["name"] = json!("loose");
     free_body["supports"] = json!([]);
     r["bodies"].as_array_mut().unwrap().push(free_body);
-    expect(&r, ErrorCode::NoSupport, "/bodies/1/supports");
+    expect(&r, ErrorCode::NoSupport, "/bodies/1");
     // Held only by contact and pulled off the floor: no pressure can balance that.
     let mut r = base();
     r["bodies"][0]["supports"] = json!([]);
     r["bodies"][0]["tractions"] = json!([{"edges": "top", "traction": [0.0, 1.0]}]);
-    expect(&r, ErrorCode::IncompatibleLoads, "/bodies/0/tractions");
+    expect(&r, ErrorCode::IncompatibleLoads, "/bodies/0/tractions/0");
     // Pushed sideways: the body's normals on the floor are vertical, so contact
     // cannot carry a horizontal load.
     let mut r = base();
     r["bodies"][0]["supports"] = json!([]);
     r["bodies"][0]["tractions"] = json!([{"edges": "top", "traction": [0.1, -1.0]}]);
-    expect(&r, ErrorCode::IncompatibleLoads, "/bodies/0/tractions");
+    expect(&r, ErrorCode::IncompatibleLoads, "/bodies/0/tractions/0");
     let mut r = base();
     r["contacts"][0]["edges"] = json!("nowhere");
     expect(&r, ErrorCode::InvalidRequest, "/contacts/0/edges");

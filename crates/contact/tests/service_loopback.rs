@@ -408,3 +408,46 @@ fn serve_refuses_plain_tcp_off_loopback_without_insecure() {
     // Nothing bound it: the port is still ours to take.
     TcpListener::bind(("0.0.0.0", port)).expect("the refused service left the port bound");
 }
+
+/// `time_limit` counts from the request's arrival, not from when a worker
+/// takes it. With the only worker held by a slow request (10⁴ load factors,
+/// cut at its 4 s), a Hertz request with `time_limit` 1 came back `solved`
+/// after the slow one, seconds past its limit; now it is answered `timeout`
+/// when its second has passed in the queue (within 0.2 s), unsolved, saying
+/// it waited for a worker, and the slow request is still the one running.
+#[test]
+fn a_time_limit_counts_from_arrival() {
+    let (_server, session) = serve(&["--workers", "1", "--max-load-steps", "10000"]);
+    let hertz = common::example("signorini_hertz_cylinder.json");
+    let mut slow = hertz.clone();
+    slow["load_factors"] = json!(vec![1.0; 10_000]);
+    slow["time_limit"] = json!(4.0);
+    let running = session
+        .get("contact/solve")
+        .payload(bytes(&slow))
+        .timeout(Duration::from_secs(60))
+        .wait()
+        .unwrap();
+    let start = Instant::now();
+    while health(&session)["in_flight"] != 1 {
+        assert!(start.elapsed() < Duration::from_secs(20), "the slow request never ran");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    let mut quick = hertz.clone();
+    quick["time_limit"] = json!(1.0);
+    quick["client_id"] = json!("quick");
+    let sent = Instant::now();
+    let (ok, err) = query(&session, "contact/solve", &bytes(&quick));
+    let waited = sent.elapsed().as_secs_f64();
+    assert!(!ok, "{err}");
+    assert_eq!(
+        (&err["code"], &err["client_id"]),
+        (&json!("timeout"), &json!("quick")),
+        "{err}"
+    );
+    assert!(err["message"].as_str().unwrap().contains("waited"), "{err}");
+    assert!((0.95..1.2).contains(&waited), "answered after {waited} s");
+    assert_eq!(health(&session)["in_flight"], 1, "the slow request still runs");
+    let slow_reply = running.recv().expect("a reply");
+    assert!(slow_reply.result().is_err(), "the slow request is cut at its 4 s");
+}

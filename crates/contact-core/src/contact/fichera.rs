@@ -167,10 +167,15 @@ pub fn escape(c: &Mat<f64>, rhs: &[f64]) -> Option<Vec<f64>> {
             }
         }
         // Load components at round-off of the largest are no load at all.
+        // The row is homogeneous, so it is scaled to the largest load: as
+        // given, a load of 1e-10 of E (P = 500 N on a roller in mm with E
+        // in Pa) put coefficients of 1e-10 in it, inside the LP's
+        // feasibility tolerance, and the escape it forbids was found: the
+        // roller was told `no_support`.
         if rhs[j].abs() > 1e-12 * big {
             rows.push(m);
             cols.push(j);
-            vals.push(rhs[j]);
+            vals.push(rhs[j] / big);
         }
         if sum != 0.0 {
             rows.push(m + 1);

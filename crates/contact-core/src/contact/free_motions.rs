@@ -20,6 +20,7 @@ use faer::Mat;
 use super::{fichera, ConstraintSet};
 use crate::error::LoadBound;
 use crate::error::{CoreError, InvalidKind};
+use crate::fem::loads::{self, Located};
 use crate::fem::rigid_modes::{self, Kind, RigidModes};
 use crate::fem::DofMap;
 use crate::linalg::dense::sym_eigen_small;
@@ -29,6 +30,14 @@ use crate::scene::Control;
 use crate::scene::Scene;
 
 pub const COMPONENT: [&str; 3] = ["horizontal", "vertical", "rotation"];
+
+/// Fraction of the largest free motion's terms below which a motion's
+/// equilibrium residual is judged against this much of the largest instead
+/// of its own terms. Round-off of the λ solve is a few ε of the largest
+/// terms, so it then reads at most about 1e-12; a motion whose terms are
+/// above it keeps its own scale. (At 1e-8 the roller below read 4.1e-9, at
+/// E × 1e4 1.1e-8: round-off at the tolerance.)
+const FLOOR: f64 = 1e-4;
 
 /// Relative Gram eigenvalue below which a combination of free motions moves no
 /// candidate: a lever of 1e-6 of the motion, far above round-off (ε‖G‖) and far
@@ -68,6 +77,11 @@ pub struct FreeMotions {
     /// over a body's nodes (|P| for a punch): a scale of its equilibrium
     /// beside the contact forces (empty without friction).
     pub load_scale: Vec<f64>,
+    /// Per rigid set (`dofs.rigid`), each load of its body with its
+    /// resultant (Fx, Fy, M about the set's centre): a refusal names the one
+    /// doing most work on the motion, a load the request has (`body_force`
+    /// alone left `/tractions` pointing at nothing).
+    pub body_loads: Vec<Vec<(String, [f64; 3])>>,
 }
 
 impl FreeMotions {
@@ -93,7 +107,8 @@ impl FreeMotions {
     /// forces λ, for the certificate: (CV)ᵀλ = −VᵀP on the motions solved for,
     /// and no net force on the motions treated as unresisted (`unbalanced`).
     pub fn equilibrium(&self, lambda: &[f64]) -> f64 {
-        let mut worst = self.unbalanced(lambda);
+        let worst = self.unbalanced(lambda);
+        let mut residuals = Vec::with_capacity(self.c.ncols());
         for j in 0..self.c.ncols() {
             let (mut ct, mut scale) = (0.0, self.rhs[j].abs());
             for (i, l) in lambda.iter().enumerate() {
@@ -104,11 +119,18 @@ impl FreeMotions {
                 ct += fr;
                 scale = scale.max(largest);
             }
-            if scale > 0.0 {
-                worst = worst.max((ct - self.rhs[j]).abs() / scale);
-            }
+            residuals.push(((ct - self.rhs[j]).abs(), scale));
         }
-        worst
+        // Each motion's residual against its own terms, but never against
+        // less than round-off of the largest motion's: a combination that
+        // carries round-off alone (load 1e-27 beside 2.9e-12 on a roller
+        // pressed at one node, E in Pa) read 0.12, round-off over round-off,
+        // and a right answer was `numerical_error`.
+        let floor = FLOOR * residuals.iter().fold(0.0f64, |a, r| a.max(r.1));
+        residuals
+            .iter()
+            .filter(|r| r.1.max(floor) > 0.0)
+            .fold(worst, |w, r| w.max(r.0 / r.1.max(floor)))
     }
 
     /// The largest net contact force on an unresisted motion, relative to the
@@ -139,11 +161,31 @@ impl FreeMotions {
         cons: &ConstraintSet,
         dofs: &DofMap,
         meshes: &[Mesh2d],
+        points: &[Vec<Located>],
         external: &[f64],
     ) -> Result<Self, CoreError> {
         let (punch_free, c_punch) = cons.punch_block(scene);
+        let body_loads: Vec<Vec<(String, [f64; 3])>> = dofs
+            .rigid
+            .iter()
+            .map(|rm| {
+                let body = &scene.bodies[rm.body];
+                loads::resultants(scene, rm.body, &meshes[rm.body], &points[rm.body], rm.center)
+                    .into_iter()
+                    .map(|(src, r)| (src.path(body), r))
+                    .collect()
+            })
+            .collect();
         if scene.has_friction() {
-            return Ok(Self::frictional(&punch_free, c_punch, cons, dofs, meshes, external));
+            return Ok(Self::frictional(
+                &punch_free,
+                c_punch,
+                cons,
+                dofs,
+                meshes,
+                external,
+                body_loads,
+            ));
         }
         let m = cons.len();
         let mut motions: Vec<(Motion, f64)> = punch_free
@@ -166,7 +208,7 @@ impl FreeMotions {
         let mut notes = Vec::new();
         let mut unresisted = Vec::new();
         for (set, rm) in dofs.rigid.iter().enumerate() {
-            let resisted = body_directions(scene, cons, dofs, rm, &meshes[rm.body], external)?;
+            let resisted = body_directions(scene, cons, dofs, rm, &meshes[rm.body], external, &body_loads[set])?;
             for d in resisted {
                 match d {
                     Direction::Resisted { dir, col, load, scale } => {
@@ -198,7 +240,7 @@ impl FreeMotions {
             if motions[k].1.abs() > 1e-12 * load_scale[k] && motions[k].1 != 0.0 {
                 let (mo, load) = motions[k];
                 let bound = LoadBound {
-                    path: motion_path(scene, dofs, mo),
+                    path: motion_path(scene, dofs, &body_loads, mo),
                     value: load_value(scene, mo, load),
                     min: Some(0.0),
                     max: Some(0.0),
@@ -238,23 +280,41 @@ impl FreeMotions {
         let v = if null.is_empty() {
             Mat::<f64>::from_fn(n, l, |i, j| if i == live[j] { 1.0 } else { 0.0 })
         } else {
-            for &e in &null {
-                // The eigenvector is accurate to about ε / (eigenvalue gap):
-                // components at that level are round-off, not part of the motion.
-                let biggest = (0..l).map(|a| vecs[(a, e)].abs()).fold(0.0, f64::max);
-                let dir: Vec<f64> = (0..n)
-                    .map(|i| live.iter().position(|&k| k == i).map_or(0.0, |a| vecs[(a, e)]))
-                    .map(|v| if v.abs() <= 1e-9 * biggest { 0.0 } else { v })
-                    .enumerate()
-                    .map(|(i, v)| if v == 0.0 { 0.0 } else { v / norms[i] })
-                    .collect();
-                let work: f64 = (0..n).map(|i| dir[i] * motions[i].1).sum();
-                let scale: f64 = (0..n).map(|i| (dir[i] * load_scale[i]).abs()).sum();
-                if work.abs() > 1e-12 * scale && work != 0.0 {
+            // Each null combination, its loads' work and the scale of that work.
+            let combos: Vec<(Vec<f64>, f64, f64)> = null
+                .iter()
+                .map(|&e| {
+                    // The eigenvector is accurate to about ε / (eigenvalue gap):
+                    // components at that level are round-off, not part of the motion.
+                    let biggest = (0..l).map(|a| vecs[(a, e)].abs()).fold(0.0, f64::max);
+                    let dir: Vec<f64> = (0..n)
+                        .map(|i| live.iter().position(|&k| k == i).map_or(0.0, |a| vecs[(a, e)]))
+                        .map(|v| if v.abs() <= 1e-9 * biggest { 0.0 } else { v })
+                        .enumerate()
+                        .map(|(i, v)| if v == 0.0 { 0.0 } else { v / norms[i] })
+                        .collect();
+                    let work: f64 = (0..n).map(|i| dir[i] * motions[i].1).sum();
+                    let scale: f64 = (0..n).map(|i| (dir[i] * load_scale[i]).abs()).sum();
+                    (dir, work, scale)
+                })
+                .collect();
+            let loaded = |w: f64, scale: f64| w.abs() > 1e-12 * scale && w != 0.0;
+            if combos.iter().any(|c| loaded(c.1, c.2)) {
+                // The combination the loads push along, Σ work_e dir_e: the
+                // eigenvectors are any basis of the null space (on a roller
+                // over an unsupported plate, a turn of both about the contact),
+                // this is the motion the loads make (the two sinking together).
+                let pushed: Vec<f64> = (0..n).map(|i| combos.iter().map(|c| c.1 * c.0[i]).sum()).collect();
+                if let Some(e) = carried_body(scene, dofs, meshes, &motions, &load_scale, &pushed) {
+                    return Err(e);
+                }
+            }
+            for (dir, work, scale) in combos {
+                if loaded(work, scale) {
                     let names: Vec<String> = (0..n).filter(|&i| dir[i] != 0.0).map(describe).collect();
                     return Err(CoreError::invalid(
                         InvalidKind::IncompatibleLoads,
-                        motion_path(scene, dofs, motions[live[0]].0),
+                        motion_path(scene, dofs, &body_loads, motions[live[0]].0),
                         format!(
                             "the {} can move together without moving any contact candidate along its normal, and their loads do work on that motion: contact cannot balance them",
                             names.join(" and ")
@@ -298,6 +358,7 @@ impl FreeMotions {
             unresisted,
             friction: Vec::new(),
             load_scale: Vec::new(),
+            body_loads,
         };
         fm.check_compatibility(scene, dofs, false)?;
         fm.check_held(scene, dofs)?;
@@ -320,6 +381,7 @@ impl FreeMotions {
         dofs: &DofMap,
         meshes: &[Mesh2d],
         external: &[f64],
+        body_loads: Vec<Vec<(String, [f64; 3])>>,
     ) -> Self {
         let mut motions: Vec<(Motion, f64)> = punch_free
             .iter()
@@ -370,6 +432,7 @@ impl FreeMotions {
             unresisted: Vec::new(),
             friction: Vec::new(),
             load_scale,
+            body_loads,
         }
     }
 
@@ -444,6 +507,7 @@ impl FreeMotions {
             unresisted: Vec::new(),
             friction: Vec::new(),
             load_scale: Vec::new(),
+            body_loads: self.body_loads.clone(),
         };
         with_cone.check_compatibility(scene, dofs, true)?;
         Ok(undetermined)
@@ -484,7 +548,7 @@ impl FreeMotions {
                         }
                     }
                     let body = &scene.bodies[dofs.rigid[set].body];
-                    path.get_or_insert_with(|| format!("{}/supports", body.path));
+                    path.get_or_insert_with(|| body.supports_path());
                     parts.push(format!(
                         "{} of body '{}'",
                         dofs.rigid[set].describe(dir, scene.scales.length(1.0)),
@@ -532,7 +596,7 @@ impl FreeMotions {
                 let (min, max) = load_range(scene, mo, r.min, r.max);
                 let (min, max) = (snap(min), snap(max));
                 let b = LoadBound {
-                    path: motion_path(scene, dofs, mo),
+                    path: motion_path(scene, dofs, &self.body_loads, mo),
                     value,
                     min,
                     max,
@@ -565,7 +629,7 @@ impl FreeMotions {
             .iter()
             .max_by(|a, b| a.0.total_cmp(&b.0))
             .map(|(_, b)| b.path.clone())
-            .unwrap_or_else(|| motion_path(scene, dofs, self.motions[first].0));
+            .unwrap_or_else(|| motion_path(scene, dofs, &self.body_loads, self.motions[first].0));
         let what: Vec<String> =
             self.motions
                 .iter()
@@ -607,6 +671,92 @@ impl FreeMotions {
         )
         .with_loads(loads))
     }
+}
+
+/// A body the loads of others push along with them: in a combination `dir`
+/// of free motions that moves no candidate and that the loads work on, a
+/// body held by nothing but contact whose own loads do no work on its part
+/// (one without supports first), refused `no_support` with its part of the
+/// motion and a support that stops it. A plate left unsupported under a
+/// roller pressed onto it was refused `incompatible_loads` at the roller's
+/// tractions, in a sentence of four motions that never said the plate had
+/// no support.
+fn carried_body(
+    scene: &Scene,
+    dofs: &DofMap,
+    meshes: &[Mesh2d],
+    motions: &[(Motion, f64)],
+    load_scale: &[f64],
+    dir: &[f64],
+) -> Option<CoreError> {
+    let mut sets: Vec<usize> = motions
+        .iter()
+        .zip(dir)
+        .filter_map(|((mo, _), &c)| match mo {
+            Motion::Body { set, .. } if c != 0.0 => Some(*set),
+            _ => None,
+        })
+        .collect();
+    sets.dedup();
+    let part = |set: usize| {
+        let (mut d, mut work, mut scale) = ([0.0; 3], 0.0, 0.0);
+        for (i, (mo, load)) in motions.iter().enumerate() {
+            if let Motion::Body { set: s, dir: b } = mo {
+                if *s == set {
+                    (0..3).for_each(|q| d[q] += dir[i] * b[q]);
+                    work += dir[i] * load;
+                    scale += (dir[i] * load_scale[i]).abs();
+                }
+            }
+        }
+        (d, work.abs() <= 1e-12 * scale)
+    };
+    let carried: Vec<(usize, [f64; 3])> = sets
+        .iter()
+        .map(|&s| (s, part(s)))
+        .filter(|(_, (_, unloaded))| *unloaded)
+        .map(|(s, (d, _))| (s, d))
+        .collect();
+    let &(set, d) = carried
+        .iter()
+        .find(|(s, _)| scene.bodies[dofs.rigid[*s].body].supports.is_empty())
+        .or(carried.first())?;
+    let rm = &dofs.rigid[set];
+    let (b, body) = (rm.body, &scene.bodies[rm.body]);
+    let words = rm.describe(d, scene.scales.length(1.0));
+    let others: Vec<String> = sets
+        .iter()
+        .filter(|&&s| dofs.rigid[s].body != b)
+        .map(|&s| format!("'{}'", scene.bodies[dofs.rigid[s].body].name))
+        .collect();
+    // An edge set away from the body's contacts to put the support on.
+    let in_contact = |name: &str| {
+        scene.pairs.iter().any(|p| {
+            (p.body == b && p.edges == name)
+                || matches!(&p.target, crate::scene::Target::Body { body, edges, .. } if *body == b && edges == name)
+        })
+    };
+    let mut free_sets: Vec<&String> = meshes[b].edge_sets.keys().filter(|k| !in_contact(k)).collect();
+    free_sets.sort();
+    let components = match rigid_modes::kind(d) {
+        Kind::X(_) => "\"ux\": 0",
+        Kind::Y(_) => "\"uy\": 0",
+        _ => "\"ux\": 0, \"uy\": 0",
+    };
+    let example = free_sets.first().map_or_else(
+        || format!("{{{components}}} on one of its edge sets"),
+        |e| format!("{{\"edges\": \"{e}\", {components}}}"),
+    );
+    Some(CoreError::invalid(
+        InvalidKind::NoSupport,
+        body.supports_path(),
+        format!(
+            "body '{}' is held by nothing but contact: its {words} moves together with body {} without opening or closing any contact, and no load of its own works on it, so nothing balances the loads that push them; add a support to body '{}' that stops its {words}, e.g. {example}",
+            body.name,
+            others.join(" and body "),
+            body.name
+        ),
+    ))
 }
 
 fn unit(n: usize, k: usize) -> Vec<f64> {
@@ -701,16 +851,29 @@ fn outside(value: f64, min: Option<f64>, max: Option<f64>) -> f64 {
     }
 }
 
-fn motion_path(scene: &Scene, dofs: &DofMap, mo: Motion) -> String {
+/// The JSON pointer of a motion's load: a punch's load component, or the
+/// load of the body doing most work on the motion (the body when none does).
+fn motion_path(scene: &Scene, dofs: &DofMap, body_loads: &[Vec<(String, [f64; 3])>], mo: Motion) -> String {
     match mo {
         Motion::Punch { obstacle, component } => {
             format!("/obstacles/{obstacle}/punch/{}/load", COMPONENT[component])
         }
-        Motion::Body { set, .. } => {
-            let b = &scene.bodies[dofs.rigid[set].body];
-            format!("{}/tractions", b.path)
+        Motion::Body { set, dir } => {
+            heaviest(&body_loads[set], dir).unwrap_or_else(|| scene.bodies[dofs.rigid[set].body].path.clone())
         }
     }
+}
+
+/// The path of the load with the largest |work| on the rigid motion `dir`
+/// = (ux, uy, rotation about the centre its resultants are taken about):
+/// Fx ux + Fy uy + M θ. None when no load works on it.
+fn heaviest(loads: &[(String, [f64; 3])], dir: [f64; 3]) -> Option<String> {
+    loads
+        .iter()
+        .map(|(path, r)| (path, (r[0] * dir[0] + r[1] * dir[1] + r[2] * dir[2]).abs()))
+        .filter(|(_, w)| *w > 0.0)
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(path, _)| path.clone())
 }
 
 /// Prescribed or solved amplitude of every punch component: (α1, α2, θ).
@@ -766,6 +929,7 @@ fn body_directions(
     rm: &RigidModes,
     mesh: &Mesh2d,
     external: &[f64],
+    loads: &[(String, [f64; 3])],
 ) -> Result<Vec<Direction>, CoreError> {
     let r = rm.basis.len();
     let m = cons.len();
@@ -835,7 +999,7 @@ fn body_directions(
         if load.abs() > 1e-12 * scale && load != 0.0 {
             return Err(CoreError::invalid(
                 InvalidKind::IncompatibleLoads,
-                format!("{}/tractions", body.path),
+                heaviest(loads, dir).unwrap_or_else(|| body.path.clone()),
                 format!(
                     "contact does not resist the {words} of body '{}' (held only by contact): no contact normal moves with it (beyond the discretization's {:.0e} of its motion), so contact cannot carry the loads' work on it; balance the loads on the body or support it",
                     body.name, WEAK_LEVER

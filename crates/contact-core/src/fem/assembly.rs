@@ -117,7 +117,7 @@ pub fn dof_map(scene: &Scene, meshes: &[Mesh2d]) -> Result<DofMap, CoreError> {
                 .collect();
             return Err(CoreError::invalid(
                 InvalidKind::NoSupport,
-                format!("{}/supports", body.path),
+                body.supports_path(),
                 format!(
                     "the supports of body '{}' leave its {} free and no contact pair involves the body to hold it",
                     body.name,

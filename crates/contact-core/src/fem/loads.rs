@@ -13,7 +13,7 @@ use super::assembly::DofMap;
 use super::element;
 use crate::error::{CoreError, InvalidKind};
 use crate::mesh::{boundary::edge_normal, Edge, Mesh2d};
-use crate::scene::{Scene, Traction};
+use crate::scene::{Body, Scene, Traction};
 
 /// Where a point load falls: its edge's nodes and their shares N_i(s).
 pub type Located = Vec<(usize, f64)>;
@@ -138,89 +138,146 @@ pub(crate) fn clip(mesh: &Mesh2d, e: &Edge, range: Option<[f64; 2]>) -> Option<(
     (s1 > s0).then_some((s0, s1))
 }
 
+/// Which of a body's loads a nodal force comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Source {
+    BodyForce,
+    Traction(usize),
+    PointLoad(usize),
+}
+
+impl Source {
+    /// The load's JSON pointer in the request.
+    pub fn path(self, body: &Body) -> String {
+        match self {
+            Source::BodyForce => format!("{}/body_force", body.path),
+            Source::Traction(k) => format!("{}/tractions/{k}", body.path),
+            Source::PointLoad(k) => body.point_loads[k].path.clone(),
+        }
+    }
+}
+
 /// Nodal external loads (tractions, pressures, point forces, body forces) on
 /// every global DOF, fixed ones included: the rigid modes of a body need them
 /// all. `points`: `locate_all` of the scene.
 pub fn external(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap, points: &[Vec<Located>]) -> Vec<f64> {
     let mut f = vec![0.0; dofs.free.len()];
+    for (b, mesh) in meshes.iter().enumerate().take(scene.bodies.len()) {
+        each_load(scene, b, mesh, &points[b], |_, node, c, v| f[dofs.dof(b, node, c)] += v);
+    }
+    f
+}
+
+/// Resultant force and moment about `center` (Fx, Fy, M) of each load of
+/// body `b` that has one, with the load's source.
+pub fn resultants(
+    scene: &Scene,
+    b: usize,
+    mesh: &Mesh2d,
+    points: &[Located],
+    center: [f64; 2],
+) -> Vec<(Source, [f64; 3])> {
+    let mut out: Vec<(Source, [f64; 3])> = Vec::new();
+    each_load(scene, b, mesh, points, |src, node, c, v| {
+        let k = match out.iter().position(|(s, _)| *s == src) {
+            Some(k) => k,
+            None => {
+                out.push((src, [0.0; 3]));
+                out.len() - 1
+            }
+        };
+        let (dx, dy) = (mesh.nodes[node][0] - center[0], mesh.nodes[node][1] - center[1]);
+        out[k].1[c] += v;
+        out[k].1[2] += if c == 0 { -dy * v } else { dx * v };
+    });
+    out
+}
+
+/// Every nodal force of body `b`'s loads, as (source, node, component, value)
+/// in assembly order (the sum over them is `external`, bit for bit).
+fn each_load(
+    scene: &Scene,
+    b: usize,
+    mesh: &Mesh2d,
+    points: &[Located],
+    mut add: impl FnMut(Source, usize, usize, f64),
+) {
+    let body = &scene.bodies[b];
     let mut fe = [0.0; 12];
-    for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
-        let k = mesh.order.nodes_per_element();
-        if body.body_force != [0.0, 0.0] {
-            let mut x = [[0.0; 2]; 6];
-            for e in 0..mesh.n_elems() {
-                let conn = mesh.elem(e);
-                for (i, &node) in conn.iter().enumerate() {
-                    x[i] = mesh.nodes[node];
-                }
-                element::body_load(
-                    mesh.order,
-                    &x[..k],
-                    body.body_force,
-                    &|p| scene.analysis.measure(p),
-                    &mut fe,
-                );
-                for (i, &node) in conn.iter().enumerate() {
-                    for c in 0..2 {
-                        f[dofs.dof(b, node, c)] += fe[2 * i + c];
-                    }
-                }
+    let k = mesh.order.nodes_per_element();
+    if body.body_force != [0.0, 0.0] {
+        let mut x = [[0.0; 2]; 6];
+        for e in 0..mesh.n_elems() {
+            let conn = mesh.elem(e);
+            for (i, &node) in conn.iter().enumerate() {
+                x[i] = mesh.nodes[node];
             }
-        }
-        for t in &body.tractions {
-            let (edges, vector, pressure, range) = match t {
-                Traction::Vector { edges, t, x_range } => (edges, Some(*t), 0.0, *x_range),
-                Traction::Pressure { edges, p, x_range } => (edges, None, *p, *x_range),
-            };
-            for edge in mesh.edge_sets.get(edges).map(|v| v.as_slice()).unwrap_or(&[]) {
-                let Some((s0, s1)) = clip(mesh, edge, range) else {
-                    continue;
-                };
-                let nodes: Vec<usize> = edge.nodes().collect();
-                let (normal, _) = edge_normal(mesh, edge);
-                let half = 0.5 * (s1 - s0);
-                for g in &element::GAUSS3 {
-                    // The whole edge keeps the plain Gauss points (bit for bit).
-                    let s = if range.is_none() {
-                        g[0]
-                    } else {
-                        s0 + half * (g[0] + 1.0)
-                    };
-                    let (nn, dn) = element::edge_shape(nodes.len(), s);
-                    let (mut tx, mut ty, mut at) = (0.0, 0.0, [0.0; 2]);
-                    for (i, &node) in nodes.iter().enumerate() {
-                        tx += dn[i] * mesh.nodes[node][0];
-                        ty += dn[i] * mesh.nodes[node][1];
-                        at[0] += nn[i] * mesh.nodes[node][0];
-                        at[1] += nn[i] * mesh.nodes[node][1];
-                    }
-                    // 2πr in axisymmetry: the nodal forces are ring totals.
-                    let measure = scene.analysis.measure(at);
-                    let jac = (tx * tx + ty * ty).sqrt();
-                    // Pressure acts against the local outward normal (−t⊥ of the tangent).
-                    let tr = vector.unwrap_or_else(|| {
-                        let (nx, ny) = if jac > 0.0 {
-                            (ty / jac, -tx / jac)
-                        } else {
-                            (normal[0], normal[1])
-                        };
-                        [-pressure * nx, -pressure * ny]
-                    });
-                    for (i, &node) in nodes.iter().enumerate() {
-                        for (c, tc) in tr.iter().enumerate() {
-                            f[dofs.dof(b, node, c)] += g[1] * half * jac * measure * nn[i] * tc;
-                        }
-                    }
-                }
-            }
-        }
-        for (pl, at) in body.point_loads.iter().zip(&points[b]) {
-            for &(node, share) in at {
+            element::body_load(
+                mesh.order,
+                &x[..k],
+                body.body_force,
+                &|p| scene.analysis.measure(p),
+                &mut fe,
+            );
+            for (i, &node) in conn.iter().enumerate() {
                 for c in 0..2 {
-                    f[dofs.dof(b, node, c)] += share * pl.force[c];
+                    add(Source::BodyForce, node, c, fe[2 * i + c]);
                 }
             }
         }
     }
-    f
+    for (j, t) in body.tractions.iter().enumerate() {
+        let (edges, vector, pressure, range) = match t {
+            Traction::Vector { edges, t, x_range } => (edges, Some(*t), 0.0, *x_range),
+            Traction::Pressure { edges, p, x_range } => (edges, None, *p, *x_range),
+        };
+        for edge in mesh.edge_sets.get(edges).map(|v| v.as_slice()).unwrap_or(&[]) {
+            let Some((s0, s1)) = clip(mesh, edge, range) else {
+                continue;
+            };
+            let nodes: Vec<usize> = edge.nodes().collect();
+            let (normal, _) = edge_normal(mesh, edge);
+            let half = 0.5 * (s1 - s0);
+            for g in &element::GAUSS3 {
+                // The whole edge keeps the plain Gauss points (bit for bit).
+                let s = if range.is_none() {
+                    g[0]
+                } else {
+                    s0 + half * (g[0] + 1.0)
+                };
+                let (nn, dn) = element::edge_shape(nodes.len(), s);
+                let (mut tx, mut ty, mut at) = (0.0, 0.0, [0.0; 2]);
+                for (i, &node) in nodes.iter().enumerate() {
+                    tx += dn[i] * mesh.nodes[node][0];
+                    ty += dn[i] * mesh.nodes[node][1];
+                    at[0] += nn[i] * mesh.nodes[node][0];
+                    at[1] += nn[i] * mesh.nodes[node][1];
+                }
+                // 2πr in axisymmetry: the nodal forces are ring totals.
+                let measure = scene.analysis.measure(at);
+                let jac = (tx * tx + ty * ty).sqrt();
+                // Pressure acts against the local outward normal (−t⊥ of the tangent).
+                let tr = vector.unwrap_or_else(|| {
+                    let (nx, ny) = if jac > 0.0 {
+                        (ty / jac, -tx / jac)
+                    } else {
+                        (normal[0], normal[1])
+                    };
+                    [-pressure * nx, -pressure * ny]
+                });
+                for (i, &node) in nodes.iter().enumerate() {
+                    for (c, tc) in tr.iter().enumerate() {
+                        add(Source::Traction(j), node, c, g[1] * half * jac * measure * nn[i] * tc);
+                    }
+                }
+            }
+        }
+    }
+    for (j, (pl, at)) in body.point_loads.iter().zip(points).enumerate() {
+        for &(node, share) in at {
+            for c in 0..2 {
+                add(Source::PointLoad(j), node, c, share * pl.force[c]);
+            }
+        }
+    }
 }

@@ -393,6 +393,9 @@ fn pdas(
     // How far each point's trial force |z| lies beyond its cone's bound in
     // the last update (∞ before the first and off the tangential rows).
     let mut beyond = vec![f64::INFINITY; n];
+    // The sign of the tangential force of each point that stuck in tension
+    // (0: none): closed again, it slides that way instead of sticking.
+    let mut pulled = vec![0i8; n];
     while !run.converged && run.iterations < budget && !crate::cancel::expired() {
         run.iterations += 1;
         let mut attempt = sys.solve(&state)?;
@@ -428,6 +431,10 @@ fn pdas(
                 let lt = lambda[i] - c[i] * gap[i];
                 if lt <= 0.0 {
                     beyond[i] = f64::INFINITY;
+                    if let (State::Stick, Some(k)) = (state[i], t.row_of[i]) {
+                        let along = t.along(k, lambda[i], tau[k]);
+                        pulled[i] = if along > 0.0 { 1 } else { -1 };
+                    }
                     return State::Open;
                 }
                 match t.row_of[i] {
@@ -435,7 +442,17 @@ fn pdas(
                     Some(k) => {
                         let z = t.along(k, lambda[i], tau[k]) + ct[k] * slip[k];
                         beyond[i] = z.abs() / t.bound(k, lt);
-                        if z.abs() <= t.bound(k, lt) {
+                        // Stuck, it pulled; open, it penetrates: a point at
+                        // the edge of its zone where the friction force needs
+                        // a normal force the stick state cannot give. Neither
+                        // state holds it, and with a large μ the cone's test
+                        // from open never proposes the slip that does (the
+                        // T3 roller at μ = 1e3: one edge node alternated
+                        // open–stick under every rescaling until the cap;
+                        // sliding it, 3 iterations up to μ = 1e6).
+                        if state[i] == State::Open && pulled[i] != 0 {
+                            State::Slip(pulled[i])
+                        } else if z.abs() <= t.bound(k, lt) {
                             State::Stick
                         } else {
                             State::Slip(if z > 0.0 { 1 } else { -1 })

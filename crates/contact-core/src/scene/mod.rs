@@ -179,6 +179,19 @@ pub struct Body {
     pub path: String,
 }
 
+impl Body {
+    /// The JSON pointer of the body's supports, or of the body when it has
+    /// none: the request may leave `supports` out, and a refusal's path must
+    /// resolve in it.
+    pub fn supports_path(&self) -> String {
+        if self.supports.is_empty() {
+            self.path.clone()
+        } else {
+            format!("{}/supports", self.path)
+        }
+    }
+}
+
 /// How the body's mesh is obtained (generated lazily by the mesh stage).
 /// Generated meshes keep the request's units; `Inline` is nondimensional.
 #[derive(Debug, Clone)]

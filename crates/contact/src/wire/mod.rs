@@ -37,6 +37,11 @@ impl Validated {
     pub fn client_id(&self) -> Option<&str> {
         self.scene.client_id.as_deref()
     }
+
+    /// The request's own `time_limit`, seconds, if it gives one.
+    pub fn time_limit(&self) -> Option<f64> {
+        self.scene.time_limit
+    }
 }
 
 /// The checks of `solve_bytes` that come before any numerics: parse (lists

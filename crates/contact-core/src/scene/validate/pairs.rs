@@ -128,6 +128,15 @@ pub fn pairs(req: &SolveRequest, survey: &Survey, n: &Names) -> Result<(Vec<Pair
     Ok((pairs, notes))
 }
 
+/// The largest friction coefficient accepted. A normal force at round-off,
+/// ε = 2.2e-16 of the largest, carries a friction force up to μ ε of it:
+/// at 1e6 that is 2.2e-10, 45 times below the default tolerance 1e-8 of the
+/// certificate; at μ = 1e10 it was 2e-6 and a correct all-stick answer on
+/// the T3 roller was reported as `numerical_error`, and at 1e308 μ λ
+/// overflowed. Real coefficients stay below about 10; on the T3 roller the
+/// answer no longer changes with μ from 1e2 up (it sticks).
+pub const MAX_FRICTION: f64 = 1e6;
+
 /// The pair's Coulomb coefficient μ (0 without `friction`); friction where
 /// it is not supported yet is refused rather than ignored.
 fn friction(req: &SolveRequest, c: &proto::ContactSpec, cp: &str, target: &Target) -> Result<f64, CoreError> {
@@ -140,6 +149,15 @@ fn friction(req: &SolveRequest, c: &proto::ContactSpec, cp: &str, target: &Targe
             K::Request,
             format!("{cp}/friction/coefficient"),
             format!("the friction coefficient must be a finite number ≥ 0, got {mu}"),
+        ));
+    }
+    if mu > MAX_FRICTION {
+        return Err(invalid(
+            K::Request,
+            format!("{cp}/friction/coefficient"),
+            format!(
+                "the friction coefficient must lie in [0, {MAX_FRICTION:.0e}], got {mu:e}: beyond it the friction a normal force at round-off carries is no longer round-off; a coefficient this large means the surfaces do not slide, which {MAX_FRICTION:.0e} already gives"
+            ),
         ));
     }
     if mu == 0.0 {
