@@ -48,11 +48,11 @@ pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
         crate::progress::expect_estimate(crate::adapt::estimate_share(scene));
     }
     if let Some(target) = scene.settings.accuracy {
-        return crate::adapt::refine(scene, target, &uncached);
+        return crate::adapt::refine(scene, target, &uncached, limits.max_dofs);
     }
     let mut report = solve_steps(scene, limits, cache)?;
     if scene.settings.estimate {
-        crate::adapt::estimate(scene, &mut report, &uncached);
+        crate::adapt::estimate(scene, &mut report, &uncached, limits.max_dofs);
     }
     Ok(report)
 }

@@ -100,6 +100,11 @@ enum Cmd {
         /// Largest accepted number of degrees of freedom.
         #[arg(long)]
         max_dofs: Option<usize>,
+        /// Memory one request may take, in MB (default: half the machine's
+        /// memory shared among the workers); bounds its degrees of freedom,
+        /// refinement rounds and error-estimate companions.
+        #[arg(long, value_name = "MB")]
+        max_memory: Option<usize>,
         /// Largest accepted number of contact candidates.
         #[arg(long)]
         max_candidates: Option<usize>,
@@ -271,6 +276,7 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
             workers,
             queue_limit,
             max_dofs,
+            max_memory,
             max_candidates,
             max_load_steps,
             max_output_values,
@@ -306,6 +312,12 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
             }
             if let Some(m) = max_dofs {
                 cfg.limits.max_dofs = m;
+            }
+            let memory = max_memory
+                .map(|mb| mb << 20)
+                .or_else(|| crate::service::config::machine_memory().map(|b| b / 2 / cfg.workers));
+            if let Some(bytes) = memory {
+                cfg.limits.max_dofs = cfg.limits.max_dofs.min(crate::service::config::dofs_within(bytes));
             }
             if let Some(m) = max_candidates {
                 cfg.limits.max_candidates = m;

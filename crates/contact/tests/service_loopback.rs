@@ -451,3 +451,25 @@ fn a_time_limit_counts_from_arrival() {
     let slow_reply = running.recv().expect("a reply");
     assert!(slow_reply.result().is_err(), "the slow request is cut at its 4 s");
 }
+
+/// `--max-memory` bounds what one request may reach: at 150 MB (about 105k
+/// DOF at 1.5 kB each) a disk asked for 0.01 % with `accuracy.max_dofs`
+/// 2.5M stops its rounds before the first that would pass it (it took
+/// 3.35 GB before), and health reports the effective `max_dofs`.
+#[test]
+fn max_memory_bounds_a_requests_rounds() {
+    let (_server, session) = serve(&["--max-memory", "150"]);
+    let cap = 150 * (1 << 20) / 1500;
+    assert_eq!(health(&session)["limits"]["max_dofs"], cap);
+    let mut req = contact_verify::convergence::disk_request(0.02, "t3");
+    req["settings"] = json!({"accuracy": {"pressure_l2": 0.0001, "max_dofs": 2_500_000, "max_rounds": 10}});
+    let (ok, v) = query(&session, "contact/solve", &bytes(&req));
+    assert!(ok, "{v}");
+    assert_eq!(v["refinement"]["stopped"], "max_dofs", "{}", v["refinement"]);
+    let rounds = v["refinement"]["rounds"].as_array().unwrap();
+    assert!(rounds.len() >= 2, "{rounds:?}");
+    assert!(
+        rounds.iter().all(|r| r["dofs"].as_u64().unwrap() <= cap as u64),
+        "{rounds:?}"
+    );
+}

@@ -83,8 +83,11 @@ pub type Solver<'a> = dyn Fn(&Scene) -> Result<Report, CoreError> + 'a;
 /// Fills every pair's `accuracy` of a solved report: the two-level estimate
 /// when the companion solves, else the zone ends alone (with a note saying
 /// why).
-pub fn estimate(scene: &Scene, report: &mut Report, solve: &Solver) {
-    estimate_with(scene, report, solve);
+/// `max_dofs`: the deployment's size limit (`Limits::max_dofs`, which the
+/// service also bounds by its memory per request), which a finer companion
+/// may not pass.
+pub fn estimate(scene: &Scene, report: &mut Report, solve: &Solver, max_dofs: usize) {
+    estimate_with(scene, report, solve, max_dofs);
 }
 
 /// The estimate's companion solve over the solve's own time, for the
@@ -107,7 +110,7 @@ fn given(scene: &Scene) -> bool {
 /// `estimate`, returning the finer companion (a given mesh's, every triangle
 /// split in four) with its solved report, which is the next refinement
 /// round.
-fn estimate_with(scene: &Scene, report: &mut Report, solve: &Solver) -> Option<(Scene, Report)> {
+fn estimate_with(scene: &Scene, report: &mut Report, solve: &Solver, max_dofs: usize) -> Option<(Scene, Report)> {
     let t = Instant::now();
     let mut finer = None;
     let outcome: Result<(), Option<String>> = (|| {
@@ -121,10 +124,12 @@ fn estimate_with(scene: &Scene, report: &mut Report, solve: &Solver) -> Option<(
             ("coarser solve (elements twice as large)", RATIO)
         };
         let predicted = report.size.dofs as f64 * (RATIO * RATIO);
-        if fine && predicted > FINER_MAX_DOFS {
+        let most = FINER_MAX_DOFS.min(max_dofs as f64);
+        if fine && predicted > most {
             return Err(Some(format!(
                 "the error estimate needs a finer solve of about {predicted:.0} DOFs (every triangle split in four), \
-                 more than the {FINER_MAX_DOFS:.0} it may take; only the zone ends' uncertainty is estimated"
+                 more than the {most:.0} it may take (its own bound, or the service's size or memory limit); only \
+                 the zone ends' uncertainty is estimated"
             )));
         }
         let seconds = solve_seconds(report) * (RATIO * RATIO).powf(TIME_GROWTH);
@@ -173,11 +178,17 @@ fn estimate_with(scene: &Scene, report: &mut Report, solve: &Solver) -> Option<(
 
 /// Solves, estimates and refines until `target` is met or a limit stops the
 /// rounds (module doc).
-pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver) -> Result<Report, CoreError> {
+/// `max_dofs`: the deployment's size limit, which no round may pass (its
+/// prediction stops the rounds before the mesh is built).
+pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver, max_dofs: usize) -> Result<Report, CoreError> {
+    let target = AccuracyTarget {
+        max_dofs: target.max_dofs.min(max_dofs),
+        ..target
+    };
     let started = Instant::now();
     crate::progress::round(1);
     let mut report = solve(scene)?;
-    let mut finer = estimate_with(scene, &mut report, solve);
+    let mut finer = estimate_with(scene, &mut report, solve, max_dofs);
     // Given meshes refine uniformly: each round is the previous one's finer
     // companion (module doc).
     let uniform = given(scene);
@@ -249,7 +260,7 @@ pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver) -> Result<R
                 }
             }
         } else {
-            estimate_with(&next, &mut fine, solve);
+            estimate_with(&next, &mut fine, solve, max_dofs);
         }
         growth = Some(fine.size.dofs as f64 / report.size.dofs.max(1) as f64);
         let r = round(&next, &fine, t.elapsed().as_secs_f64());
@@ -345,7 +356,10 @@ fn not_reached(report: &Report, target: &AccuracyTarget, stopped: &str, failure:
     let (p, z) = worst(report);
     let why = match stopped {
         "max_rounds" => format!("after {} rounds (max_rounds)", target.max_rounds),
-        "max_dofs" => format!("the next round would exceed max_dofs = {}", target.max_dofs),
+        "max_dofs" => format!(
+            "the next round would exceed max_dofs = {} (the request's, or the service's size or memory limit)",
+            target.max_dofs
+        ),
         "size_limit" => "the next round exceeds the service's size limit".into(),
         "time_limit" => {
             "the next round would not end within the time limit (predicted from the last round's time and growth)"
