@@ -283,3 +283,24 @@ fn seeded_byte_mutations_of_the_corpus_are_answered() {
         let _ = answer(&format!("mutation {run} of {name}"), &b);
     }
 }
+
+/// A refusal quotes at most a few hundred bytes of what it was sent: a
+/// `load_path` key of a megabyte (it names no load) came back whole in both
+/// the message and the path; now the message is cut (saying how much) and
+/// the path is the pointer's ancestor that fits, which still resolves in
+/// the request.
+#[test]
+fn a_huge_quoted_key_is_cut_from_the_refusal() {
+    let mut req = example_without_description("signorini_hertz_cylinder.json");
+    let key = format!("/bodies/0/{}", "x".repeat(1 << 20));
+    req["load_path"] = json!([{ "loads": { key: 1.0 } }]);
+    let e = contact::solve_bytes(&serde_json::to_vec(&req).unwrap(), &Limits::default()).expect_err("refused");
+    assert_eq!(e.code, ErrorCode::InvalidRequest);
+    assert!(
+        e.message.len() < 2100 && e.message.contains("bytes cut"),
+        "{} bytes",
+        e.message.len()
+    );
+    assert_eq!(e.path, "/load_path/0/loads");
+    assert!(req.pointer(&e.path).is_some());
+}

@@ -85,6 +85,38 @@ pub fn solve_validated(
     }
 }
 
+/// Longest message and pointer a refusal carries. Both may quote the
+/// request (a key, a field name), and a 28 MB `load_path` key came back
+/// whole in both: a 56 MB reply, 1.1 GB for 32 of them at once.
+const MAX_MESSAGE: usize = 2000;
+const MAX_POINTER: usize = 500;
+
+/// `text` cut to at most `max` bytes (at a character boundary), saying how
+/// much was cut.
+fn clipped(text: String, max: usize) -> String {
+    if text.len() <= max {
+        return text;
+    }
+    let mut end = max;
+    while !text.is_char_boundary(end) {
+        end -= 1;
+    }
+    format!("{}… ({} bytes cut)", &text[..end], text.len() - end)
+}
+
+/// The longest ancestor of the JSON pointer `path` within `max` bytes: it
+/// still resolves in the request wherever `path` did.
+fn pointer_within(path: &str, max: usize) -> String {
+    if path.len() <= max {
+        return path.to_string();
+    }
+    let mut end = max;
+    while !path.is_char_boundary(end) {
+        end -= 1;
+    }
+    path[..end].rfind('/').map_or(String::new(), |k| path[..k].to_string())
+}
+
 /// The wire form of a refusal: its code (the core's name for it,
 /// `CoreError::code`), message, pointer and details.
 pub fn error_reply(e: &CoreError) -> ErrorReply {
@@ -94,14 +126,18 @@ pub fn error_reply(e: &CoreError) -> ErrorReply {
         CoreError::Invalid { reason, .. } | CoreError::TooLarge { reason, .. } => reason.clone(),
         other => other.to_string(),
     };
-    let mut reply = ErrorReply::new(code, message, e.path());
+    let mut reply = ErrorReply::new(
+        code,
+        clipped(message, MAX_MESSAGE),
+        pointer_within(e.path(), MAX_POINTER),
+    );
     if let CoreError::Invalid { loads, .. } = e {
         if !loads.is_empty() {
             reply.details = Some(Box::new(ErrorDetails {
                 loads: loads
                     .iter()
                     .map(|b| LoadBound {
-                        path: b.path.clone(),
+                        path: pointer_within(&b.path, MAX_POINTER),
                         value: b.value,
                         min: b.min,
                         max: b.max,
