@@ -150,38 +150,7 @@ enum Cmd {
         log_format: LogFormat,
     },
     /// Time-against-error benchmark (Hertz, T3/T6, every method): table on stdout, CSV file.
-    Bench {
-        /// Meshes up to ~100k DOF only (for CI).
-        #[arg(long)]
-        quick: bool,
-        /// `auto` alone against the floor, T3, at about 75k, 612k and 1.19M DOF.
-        #[arg(long, conflicts_with = "quick")]
-        floor: bool,
-        /// Threads of the sparse factorization and sweeps, for the solve and
-        /// the floor alike (default 1).
-        #[arg(long, default_value_t = 1)]
-        threads: usize,
-        /// CSV output path.
-        #[arg(long, default_value = crate::cli_bench::DEFAULT_BENCH_CSV)]
-        csv: PathBuf,
-        /// Runs per row; the median is reported.
-        #[arg(long, default_value_t = 1)]
-        repeat: usize,
-        /// The numerical stress suite instead (one row per scene and axis value;
-        /// CSV to --csv, default bench_out/stability.csv).
-        #[arg(long)]
-        stability: bool,
-        /// Convergence under refinement against Hertz instead (elastic disk on a
-        /// rigid flat and rigid cylinder into a block, six levels, T3 and T6;
-        /// the disk, the ball and the block also against overkill references;
-        /// CSV to --csv, default bench_out/convergence.csv), then the time to a
-        /// tolerance (tolerance.csv), the error estimate's effectivity on
-        /// seven scenes (effectivity.csv) and the frictional stick zone against
-        /// Cattaneo–Mindlin, three levels, T3 and T6 (friction_convergence.csv)
-        /// beside it.
-        #[arg(long, conflicts_with = "stability")]
-        convergence: bool,
-    },
+    Bench(crate::cli_bench::Bench),
     /// Write the JSON Schemas of the protocol.
     Schema {
         /// Output directory.
@@ -345,23 +314,7 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
             rt.block_on(crate::service::router::run(config, listen, tls, acl))?;
             Ok(0)
         }
-        Cmd::Bench {
-            quick,
-            floor,
-            threads,
-            csv,
-            repeat,
-            stability,
-            convergence,
-        } => crate::cli_bench::run(crate::cli_bench::Bench {
-            quick,
-            floor,
-            threads,
-            csv,
-            repeat,
-            stability,
-            convergence,
-        }),
+        Cmd::Bench(b) => crate::cli_bench::run(b),
         Cmd::Schema { out } => {
             std::fs::create_dir_all(&out)?;
             for (name, text) in crate::proto::schema::schemas() {

@@ -11,13 +11,37 @@ use anyhow::Context;
 pub const DEFAULT_BENCH_CSV: &str = "bench_out/bench.csv";
 
 /// The options of `contact bench`.
+#[derive(clap::Args)]
 pub struct Bench {
+    /// Meshes up to ~100k DOF only (for CI).
+    #[arg(long)]
     pub quick: bool,
+    /// `auto` alone against the floor, T3, at about 75k, 612k and 1.19M DOF.
+    #[arg(long, conflicts_with = "quick")]
     pub floor: bool,
+    /// Threads of the sparse factorization and sweeps, for the solve and
+    /// the floor alike (default 1).
+    #[arg(long, default_value_t = 1)]
     pub threads: usize,
+    /// CSV output path.
+    #[arg(long, default_value = DEFAULT_BENCH_CSV)]
     pub csv: PathBuf,
+    /// Runs per row; the median is reported.
+    #[arg(long, default_value_t = 1)]
     pub repeat: usize,
+    /// The numerical stress suite instead (one row per scene and axis value;
+    /// CSV to --csv, default bench_out/stability.csv).
+    #[arg(long)]
     pub stability: bool,
+    /// Convergence under refinement against Hertz instead (elastic disk on a
+    /// rigid flat and rigid cylinder into a block, six levels, T3 and T6;
+    /// the disk, the ball and the block also against overkill references;
+    /// CSV to --csv, default bench_out/convergence.csv), then the time to a
+    /// tolerance (tolerance.csv), the error estimate's effectivity on
+    /// nine scenes, two of them given inline (effectivity.csv) and the frictional stick zone against
+    /// Cattaneo–Mindlin, three levels, T3 and T6 (friction_convergence.csv)
+    /// beside it.
+    #[arg(long, conflicts_with = "stability")]
     pub convergence: bool,
 }
 
