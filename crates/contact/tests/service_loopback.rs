@@ -405,8 +405,9 @@ fn serve_refuses_plain_tcp_off_loopback_without_insecure() {
         assert!(err.contains(word), "{word:?} missing from: {err}");
     }
     assert!(!err.contains("serving"), "{err}");
-    // Nothing bound it: the port is still ours to take.
-    TcpListener::bind(("0.0.0.0", port)).expect("the refused service left the port bound");
+    // Nothing holds it: the port is still ours to take (on loopback: the
+    // tests open nothing on other interfaces).
+    TcpListener::bind(("127.0.0.1", port)).expect("the refused service left the port bound");
 }
 
 /// `time_limit` counts from the request's arrival, not from when a worker
