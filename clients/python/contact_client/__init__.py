@@ -25,7 +25,7 @@ from .client import (
 from . import scenes
 from .results import plot_pressure, save_vtu, to_numpy
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
 __all__ = [
     "DEFAULT_CONNECT",
