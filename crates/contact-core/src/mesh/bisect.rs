@@ -81,7 +81,8 @@ struct Bisector {
 /// arc edges turns by 1° per edge, a graded far field of R/8 by 7°.
 const CORNER: f64 = 0.35;
 
-fn key(a: usize, b: usize) -> (usize, usize) {
+/// An undirected side: its corners in order.
+pub(super) fn key(a: usize, b: usize) -> (usize, usize) {
     (a.min(b), a.max(b))
 }
 

@@ -18,12 +18,8 @@
 
 use std::collections::{BTreeMap, HashMap};
 
-use super::bisect::{boundary_links, boundary_mid};
+use super::bisect::{boundary_links, boundary_mid, key};
 use super::{Edge, Mesh2d, Order};
-
-fn key(a: usize, b: usize) -> (usize, usize) {
-    (a.min(b), a.max(b))
-}
 
 /// The mesh with every triangle split into four (module doc).
 pub fn refine_uniform(mesh: &Mesh2d) -> Mesh2d {
