@@ -23,7 +23,7 @@ from .client import (
     work_fraction,
 )
 from . import scenes
-from .results import plot_pressure, save_vtu, to_numpy
+from .results import described_pressure, plot_pressure, save_vtu, to_numpy
 
 __version__ = "0.2.0"
 
@@ -44,5 +44,6 @@ __all__ = [
     "plot_pressure",
     "save_vtu",
     "to_numpy",
+    "described_pressure",
     "work_fraction",
 ]

@@ -11,7 +11,7 @@ from typing import Any, Callable
 
 from . import scenes
 
-__all__ = ["to_numpy", "plot_pressure", "save_vtu"]
+__all__ = ["to_numpy", "described_pressure", "plot_pressure", "save_vtu"]
 
 _POINT_FIELDS = ("x", "y", "gap", "pressure", "force", "weight")
 
@@ -23,7 +23,8 @@ def to_numpy(result: dict) -> list[dict]:
     pair's candidates, in the reply's order along the boundary), ``node`` (int array),
     ``normal`` (n x 2), ``zones`` (k x 2 intervals of x), ``zones_along`` (k x 2: each zone's
     arc length [s_start, s_end] along the pair's edge set, in its order) with ``zone_ends``
-    (k x 2 x 2: the [x, y] of each zone's start and end), and ``body`` plus the pair's target
+    (k x 2 x 2: the [x, y] of each zone's start and end) and ``fitted_ends`` (k x 2 x 2: the
+    [x, y] of each zone's fitted smooth edge, NaN where none is fitted), and ``body`` plus the pair's target
     (``obstacle``, ``against`` or ``foundation``) as strings. Units are the request's.
 
     Friction: ``tangential_traction`` and ``slip`` (float arrays: the tangential traction on
@@ -51,11 +52,76 @@ def to_numpy(result: dict) -> list[dict]:
         along = pair.get("zones_along", [])
         d["zones_along"] = np.array([[z["s_start"], z["s_end"]] for z in along], dtype=float).reshape(-1, 2)
         d["zone_ends"] = np.array([[z["start"], z["end"]] for z in along], dtype=float).reshape(-1, 2, 2)
+        d["fitted_ends"] = np.array([[[math.nan, math.nan] if f is None else [f["x"], f["y"]]
+                                      for f in z.get("fitted", [None, None])] for z in along],
+                                    dtype=float).reshape(-1, 2, 2)
         for k in ("body", "obstacle", "against", "foundation"):
             if k in pair:
                 d[k] = pair[k]
         out.append(d)
     return out
+
+
+def described_pressure(pair: dict, samples: int = 8):
+    """The pressure the reply describes along a pair's surface, as arrays ``(x, y, p)``.
+
+    It is the field that ``accuracy.pressure_l2`` estimates the error of: p² linear
+    between consecutive contact points (``samples`` points per segment), and on the
+    segment from a zone's last point in contact to the next, open one, p falling as
+    p_last √(1 − d/d_edge) to zero at the zone's fitted edge (``zones_along[].fitted``),
+    then 0. Where no edge is fitted (a sharp punch corner, a foundation), the segment is
+    drawn as the others. Points are ordered by x, then y, as ``plot_pressure`` draws them.
+    ``pair`` is one entry of the reply's ``pairs``.
+    """
+    x, y, p, _ = _described(pair, samples)
+    return x, y, p
+
+
+def _described(pair: dict, samples: int):
+    """``described_pressure``, with the index of each contact point among the samples."""
+    import numpy as np
+
+    pts = sorted(((p["x"], p["y"], p["pressure"]) for p in pair["points"]), key=lambda q: (q[0], q[1]))
+    reach = {}
+    for z in pair.get("zones_along", []):
+        for end, fit in zip((z["start"], z["end"]), z.get("fitted", [None, None])):
+            if fit is not None:
+                reach[(end[0], end[1])] = (fit["x"], fit["y"])
+    xs, ys, ps, nodes = [], [], [], []
+    t = np.arange(samples) / samples
+    for (xa, ya, pa), (xb, yb, pb) in zip(pts, pts[1:]):
+        seg_x, seg_y = xa + t * (xb - xa), ya + t * (yb - ya)
+        seg_p = np.sqrt(np.maximum(pa * pa + t * (pb * pb - pa * pa), 0.0))
+        seg_p[0] = pa
+        if (pa > 0.0) != (pb > 0.0):
+            end, p_end, other = ((xa, ya), pa, (xb, yb)) if pa > 0.0 else ((xb, yb), pb, (xa, ya))
+            fit = reach.get(end)
+            if fit is not None:
+                # Sample to the edge itself, then the open rest of the segment.
+                d_edge = math.hypot(fit[0] - end[0], fit[1] - end[1])
+                length = math.hypot(other[0] - end[0], other[1] - end[1])
+                u = np.linspace(0.0, 1.0, 4 * samples + 1)
+                dist = np.concatenate([u * d_edge, [length]])
+                prof = p_end * np.sqrt(np.maximum(1.0 - dist / max(d_edge, 1e-300), 0.0))
+                prof[-1] = 0.0
+                f = dist / length if length > 0.0 else dist * 0.0
+                sx, sy = end[0] + f * (other[0] - end[0]), end[1] + f * (other[1] - end[1])
+                if pa > 0.0:
+                    seg_x, seg_y, seg_p = sx[:-1], sy[:-1], prof[:-1]
+                else:
+                    seg_x, seg_y, seg_p = sx[::-1][:-1], sy[::-1][:-1], prof[::-1][:-1]
+        nodes.append(sum(len(v) for v in xs))
+        xs.append(seg_x)
+        ys.append(seg_y)
+        ps.append(seg_p)
+    if pts:
+        nodes.append(sum(len(v) for v in xs))
+        xs.append(np.array([pts[-1][0]]))
+        ys.append(np.array([pts[-1][1]]))
+        ps.append(np.array([pts[-1][2]]))
+    if not xs:
+        return np.zeros(0), np.zeros(0), np.zeros(0), []
+    return np.concatenate(xs), np.concatenate(ys), np.concatenate(ps), nodes
 
 
 def _curvature_radius(mesh: dict, edges: str) -> float:
@@ -218,10 +284,13 @@ def plot_pressure(result: dict, ax=None, reference: str | bool | Callable[[float
     xs_all, zones_all = [], []
     for k in chosen:
         d = arrays[k]
-        order = np.argsort(d["x"])
         target = d.get("obstacle") or d.get("against") or d.get("foundation") or "?"
         marker = "osD^v"[k % 5]
-        ax.plot(d["x"][order], d["pressure"][order], "-", marker=marker, ms=3.5, lw=1,
+        # The nodal values as markers, the described field (p² linear between them, the
+        # square-root facet to each fitted zone edge) as the line: the curve whose error
+        # `accuracy.pressure_l2` estimates.
+        cx, _, cp, at_nodes = _described(result["pairs"][k], 8)
+        ax.plot(cx, cp, "-", marker=marker, ms=3.5, lw=1, markevery=at_nodes,
                 markerfacecolor="none", label=f"FE, pair {k}: {d['body']} / {target}")
         for i, (x0, x1) in enumerate(d["zones"]):
             ax.axvspan(x0, x1, color="0.5", alpha=0.12, lw=0,

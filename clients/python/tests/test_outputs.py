@@ -198,3 +198,35 @@ def test_a_flat_punch_overlay_is_sadowsky_and_a_foundation_has_none():
     footing = solve_local(scenes.footing_on_foundation(rq.winkler(100.0)))
     with pytest.raises(ValueError, match="callable"):
         plot_pressure(footing, reference=True)
+
+
+def test_the_described_pressure_ends_at_the_fitted_edge_and_carries_the_load(hertz_reply):
+    """The field `accuracy.pressure_l2` is the error of: the nodal values at the nodes, p
+    falling to 0 at each zone's fitted edge (between the last node in contact and the
+    next), 0 beyond; its integral along the flat surface is the pair's load to within the
+    estimated pressure error (the nodal forces are its integrals against the shape
+    functions, so the two differ only by the interpolation's error)."""
+    np = pytest.importorskip("numpy")
+    from contact_client import described_pressure
+
+    pair = hertz_reply["pairs"][0]
+    x, y, p = described_pressure(pair)
+    for q in pair["points"]:
+        at = np.flatnonzero((x == q["x"]) & (y == q["y"]))
+        assert at.size and p[at[0]] == q["pressure"]
+    (zone,) = pair["zones_along"]
+    fitted = [f for f in zone["fitted"] if f is not None]
+    assert fitted, "a Hertz zone has smooth edges"
+    xs = sorted(q["x"] for q in pair["points"])
+    for f, end in zip(zone["fitted"], (zone["start"], zone["end"])):
+        if f is None:
+            continue
+        # Between the zone's end node and the next node outward.
+        nxt = [v for v in xs if (v - end[0]) * (f["x"] - end[0]) > 0]
+        beyond = min(nxt, key=lambda v: abs(v - end[0]))
+        assert min(end[0], beyond) <= f["x"] <= max(end[0], beyond)
+        outside = (x - f["x"]) * (end[0] - f["x"]) < 0
+        assert np.all(p[outside] == 0.0)
+    load = np.trapezoid(p, x) if hasattr(np, "trapezoid") else np.trapz(p, x)
+    est = pair["accuracy"]["pressure_l2"]
+    assert load == pytest.approx(abs(pair["resultant"]["fy"]), rel=max(2 * est, 1e-3))

@@ -124,7 +124,11 @@ pub struct PairAccuracy {
     /// could not be solved or would be too large, as the reply's notes say:
     /// only the zone ends).
     pub basis: String,
-    /// Estimated relative L2 error of the nodal pressure over the zone.
+    /// Estimated relative L2 error of the pressure over the zone: of the
+    /// field the reply describes, linear between the nodes and falling as a
+    /// square root from each zone's last node in contact to its fitted edge
+    /// (`zones_along[].fitted`), in the L2 norm along the surface; the
+    /// nodal values' error is bounded by it too.
     pub pressure_l2: Option<f64>,
     /// Estimated relative error of the peak pressure.
     pub peak: Option<f64>,
@@ -133,6 +137,12 @@ pub struct PairAccuracy {
     /// Estimated error of each zone's start and end along the surface, in
     /// the order of `zones_along` [length].
     pub zone_edges: Vec<[f64; 2]>,
+    /// Estimated error of each zone's fitted start and end
+    /// (`zones_along[].fitted`) along the surface, in the order of
+    /// `zones_along`, null where no edge is fitted [length]: the two levels'
+    /// fitted edges' distance, Richardson-scaled as `pressure_l2`.
+    #[serde(default)]
+    pub fitted_edges: Vec<[Option<f64>; 2]>,
     /// Zone ends where the pressure is unbounded (a punch's sharp corner,
     /// p ~ d^(-1/2)): its L2 norm is infinite there, so `pressure_l2` and
     /// `peak` leave out the band of radius `band` around each (5 % of the
@@ -354,6 +364,28 @@ pub struct ZoneAlong {
     /// where the zone ends with its edge set.
     #[serde(default)]
     pub uncertainty: [f64; 2],
+    /// The start's and the end's smooth edge where the least-squares fit of
+    /// p² (linear in the distance to a square-root edge) places it between
+    /// the last node in contact and the next, or null (a sharp punch
+    /// corner, a foundation's lift-off, the end of the edge set, too few
+    /// nodes in contact to fit). This is the zone end the reply describes:
+    /// on the facet from the last node in contact to it the pressure falls
+    /// as p_last √(1 − d/d_edge) (d from the node), and it is 0 beyond.
+    /// `accuracy.pressure_l2` estimates the error of that described field
+    /// and `accuracy.fitted_edges` the error of these ends.
+    #[serde(default)]
+    pub fitted: [Option<FittedEnd>; 2],
+}
+
+/// A zone's smooth edge placed between nodes by the fit of p².
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FittedEnd {
+    /// Arc length along the surface, as `s_start`/`s_end` [length].
+    pub s: f64,
+    /// Undeformed position, on the chord between the two nodes [length].
+    pub x: f64,
+    pub y: f64,
 }
 
 /// A node of the other body of a two-body pair.

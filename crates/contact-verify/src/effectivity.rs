@@ -18,7 +18,7 @@
 //! reference's edge.
 
 use contact_core::scene::Limits;
-use contact_core::solution::accuracy::{along_polyline, field};
+use contact_core::solution::accuracy::{along_polyline, described, described_at, described_l2, field};
 use contact_core::solution::corners::in_band;
 use contact_core::solution::report::Report;
 use serde_json::{json, Value};
@@ -148,11 +148,18 @@ pub struct Row {
     pub est_peak: Option<f64>,
     /// Seconds of the estimate over seconds of the solve.
     pub cost: f64,
+    /// Relative L2 error along the surface of the described field (the
+    /// square-root facets to the fitted edges included,
+    /// `accuracy::described`): what `est_l2` bounds.
+    pub err_curve: f64,
+    /// The outermost fitted edge's true error and its estimate.
+    pub err_fit: Option<f64>,
+    pub est_fit: Option<f64>,
 }
 
 impl Row {
     pub const HEADER: &'static str =
-        "scene,element,factor,dofs,err_l2,est_l2,eff_l2,err_edge,est_edge,eff_edge,err_resultant,est_resultant,eff_resultant,err_peak,est_peak,eff_peak,cost";
+        "scene,element,factor,dofs,err_l2,est_l2,eff_l2,err_edge,est_edge,eff_edge,err_resultant,est_resultant,eff_resultant,err_peak,est_peak,eff_peak,cost,err_curve,eff_curve,err_fit,est_fit,eff_fit";
 
     fn eff(est: Option<f64>, err: f64) -> Option<f64> {
         est.filter(|_| err > 0.0).map(|e| e / err)
@@ -169,11 +176,17 @@ impl Row {
     pub fn eff_peak(&self) -> Option<f64> {
         Self::eff(self.est_peak, self.err_peak)
     }
+    pub fn eff_curve(&self) -> Option<f64> {
+        Self::eff(self.est_l2, self.err_curve)
+    }
+    pub fn eff_fit(&self) -> Option<f64> {
+        self.err_fit.and_then(|e| Self::eff(self.est_fit, e))
+    }
 
     pub fn csv(&self) -> String {
         let o = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.6e}"));
         format!(
-            "{},{},{},{},{:.6e},{},{},{},{:.6e},{},{:.6e},{},{},{:.6e},{},{},{:.4}",
+            "{},{},{},{},{:.6e},{},{},{},{:.6e},{},{:.6e},{},{},{:.6e},{},{},{:.4},{:.6e},{},{},{},{}",
             self.scene,
             self.element,
             self.factor,
@@ -190,13 +203,18 @@ impl Row {
             self.err_peak,
             o(self.est_peak),
             o(self.eff_peak()),
-            self.cost
+            self.cost,
+            self.err_curve,
+            o(self.eff_curve()),
+            o(self.err_fit),
+            o(self.est_fit),
+            o(self.eff_fit()),
         )
     }
 
     pub fn table_header() -> String {
         format!(
-            "{:<20} {:<3} {:>4} {:>8} {:>8} {:>8} {:>6} {:>9} {:>9} {:>6} {:>8} {:>8} {:>6} {:>8} {:>8} {:>6} {:>5}",
+            "{:<20} {:<3} {:>4} {:>8} {:>8} {:>8} {:>6} {:>9} {:>9} {:>6} {:>8} {:>8} {:>6} {:>8} {:>8} {:>6} {:>5} {:>8} {:>6} {:>9} {:>9} {:>6}",
             "scene",
             "el",
             "f",
@@ -213,7 +231,12 @@ impl Row {
             "err_peak",
             "est_peak",
             "eff",
-            "cost"
+            "cost",
+            "err_crv",
+            "eff",
+            "err_fit",
+            "est_fit",
+            "eff"
         )
     }
 
@@ -221,7 +244,7 @@ impl Row {
         let pct = |v: Option<f64>| v.map_or("-".into(), |v| format!("{:.3}%", 100.0 * v));
         let e = |v: Option<f64>| v.map_or("-".into(), |v| format!("{v:.2}"));
         format!(
-            "{:<20} {:<3} {:>4} {:>8} {:>8} {:>8} {:>6} {:>9} {:>9.2e} {:>6} {:>8} {:>8} {:>6} {:>8} {:>8} {:>6} {:>5.2}",
+            "{:<20} {:<3} {:>4} {:>8} {:>8} {:>8} {:>6} {:>9} {:>9.2e} {:>6} {:>8} {:>8} {:>6} {:>8} {:>8} {:>6} {:>5.2} {:>8} {:>6} {:>9} {:>9} {:>6}",
             self.scene,
             self.element,
             self.factor,
@@ -238,7 +261,12 @@ impl Row {
             pct(Some(self.err_peak)),
             pct(self.est_peak),
             e(self.eff_peak()),
-            self.cost
+            self.cost,
+            pct(Some(self.err_curve)),
+            e(self.eff_curve()),
+            self.err_fit.map_or("-".into(), |v| format!("{v:.2e}")),
+            self.est_fit.map_or("-".into(), |v| format!("{v:.2e}")),
+            e(self.eff_fit()),
         )
     }
 }
@@ -325,7 +353,55 @@ pub fn compare(scene: &'static str, element: &'static str, factor: f64, r: &Repo
             )
         }
     };
+    // The described field against the reference's (the table's continuous
+    // profile, or the solved reference's own described field), and the
+    // outermost fitted edge against the reference's edge.
+    let counted = |x: f64, y: f64| !in_band(singular, x, y);
+    let fitted_outer = p
+        .zones_along
+        .iter()
+        .enumerate()
+        .flat_map(|(i, z)| {
+            [0, 1].map(|k| {
+                let est = acc.and_then(|a| a.fitted_edges.get(i).and_then(|e| e[k]));
+                z.fitted[k].map(|f| (f.at, est))
+            })
+        })
+        .flatten()
+        .max_by(|a, b| a.0[0].total_cmp(&b.0[0]));
+    let (err_curve, err_fit) = match crate::overkill::reference(table_of(scene)) {
+        Some(t) => {
+            let (num, _, den) = described_l2(p, &|x, _| t.pressure(x), &counted);
+            let fit = fitted_outer.map(|(at, _)| (at[0].abs() - t.edge).abs());
+            (if den > 0.0 { (num / den).sqrt() } else { 0.0 }, fit)
+        }
+        None => {
+            let q = &reference.expect("a solved reference where no table is stored").pairs[0];
+            let (pts, reach) = described(q);
+            let (num, _, den) = described_l2(p, &|x, y| described_at(&pts, &reach, x, y), &counted);
+            let ends: Vec<([f64; 2], f64)> = q
+                .zones_along
+                .iter()
+                .flat_map(|z| [0, 1].map(|k| z.fitted[k].map(|f| (f.at, z.uncertainty[k]))))
+                .flatten()
+                .collect();
+            // Measurable where it is well past the reference's own scatter
+            // (a quarter of its end's uncertainty, itself ≥ a quarter of
+            // its spacing).
+            let fit = fitted_outer.and_then(|(at, _)| {
+                ends.iter()
+                    .map(|(e, u)| ((e[0] - at[0]).hypot(e[1] - at[1]), *u))
+                    .min_by(|a, b| a.0.total_cmp(&b.0))
+                    .filter(|(d, u)| *d > 0.25 * u)
+                    .map(|(d, _)| d)
+            });
+            (if den > 0.0 { (num / den).sqrt() } else { 0.0 }, fit)
+        }
+    };
     Row {
+        err_curve,
+        err_fit,
+        est_fit: fitted_outer.and_then(|f| f.1),
         scene,
         element,
         factor,

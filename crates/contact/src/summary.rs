@@ -128,6 +128,29 @@ pub fn reply(r: &SolveReply) -> String {
                 ends.join("; ")
             );
         }
+        // The fitted smooth edges, with their own estimate where there is one.
+        let fitted_est = |i: usize, k: usize| {
+            p.accuracy
+                .as_ref()
+                .and_then(|a| a.fitted_edges.get(i).and_then(|e| e[k]))
+                .map_or(String::new(), |e| format!(" ±{}", num(e)))
+        };
+        let fitted: Vec<String> = p
+            .zones_along
+            .iter()
+            .enumerate()
+            .flat_map(|(i, z)| {
+                [0, 1].map(|k| z.fitted[k].map(|f| format!("({}, {}){}", num(f.x), num(f.y), fitted_est(i, k))))
+            })
+            .flatten()
+            .collect();
+        if !fitted.is_empty() {
+            let _ = writeln!(
+                o,
+                "  fitted     {}{length} (smooth edges where the fit of p² places them)",
+                fitted.join("; ")
+            );
+        }
         if let Some(a) = p.accuracy.as_ref().filter(|a| a.pressure_l2.is_some()) {
             let pct = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{:.2} %", 100.0 * v));
             let _ = writeln!(

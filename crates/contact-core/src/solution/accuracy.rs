@@ -27,7 +27,7 @@
 //! lifts off within half a spacing (`panel_end_error`).
 
 use crate::solution::corners;
-use crate::solution::report::{PairAccuracy, PairReport};
+use crate::solution::report::{PairAccuracy, PairReport, ZoneAlong};
 
 /// Outer fraction of a zone whose nodes the fit uses.
 const WINDOW: f64 = 0.3;
@@ -49,8 +49,33 @@ pub struct Station {
 /// node (0 where the surface ends there; the spacing to a pruned node past a
 /// flat punch's corner, where the zone ends before it).
 pub fn end_error(stations: &[Station], first: usize, last: usize, dir: isize, beyond: f64) -> f64 {
+    end_fit(stations, first, last, dir, beyond).error
+}
+
+/// A zone end's estimate (`end_fit`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EndFit {
+    /// The estimated error of the end reported at its last node in contact.
+    pub error: f64,
+    /// Where the fit of p² places a smooth edge: its distance from that node
+    /// outward along the surface, within [0, spacing to the next node]
+    /// (a mortar row's edge fitted inside its last node is put at the node);
+    /// None where no smooth edge is found.
+    pub edge: Option<f64>,
+    /// How far the fitted edge moves when the last node in contact is left
+    /// out of the fit (`edge`'s own scatter).
+    pub scatter: f64,
+}
+
+/// `end_error`, with the fitted edge's place.
+pub fn end_fit(stations: &[Station], first: usize, last: usize, dir: isize, beyond: f64) -> EndFit {
+    let plain = |error: f64| EndFit {
+        error,
+        edge: None,
+        scatter: error,
+    };
     let Some(next) = last.checked_add_signed(dir).filter(|&k| k < stations.len()) else {
-        return beyond;
+        return plain(beyond);
     };
     let end = stations[last].s;
     let spacing = (stations[next].s - end).abs();
@@ -69,11 +94,22 @@ pub fn end_error(stations: &[Station], first: usize, last: usize, dir: isize, be
         .map(|(_, t)| ((t.s - end) / length.max(f64::MIN_POSITIVE), t.pressure * t.pressure))
         .collect();
     if window.len() < MIN_FIT || length <= 0.0 {
-        return spacing;
+        return plain(spacing);
     }
     match edge_root(&window, dir as f64) {
-        Some(t) if t.abs() * length <= 1.5 * spacing => (t.abs() * length).max(0.25 * spacing),
-        _ => spacing,
+        Some(t) if t.abs() * length <= 1.5 * spacing => {
+            let without_last = (window.len() > MIN_FIT)
+                .then(|| edge_root(&window[1..], dir as f64))
+                .flatten();
+            let error = (t.abs() * length).max(0.25 * spacing);
+            EndFit {
+                error,
+                edge: Some((t * length).clamp(0.0, spacing)),
+                // Too few nodes to leave one out: the end's own estimate.
+                scatter: without_last.map_or(error, |u| ((u - t).abs() * length).min(error)),
+            }
+        }
+        _ => plain(spacing),
     }
 }
 
@@ -130,6 +166,11 @@ pub fn zone_edges_only(pair: &PairReport) -> PairAccuracy {
         peak: None,
         resultant: None,
         zone_edges: pair.zones_along.iter().map(|z| z.uncertainty).collect(),
+        fitted_edges: pair
+            .zones_along
+            .iter()
+            .map(|z| [0, 1].map(|k| z.fitted[k].map(|f| f.scatter)))
+            .collect(),
         singular_ends: corners::singular_ends(pair),
     }
 }
@@ -172,18 +213,28 @@ pub fn field(pair: &PairReport) -> Vec<(f64, f64, f64)> {
 /// `field`, with each point's distance to its zone's estimated edge where it
 /// ends a zone (`zones_along`'s uncertainty), else 0.
 pub(crate) fn field_with_reach(pair: &PairReport) -> (Vec<(f64, f64, f64)>, Vec<f64>) {
+    field_with(pair, |z, k, _| Some(z.uncertainty[k]))
+}
+
+/// `field`, with `reach(zone, k, end)` at each point that is a zone's end
+/// `k` (0: start, 1: end), else 0.
+fn field_with(
+    pair: &PairReport,
+    reach: impl Fn(&ZoneAlong, usize, [f64; 2]) -> Option<f64>,
+) -> (Vec<(f64, f64, f64)>, Vec<f64>) {
     let pts = field(pair);
-    let reach = pts
+    let r = pts
         .iter()
         .map(|p| {
             pair.zones_along
                 .iter()
-                .flat_map(|z| [(z.start, z.uncertainty[0]), (z.end, z.uncertainty[1])])
-                .find(|(e, _)| e[0] == p.0 && e[1] == p.1)
-                .map_or(0.0, |(_, u)| u)
+                .flat_map(|z| [(z, 0, z.start), (z, 1, z.end)])
+                .find(|(_, _, e)| e[0] == p.0 && e[1] == p.1)
+                .and_then(|(z, k, e)| reach(z, k, e))
+                .unwrap_or(0.0)
         })
         .collect();
-    (pts, reach)
+    (pts, r)
 }
 
 /// The value at (x, y) of the piecewise-linear field through `pts` (x, y,
@@ -199,7 +250,16 @@ pub fn along_polyline(pts: &[(f64, f64, f64)], x: f64, y: f64) -> f64 {
 /// a square root to zero at `reach[i]` from the end: the estimated edge
 /// (`end_error`), not linearly to the open point (which puts pressure where
 /// the zone has ended).
-pub(crate) fn along(pts: &[(f64, f64, f64)], reach: Option<&[f64]>, x: f64, y: f64) -> f64 {
+pub fn along(pts: &[(f64, f64, f64)], reach: Option<&[f64]>, x: f64, y: f64) -> f64 {
+    along_with(pts, reach, x, y, false)
+}
+
+/// The described field (`described`'s points and reach) at (x, y).
+pub fn described_at(pts: &[(f64, f64, f64)], reach: &[f64], x: f64, y: f64) -> f64 {
+    along_with(pts, Some(reach), x, y, true)
+}
+
+fn along_with(pts: &[(f64, f64, f64)], reach: Option<&[f64]>, x: f64, y: f64, squared: bool) -> f64 {
     if pts.len() < 2 {
         return pts
             .first()
@@ -221,27 +281,101 @@ pub(crate) fn along(pts: &[(f64, f64, f64)], reach: Option<&[f64]>, x: f64, y: f
         let (px, py) = (a.0 + t * dx, a.1 + t * dy);
         let d = (x - px).hypot(y - py);
         if d < best.0 {
-            let linear = a.2 + t * (b.2 - a.2);
-            let value = match reach {
-                Some(r) if (a.2 > 0.0) != (b.2 > 0.0) && len2 > 0.0 => {
-                    let (p, from_end, to_edge) = if a.2 > 0.0 {
-                        (a.2, t, r[i])
-                    } else {
-                        (b.2, 1.0 - t, r[i + 1])
-                    };
-                    let e = (to_edge / len2.sqrt()).min(1.0);
-                    if e > 0.0 {
-                        p * (1.0 - from_end / e).max(0.0).sqrt()
-                    } else {
-                        linear
-                    }
-                }
-                _ => linear,
-            };
-            best = (d, value);
+            let r = reach.map(|r| [r[i], r[i + 1]]);
+            best = (d, on_segment(a.2, b.2, r, t, len2.sqrt(), squared));
         }
     }
     best.1
+}
+
+/// The value at `t` ∈ [0, 1] along a segment of length `len` from a point of
+/// value `a` to one of value `b`: linear, or, where one is a zone end
+/// (positive, with `reach` > 0) and the other open, falling like a square
+/// root from the end to zero at `reach` from it.
+/// `squared`: p² linear between the points instead of p (`described`).
+fn on_segment(a: f64, b: f64, reach: Option<[f64; 2]>, t: f64, len: f64, squared: bool) -> f64 {
+    let linear = if squared {
+        (a * a + t * (b * b - a * a)).max(0.0).sqrt()
+    } else {
+        a + t * (b - a)
+    };
+    match reach {
+        Some(r) if (a > 0.0) != (b > 0.0) && len > 0.0 => {
+            let (p, from_end, to_edge) = if a > 0.0 { (a, t, r[0]) } else { (b, 1.0 - t, r[1]) };
+            let e = (to_edge / len).min(1.0);
+            if e > 0.0 {
+                p * (1.0 - from_end / e).max(0.0).sqrt()
+            } else {
+                linear
+            }
+        }
+        _ => linear,
+    }
+}
+
+/// The pressure the reply describes (`ZoneAlong::fitted`): p² linear
+/// between consecutive points (a square-root edge's p² is linear in the
+/// distance to it, Hertz's p² quadratic along the zone: p itself drawn linear
+/// on the facets before the edge reads 0.43–0.60 % off the disk's overkill
+/// table where the nodes are 0.23–0.43 % off), and on a zone end's facet
+/// falling to 0 at its fitted edge; `field`, with
+/// each zone end's distance to its fitted edge (`field_with_reach`'s
+/// convention: 0 where none is fitted, the segment then linear; an edge
+/// fitted at the node itself, a vanishing reach, 0 past the node).
+pub fn described(pair: &PairReport) -> (Vec<(f64, f64, f64)>, Vec<f64>) {
+    field_with(pair, |z, k, e| {
+        z.fitted[k].map(|f| (f.at[0] - e[0]).hypot(f.at[1] - e[1]).max(f64::MIN_POSITIVE))
+    })
+}
+
+/// Samples per segment of the described field's L2 integral: its square-root
+/// facet's squared error converges like n^(−2) in the midpoint rule; 16
+/// samples put the quadrature's share below 1e-3 of the facet's own.
+const SAMPLES: usize = 16;
+
+/// ∫ (p − f)² ds, ∫ max(p, f)² ds and ∫ f² ds along `pair`'s described
+/// pressure p (`described`), by the midpoint rule on each segment between
+/// consecutive points, over the samples where `counted`.
+pub fn described_l2(
+    pair: &PairReport,
+    f: &dyn Fn(f64, f64) -> f64,
+    counted: &dyn Fn(f64, f64) -> bool,
+) -> (f64, f64, f64) {
+    let (pts, reach) = described(pair);
+    described_l2_of(&pts, &reach, f, counted)
+}
+
+/// `described_l2` of the points and reach of `described`.
+fn described_l2_of(
+    pts: &[(f64, f64, f64)],
+    reach: &[f64],
+    f: &dyn Fn(f64, f64) -> f64,
+    counted: &dyn Fn(f64, f64) -> bool,
+) -> (f64, f64, f64) {
+    let (mut num, mut den, mut of_f) = (0.0, 0.0, 0.0);
+    for i in 0..pts.len().saturating_sub(1) {
+        let (a, b) = (pts[i], pts[i + 1]);
+        let len = (b.0 - a.0).hypot(b.1 - a.1);
+        if len == 0.0 {
+            continue;
+        }
+        for k in 0..SAMPLES {
+            let t = (k as f64 + 0.5) / SAMPLES as f64;
+            let (x, y) = (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1));
+            if !counted(x, y) {
+                continue;
+            }
+            let p = on_segment(a.2, b.2, Some([reach[i], reach[i + 1]]), t, len, true);
+            let q = f(x, y);
+            if p > 0.0 || q > 0.0 {
+                let ds = len / SAMPLES as f64;
+                num += ds * (p - q).powi(2);
+                den += ds * p.max(q).powi(2);
+                of_f += ds * q * q;
+            }
+        }
+    }
+    (num, den, of_f)
 }
 
 /// Gaussian elimination with partial pivoting on a 3 × 3 system.
@@ -274,26 +408,74 @@ fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
 mod tests {
     use super::*;
 
+    /// Hertz's p = √(a² − x²) at nodes 0.1 apart (a = 0.93), described with
+    /// p² linear between nodes and the square-root facet to the fitted edge
+    /// at 0.93: its L2 error along the surface is a small fraction of the
+    /// polyline's that runs linearly to the open node at 1.0 (the field a
+    /// user draws through the nodal values).
+    #[test]
+    fn the_described_field_follows_a_square_root_edge() {
+        let a: f64 = 0.93;
+        let exact = |x: f64, _: f64| (a * a - x * x).max(0.0).sqrt();
+        let pts: Vec<(f64, f64, f64)> = (0..13)
+            .map(|k| (0.1 * k as f64, 0.0, exact(0.1 * k as f64, 0.0)))
+            .collect();
+        let mut reach = vec![0.0; pts.len()];
+        reach[9] = 0.03;
+        let all = |_: f64, _: f64| true;
+        let (num, _, den) = described_l2_of(&pts, &reach, &exact, &all);
+        let described = (num / den).sqrt();
+        // The polyline: p linear between the points, no fitted edge.
+        let (mut n, mut d) = (0.0, 0.0);
+        for k in 0..120_000 {
+            let x = 1.2 * (k as f64 + 0.5) / 120_000.0;
+            let line = along_polyline(&pts, x, 0.0);
+            n += (line - exact(x, 0.0)).powi(2);
+            d += exact(x, 0.0).powi(2);
+        }
+        let polyline = (n / d).sqrt();
+        assert!(
+            described < 0.004 && described < polyline / 5.0,
+            "{described} against {polyline}"
+        );
+        // At the nodes and past the edge it is the nodal values and 0.
+        assert!((described_at(&pts, &reach, 0.5, 0.0) - exact(0.5, 0.0)).abs() < 1e-12);
+        assert_eq!(described_at(&pts, &reach, 0.95, 0.0), 0.0);
+        assert!((described_at(&pts, &reach, 0.915, 0.0) - exact(0.9, 0.0) * 0.5f64.sqrt()).abs() < 1e-12);
+    }
+
     /// Hertz's p = √(a² − x²) sampled at nodes 0.1 apart with a = 0.93: the
     /// last node in contact is 0.9, the fit finds the edge 0.03 beyond it;
     /// a sharp corner (p rising to the end) is known only to the spacing; a
     /// zone at the end of its surface ends there.
     #[test]
     fn the_fit_finds_a_square_root_edge_between_nodes() {
-        let a: f64 = 0.93;
-        let stations: Vec<Station> = (0..15)
-            .map(|k| {
-                let s = 0.1 * k as f64;
-                let p = (a * a - s * s).max(0.0).sqrt();
-                Station {
-                    s,
-                    pressure: p,
-                    in_contact: p > 0.0,
-                }
-            })
-            .collect();
+        let hertz = |spacing: f64, n: usize| -> Vec<Station> {
+            (0..n)
+                .map(|k| {
+                    let s = spacing * k as f64;
+                    let p = (0.93f64 * 0.93 - s * s).max(0.0).sqrt();
+                    Station {
+                        s,
+                        pressure: p,
+                        in_contact: p > 0.0,
+                    }
+                })
+                .collect()
+        };
+        let stations = hertz(0.1, 15);
         let e = end_error(&stations, 0, 9, 1, 0.0);
         assert!((e - 0.03).abs() < 1e-9, "{e}");
+        // p² is exactly quadratic: the edge is found where it is, and
+        // leaving the last node out of the fit does not move it.
+        let fit = end_fit(&stations, 0, 9, 1, 0.0);
+        assert!((fit.edge.expect("a smooth edge") - 0.03).abs() < 1e-9, "{fit:?}");
+        // Four nodes only, none to leave out: the end's own estimate.
+        assert_eq!(fit.scatter, fit.error);
+        let fine = hertz(0.02, 60);
+        let fit = end_fit(&fine, 0, 46, 1, 0.0);
+        assert!((fit.edge.expect("a smooth edge") - 0.01).abs() < 1e-9, "{fit:?}");
+        assert!(fit.scatter < 1e-9, "{fit:?}");
         let corner: Vec<Station> = (0..15)
             .map(|k| {
                 let s = 0.1 * k as f64;

@@ -15,7 +15,7 @@ use crate::contact::ConstraintSet;
 use crate::mesh::{boundary::boundary_nodes, Edge, Mesh2d};
 use crate::scene::{Scene, Target};
 use crate::solution::accuracy;
-use crate::solution::report::{ContactPoint, CounterPoint, PairReport, PairTarget, Resultant, ZoneAlong};
+use crate::solution::report::{ContactPoint, CounterPoint, FittedEnd, PairReport, PairTarget, Resultant, ZoneAlong};
 
 /// Nodal contact forces of pair `p` on `body`: node → force.
 fn nodal_forces(cons: &ConstraintSet, lambda: &[f64], p: usize, body: usize) -> BTreeMap<usize, [f64; 2]> {
@@ -379,22 +379,38 @@ fn zones(
             // A foundation row's zone ends at its panel's outer end: its
             // pressure is constant there, no square-root edge to fit.
             let fitted = cons.candidates[r.first.1].foundation().is_none();
-            let error = |from: usize, to: usize, dir: isize| {
+            let estimate = |from: usize, to: usize, dir: isize| -> (f64, Option<FittedEnd>) {
                 // The surface past the chain's last candidate on that side
                 // (pruned nodes past a flat punch's corner).
                 let k = order[if dir > 0 { hi } else { lo }].0;
                 let beyond = neighbour(chain, k, dir).map_or(0.0, |j| spacing(mesh, chain, k, j));
-                length(if fitted {
-                    accuracy::end_error(on_chain, from - lo, to - lo, dir, beyond)
-                } else {
-                    accuracy::panel_end_error(on_chain, to - lo, dir, beyond)
-                })
+                if !fitted {
+                    return (length(accuracy::panel_end_error(on_chain, to - lo, dir, beyond)), None);
+                }
+                let fit = accuracy::end_fit(on_chain, from - lo, to - lo, dir, beyond);
+                // The fitted edge on the chord from the end's node to the next
+                // candidate, at its distance along the surface.
+                let edge = fit.edge.and_then(|d| {
+                    let next = to.checked_add_signed(dir).filter(|&q| q < order.len())?;
+                    let (here, there) = (cons.candidates[order[to].1].x, cons.candidates[order[next].1].x);
+                    let gap = (stations[next].s - stations[to].s).abs();
+                    let f = if gap > 0.0 { d / gap } else { 0.0 };
+                    Some(FittedEnd {
+                        s: length(stations[to].s + dir as f64 * d),
+                        at: [here[0] + f * (there[0] - here[0]), here[1] + f * (there[1] - here[1])].map(&length),
+                        scatter: length(fit.scatter),
+                    })
+                });
+                (length(fit.error), edge)
             };
+            let (e0, f0) = estimate(b, a, -1);
+            let (e1, f1) = estimate(a, b, 1);
             ZoneAlong {
                 s: [length(s0), length(s1)],
                 start: p0.map(&length),
                 end: p1.map(&length),
-                uncertainty: [error(b, a, -1), error(a, b, 1)],
+                uncertainty: [e0, e1],
+                fitted: [f0, f1],
             }
         })
         .collect::<Vec<ZoneAlong>>();
@@ -417,6 +433,13 @@ fn zones(
                 start: tail.start,
                 end: head.end,
                 uncertainty: [tail.uncertainty[0], head.uncertainty[1]],
+                fitted: [
+                    tail.fitted[0],
+                    head.fitted[1].map(|f| FittedEnd {
+                        s: f.s + length(perimeter),
+                        ..f
+                    }),
+                ],
             };
             xs[q] = [xs[q][0].min(xs[r][0]), xs[q][1].max(xs[r][1])];
             along.remove(r);

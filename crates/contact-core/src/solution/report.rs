@@ -334,6 +334,9 @@ pub struct PairAccuracy {
     pub peak: Option<f64>,
     pub resultant: Option<f64>,
     pub zone_edges: Vec<[f64; 2]>,
+    /// Estimated error of each zone's fitted edges (`ZoneAlong::fitted`),
+    /// None where none is fitted.
+    pub fitted_edges: Vec<[Option<f64>; 2]>,
     /// Zone ends where the pressure is unbounded (`solution::corners`):
     /// `pressure_l2` and `peak` leave out the band around each.
     pub singular_ends: Vec<SingularEnd>,
@@ -393,6 +396,21 @@ pub struct ZoneAlong {
     /// Estimated error of the start's and the end's position along the
     /// surface (`solution::accuracy`).
     pub uncertainty: [f64; 2],
+    /// The start's and the end's smooth edge where the fit of p² places it
+    /// (`solution::accuracy::end_fit`), between the last node in contact
+    /// and the next; None at a sharp corner, a foundation's lift-off, the
+    /// end of the edge set or where too few nodes are in contact to fit.
+    pub fitted: [Option<FittedEnd>; 2],
+}
+
+/// A zone's smooth edge between nodes: arc length along the surface, as
+/// `ZoneAlong::s`, and position (on the chord between the two nodes).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FittedEnd {
+    pub s: f64,
+    pub at: [f64; 2],
+    /// `accuracy::EndFit::scatter`.
+    pub scatter: f64,
 }
 
 /// A node of the other body of a two-body pair.

@@ -165,6 +165,7 @@ fn pair(pr: PairReport) -> p::PairResult {
             peak: a.peak,
             resultant: a.resultant,
             zone_edges: a.zone_edges,
+            fitted_edges: a.fitted_edges,
             singular_ends: a
                 .singular_ends
                 .iter()
@@ -186,6 +187,13 @@ fn pair(pr: PairReport) -> p::PairResult {
                 start: z.start,
                 end: z.end,
                 uncertainty: z.uncertainty,
+                fitted: z.fitted.map(|f| {
+                    f.map(|f| p::FittedEnd {
+                        s: f.s,
+                        x: f.at[0],
+                        y: f.at[1],
+                    })
+                }),
             })
             .collect(),
         points: pr
