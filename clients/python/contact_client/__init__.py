@@ -23,6 +23,7 @@ from .client import (
     work_fraction,
 )
 from . import scenes
+from .outcomes import EstimateBasis, Method, Status, StopReason, WarningCode
 from .results import described_pressure, plot_pressure, save_vtu, to_numpy
 
 __version__ = "0.2.0"
@@ -46,4 +47,9 @@ __all__ = [
     "to_numpy",
     "described_pressure",
     "work_fraction",
+    "Method",
+    "StopReason",
+    "EstimateBasis",
+    "WarningCode",
+    "Status",
 ]

@@ -131,3 +131,29 @@ def test_the_packaged_schemas_are_the_checked_in_ones(proto_schemas, kind):
 
     packaged = json.loads(resources.files("contact_client").joinpath("schemas", f"{kind}.schema.json").read_text())
     assert packaged == proto_schemas[kind], f"copy proto/{kind}.schema.json to contact_client/schemas/"
+
+
+def test_the_outcome_enums_are_the_schemas():
+    """Every method, stop reason, estimate basis, warning code and status the reply's schema
+    lists is a member of the client's enum of that name, and nothing else is."""
+    import json
+    from importlib import resources
+
+    from contact_client import outcomes
+
+    schema = json.loads(resources.files("contact_client").joinpath("schemas/reply.schema.json").read_text())
+    defs = schema["$defs"]
+
+    def values(name):
+        d = defs[name]
+        if "enum" in d:
+            return set(d["enum"])
+        out = set()
+        for o in d["oneOf"]:
+            out |= {o["const"]} if "const" in o else set(o.get("enum", []))
+        return out
+
+    for wire, cls in [("MethodRan", outcomes.Method), ("StopReason", outcomes.StopReason),
+                      ("EstimateBasis", outcomes.EstimateBasis), ("WarningCode", outcomes.WarningCode),
+                      ("SolveStatus", outcomes.Status)]:
+        assert values(wire) == {m.value for m in cls}, wire

@@ -32,6 +32,7 @@ pub mod meshing;
 pub mod methods;
 pub mod model;
 pub mod observer;
+pub mod outcome;
 pub mod progress;
 pub mod scene;
 pub mod solution;

@@ -20,7 +20,7 @@ pub struct SolveReply {
     /// "solved" when the certificate meets the tolerance; otherwise why not.
     pub status: SolveStatus,
     /// The method that ran (after `auto` made its choice).
-    pub method: String,
+    pub method: MethodRan,
     /// Iterations of the contact solver.
     pub iterations: usize,
     /// One entry per contact pair, in request order.
@@ -94,7 +94,7 @@ pub struct Refinement {
     /// `max_rounds`, `max_dofs`, `size_limit`, `time_limit`, `not_converging`
     /// (two rounds without progress), `not_solved` or `round_failed` (the
     /// next round could not be solved; the warning says why).
-    pub stopped: String,
+    pub stopped: StopReason,
     pub rounds: Vec<RefinementRound>,
 }
 
@@ -123,7 +123,7 @@ pub struct PairAccuracy {
     /// with every triangle split in four) or `zone_edges` (the companion
     /// could not be solved or would be too large, as the reply's notes say:
     /// only the zone ends).
-    pub basis: String,
+    pub basis: EstimateBasis,
     /// Estimated relative L2 error of the pressure over the zone: of the
     /// field the reply describes, linear between the nodes and falling as a
     /// square root from each zone's last node in contact to its fitted edge
@@ -179,7 +179,7 @@ pub struct Warning {
     /// each fires when value > limit;
     /// `coarse_contact_zone` (element edges across a contact zone) fires when
     /// value < limit.
-    pub code: String,
+    pub code: WarningCode,
     pub value: f64,
     pub limit: f64,
     /// JSON pointer of the body, obstacle or contact pair concerned.
@@ -236,6 +236,76 @@ pub enum CacheState {
     Miss,
     /// No cache (the CLI).
     Off,
+}
+
+/// The contact method that produced the answer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum MethodRan {
+    /// Condensed active set (semismooth Newton on the LCP), the default.
+    ActiveSet,
+    /// Condensed interior point (Clarabel).
+    InteriorPoint,
+    /// Exterior penalty: inexact by construction.
+    Penalty,
+    /// Augmented Lagrangian on the penalty's springs.
+    AugmentedLagrangian,
+    /// Log barrier: inexact by construction.
+    Barrier,
+    /// Active set on the full saddle-point system.
+    ActiveSetFull,
+    /// Interior point on the full QP.
+    InteriorPointFull,
+}
+
+/// Why tolerance-driven refinement stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum StopReason {
+    /// Every estimate within 0.6 of its target.
+    Reached,
+    /// Nothing touches: no contact error to reduce.
+    NoContact,
+    /// A round's answer was not `solved`.
+    NotSolved,
+    /// `accuracy.max_rounds` rounds ran.
+    MaxRounds,
+    /// The next round would pass `accuracy.max_dofs` (or the service's size or memory limit).
+    MaxDofs,
+    /// The next round would not end within the time limit.
+    TimeLimit,
+    /// The next round passed the service's size limit.
+    SizeLimit,
+    /// The next round could not be solved; the last answer stands.
+    RoundFailed,
+    /// Two rounds without progress.
+    NotConverging,
+}
+
+/// What a pair's error estimate is based on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum EstimateBasis {
+    /// Against a companion with every generated element twice as large.
+    TwoLevel,
+    /// A given inline or Gmsh mesh against itself with every triangle split in four.
+    TwoLevelFiner,
+    /// No companion could be solved: the zone ends only.
+    ZoneEdges,
+}
+
+/// What a warning is about (see `Warning`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum WarningCode {
+    LargeStrain,
+    LargeRotation,
+    LargeDisplacement,
+    Rolling,
+    CoarseContactZone,
+    LargeContactZone,
+    GapLinearization,
+    ToleranceNotReached,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
@@ -566,3 +636,25 @@ pub struct Diagnostics {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub factorization_predicted: Option<f64>,
 }
+
+/// Display as the wire's own name (`active_set`, `max_dofs`, ...): the text a
+/// summary prints is the JSON value a client matches on.
+macro_rules! display_as_wire {
+    ($($name:ident),+) => {
+        $(impl std::fmt::Display for $name {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                match serde_json::to_value(self) {
+                    Ok(serde_json::Value::String(s)) => f.write_str(&s),
+                    _ => Err(std::fmt::Error),
+                }
+            }
+        }
+
+        impl PartialEq<&str> for $name {
+            fn eq(&self, other: &&str) -> bool {
+                matches!(serde_json::to_value(self), Ok(serde_json::Value::String(s)) if s == *other)
+            }
+        })+
+    };
+}
+display_as_wire!(MethodRan, StopReason, EstimateBasis, WarningCode, SolveStatus);

@@ -24,7 +24,7 @@ fn main() {
         "dofs {}  status {:?}  {seconds:.3} s (estimate {:.3} s)",
         r.size.dofs, r.status, r.timings.estimate
     );
-    println!("basis {}", acc.map_or("-", |a| a.basis));
+    println!("basis {}", acc.map_or("-", |a| a.basis.as_str()));
     println!(
         "pressure_l2  estimate {:>9}  true {:>9}",
         pct(acc.and_then(|a| a.pressure_l2)),

@@ -57,7 +57,7 @@ fn main() {
                 "{:<16} {:>7} {:>8} {:>8} {:>8.3}% {:>8.3}% {:>8.3}% {:>7} {:>8.3}{flag}",
                 name,
                 target,
-                if f.reached { "yes" } else { f.stopped },
+                if f.reached { "yes" } else { f.stopped.as_str() },
                 r.size.dofs,
                 100.0 * est.unwrap_or(f64::NAN),
                 100.0 * e.l2,

@@ -332,7 +332,7 @@ pub fn run(mode: Mode, repeat: usize, mut progress: impl FnMut(&Row)) -> Vec<Row
                     method: match zeta {
                         _ if with_friction => format!("{}+friction(μ={FRICTION})", r.method),
                         Some(z) => format!("{}(ζ={z:.0e})", r.method),
-                        None => r.method.clone(),
+                        None => r.method.to_string(),
                     },
                     iterations: r.iterations,
                     t_mesh: r.timings.mesh,

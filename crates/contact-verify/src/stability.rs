@@ -13,6 +13,7 @@
 
 use std::time::Instant;
 
+use contact_core::outcome::MethodRan;
 use serde_json::{json, Value};
 
 use crate::bench::{hertz_errors, hertz_request};
@@ -140,7 +141,7 @@ fn row(
             candidates: r.size.candidates,
             iterations: r.iterations,
             certificate: r.certificate.worst(),
-            exact: !matches!(r.method.as_str(), "penalty" | "barrier"),
+            exact: !matches!(r.method, MethodRan::Penalty | MethodRan::Barrier),
             own_equations: r.certificate.dual.max(r.certificate.equilibrium),
             error,
             condition: r.diagnostics.condition_estimate.unwrap_or(f64::NAN),

@@ -159,7 +159,7 @@ pub fn reply(r: &SolveReply) -> String {
                 pct(a.pressure_l2),
                 pct(a.peak),
                 pct(a.resultant),
-                a.basis.replace('_', "-")
+                a.basis.to_string().replace('_', "-")
             );
             if !a.singular_ends.is_empty() {
                 let at: Vec<String> = a

@@ -16,8 +16,8 @@ fn hertz_coarse() -> Value {
     req
 }
 
-fn codes(r: &SolveReply) -> Vec<&str> {
-    r.warnings.iter().map(|w| w.code.as_str()).collect()
+fn codes(r: &SolveReply) -> Vec<String> {
+    r.warnings.iter().map(|w| w.code.to_string()).collect()
 }
 
 fn refused(req: &Value, code: ErrorCode, path: &str) -> String {
@@ -116,7 +116,7 @@ fn a_zone_a_few_elements_wide_is_never_answered_without_a_warning() {
     }
     let resolved = hertz(1e3, 0.12 / 1e3_f64.sqrt());
     assert!(
-        !codes(&resolved).contains(&"coarse_contact_zone"),
+        !codes(&resolved).iter().any(|c| c == "coarse_contact_zone"),
         "{:?}",
         resolved.warnings
     );
@@ -142,7 +142,7 @@ fn a_zone_a_few_elements_wide_is_never_answered_without_a_warning() {
     let mut req = example("indentation_circular_punch.json");
     req["bodies"][0]["material"]["youngs_modulus"] = json!(200.0e6);
     let r = solve(&req).expect("answered");
-    assert!(codes(&r).contains(&"coarse_contact_zone"), "{:?}", r.warnings);
+    assert!(codes(&r).iter().any(|c| c == "coarse_contact_zone"), "{:?}", r.warnings);
 }
 
 /// Each warning fires where its assumption fails and stays silent where it
@@ -164,11 +164,19 @@ fn each_warning_fires_only_where_its_assumption_fails() {
     deep["obstacles"][0]["shape"]["circle"]["center"][1] = json!(5.0);
     let deep = solve(&deep).expect("answered");
     for code in ["large_strain", "large_contact_zone", "gap_linearization"] {
-        assert!(codes(&deep).contains(&code), "{code} missing: {:?}", deep.warnings);
+        assert!(
+            codes(&deep).iter().any(|c| c == code),
+            "{code} missing: {:?}",
+            deep.warnings
+        );
     }
 
     let vee = solve(&example("signorini_inline_block_on_vee.json")).expect("answered");
-    assert!(codes(&vee).contains(&"large_displacement"), "{:?}", vee.warnings);
+    assert!(
+        codes(&vee).iter().any(|c| c == "large_displacement"),
+        "{:?}",
+        vee.warnings
+    );
 
     let rounded = |load: f64| {
         let mut req = example("indentation_flat_punch.json");

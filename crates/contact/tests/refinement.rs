@@ -35,7 +35,7 @@ fn a_pressure_tolerance_refines_the_disk_until_met() {
     let last = rounds.last().unwrap();
     assert!(last.pressure_l2.is_some_and(|p| p <= 0.005), "{last:?}");
     let acc = r.pairs[0].accuracy.as_ref().unwrap();
-    assert_eq!((acc.basis, acc.pressure_l2), ("two_level", last.pressure_l2));
+    assert_eq!((acc.basis.as_str(), acc.pressure_l2), ("two_level", last.pressure_l2));
     // The true error, against the disk's overkill table (its own L2
     // uncertainty 2.4e-5): the target itself (measured 0.18 %).
     let e = contact_verify::tolerance::error(&r);
@@ -368,7 +368,10 @@ fn nothing_in_contact_stops_the_refinement_at_once() {
     let r = solve(&req);
     assert!(r.pairs[0].zones_along.is_empty(), "{:?}", r.pairs[0].zones_along);
     let f = r.refinement.as_ref().unwrap();
-    assert_eq!((f.stopped, f.reached, f.rounds.len()), ("no_contact", false, 1));
+    assert_eq!(
+        (f.stopped.as_str(), f.reached, f.rounds.len()),
+        ("no_contact", false, 1)
+    );
     assert!(r.warnings.is_empty(), "{:?}", r.warnings);
     assert!(
         r.notes.iter().any(|n| n.contains("nothing is in contact")),
@@ -396,7 +399,7 @@ fn refinement_predicts_its_rounds_within_the_time_limit() {
     let r = solve(&req);
     let took = t.elapsed().as_secs_f64();
     let f = r.refinement.as_ref().unwrap();
-    assert_eq!((f.stopped, f.rounds.len()), ("time_limit", 1), "{f:?}");
+    assert_eq!((f.stopped.as_str(), f.rounds.len()), ("time_limit", 1), "{f:?}");
     assert!(took <= limit, "answered after {took:.3} s, limit {limit:.3} s");
     assert!(
         r.notes.iter().any(|n| n.contains("left of the time limit")),

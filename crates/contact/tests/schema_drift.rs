@@ -29,3 +29,60 @@ fn every_example_solves() {
     }
     assert!(n >= 3);
 }
+
+/// The reply's schema lists, as enums, every method, stop reason, estimate
+/// basis and warning code the core can report, and nothing else: a client
+/// generated from it can match on them exhaustively.
+#[test]
+fn the_reply_schema_lists_every_outcome_the_core_reports() {
+    use contact_core::outcome::{EstimateBasis, MethodRan, StopReason, WarningCode};
+    let (_, text) = contact::proto::schema::schemas()
+        .into_iter()
+        .find(|(name, _)| *name == "reply.schema.json")
+        .expect("a reply schema");
+    let schema: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let defs = &schema["$defs"];
+    // A unit enum with documented variants is a oneOf of consts; without, an enum.
+    let values = |name: &str| -> Vec<String> {
+        let d = &defs[name];
+        let mut v: Vec<String> = if let Some(e) = d["enum"].as_array() {
+            e.iter().map(|x| x.as_str().unwrap().to_string()).collect()
+        } else {
+            d["oneOf"]
+                .as_array()
+                .unwrap_or_else(|| panic!("{name} is not an enum in the schema: {d}"))
+                .iter()
+                .flat_map(|o| {
+                    o.get("const")
+                        .map(|c| vec![c.clone()])
+                        .or_else(|| o["enum"].as_array().cloned())
+                        .unwrap_or_default()
+                })
+                .map(|x| x.as_str().unwrap().to_string())
+                .collect()
+        };
+        v.sort();
+        v
+    };
+    let sorted = |names: Vec<&str>| {
+        let mut v: Vec<String> = names.into_iter().map(String::from).collect();
+        v.sort();
+        v
+    };
+    assert_eq!(
+        values("MethodRan"),
+        sorted(MethodRan::ALL.iter().map(|m| m.as_str()).collect())
+    );
+    assert_eq!(
+        values("StopReason"),
+        sorted(StopReason::ALL.iter().map(|m| m.as_str()).collect())
+    );
+    assert_eq!(
+        values("EstimateBasis"),
+        sorted(EstimateBasis::ALL.iter().map(|m| m.as_str()).collect())
+    );
+    assert_eq!(
+        values("WarningCode"),
+        sorted(WarningCode::ALL.iter().map(|m| m.as_str()).collect())
+    );
+}

@@ -431,9 +431,9 @@ fn violated_assumptions_are_reported() {
     let mut req = example("signorini_hertz_cylinder.json");
     req["obstacles"][0]["shape"]["circle"]["center"][1] = json!(5.0);
     let r = solved(&req);
-    let codes: Vec<&str> = r.warnings.iter().map(|w| w.code.as_str()).collect();
+    let codes: Vec<String> = r.warnings.iter().map(|w| w.code.to_string()).collect();
     for code in ["large_strain", "large_contact_zone"] {
-        assert!(codes.contains(&code), "{code} missing from {:?}", r.warnings);
+        assert!(codes.iter().any(|c| c == code), "{code} missing from {:?}", r.warnings);
     }
     for w in &r.warnings {
         assert!(w.value > w.limit, "{w:?}");

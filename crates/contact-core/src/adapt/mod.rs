@@ -38,6 +38,7 @@
 
 mod sizing;
 
+use crate::outcome::{EstimateBasis, StopReason, WarningCode};
 use std::time::Instant;
 
 use crate::error::CoreError;
@@ -199,16 +200,16 @@ pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver, max_dofs: u
     let mut failure = None::<String>;
     let stopped = loop {
         if report.status == Status::Solved && report.pairs.iter().all(|p| p.zones_along.is_empty()) {
-            break "no_contact";
+            break StopReason::NoContact;
         }
         if met(&report, &target) {
-            break "reached";
+            break StopReason::Reached;
         }
         if report.status != Status::Solved {
-            break "not_solved";
+            break StopReason::NotSolved;
         }
         if rounds.len() >= target.max_rounds {
-            break "max_rounds";
+            break StopReason::MaxRounds;
         }
         let t = Instant::now();
         let (next, mut fine) = match finer.take() {
@@ -220,12 +221,12 @@ pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver, max_dofs: u
                 // away past its time limit).
                 let g = growth.unwrap_or(RATIO * RATIO);
                 if report.size.dofs as f64 * g > target.max_dofs as f64 {
-                    break "max_dofs";
+                    break StopReason::MaxDofs;
                 }
                 // A generated round also solves its coarser companion.
                 let companion = if uniform { 1.0 } else { 1.0 + ESTIMATE_SHARE };
                 if solve_seconds(&report) * g.powf(TIME_GROWTH) * companion > crate::cancel::remaining_secs() {
-                    break "time_limit";
+                    break StopReason::TimeLimit;
                 }
                 let next = if uniform {
                     resized(&current, [1.0 / RATIO; 3], None)
@@ -236,13 +237,13 @@ pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver, max_dofs: u
                 crate::progress::round(rounds.len() + 1);
                 match solve(&next) {
                     Ok(r) => (next, r),
-                    Err(CoreError::Timeout { .. }) => break "time_limit",
-                    Err(CoreError::TooLarge { .. }) => break "size_limit",
+                    Err(CoreError::Timeout { .. }) => break StopReason::TimeLimit,
+                    Err(CoreError::TooLarge { .. }) => break StopReason::SizeLimit,
                     // A later round that cannot be solved (its mesh, its
                     // numerics) leaves the last round's answer standing.
                     Err(e) => {
                         failure = Some(e.to_string());
-                        break "round_failed";
+                        break StopReason::RoundFailed;
                     }
                 }
             }
@@ -279,15 +280,15 @@ pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver, max_dofs: u
         // 0.26, 0.24 %): only two rounds without progress stop.
         stalled = if improving { 0 } else { stalled + 1 };
         if stalled >= 2 && !met(&report, &target) {
-            break "not_converging";
+            break StopReason::NotConverging;
         }
     };
     let total = started.elapsed().as_secs_f64();
     // The earlier rounds' time counts as the estimate's.
     report.timings.estimate += (total - report.timings.total).max(0.0);
     report.timings.total = total;
-    let reached = stopped == "reached";
-    if stopped == "no_contact" {
+    let reached = stopped == StopReason::Reached;
+    if stopped == StopReason::NoContact {
         report.notes.push(
             "nothing is in contact: there is no contact error to reduce, so the mesh was not refined \
              (settings.accuracy)"
@@ -319,7 +320,7 @@ fn met(report: &Report, target: &AccuracyTarget) -> bool {
     let seen = report
         .pairs
         .iter()
-        .all(|p| p.accuracy.as_ref().is_some_and(|a| a.basis != "zone_edges"));
+        .all(|p| p.accuracy.as_ref().is_some_and(|a| a.basis != EstimateBasis::ZoneEdges));
     target
         .pressure_l2
         .is_none_or(|t| seen && p.is_some_and(|p| p <= SAFETY * t))
@@ -352,21 +353,21 @@ fn round(scene: &Scene, report: &Report, seconds: f64) -> Round {
     }
 }
 
-fn not_reached(report: &Report, target: &AccuracyTarget, stopped: &str, failure: Option<&str>) -> Warning {
+fn not_reached(report: &Report, target: &AccuracyTarget, stopped: StopReason, failure: Option<&str>) -> Warning {
     let (p, z) = worst(report);
     let why = match stopped {
-        "max_rounds" => format!("after {} rounds (max_rounds)", target.max_rounds),
-        "max_dofs" => format!(
+        StopReason::MaxRounds => format!("after {} rounds (max_rounds)", target.max_rounds),
+        StopReason::MaxDofs => format!(
             "the next round would exceed max_dofs = {} (the request's, or the service's size or memory limit)",
             target.max_dofs
         ),
-        "size_limit" => "the next round exceeds the service's size limit".into(),
-        "time_limit" => {
+        StopReason::SizeLimit => "the next round exceeds the service's size limit".into(),
+        StopReason::TimeLimit => {
             "the next round would not end within the time limit (predicted from the last round's time and growth)"
                 .into()
         }
-        "not_solved" => "a round did not solve".into(),
-        "round_failed" => format!("the next round failed: {}", failure.unwrap_or("unknown")),
+        StopReason::NotSolved => "a round did not solve".into(),
+        StopReason::RoundFailed => format!("the next round failed: {}", failure.unwrap_or("unknown")),
         _ => "a round no longer reduced the estimate (a floor the element sizes do not move)".into(),
     };
     let (value, limit, what) = match (target.pressure_l2, p) {
@@ -382,7 +383,7 @@ fn not_reached(report: &Report, target: &AccuracyTarget, stopped: &str, failure:
         }
     };
     Warning {
-        code: "tolerance_not_reached",
+        code: WarningCode::ToleranceNotReached,
         value: if value.is_finite() { value } else { f64::MAX },
         limit,
         location: "/settings/accuracy".into(),

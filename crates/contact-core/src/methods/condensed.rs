@@ -3,6 +3,7 @@
 //! both cacheable (`cache::Prepared`) — then per request an LCP solve on the
 //! candidates and u = K⁻¹(f − Bᵀλ).
 
+use crate::outcome::MethodRan;
 use std::time::Instant;
 
 use faer::Mat;
@@ -73,7 +74,7 @@ pub fn prepare_rows(
 /// q = g − B K⁻¹ f, the LCP, then u = K⁻¹ (f − Bᵀλ): one forward and one backward sweep of the prepared factor.
 pub fn solve_condensed(
     p: &Problem,
-    name: &'static str,
+    name: MethodRan,
     exact: bool,
     lcp: &dyn Fn(&Mat<f64>, &[f64]) -> LcpResult,
 ) -> Result<Solution, CoreError> {
@@ -94,7 +95,7 @@ pub fn solve_condensed(
 pub fn solve_condensed_mixed(
     p: &Problem,
     pb: &super::PunchBlock,
-    name: &'static str,
+    name: MethodRan,
     exact: bool,
     mlcp: super::MixedSolver,
 ) -> Result<Solution, CoreError> {
@@ -130,7 +131,7 @@ type Displacements<'a> = &'a dyn Fn(&[f64]) -> Option<(Vec<f64>, usize)>;
 fn contact_stage(
     p: &Problem,
     pb: &super::PunchBlock,
-    name: &'static str,
+    name: MethodRan,
     exact: bool,
     mlcp: super::MixedSolver,
     bu0: &[f64],

@@ -51,6 +51,7 @@
 //! fallback, and the test of the discrete Coulomb law on random
 //! compliances, which needs the private run and residual functions.
 
+use crate::outcome::MethodRan;
 use std::collections::HashMap;
 use std::time::Instant;
 
@@ -179,7 +180,7 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
         }
     }
     let slip: Vec<f64> = ut.iter().zip(&ut_before).map(|(a, b)| a - b).collect();
-    finish(p.cons, p.dofs, u, slip, run, ("active_set", t0))
+    finish(p.cons, p.dofs, u, slip, run, (MethodRan::ActiveSet, t0))
 }
 
 /// The states a step starts from: a point known from the previous step in
@@ -202,7 +203,7 @@ pub(super) fn finish(
     u: Vec<f64>,
     slip: Vec<f64>,
     run: Run,
-    (method, t0): (&'static str, Instant),
+    (method, t0): (MethodRan, Instant),
 ) -> (Solution, Friction) {
     let n = cons.len();
     let Run {

@@ -46,6 +46,7 @@
 //! motions join the condensed Newton system) and mortar or two-body rows are
 //! solved on the condensed formulation only.
 
+use crate::outcome::MethodRan;
 use std::time::Instant;
 
 use super::friction::{finish, restarted, starting_states, Friction, History, Iterate, NewtonSystem, State};
@@ -158,7 +159,7 @@ pub fn solve_step(p: &Step, previous: &History) -> Result<(Solution, Friction), 
         .zip(&ut_before)
         .map(|(a, b)| a - b)
         .collect();
-    Ok(finish(p.cons, p.dofs, u, slip, run, ("active_set_full", t0)))
+    Ok(finish(p.cons, p.dofs, u, slip, run, (MethodRan::ActiveSetFull, t0)))
 }
 
 /// The rotated system of a step and what its iterations read back.

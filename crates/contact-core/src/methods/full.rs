@@ -15,6 +15,7 @@
 //! z is λ), then the active-set iteration above from Clarabel's active set
 //! (a crossover) for an exact answer.
 
+use crate::outcome::MethodRan;
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use faer::sparse::{SparseColMat, Triplet};
 use faer::Side;
@@ -216,7 +217,7 @@ fn active_set_full(
     Ok(last.expect("at least one iteration"))
 }
 
-fn solution(run: ActiveSetRun, name: &'static str, t: std::time::Instant, extra_iterations: usize) -> Solution {
+fn solution(run: ActiveSetRun, name: MethodRan, t: std::time::Instant, extra_iterations: usize) -> Solution {
     let in_contact = run.lambda.iter().map(|&l| l > 0.0).collect();
     Solution {
         refinements: 0,
@@ -245,7 +246,7 @@ pub fn solve_active_set(
     let rot = rotate(k, cons);
     // From no contact: the first iteration is the unconstrained solve.
     let run = active_set_full(&rot, f, g, s, vec![false; g.len()])?;
-    Ok(solution(run, "active_set_full", t, 0))
+    Ok(solution(run, MethodRan::ActiveSetFull, t, 0))
 }
 
 pub fn solve_interior_point(
@@ -313,5 +314,5 @@ pub fn solve_interior_point(
         })
         .collect();
     let run = active_set_full(&rot, f, g, s, start)?;
-    Ok(solution(run, "interior_point_full", t, ipm_iterations))
+    Ok(solution(run, MethodRan::InteriorPointFull, t, ipm_iterations))
 }

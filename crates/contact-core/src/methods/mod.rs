@@ -30,6 +30,7 @@ pub mod penalty;
 
 use crate::contact::ConstraintSet;
 use crate::error::CoreError;
+use crate::outcome::MethodRan;
 use crate::scene::{Method, Settings};
 
 pub struct Problem<'a> {
@@ -102,7 +103,7 @@ pub struct Solution {
     /// Not converged on a numerical breakdown (`LcpResult::breakdown`).
     pub breakdown: bool,
     /// Name of the method that ran.
-    pub method: &'static str,
+    pub method: MethodRan,
     /// Whether the method solves the exact contact conditions (penalty does not:
     /// its penetration and complementarity gap are inherent, not a failure).
     pub exact: bool,
@@ -141,39 +142,43 @@ pub fn solve(problem: &Problem, method: Method) -> Result<Solution, CoreError> {
 fn solve_with(problem: &Problem, method: Method) -> Result<Solution, CoreError> {
     let weights: Vec<f64> = problem.cons.candidates.iter().map(|c| c.weight).collect();
     let d = penalty::springs(&weights, problem.settings.penalty);
-    let run = |name: &'static str, exact: bool, lcp: &dyn Fn(&faer::Mat<f64>, &[f64]) -> LcpResult| {
+    let run = |name: MethodRan, exact: bool, lcp: &dyn Fn(&faer::Mat<f64>, &[f64]) -> LcpResult| {
         condensed::solve_condensed(problem, name, exact, lcp)
     };
     let s = problem.settings;
     if let Some(pb) = &problem.punch {
         let (c, r) = (pb.c, pb.rhs);
-        let run = |name: &'static str, exact: bool, mlcp: MixedSolver| {
+        let run = |name: MethodRan, exact: bool, mlcp: MixedSolver| {
             condensed::solve_condensed_mixed(problem, pb, name, exact, mlcp)
         };
         return match method {
-            Method::Auto | Method::ActiveSet => run("active_set", true, &|w, q| active_set::solve_mlcp(w, q, c, r, s)),
-            Method::InteriorPoint => run("interior_point", true, &|w, q| {
+            Method::Auto | Method::ActiveSet => run(MethodRan::ActiveSet, true, &|w, q| {
+                active_set::solve_mlcp(w, q, c, r, s)
+            }),
+            Method::InteriorPoint => run(MethodRan::InteriorPoint, true, &|w, q| {
                 interior_point::solve_mlcp(w, q, c, r, s)
             }),
-            Method::Penalty => run("penalty", false, &|w, q| {
+            Method::Penalty => run(MethodRan::Penalty, false, &|w, q| {
                 penalty::solve_penalty_mixed(w, q, c, r, &d, s)
             }),
-            Method::AugmentedLagrangian => run("augmented_lagrangian", true, &|w, q| {
+            Method::AugmentedLagrangian => run(MethodRan::AugmentedLagrangian, true, &|w, q| {
                 penalty::solve_augmented_lagrangian_mixed(w, q, c, r, &d, s)
             }),
-            Method::Barrier => run("barrier", false, &|w, q| {
+            Method::Barrier => run(MethodRan::Barrier, false, &|w, q| {
                 barrier::solve_barrier_mixed(w, q, c, r, &weights, problem.settings.barrier, s)
             }),
         };
     }
     match method {
-        Method::Auto | Method::ActiveSet => run("active_set", true, &|w, q| active_set::solve_lcp(w, q, s)),
-        Method::InteriorPoint => run("interior_point", true, &|w, q| interior_point::solve_lcp(w, q, s)),
-        Method::Penalty => run("penalty", false, &|w, q| penalty::solve_penalty(w, q, &d, s)),
-        Method::Barrier => run("barrier", false, &|w, q| {
+        Method::Auto | Method::ActiveSet => run(MethodRan::ActiveSet, true, &|w, q| active_set::solve_lcp(w, q, s)),
+        Method::InteriorPoint => run(MethodRan::InteriorPoint, true, &|w, q| {
+            interior_point::solve_lcp(w, q, s)
+        }),
+        Method::Penalty => run(MethodRan::Penalty, false, &|w, q| penalty::solve_penalty(w, q, &d, s)),
+        Method::Barrier => run(MethodRan::Barrier, false, &|w, q| {
             barrier::solve_barrier(w, q, &weights, problem.settings.barrier, s)
         }),
-        Method::AugmentedLagrangian => run("augmented_lagrangian", true, &|w, q| {
+        Method::AugmentedLagrangian => run(MethodRan::AugmentedLagrangian, true, &|w, q| {
             penalty::solve_augmented_lagrangian(w, q, &d, s)
         }),
     }

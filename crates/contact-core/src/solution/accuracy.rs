@@ -26,6 +26,7 @@
 //! foundation's zone ends at its last active panel, where the foundation
 //! lifts off within half a spacing (`panel_end_error`).
 
+use crate::outcome::EstimateBasis;
 use crate::solution::corners;
 use crate::solution::report::{PairAccuracy, PairReport, ZoneAlong};
 
@@ -161,7 +162,7 @@ fn edge_root(points: &[(f64, f64)], dir: f64) -> Option<f64> {
 /// A pair's estimate from its zone ends alone (no second solve).
 pub fn zone_edges_only(pair: &PairReport) -> PairAccuracy {
     PairAccuracy {
-        basis: "zone_edges",
+        basis: EstimateBasis::ZoneEdges,
         pressure_l2: None,
         peak: None,
         resultant: None,

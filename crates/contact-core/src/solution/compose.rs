@@ -104,7 +104,7 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
     let mut report = Report {
         client_id: scene.client_id.clone(),
         status,
-        method: sol.method.to_string(),
+        method: sol.method,
         iterations: sol.iterations,
         pairs,
         resultant,

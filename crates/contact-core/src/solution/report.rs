@@ -3,6 +3,7 @@
 //! field by field; benches and tests read it directly.
 
 pub use crate::observer::Timings;
+use crate::outcome::{EstimateBasis, MethodRan, StopReason, WarningCode};
 use crate::scene::{Discretization, Outputs};
 
 /// The answer to a scene that could be attempted.
@@ -12,7 +13,7 @@ pub struct Report {
     pub client_id: Option<String>,
     pub status: Status,
     /// The method that ran (after `auto` made its choice).
-    pub method: String,
+    pub method: MethodRan,
     /// Iterations of the contact solver.
     pub iterations: usize,
     /// One entry per contact pair, in request order.
@@ -47,7 +48,7 @@ pub struct Report {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Refinement {
     pub reached: bool,
-    pub stopped: &'static str,
+    pub stopped: StopReason,
     pub rounds: Vec<Round>,
 }
 
@@ -232,7 +233,7 @@ pub struct Resultant {
 /// trust: the measured value and the limit.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Warning {
-    pub code: &'static str,
+    pub code: WarningCode,
     pub value: f64,
     pub limit: f64,
     /// JSON pointer of the body, obstacle or pair concerned.
@@ -329,7 +330,7 @@ pub struct PairReport {
 /// errors, and the zone ends' in the request's length unit.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PairAccuracy {
-    pub basis: &'static str,
+    pub basis: EstimateBasis,
     pub pressure_l2: Option<f64>,
     pub peak: Option<f64>,
     pub resultant: Option<f64>,

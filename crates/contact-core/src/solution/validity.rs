@@ -36,6 +36,7 @@
 //! poorly (its error is of the order of one element over the zone's width),
 //! the usual sign of a unit slip or of a mesh too coarse near the contact.
 
+use crate::outcome::WarningCode;
 use std::collections::HashMap;
 use std::collections::HashSet;
 
@@ -88,7 +89,7 @@ pub fn check(
         .map(|pr| pr.zones.iter().map(|z| [z[0] * to_scene, z[1] * to_scene]).collect())
         .collect();
     let (mut out, mut coarse) = (Vec::new(), Vec::new());
-    let mut warn = |code: &'static str, value: f64, limit: f64, location: String, message: String| {
+    let mut warn = |code: WarningCode, value: f64, limit: f64, location: String, message: String| {
         if value > limit {
             out.push(Warning {
                 code,
@@ -129,14 +130,14 @@ pub fn check(
         let path = scene.bodies[b].path.clone();
         let name = &scene.bodies[b].name;
         warn(
-            "large_strain",
+            WarningCode::LargeStrain,
             strain,
             MAX_STRAIN,
             path.clone(),
             format!("body '{name}' strains by {strain:.3} (principal strain, mean over patches a tenth of its narrowest contact zone wide), beyond the {MAX_STRAIN} up to which small-strain elasticity holds to about 2.5 %: the answer is that of the linear model, not of the real body"),
         );
         warn(
-            "large_rotation",
+            WarningCode::LargeRotation,
             rotation,
             MAX_ROTATION,
             path.clone(),
@@ -144,7 +145,7 @@ pub fn check(
         );
         let moved = biggest / mesh.size();
         warn(
-            "large_displacement",
+            WarningCode::LargeDisplacement,
             moved,
             MAX_DISPLACEMENT,
             path,
@@ -153,7 +154,7 @@ pub fn check(
     }
     for &(o, [_, _, theta]) in punch_motions {
         warn(
-            "large_rotation",
+            WarningCode::LargeRotation,
             theta.abs(),
             MAX_ROTATION,
             format!("/obstacles/{o}"),
@@ -172,7 +173,7 @@ pub fn check(
             let length = scene.scales.length;
             let name = &scene.bodies[b].name;
             warn(
-                "rolling",
+                WarningCode::Rolling,
                 roll / half,
                 MAX_ROLL,
                 scene.bodies[b].path.clone(),
@@ -207,7 +208,7 @@ pub fn check(
             // Fires below its limit, unlike the model's checks.
             if n < MIN_ZONE_EDGES {
                 coarse.push(Warning {
-                    code: "coarse_contact_zone",
+                    code: WarningCode::CoarseContactZone,
                     value: n,
                     limit: MIN_ZONE_EDGES,
                     location: pair.path.clone(),
@@ -230,7 +231,7 @@ pub fn check(
         };
         let onto = curved_reach(shape, &zones[p]);
         warn(
-            "large_contact_zone",
+            WarningCode::LargeContactZone,
             onto / radius,
             MAX_ZONE_OVER_RADIUS,
             pair.path.clone(),
@@ -271,7 +272,7 @@ pub fn check(
             })
             .fold(0.0, f64::max);
         warn(
-            "gap_linearization",
+            WarningCode::GapLinearization,
             slid,
             MAX_CONTACT_MOTION_OVER_RADIUS,
             pair.path.clone(),

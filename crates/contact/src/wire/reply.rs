@@ -1,6 +1,7 @@
 //! Report → reply: the domain result written as the wire message, field by
 //! field (the reply's documentation is the schema, `contact_proto::reply`).
 
+use contact_core::outcome::{EstimateBasis, MethodRan, StopReason, WarningCode};
 use contact_core::scene::Discretization;
 use contact_core::solution::report::{
     self as r, CacheState, LoadStep, PairReport, PairTarget, Report, Resultant, Status,
@@ -28,7 +29,7 @@ pub fn reply(mut report: Report) -> p::SolveReply {
         client_id: report.client_id,
         request_id: None,
         status: status(report.status),
-        method: report.method,
+        method: method(report.method),
         iterations: report.iterations,
         pairs: report.pairs.into_iter().map(pair).collect(),
         resultant: resultant(report.resultant),
@@ -60,7 +61,7 @@ pub fn reply(mut report: Report) -> p::SolveReply {
             .warnings
             .into_iter()
             .map(|w| p::Warning {
-                code: w.code.to_string(),
+                code: warning_code(w.code),
                 value: w.value,
                 limit: w.limit,
                 location: w.location,
@@ -71,7 +72,7 @@ pub fn reply(mut report: Report) -> p::SolveReply {
         units: None,
         refinement: report.refinement.map(|r| p::Refinement {
             reached: r.reached,
-            stopped: r.stopped.to_string(),
+            stopped: stop_reason(r.stopped),
             rounds: r
                 .rounds
                 .into_iter()
@@ -87,6 +88,55 @@ pub fn reply(mut report: Report) -> p::SolveReply {
     };
     crate::output::attach_vtu(&mut reply, outputs, &stress_zz, axisymmetric);
     reply
+}
+
+// Exhaustive matches: a variant added in the core and not on the wire does
+// not compile.
+fn method(m: MethodRan) -> p::MethodRan {
+    match m {
+        MethodRan::ActiveSet => p::MethodRan::ActiveSet,
+        MethodRan::InteriorPoint => p::MethodRan::InteriorPoint,
+        MethodRan::Penalty => p::MethodRan::Penalty,
+        MethodRan::AugmentedLagrangian => p::MethodRan::AugmentedLagrangian,
+        MethodRan::Barrier => p::MethodRan::Barrier,
+        MethodRan::ActiveSetFull => p::MethodRan::ActiveSetFull,
+        MethodRan::InteriorPointFull => p::MethodRan::InteriorPointFull,
+    }
+}
+
+fn stop_reason(r: StopReason) -> p::StopReason {
+    match r {
+        StopReason::Reached => p::StopReason::Reached,
+        StopReason::NoContact => p::StopReason::NoContact,
+        StopReason::NotSolved => p::StopReason::NotSolved,
+        StopReason::MaxRounds => p::StopReason::MaxRounds,
+        StopReason::MaxDofs => p::StopReason::MaxDofs,
+        StopReason::TimeLimit => p::StopReason::TimeLimit,
+        StopReason::SizeLimit => p::StopReason::SizeLimit,
+        StopReason::RoundFailed => p::StopReason::RoundFailed,
+        StopReason::NotConverging => p::StopReason::NotConverging,
+    }
+}
+
+fn basis(b: EstimateBasis) -> p::EstimateBasis {
+    match b {
+        EstimateBasis::TwoLevel => p::EstimateBasis::TwoLevel,
+        EstimateBasis::TwoLevelFiner => p::EstimateBasis::TwoLevelFiner,
+        EstimateBasis::ZoneEdges => p::EstimateBasis::ZoneEdges,
+    }
+}
+
+fn warning_code(c: WarningCode) -> p::WarningCode {
+    match c {
+        WarningCode::LargeStrain => p::WarningCode::LargeStrain,
+        WarningCode::LargeRotation => p::WarningCode::LargeRotation,
+        WarningCode::LargeDisplacement => p::WarningCode::LargeDisplacement,
+        WarningCode::Rolling => p::WarningCode::Rolling,
+        WarningCode::CoarseContactZone => p::WarningCode::CoarseContactZone,
+        WarningCode::LargeContactZone => p::WarningCode::LargeContactZone,
+        WarningCode::GapLinearization => p::WarningCode::GapLinearization,
+        WarningCode::ToleranceNotReached => p::WarningCode::ToleranceNotReached,
+    }
 }
 
 pub fn status(s: Status) -> p::SolveStatus {
@@ -160,7 +210,7 @@ fn pair(pr: PairReport) -> p::PairResult {
     };
     p::PairResult {
         accuracy: pr.accuracy.map(|a| p::PairAccuracy {
-            basis: a.basis.to_string(),
+            basis: basis(a.basis),
             pressure_l2: a.pressure_l2,
             peak: a.peak,
             resultant: a.resultant,

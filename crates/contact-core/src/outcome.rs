@@ -1,0 +1,148 @@
+//! The words a report answers in: which method ran, why refinement stopped,
+//! what an estimate is based on and what a warning is about. Each is a closed
+//! set, so a client can match on it and the reply's schema can list it; the
+//! wire layer maps each variant to its own enum by an exhaustive match, so a
+//! variant added here and not on the wire does not compile, and
+//! `contact`'s schema test checks every `ALL` entry against the schema.
+
+/// A closed set of snake_case names: the enum, `ALL` (every variant, in
+/// order) and `as_str` (the name on the wire).
+macro_rules! named {
+    ($(#[$meta:meta])* $name:ident { $($(#[$vmeta:meta])* $variant:ident = $text:literal,)+ }) => {
+        $(#[$meta])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum $name {
+            $($(#[$vmeta])* $variant,)+
+        }
+
+        impl $name {
+            /// Every variant, in declaration order.
+            pub const ALL: &'static [$name] = &[$($name::$variant,)+];
+
+            /// The variant's name on the wire.
+            pub const fn as_str(self) -> &'static str {
+                match self {
+                    $($name::$variant => $text,)+
+                }
+            }
+        }
+
+        impl PartialEq<&str> for $name {
+            fn eq(&self, other: &&str) -> bool {
+                self.as_str() == *other
+            }
+        }
+
+        impl std::fmt::Display for $name {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str(self.as_str())
+            }
+        }
+    };
+}
+
+named! {
+    /// The contact method that produced the answer (after `auto` chose).
+    MethodRan {
+        /// Condensed active set (semismooth Newton on the LCP).
+        ActiveSet = "active_set",
+        /// Condensed interior point (Clarabel).
+        InteriorPoint = "interior_point",
+        /// Exterior penalty: inexact by construction.
+        Penalty = "penalty",
+        /// Augmented Lagrangian on the penalty's springs.
+        AugmentedLagrangian = "augmented_lagrangian",
+        /// Log barrier: inexact by construction.
+        Barrier = "barrier",
+        /// Active set on the full saddle-point system.
+        ActiveSetFull = "active_set_full",
+        /// Interior point on the full QP.
+        InteriorPointFull = "interior_point_full",
+    }
+}
+
+named! {
+    /// Why tolerance-driven refinement stopped.
+    StopReason {
+        /// Every pair's estimate met the targets.
+        Reached = "reached",
+        /// Nothing is in contact: no contact error to reduce.
+        NoContact = "no_contact",
+        /// The last round's answer was not `solved`.
+        NotSolved = "not_solved",
+        /// `accuracy.max_rounds` rounds ran.
+        MaxRounds = "max_rounds",
+        /// The next round would pass `accuracy.max_dofs`.
+        MaxDofs = "max_dofs",
+        /// The next round would not fit the time left.
+        TimeLimit = "time_limit",
+        /// The next round passed the service's size limit.
+        SizeLimit = "size_limit",
+        /// A round could not be solved; the last answer stands.
+        RoundFailed = "round_failed",
+        /// Two rounds without progress.
+        NotConverging = "not_converging",
+    }
+}
+
+named! {
+    /// What a pair's error estimate is based on.
+    EstimateBasis {
+        /// Against a companion with every element twice as large.
+        TwoLevel = "two_level",
+        /// A given mesh against itself with every triangle split in four.
+        TwoLevelFiner = "two_level_finer",
+        /// No companion could be solved: the zone ends only.
+        ZoneEdges = "zone_edges",
+    }
+}
+
+named! {
+    /// What a warning is about (`solution::validity`, `adapt`).
+    WarningCode {
+        /// Strain past the small-strain theory's range.
+        LargeStrain = "large_strain",
+        /// A rotation past the linearized kinematics' range.
+        LargeRotation = "large_rotation",
+        /// A body moves by a large share of its size (equilibrium is written
+        /// on the undeformed shape).
+        LargeDisplacement = "large_displacement",
+        /// A body held only by contact turns about it.
+        Rolling = "rolling",
+        /// Too few elements across a contact zone.
+        CoarseContactZone = "coarse_contact_zone",
+        /// A zone reaching far onto an obstacle's curved part.
+        LargeContactZone = "large_contact_zone",
+        /// Contact points slide far across a curved obstacle (the linearized
+        /// distance errs).
+        GapLinearization = "gap_linearization",
+        /// Refinement stopped short of `settings.accuracy`'s targets.
+        ToleranceNotReached = "tolerance_not_reached",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Names are unique snake_case words within each set: they are JSON
+    /// enum values and Python identifiers' sources.
+    #[test]
+    fn names_are_distinct_snake_case() {
+        let sets: [Vec<&str>; 4] = [
+            MethodRan::ALL.iter().map(|v| v.as_str()).collect(),
+            StopReason::ALL.iter().map(|v| v.as_str()).collect(),
+            EstimateBasis::ALL.iter().map(|v| v.as_str()).collect(),
+            WarningCode::ALL.iter().map(|v| v.as_str()).collect(),
+        ];
+        for names in sets {
+            let mut sorted = names.clone();
+            sorted.sort_unstable();
+            sorted.dedup();
+            assert_eq!(sorted.len(), names.len(), "{names:?}");
+            for n in names {
+                assert!(n.chars().all(|c| c.is_ascii_lowercase() || c == '_'), "{n}");
+            }
+        }
+    }
+}
