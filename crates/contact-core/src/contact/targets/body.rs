@@ -20,6 +20,10 @@
 //! The rows themselves (node-to-segment: one per slave node; mortar: weighted
 //! by the slave multipliers and integrated, split at the projections of the
 //! master nodes) are built by `contact::rows`.
+//!
+//! Length: about 520 lines, 125 of them the test that the tree's facing point
+//! is the scan's on random surfaces, ties included; it needs the projection's
+//! private scan and per-edge answer, so it lives beside them.
 
 use std::collections::HashMap;
 
