@@ -164,8 +164,10 @@ impl EdgeTree {
             let sy = [(b[1] - a[1]) * d[1], (b[3] - a[1]) * d[1]];
             let lo = sx[0].min(sx[1]) + sy[0].min(sy[1]);
             let hi = sx[0].max(sx[1]) + sy[0].max(sy[1]);
-            // Rounding of the caller's own (y − a) · d is far below this.
-            let slack = 1e-9 * (lo.abs() + hi.abs() + len2);
+            // The caller's own (y − a) · d rounds by a few ulps of its terms,
+            // far below this even where they cancel.
+            let terms = sx[0].abs().max(sx[1].abs()) + sy[0].abs().max(sy[1].abs());
+            let slack = 1e-9 * (terms + len2);
             if hi < -slack || lo > len2 + slack {
                 continue;
             }
