@@ -6,7 +6,9 @@
 //! stage (`r_fact`: factorization, `r_cont`: condensation and contact solve
 //! against the floor's solve). Rows with Coulomb friction (one step, the
 //! active set of `methods::friction`, and on T3 of `methods::friction_full`)
-//! follow the frictionless ones of each mesh.
+//! follow the frictionless ones of each mesh. The floor mode ends with one
+//! two-body row (`two_bodies_cylinders.json` refined to about 1.18M DOF),
+//! whose contact rows once cost as much as its factorization.
 //! The harness returns rows; the CLI prints and writes them.
 
 use std::time::Instant;
@@ -104,7 +106,8 @@ impl Row {
 
     pub fn table_header() -> String {
         format!(
-            "{:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>6} {:>9} {:>9} {:>9} {:>8}",
+            "{:<13} {:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>6} {:>9} {:>9} {:>9} {:>8}",
+            "scene",
             "element",
             "h_min",
             "dofs",
@@ -128,7 +131,8 @@ impl Row {
 
     pub fn table_line(&self) -> String {
         format!(
-            "{:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8.3} {:>8.3} {:>8.4} {:>8.3} {:>8.3} {:>6.2} {:>6.2} {:>6.2} {:>+9.2e} {:>+9.2e} {:>9.2e} {:>8.1e}",
+            "{:<13} {:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8.3} {:>8.3} {:>8.4} {:>8.3} {:>8.3} {:>6.2} {:>6.2} {:>6.2} {:>+9.2e} {:>+9.2e} {:>9.2e} {:>8.1e}",
+            self.scene,
             self.element,
             self.h_min,
             self.dofs,
@@ -169,11 +173,12 @@ pub fn hertz_request(h_min: f64, element: &str, method: &str) -> serde_json::Val
     .to_value()
 }
 
-/// Errors of a Hertz reply against the closed form with the reply's own load:
+/// Errors of a Hertz reply against the closed form with pair 0's own load
+/// (on a rigid obstacle the pair's resultant is the scene's):
 /// (half-width, peak pressure, relative L2 of the pressure along the contact line).
 pub fn hertz_errors(r: &Report, radius: f64, e_star: f64) -> (f64, f64, f64) {
     let pair = &r.pairs[0];
-    let (a, p0) = hertz(-r.resultant.fy, radius, e_star);
+    let (a, p0) = hertz(pair.resultant.fy.abs(), radius, e_star);
     let a_fe = pair.zones.first().map(|z| 0.5 * (z[1] - z[0])).unwrap_or(0.0);
     let p_fe = pair.points.iter().map(|q| q.pressure).fold(0.0, f64::max);
     let (mut num, mut den) = (0.0, 0.0);
@@ -221,7 +226,7 @@ pub enum Mode {
     /// The two smallest meshes (for CI).
     Quick,
     /// `auto` alone, T3, at the three sizes the floor is judged at (about
-    /// 75k, 612k and 1.19M DOF).
+    /// 75k, 612k and 1.19M DOF), then the two-cylinder row (about 1.18M).
     Floor,
 }
 
@@ -252,15 +257,8 @@ pub fn run(mode: Mode, repeat: usize, mut progress: impl FnMut(&Row)) -> Vec<Row
             let h_el = if element == "t6" { 2.0 * h } else { h };
             let req0 = hertz_request(h_el, element, "auto");
             let scene0 = Scene::try_new(&serde_json::from_value(req0).unwrap(), &limits).unwrap();
-            // Medians of `repeat` runs, as the solve's rows are.
-            let floors: Vec<(f64, f64, usize)> = (0..repeat).map(|_| floor_time(&scene0)).collect();
-            let median = |f: &dyn Fn(&(f64, f64, usize)) -> f64| {
-                let mut v: Vec<f64> = floors.iter().map(f).collect();
-                v.sort_by(f64::total_cmp);
-                v[repeat / 2]
-            };
-            let (t_floor_factor, t_floor_solve) = (median(&|f| f.0), median(&|f| f.1));
-            let (t_floor, n_free) = (t_floor_factor + t_floor_solve, floors[0].2);
+            let floor = Floor::median(&scene0, repeat);
+            let n_free = floor.dofs;
             // (method, formulation, ζ); the full-system variants refactor per
             // iteration, so they run only where that takes seconds, not minutes.
             let mut runs: Vec<(MethodName, Formulation, Option<f64>)> = if mode == Mode::Floor {
@@ -314,49 +312,142 @@ pub fn run(mode: Mode, repeat: usize, mut progress: impl FnMut(&Row)) -> Vec<Row
                     _ => {}
                 }
                 req["settings"] = settings;
-                let mut replies: Vec<Report> = (0..repeat)
-                    .map(|_| match crate::run::solve(&req, &limits) {
-                        Ok(r) => r,
-                        Err(e) => panic!("benchmark scene rejected: {e:?}"),
-                    })
-                    .collect();
-                replies.sort_by(|a, b| a.timings.total.total_cmp(&b.timings.total));
-                let r = replies.swap_remove(repeat / 2);
-                let (ea, ep, el2) = hertz_errors(&r, 8.0, e_star);
-                let row = Row {
-                    scene: "hertz_block".into(),
-                    element: if element == "t3" { "T3" } else { "T6" },
-                    h_min: h_el,
-                    dofs: r.size.dofs,
-                    candidates: r.size.candidates,
-                    method: match zeta {
-                        _ if with_friction => format!("{}+friction(μ={FRICTION})", r.method),
-                        Some(z) => format!("{}(ζ={z:.0e})", r.method),
-                        None => r.method.to_string(),
-                    },
-                    iterations: r.iterations,
-                    t_mesh: r.timings.mesh,
-                    t_assembly: r.timings.assembly,
-                    t_factorization: r.timings.factorization,
-                    t_condensation: r.timings.condensation,
-                    t_contact: r.timings.contact_solve,
-                    t_post: r.timings.post,
-                    t_total: r.timings.total,
-                    t_floor,
-                    t_floor_factor,
-                    t_floor_solve,
-                    err_half_width: ea,
-                    err_peak: ep,
-                    err_l2: el2,
-                    max_penetration: r.pairs[0].max_penetration,
-                    certificate: r.certificate.worst(),
-                    status: format!("{:?}", r.status).to_lowercase(),
-                    threads: contact_core::linalg::threads(),
+                let r = median_solve(&req, repeat, &limits);
+                let method = match zeta {
+                    _ if with_friction => format!("{}+friction(μ={FRICTION})", r.method),
+                    Some(z) => format!("{}(ζ={z:.0e})", r.method),
+                    None => r.method.to_string(),
                 };
+                let element = if element == "t3" { "T3" } else { "T6" };
+                let row = Row::of(
+                    "hertz_block",
+                    element,
+                    h_el,
+                    method,
+                    &r,
+                    &floor,
+                    hertz_errors(&r, 8.0, e_star),
+                );
                 progress(&row);
                 rows.push(row);
             }
         }
     }
+    if mode == Mode::Floor {
+        let row = two_cylinders(repeat, &limits);
+        progress(&row);
+        rows.push(row);
+    }
     rows
+}
+
+/// Medians of `repeat` floor runs (`floor_time`), as the solve's rows are.
+struct Floor {
+    factor: f64,
+    solve: f64,
+    dofs: usize,
+}
+
+impl Floor {
+    fn median(scene: &Scene, repeat: usize) -> Self {
+        let floors: Vec<(f64, f64, usize)> = (0..repeat).map(|_| floor_time(scene)).collect();
+        let median = |f: &dyn Fn(&(f64, f64, usize)) -> f64| {
+            let mut v: Vec<f64> = floors.iter().map(f).collect();
+            v.sort_by(f64::total_cmp);
+            v[repeat / 2]
+        };
+        Floor {
+            factor: median(&|f| f.0),
+            solve: median(&|f| f.1),
+            dofs: floors[0].2,
+        }
+    }
+}
+
+/// The run of median total time among `repeat` solves of `req`.
+fn median_solve(req: &serde_json::Value, repeat: usize, limits: &Limits) -> Report {
+    let mut replies: Vec<Report> = (0..repeat)
+        .map(|_| match crate::run::solve(req, limits) {
+            Ok(r) => r,
+            Err(e) => panic!("benchmark scene rejected: {e:?}"),
+        })
+        .collect();
+    replies.sort_by(|a, b| a.timings.total.total_cmp(&b.timings.total));
+    replies.swap_remove(repeat / 2)
+}
+
+impl Row {
+    /// A row of a solve's report against its floor; `errors` are
+    /// (half-width, peak, L2) against the closed form.
+    fn of(
+        scene: &str,
+        element: &'static str,
+        h_min: f64,
+        method: String,
+        r: &Report,
+        floor: &Floor,
+        errors: (f64, f64, f64),
+    ) -> Row {
+        Row {
+            scene: scene.into(),
+            element,
+            h_min,
+            dofs: r.size.dofs,
+            candidates: r.size.candidates,
+            method,
+            iterations: r.iterations,
+            t_mesh: r.timings.mesh,
+            t_assembly: r.timings.assembly,
+            t_factorization: r.timings.factorization,
+            t_condensation: r.timings.condensation,
+            t_contact: r.timings.contact_solve,
+            t_post: r.timings.post,
+            t_total: r.timings.total,
+            t_floor: floor.factor + floor.solve,
+            t_floor_factor: floor.factor,
+            t_floor_solve: floor.solve,
+            err_half_width: errors.0,
+            err_peak: errors.1,
+            err_l2: errors.2,
+            max_penetration: r.pairs[0].max_penetration,
+            certificate: r.certificate.worst(),
+            status: format!("{:?}", r.status).to_lowercase(),
+            threads: contact_core::linalg::threads(),
+        }
+    }
+}
+
+/// Mesh sizes of `two_bodies_cylinders.json` times this: about 1.18M DOF
+/// (T3, both bodies), the size at which the two-body contact rows took 4.9 s
+/// of a 22 s run before they found facing edges through a tree.
+const TWO_CYLINDERS_REFINE: f64 = 0.257;
+
+/// The floor's two-body row: `auto` on the two-cylinder example refined by
+/// `TWO_CYLINDERS_REFINE`, against the floor of its K (both bodies) and
+/// two-body Hertz (1/R = 1/8 + 1/12, 1/E* = (1 − ν1²)/E1 + (1 − ν2²)/E2).
+fn two_cylinders(repeat: usize, limits: &Limits) -> Row {
+    let mut req: serde_json::Value =
+        serde_json::from_str(include_str!("../../../proto/examples/two_bodies_cylinders.json"))
+            .expect("example is JSON");
+    for b in 0..2 {
+        let mesh = &mut req["bodies"][b]["mesh"]["half_disk"];
+        for size in ["/size", "/grading/h_min"] {
+            let v = mesh.pointer_mut(size).expect("the example's half-disk mesh");
+            *v = json!(v.as_f64().expect("a number") * TWO_CYLINDERS_REFINE);
+        }
+    }
+    req["method"] = json!("auto");
+    req["settings"] = json!({ "formulation": Formulation::Condensed, "estimate": false });
+    // The upper body's, rounded off the product's last bits for the table.
+    let h_min = req["bodies"][0]["mesh"]["half_disk"]["grading"]["h_min"]
+        .as_f64()
+        .map(|h| (h * 1e12).round() / 1e12)
+        .expect("a number");
+    let scene = Scene::try_new(&serde_json::from_value(req.clone()).unwrap(), limits).unwrap();
+    let floor = Floor::median(&scene, repeat);
+    let r = median_solve(&req, repeat, limits);
+    let e_star = 1.0 / ((1.0 - 0.3 * 0.3) / 200.0 + (1.0 - 0.25 * 0.25) / 100.0);
+    let errors = hertz_errors(&r, 1.0 / (1.0 / 8.0 + 1.0 / 12.0), e_star);
+    let method = r.method.to_string();
+    Row::of("two_cylinders", "T3", h_min, method, &r, &floor, errors)
 }

@@ -10,6 +10,7 @@
 //! `prune_gap_ratio` of the body size) are dropped and counted per pair.
 
 pub mod body;
+mod edge_tree;
 pub mod foundation;
 pub mod obstacle;
 
