@@ -32,6 +32,17 @@ later (start the service with ``--cache-mb 0``, or the repeats are cache hits)::
     python -m contact_client.load_test --serve target/release/contact --serve-args "--cache-mb 0" \
         --deadline 500000,1000000,2000000
 
+``--burst N`` is another: ``--rounds`` times (default 5), N requests sent at
+once from one session (``--only``, default ``hertz_t3``), each with
+``--time-limit`` (default 2 s); it prints the latency of the ``busy`` answers
+and of the others, each taken from the sending of its query, and exits 1 if
+any reply came later than max(10 %, 0.2 s) past the time limit, or was lost or
+wrong (with ``--serve-args "--workers 1 --queue-limit 4"`` most of a burst of
+32 is ``busy``)::
+
+    python -m contact_client.load_test --serve target/release/contact --serve-args "--workers 1 --queue-limit 4" \
+        --burst 32 --rounds 10
+
 ``--router`` puts a ``contact router`` between the clients and the service
 (plain TCP), ``--tls`` the production configuration instead: the router on a
 mutual-TLS endpoint with deploy/router-acl.json5, the instance and the clients
@@ -44,6 +55,7 @@ with certificates made for the run (``contact_client.secure``; needs the
 from __future__ import annotations
 
 import argparse
+import functools
 import ipaddress
 import json
 import math
@@ -55,8 +67,10 @@ import time
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 
+import zenoh
+
 from . import scenes
-from .client import Client, ContactError, TransportError
+from .client import KEY_SOLVE, Client, ContactError, TransportError
 from .local import local_service
 
 #: Reply fields that legitimately differ between two answers to one request.
@@ -309,11 +323,160 @@ def deadlines(connect: str, sizes: list[int], timeout: float = 600.0, tls: dict 
                 except ContactError as e:
                     got = e.code
                 late = time.perf_counter() - t - limit
-                within = late <= max(0.1 * limit, 0.2)
+                within = late <= allowed_lateness(limit)
                 ok &= within
                 print(f"  limit {limit:.2f} s: {got}, {late:+.3f} s past it ({'within' if within else 'NOT within'} "
                       f"max(10 %, 0.2 s))")
     return ok
+
+
+def allowed_lateness(limit: float) -> float:
+    """How late past its time limit a reply may come: max(10 % of the limit, 0.2 s)."""
+    return max(0.1 * limit, 0.2)
+
+
+def burst(connect: str, size: int = 32, rounds: int = 5, only: str = "hertz_t3", time_limit: float = 2.0,
+          timeout: float = 60.0, tls: dict | None = None) -> dict:
+    """The --burst mode: ``rounds`` times, ``size`` requests sent at once from ONE
+    session (zenoh delivers one session's queries through one link, in order),
+    each with ``time_limit``; a round starts when the last one ended.
+
+    Every reply's latency is taken from just before its query was sent to the
+    moment it arrives (a callback on zenoh's receiving thread: the replies are
+    not read in the order sent, so a quick ``busy`` is not timed behind the
+    solves sent before it). Figures: the ``busy`` latencies, the others', and
+    the deadline check: each reply within ``time_limit`` + max(10 %, 0.2 s)
+    of its sending. ``ok`` replies must equal the one to the same request sent
+    alone without the limit (``judge``), unless their ``notes`` say the limit
+    cut a part (the estimate's companion solve); ``timeout`` is an answer."""
+    check_loopback(connect)
+    if size < 1 or rounds < 1:
+        raise ValueError("burst size and rounds must be positive")
+    work = dict(workload())
+    if only not in work:
+        raise ValueError(f"no request {only!r} in the mix")
+    request = json.loads(work[only]) | {"time_limit": time_limit}
+    allowed = time_limit + allowed_lateness(time_limit)
+    tally = Tally()
+    late = []
+    all_latencies = []
+    timeouts = cut = 0
+    with Client(connect, timeout=timeout, tls=tls) as c:
+        # Without the limit: under it, the same request may be solved or cut
+        # (`timeout` is an answer too); solved, it must be this answer.
+        reference = references(c, [(only, work[only])], timeout)[only]
+        session = c.session
+        for r in range(rounds):
+            bodies = [json.dumps(request | {"client_id": f"burst-{r}-{k}"}).encode() for k in range(size)]
+            sent = [0.0] * size
+            first: list = [None] * size
+            ended = threading.Semaphore(0)
+            lock = threading.Lock()
+
+            def on_reply(reply, k):
+                now = time.perf_counter()
+                with lock:
+                    if first[k] is None:
+                        ok = reply.ok
+                        first[k] = (now, ok is not None, (ok or reply.err).payload.to_bytes())
+
+            handlers = [zenoh.handlers.Callback(functools.partial(on_reply, k=k), ended.release, indirect=False)
+                        for k in range(size)]
+            # The reply callbacks need the interpreter lock this loop holds; at
+            # the default switch interval (5 ms) they waited for it in steps of
+            # 5 ms, which timed the client, not the service.
+            switch = sys.getswitchinterval()
+            sys.setswitchinterval(1e-5)
+            try:
+                for k in range(size):
+                    sent[k] = time.perf_counter()
+                    session.get(KEY_SOLVE, handlers[k], payload=bodies[k], timeout=timeout,
+                                consolidation=zenoh.ConsolidationMode.NONE)
+            finally:
+                sys.setswitchinterval(switch)
+            for _ in range(size):
+                ended.acquire(timeout=timeout + 5.0)
+            for k in range(size):
+                cid = f"burst-{r}-{k}"
+                if first[k] is None:
+                    tally.add("lost", timeout, only, reference, "no reply")
+                    continue
+                at, ok, raw = first[k]
+                latency = at - sent[k]
+                got = decoded(ok, raw)
+                # A part cut by the limit (the estimate's companion solve) is
+                # said in `notes`: that answer is not compared with the whole one.
+                was_cut = got[0] == "ok" and any("time limit" in n for n in got[1].get("notes") or [])
+                timeouts += got == ("error", "timeout")
+                cut += was_cut
+                verdict = "ok" if got == ("error", "timeout") or was_cut else judge(reference, got, cid)
+                tally.add(verdict, latency, only, reference, repr(got[1])[:300])
+                all_latencies.append(latency)
+                if latency > allowed:
+                    late.append((cid, got[1] if got[0] == "error" else "solved", latency))
+        # The service's own figure: from a query's arrival to its `busy` handed
+        # to zenoh, without the link and this client (None: an older service).
+        service_busy = c.health().get("busy_latency_s")
+    lat = sorted(tally.latencies)
+    busy = sorted(tally.busy_latencies)
+    sent_n = size * rounds
+    return {
+        "size": size,
+        "rounds": rounds,
+        "sent": sent_n,
+        "time_limit_s": time_limit,
+        "allowed_s": allowed,
+        "lost": tally.counts["lost"],
+        "wrong": tally.counts["wrong"],
+        "ok": tally.counts["ok"],
+        "busy": tally.counts["busy"],
+        "timeouts": timeouts,
+        "cut": cut,
+        "late": late,
+        "max_latency_s": max(all_latencies, default=0.0),
+        "latency_s": {"p50": percentile(lat, 0.50), "p99": percentile(lat, 0.99), "max": lat[-1] if lat else 0.0},
+        "busy_latency_s": {"p50": percentile(busy, 0.50), "p99": percentile(busy, 0.99),
+                           "max": busy[-1] if busy else 0.0},
+        "service_busy_latency_s": service_busy,
+        "notes": tally.notes,
+    }
+
+
+def decoded(ok: bool, raw: bytes) -> tuple[str, object]:
+    """A raw answer as ``outcome`` gives it: ("ok", reply) | ("error", code) | ("lost", reason)."""
+    try:
+        value = json.loads(raw)
+    except (UnicodeDecodeError, json.JSONDecodeError):
+        return "lost", raw[:200]
+    if ok:
+        return "ok", value
+    if isinstance(value, dict) and isinstance(value.get("code"), str):
+        return "error", value["code"]
+    return "lost", raw[:200]
+
+
+def burst_report(r: dict) -> str:
+    busy, lat = r["busy_latency_s"], r["latency_s"]
+    lines = [
+        f"burst x rounds     : {r['size']} x {r['rounds']} = {r['sent']} from one session, "
+        f"time_limit {r['time_limit_s']} s",
+        f"busy               : {r['busy']}: p50 {busy['p50'] * 1e3:.1f} ms, p99 {busy['p99'] * 1e3:.1f} ms, "
+        f"max {busy['max'] * 1e3:.1f} ms",
+    ]
+    sb = r.get("service_busy_latency_s")
+    if sb:
+        lines.append(f"busy, in service   : {sb['window']}: p50 {sb['p50'] * 1e3:.3f} ms, p99 {sb['p99'] * 1e3:.3f} ms, "
+                     f"max {sb['max'] * 1e3:.3f} ms (arrival to reply handed to zenoh)")
+    lines += [
+        f"other replies      : {r['ok']} ({r['timeouts']} timeout, {r['cut']} with a part cut): p50 {lat['p50'] * 1e3:.1f} ms, p99 {lat['p99'] * 1e3:.1f} ms, "
+        f"max {lat['max'] * 1e3:.1f} ms",
+        f"deadline           : {len(r['late'])} of {r['sent']} later than {r['allowed_s']:.3f} s after sending "
+        f"(slowest {r['max_latency_s']:.3f} s)",
+        f"lost               : {r['lost']}",
+        f"wrong              : {r['wrong']}",
+    ]
+    lines += [f"  late: {cid}: {what} after {s:.3f} s" for cid, what, s in r["late"][:20]]
+    return "\n".join(lines + [f"  {n}" for n in r["notes"]])
 
 
 def check_loopback(connect: str) -> None:
@@ -333,6 +496,11 @@ def main(argv: list[str] | None = None) -> int:
     where.add_argument("--connect", help="endpoint of a running service (loopback only), e.g. tcp/127.0.0.1:7447")
     where.add_argument("--serve", metavar="BINARY", help="start `BINARY serve` on a free loopback port for the test")
     p.add_argument("--deadline", metavar="DOFS", help="time-limit mode: comma-separated sizes, e.g. 500000,1000000")
+    p.add_argument("--burst", type=int, metavar="N",
+                   help="burst mode: N requests at once from one session (--only, default hertz_t3), --rounds times")
+    p.add_argument("--rounds", type=int, default=5, help="bursts sent one after the other (default 5)")
+    p.add_argument("--time-limit", type=float, default=2.0,
+                   help="with --burst: every request's time_limit in seconds (default 2)")
     p.add_argument("--clients", type=int, default=16, help="concurrent clients (default 16)")
     p.add_argument("--requests", type=int, default=50, help="requests per client (default 50)")
     p.add_argument("--timeout", type=float, default=60.0, help="per-query timeout in seconds (default 60)")
@@ -355,6 +523,17 @@ def main(argv: list[str] | None = None) -> int:
             with started(a) as (endpoint, tls):
                 return 0 if deadlines(endpoint, sizes, a.timeout, tls) else 1
         return 0 if deadlines(a.connect, sizes, a.timeout) else 1
+    if a.burst is not None:
+        if a.burst < 1 or a.rounds < 1 or a.burst * a.rounds > 100_000 or not a.time_limit > 0:
+            p.error("--burst and --rounds must be positive, at most 100000 queries in all; --time-limit positive")
+        kw = dict(size=a.burst, rounds=a.rounds, only=a.only or "hertz_t3", time_limit=a.time_limit, timeout=a.timeout)
+        if a.serve:
+            with started(a) as (endpoint, tls):
+                r = burst(endpoint, tls=tls, **kw)
+        else:
+            r = burst(a.connect, **kw)
+        print(burst_report(r))
+        return 1 if r["lost"] or r["wrong"] or r["late"] else 0
     if a.serve:
         with started(a) as (endpoint, tls):
             r = run(endpoint, a.clients, a.requests, a.timeout, a.max_seconds, a.spread, a.only, a.overflow, tls)

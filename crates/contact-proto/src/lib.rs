@@ -5,11 +5,13 @@
 //! and a test fails when they drift. Every message carries `version`.
 
 pub mod bounded;
+pub mod elements;
 pub mod error;
 pub mod reply;
 pub mod request;
 pub mod schema;
 
+pub use elements::ElementLists;
 pub use error::{ErrorCode, ErrorDetails, ErrorReply, LoadBound};
 pub use reply::*;
 pub use request::*;

@@ -287,7 +287,7 @@ pub struct InlineMeshSpec {
     pub nodes: Vec<[f64; 2]>,
     /// Triangles as 0-based node indices, counter-clockwise: 3 per T3, 6 per T6
     /// (corners, then midsides of edges 01, 12, 20). All elements of one order.
-    pub elements: Vec<Vec<usize>>,
+    pub elements: crate::ElementLists,
     /// Named boundary edge sets: each edge as its two corner node indices.
     pub edge_sets: std::collections::BTreeMap<String, Vec<[usize; 2]>>,
 }

@@ -11,6 +11,12 @@ use crate::proto::{ErrorCode, ErrorReply};
 /// The request with every Gmsh `file` replaced by the file's text (`msh`).
 /// Bytes that are not a JSON object, or name no file, come back unchanged.
 pub fn resolve_gmsh_files(bytes: &[u8], read: impl Fn(&str) -> Result<String, String>) -> Result<Vec<u8>, ErrorReply> {
+    // A JSON value costs 32 bytes and more a number: 0.29 GB of the 0.56 GB
+    // that `contact solve` took for a 70 MB inline mesh, which names no file.
+    // (A key spelled with escapes, "\u0066ile", is not looked for.)
+    if !bytes.windows(6).any(|w| w == b"\"file\"") {
+        return Ok(bytes.to_vec());
+    }
     let Ok(mut value) = serde_json::from_slice::<serde_json::Value>(bytes) else {
         return Ok(bytes.to_vec());
     };

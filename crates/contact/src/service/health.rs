@@ -43,6 +43,9 @@ struct Stats {
     panics: u64,
     /// Seconds from arrival to reply of the last `LATENCY_WINDOW` admitted requests.
     latencies: VecDeque<f64>,
+    /// Seconds from arrival to the reply handed to zenoh of the last
+    /// `LATENCY_WINDOW` `busy` answers.
+    busy_latencies: VecDeque<f64>,
 }
 
 #[derive(Serialize)]
@@ -67,6 +70,9 @@ pub struct Health {
     /// Replies by outcome: `solved`, `max_iterations`, `numerical_error`, or an error code.
     pub outcomes: BTreeMap<String, u64>,
     pub latency_s: Latency,
+    /// Of the `busy` answers: from the query's arrival to its reply handed to
+    /// zenoh (the link's time to the client comes on top).
+    pub busy_latency_s: Latency,
     pub limits: LimitsReport,
     pub cache_entries: usize,
     pub cache_bytes: usize,
@@ -129,22 +135,26 @@ impl State {
         *s.outcomes.entry(outcome.to_string()).or_default() += 1;
         s.panics += u64::from(panicked);
         if let Some(l) = latency {
-            if s.latencies.len() == LATENCY_WINDOW {
-                s.latencies.pop_front();
-            }
-            s.latencies.push_back(l.as_secs_f64());
+            push_bounded(&mut s.latencies, l);
         }
+    }
+
+    /// Counts the latency of one `busy` answer (its outcome goes through `record`).
+    pub fn record_busy(&self, latency: Duration) {
+        let mut s = self.stats.lock().unwrap_or_else(|p| p.into_inner());
+        push_bounded(&mut s.busy_latencies, latency);
     }
 
     pub fn health(&self) -> Health {
         let pending = self.pending.load(Ordering::SeqCst);
         let in_flight = self.in_flight.load(Ordering::SeqCst);
-        let (outcomes, panics, latency_s) = {
+        let (outcomes, panics, latency_s, busy_latency_s) = {
             let s = self.stats.lock().unwrap_or_else(|p| p.into_inner());
             (
                 s.outcomes.clone(),
                 s.panics,
                 percentiles(s.latencies.iter().copied().collect()),
+                percentiles(s.busy_latencies.iter().copied().collect()),
             )
         };
         let ok: u64 = OK_STATUSES.iter().filter_map(|k| outcomes.get(*k)).sum();
@@ -166,6 +176,7 @@ impl State {
             panics,
             outcomes,
             latency_s,
+            busy_latency_s,
             limits: LimitsReport {
                 queue_limit: cfg.queue_limit,
                 max_request_bytes: cfg.max_request_bytes,
@@ -187,6 +198,13 @@ impl State {
 
 /// The `status` values of a successful reply (everything else is an error code).
 const OK_STATUSES: [&str; 3] = ["solved", "max_iterations", "numerical_error"];
+
+fn push_bounded(window: &mut VecDeque<f64>, latency: Duration) {
+    if window.len() == LATENCY_WINDOW {
+        window.pop_front();
+    }
+    window.push_back(latency.as_secs_f64());
+}
 
 fn percentiles(mut v: Vec<f64>) -> Latency {
     v.sort_by(f64::total_cmp);

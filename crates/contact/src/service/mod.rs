@@ -55,7 +55,6 @@ pub async fn run(cfg: ServiceConfig) -> anyhow::Result<()> {
                 .map_err(|e| anyhow::anyhow!("declaring {key}: {e}"))
         }
     };
-    let solve_q = queryable(KEY_SOLVE).await?;
     let health_q = queryable(KEY_HEALTH).await?;
     let schema_q = queryable(KEY_SCHEMA).await?;
     let state = Arc::new(State::new(cfg.clone(), session.zid().to_string()));
@@ -63,7 +62,21 @@ pub async fn run(cfg: ServiceConfig) -> anyhow::Result<()> {
     let instance_key = format!("{KEY_INSTANCES}/{}", state.instance);
     // Leaked once: the key lives as long as the process, like the constants.
     let own_solve_key: &'static str = Box::leak(format!("{instance_key}/solve").into_boxed_str());
-    let own_solve_q = queryable(own_solve_key).await?;
+    // Solve queries are admitted or refused in zenoh's callback, on its
+    // receiving thread (`worker::dispatch`): through a channel and this loop, a
+    // burst's `busy` answers waited for the loop and the runtime's threads.
+    let solve_queryable = |key: &'static str| {
+        let (s, st, rt) = (&session, state.clone(), tokio::runtime::Handle::current());
+        async move {
+            s.declare_queryable(key)
+                .complete(true)
+                .callback(move |q| worker::dispatch(q, key, &st, &rt))
+                .await
+                .map_err(|e| anyhow::anyhow!("declaring {key}: {e}"))
+        }
+    };
+    let _solve_q = solve_queryable(KEY_SOLVE).await?;
+    let _own_solve_q = solve_queryable(own_solve_key).await?;
     let _alive = session
         .liveliness()
         .declare_token(&instance_key)
@@ -87,14 +100,6 @@ pub async fn run(cfg: ServiceConfig) -> anyhow::Result<()> {
     let mut term = tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate())?;
     loop {
         tokio::select! {
-            q = solve_q.recv_async() => match q {
-                Ok(q) => worker::dispatch(q, KEY_SOLVE, state.clone()),
-                Err(e) => { tracing::error!("solve queryable closed: {e}"); break; }
-            },
-            q = own_solve_q.recv_async() => match q {
-                Ok(q) => worker::dispatch(q, own_solve_key, state.clone()),
-                Err(e) => { tracing::error!("instance solve queryable closed: {e}"); break; }
-            },
             q = health_q.recv_async() => match q {
                 Ok(q) => {
                     let body = serde_json::to_vec(&state.health()).unwrap_or_default();

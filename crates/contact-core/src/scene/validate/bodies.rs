@@ -125,9 +125,10 @@ pub fn bodies(req: &SolveRequest, survey: &Survey) -> Result<(Vec<String>, Vec<B
             },
             MeshSpec::Inline(m) => {
                 let scaled: Vec<[f64; 2]> = m.nodes.iter().map(|&p| lp(p)).collect();
+                let (nodes, ends) = m.elements.as_parts();
                 MeshSource::Inline(quality::try_inline(
-                    &scaled,
-                    &m.elements,
+                    scaled,
+                    quality::Conn::Ragged { nodes, ends },
                     &m.edge_sets,
                     &format!("{bp}/mesh/inline"),
                 )?)
