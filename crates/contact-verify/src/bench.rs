@@ -303,7 +303,7 @@ pub fn run(mode: Mode, repeat: usize, mut progress: impl FnMut(&Row)) -> Vec<Row
                 let mut req = hertz_request(h_el, element, &name);
                 // The methods are timed alone: the error estimate's coarser
                 // second solve (default on, about a quarter of the time) is
-                // measured by `contact bench --convergence` (effectivity.csv).
+                // measured by `contact-bench --convergence` (effectivity.csv).
                 let mut settings = json!({ "formulation": formulation, "estimate": false });
                 if with_friction {
                     req["contacts"][0]["friction"] = json!({ "coefficient": FRICTION });

@@ -1,4 +1,4 @@
-//! Convergence under mesh refinement against Hertz (`contact bench --convergence`).
+//! Convergence under mesh refinement against Hertz (`contact-bench --convergence`).
 //!
 //! Two scenes, six nested levels each (h_min halves), T3 and T6 at equal node
 //! spacing on the contact surface (a T6 element is twice as long):

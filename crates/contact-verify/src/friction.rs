@@ -1,4 +1,4 @@
-//! Friction under mesh refinement (`contact bench --convergence`, after the
+//! Friction under mesh refinement (`contact-bench --convergence`, after the
 //! frictionless tables): the Cattaneo–Mindlin stick zone.
 //!
 //! The scene is the roller of `signorini_roller_on_flat.json` (half-disk

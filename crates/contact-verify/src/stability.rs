@@ -1,4 +1,4 @@
-//! The numerical stress suite (`contact bench --stability`): every scene kind
+//! The numerical stress suite (`contact-bench --stability`): every scene kind
 //! pushed along one axis at a time to the extremes users send, each row either
 //! certified or refused with a clear status, with its error against a reference
 //! where one exists, the factor's condition estimate and the time.
