@@ -28,7 +28,7 @@ DEFAULT_EXACT = "active_set"
 
 _FLOAT = ("h_min", "t_total", "t_floor", "ratio_total_to_floor", "err_l2")
 _INT = ("dofs",)
-_REQUIRED = ("element", "method", "status") + _FLOAT + _INT
+_REQUIRED = ("element", "method", "status", *_FLOAT, *_INT)
 
 # Element -> (marker, line style). Anything else falls back to the last entries.
 _ELEMENT_STYLE = {"T3": ("o", "-"), "T6": ("s", "-.")}
