@@ -50,7 +50,10 @@ pub struct Row {
 }
 
 impl Row {
-    pub const HEADER: &'static str = "scene,element,h_min,dofs,candidates,method,iterations,t_mesh,t_assembly,t_factorization,t_condensation,t_contact,t_post,t_total,t_floor,ratio_solve_to_floor,ratio_total_to_floor,err_half_width,err_peak,err_l2,max_penetration,certificate,status,t_floor_factor,t_floor_solve,ratio_factor,ratio_contact,threads";
+    pub const HEADER: &'static str = "scene,element,h_min,dofs,candidates,method,iterations,t_mesh,t_assembly,\
+        t_factorization,t_condensation,t_contact,t_post,t_total,t_floor,ratio_solve_to_floor,ratio_total_to_floor,\
+        err_half_width,err_peak,err_l2,max_penetration,certificate,status,t_floor_factor,t_floor_solve,ratio_factor,\
+        ratio_contact,threads";
 
     /// The factorization against the floor's: the same factor of K on the same
     /// kernels and parallelism, so 1 up to run-to-run spread.
@@ -70,7 +73,8 @@ impl Row {
 
     pub fn csv(&self) -> String {
         format!(
-            "{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.3},{:.3},{:.3e},{:.3e},{:.3e},{:.3e},{:.1e},{},{:.6},{:.6},{:.3},{:.3},{}",
+            "{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.3},{:.3},{:.3e},{:.3e},{:.3e},\
+                {:.3e},{:.1e},{},{:.6},{:.6},{:.3},{:.3},{}",
             self.scene,
             self.element,
             self.h_min,
@@ -104,7 +108,8 @@ impl Row {
 
     pub fn table_header() -> String {
         format!(
-            "{:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>6} {:>9} {:>9} {:>9} {:>8}",
+            "{:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>6} {:>9} {:>9} {:>9} \
+                {:>8}",
             "element",
             "h_min",
             "dofs",
@@ -128,7 +133,8 @@ impl Row {
 
     pub fn table_line(&self) -> String {
         format!(
-            "{:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8.3} {:>8.3} {:>8.4} {:>8.3} {:>8.3} {:>6.2} {:>6.2} {:>6.2} {:>+9.2e} {:>+9.2e} {:>9.2e} {:>8.1e}",
+            "{:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8.3} {:>8.3} {:>8.4} {:>8.3} {:>8.3} {:>6.2} {:>6.2} {:>6.2} \
+                {:>+9.2e} {:>+9.2e} {:>9.2e} {:>8.1e}",
             self.element,
             self.h_min,
             self.dofs,

@@ -49,7 +49,8 @@ pub struct Row {
 
 impl Row {
     pub const HEADER: &'static str =
-        "scene,axis,value,status,dofs,candidates,iterations,certificate,error,condition_estimate,refinements,seconds,reference";
+        "scene,axis,value,status,dofs,candidates,iterations,certificate,error,condition_estimate,refinements,seconds,\
+            reference";
 
     pub fn csv(&self) -> String {
         format!(
@@ -272,7 +273,8 @@ fn compression_block(nx: usize, ny: usize, delta: f64, g0: f64) -> Value {
                 "edge_sets": { "bottom": bottom, "top": top, "left": left } } },
             "supports": [{ "edges": "bottom", "uy": 0.0 }, { "edges": "left", "ux": 0.0 }]
         }],
-        "obstacles": [{ "name": "flat", "shape": { "line": { "point": [0.0, h + g0 - delta], "normal": [0.0, -1.0] } } }],
+        "obstacles": [{ "name": "flat",
+            "shape": { "line": { "point": [0.0, h + g0 - delta], "normal": [0.0, -1.0] } } }],
         "contacts": [{ "body": "block", "edges": "top", "obstacle": "flat" }]
     })
 }

@@ -84,7 +84,8 @@ fn run(opts: Bench) -> anyhow::Result<()> {
         println!("{}", contact_verify::convergence::Row::table_header());
         let rows = contact_verify::convergence::run(quick, |r| println!("{}", r.table_line()));
         println!(
-            "model floor of disk_on_flat (finite disk against the half-plane formula): about {:.1} % in L2, {:.2} % in the moment half-width",
+            "model floor of disk_on_flat (finite disk against the half-plane formula): about {:.1} % in L2, {:.2} % in \
+                the moment half-width",
             100.0 * contact_verify::convergence::DISK_FLOOR_L2,
             100.0 * contact_verify::convergence::DISK_FLOOR_MOMENT
         );
@@ -113,7 +114,8 @@ fn run(opts: Bench) -> anyhow::Result<()> {
         )?;
         // Friction: the stick zone against Cattaneo–Mindlin.
         println!(
-            "\nfriction: stick half-width c of a roller (nu = 0.499) on a rigid floor, then of two identical cylinders (nu = 0.3), mu = {}, pressed then shifted, against Cattaneo-Mindlin:",
+            "\nfriction: stick half-width c of a roller (nu = 0.499) on a rigid floor, then of two identical cylinders \
+                (nu = 0.3), mu = {}, pressed then shifted, against Cattaneo-Mindlin:",
             contact_verify::friction::MU
         );
         println!("{}", contact_verify::friction::Row::table_header());
