@@ -7,6 +7,7 @@ service over zenoh (``solve``, ``Client(connect)``), with the same replies.
     >>> reply["resultant"]["fy"]
 """
 
+from . import scenes
 from .client import (
     DEFAULT_CONNECT,
     STAGES,
@@ -22,7 +23,6 @@ from .client import (
     solve_local,
     work_fraction,
 )
-from . import scenes
 from .outcomes import EstimateBasis, Method, Status, StopReason, WarningCode
 from .results import described_pressure, plot_pressure, save_vtu, to_numpy
 

@@ -51,12 +51,14 @@ example, against a 6 ms round trip of a small solve).
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import json
 import time
 import uuid
+from collections.abc import Mapping
 from importlib import resources
-from typing import Any, Callable, Mapping, Union
+from typing import Any, Callable, Union
 
 import zenoh
 
@@ -196,7 +198,7 @@ def make_config(connect: str = DEFAULT_CONNECT, tls: Mapping[str, Any] | None = 
         if not connect.startswith("tls/"):
             raise ValueError(f"tls= needs a tls/HOST:PORT endpoint, got {connect!r}")
         paths = {k: str(v) for k, v in tls.items()}
-        for k, path in paths.items():
+        for path in paths.values():
             # zenoh would report a missing file as an unexplained refused connection.
             with open(path, "rb"):
                 pass
@@ -210,7 +212,7 @@ def make_config(connect: str = DEFAULT_CONNECT, tls: Mapping[str, Any] | None = 
     return conf
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _validator(kind: str):
     """The jsonschema validator of the packaged ``<kind>.schema.json`` (built once)."""
     import jsonschema
@@ -476,12 +478,10 @@ class Client:
     def close(self) -> None:
         if self._session is not None:
             session, self._session = self._session, None
-            try:
+            with contextlib.suppress(zenoh.ZError):
                 session.close()
-            except zenoh.ZError:
-                pass
 
-    def __enter__(self) -> "Client":
+    def __enter__(self) -> Client:
         return self
 
     def __exit__(self, *exc) -> None:

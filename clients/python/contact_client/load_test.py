@@ -554,7 +554,8 @@ def started(a: argparse.Namespace):
         return
     from .secure import routed_service
 
-    with tempfile.TemporaryDirectory(prefix="contact-load-") as d:
+    # Nested: one `with (...)` over both needs CPython 3.10, and the package supports 3.9.
+    with tempfile.TemporaryDirectory(prefix="contact-load-") as d:  # noqa: SIM117
         with routed_service(a.serve, d, tls=a.tls, serve_args=extra) as (endpoint, tls, _):
             yield endpoint, tls
 

@@ -1,4 +1,4 @@
-"""Plot the CSV of ``contact bench``: ``python -m contact_client.plot_bench CSV [--out PNG] [--title TEXT]``.
+"""Plot the CSV of ``contact-bench``: ``python -m contact_client.plot_bench CSV [--out PNG] [--title TEXT]``.
 
 Two panels, written to PNG (default: the CSV path with a ``.png`` suffix):
 
@@ -28,7 +28,7 @@ DEFAULT_EXACT = "active_set"
 
 _FLOAT = ("h_min", "t_total", "t_floor", "ratio_total_to_floor", "err_l2")
 _INT = ("dofs",)
-_REQUIRED = ("element", "method", "status") + _FLOAT + _INT
+_REQUIRED = ("element", "method", "status", *_FLOAT, *_INT)
 
 # Element -> (marker, line style). Anything else falls back to the last entries.
 _ELEMENT_STYLE = {"T3": ("o", "-"), "T6": ("s", "-.")}
@@ -178,7 +178,7 @@ def plot(rows: list[dict], out: str | Path, title: str | None = None, exact: str
                handlelength=3.2, columnspacing=1.6)
 
     scenes = ", ".join(_unique(r.get("scene", "") for r in rows if r.get("scene"))) or "contact"
-    heading = f"contact bench: {scenes}"
+    heading = f"contact-bench: {scenes}"
     if title:
         heading += f"\n{title}"
     fig.suptitle(heading, fontsize=12)
@@ -191,8 +191,8 @@ def plot(rows: list[dict], out: str | Path, title: str | None = None, exact: str
 
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m contact_client.plot_bench",
-                                description="Plot the CSV written by `contact bench` (needs matplotlib).")
-    p.add_argument("csv", help="CSV file from `contact bench --csv`")
+                                description="Plot the CSV written by `contact-bench` (needs matplotlib).")
+    p.add_argument("csv", help="CSV file from `contact-bench --csv`")
     p.add_argument("--out", help="PNG to write (default: the CSV path with a .png suffix)")
     p.add_argument("--title", help="second title line, e.g. the machine the bench ran on")
     p.add_argument("--exact", default=DEFAULT_EXACT,

@@ -68,7 +68,8 @@ def _fallback_summary(r: dict) -> str:
         shear = [q for q in pts if q.get("tangential_traction") is not None]
         if shear:
             q = max(shear, key=lambda q: abs(q["tangential_traction"]))
-            lines.append(f"  shear      peak |t| {_num(abs(q['tangential_traction']))}{stress} at x = {_num(q['x'])}{length}")
+            peak = _num(abs(q["tangential_traction"]))
+            lines.append(f"  shear      peak |t| {peak}{stress} at x = {_num(q['x'])}{length}")
     for w in r.get("warnings", []):
         lines.append(f"WARNING      {w.get('code')} at {w.get('location')}: {w.get('message')}")
     for n in r.get("notes", []):
@@ -116,7 +117,7 @@ class Reply(dict):
         """Whether the solve certified its answer (``status`` is ``solved``)."""
         return self.get("status", "solved") == "solved"
 
-    def raise_for_status(self) -> "Reply":
+    def raise_for_status(self) -> Reply:
         """This reply if its status is ``solved``; else raises :class:`NotSolved`
         (its numbers are then not an answer). Returns the reply, so
         ``solve_local(req, check=False).raise_for_status()`` chains."""

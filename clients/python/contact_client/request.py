@@ -20,7 +20,8 @@ as ``None`` are left out of the request, so the service's defaults apply.
 
 from __future__ import annotations
 
-from typing import Any, Iterable
+from collections.abc import Iterable
+from typing import Any
 
 PROTOCOL_VERSION = "1"
 
@@ -111,8 +112,9 @@ def accuracy(
     error of the pressure is within 0.6 of ``pressure_l2`` and every zone end's
     estimated error within 0.6 of ``zone_edge`` [length] (the estimate is a best
     guess, not a bound: the margin keeps the true error under the target), or a
-    limit stops the rounds (the reply then warns ``tolerance_not_reached``). Pass as ``settings={"accuracy": accuracy(...)}``
-    or the ``accuracy=`` of ``scenes.hertz_cylinder`` and ``scenes.ball_on_flat``."""
+    limit stops the rounds (the reply then warns ``tolerance_not_reached``). Pass as
+    ``settings={"accuracy": accuracy(...)}`` or the ``accuracy=`` of ``scenes.hertz_cylinder``
+    and ``scenes.ball_on_flat``."""
     if pressure_l2 is None and zone_edge is None:
         raise ValueError("accuracy needs pressure_l2 and/or zone_edge")
     return _given(pressure_l2=pressure_l2, zone_edge=zone_edge, max_rounds=max_rounds, max_dofs=max_dofs)

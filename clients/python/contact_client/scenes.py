@@ -17,7 +17,6 @@ from __future__ import annotations
 import math
 
 from . import request as rq
-from .request import PROTOCOL_VERSION
 
 __all__ = [
     "gmsh_mesh",

@@ -130,9 +130,9 @@ def routed_service(binary, directory: Path, tls: bool = True, acl: Path | None =
             try:
                 Client(endpoint, timeout=2.0, tls=client_tls).close()
                 break
-            except TransportError:
+            except TransportError as e:
                 if router.poll() is not None or time.monotonic() > deadline:
-                    raise RuntimeError(f"the router did not come up:\n{log('router')}")
+                    raise RuntimeError(f"the router did not come up:\n{log('router')}") from e
                 time.sleep(0.1)
         if before_serve is not None:
             before_serve(endpoint, ca)
@@ -142,9 +142,9 @@ def routed_service(binary, directory: Path, tls: bool = True, acl: Path | None =
                 with Client(endpoint, timeout=5.0, tls=client_tls) as c:
                     c.health(timeout=2.0)
                 break
-            except (TransportError, ContactError):
+            except (TransportError, ContactError) as e:
                 if serve.poll() is not None or time.monotonic() > deadline:
-                    raise RuntimeError(f"the service did not answer through the router:\n{log('serve')}")
+                    raise RuntimeError(f"the service did not answer through the router:\n{log('serve')}") from e
                 time.sleep(0.2)
         yield endpoint, client_tls, ca
     finally:

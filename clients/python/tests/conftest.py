@@ -18,7 +18,6 @@ import pytest
 
 from contact_client import Client
 from contact_client.local import local_service
-
 from support import HERTZ_EXAMPLE, PROTO, REPO, load_json, validator_for
 
 STARTUP_TIMEOUT_S = 30.0

@@ -14,7 +14,6 @@ from contact_client import Client, ContactError, TransportError, client as clien
 from scenes_small import expected_pressure, square_block
 from support import free_loopback_port
 
-
 # ---- offline: no service needed -------------------------------------------------
 
 def test_encode_request_forms():

@@ -8,7 +8,6 @@ import json
 import pytest
 
 from contact_client import ContactError, scenes
-
 from support import PROTO
 
 

@@ -4,10 +4,10 @@ package installed) quadratic meshes made on the spot, against Hertz."""
 from __future__ import annotations
 
 import pytest
+from test_hertz import assert_hertz
 
 from contact_client import scenes
 from support import EXAMPLES, load_json
-from test_hertz import assert_hertz
 
 
 def test_the_gmsh_example_obeys_hertz(client):

@@ -89,7 +89,7 @@ def test_plot_pressure_draws_the_pressures_and_the_hertz_overlay(hertz_reply, he
     data, ref = ax.lines[1], ax.lines[-1]  # lines[0]: the p = 0 axis
     assert max(data.get_ydata()) == max(p["pressure"] for p in hertz_reply["pairs"][0]["points"])
     m = scenes.hertz_measure(hertz_reply)
-    a, p0 = scenes.hertz_reference(m["P"], 8.0, 200.0, 0.3)
+    _, p0 = scenes.hertz_reference(m["P"], 8.0, 200.0, 0.3)
     assert max(ref.get_ydata()) == pytest.approx(p0, rel=1e-4)
     out = tmp_path / "p.png"
     ax.figure.savefig(out)
@@ -133,7 +133,7 @@ def test_a_body_of_revolution_is_plotted_against_r_with_the_3d_hertz_overlay():
     reply = solve_local(scenes.ball_on_flat(load=P, h_min=0.03))
     ax = plot_pressure(reply, reference=True)  # the Reply knows its request
     assert ax.get_xlabel() == "r"
-    a, p0 = scenes.hertz_sphere_reference(P, 10.0, 200.0, 0.3)
+    _, p0 = scenes.hertz_sphere_reference(P, 10.0, 200.0, 0.3)
     ref = ax.lines[-1]
     assert ref.get_label().startswith("Hertz, sphere")
     assert max(ref.get_ydata()) == pytest.approx(p0, rel=1e-3)  # 801 samples over 1.5 a: the peak at r = 0

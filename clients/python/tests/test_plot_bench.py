@@ -1,4 +1,4 @@
-"""`python -m contact_client.plot_bench` turns a `contact bench` CSV into a PNG."""
+"""`python -m contact_client.plot_bench` turns a `contact-bench` CSV into a PNG."""
 
 from __future__ import annotations
 

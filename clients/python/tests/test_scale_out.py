@@ -20,7 +20,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
-import zenoh
 
 from contact_client import Client, ContactError, TransportError
 from contact_client.load_test import judge, references, with_client_id, workload

@@ -72,6 +72,7 @@ def test_a_pair_names_exactly_one_target():
 
 def test_roller_on_plate_obeys_hertz_for_two_bodies():
     import math
+
     from contact_client import solve_local
 
     r = solve_local(scenes.roller_on_plate(h_min=0.02))

@@ -7,9 +7,9 @@ import copy
 import jsonschema
 import pytest
 
-from support import EXAMPLES, load_json, validator_for
 from contact_client import ContactError, scenes
 from scenes_small import DELTA, NU, expected_pressure, square_block
+from support import EXAMPLES, load_json, validator_for
 
 DRAFT_2020_12 = "https://json-schema.org/draft/2020-12/schema"
 EXAMPLE_FILES = sorted(EXAMPLES.glob("*.json"))
@@ -66,12 +66,19 @@ def test_request_schema_rejects_what_serde_rejects(validators):
     v = validators["request"]
     good = square_block()
     v.validate(good)
-    bad = []
-    r = copy.deepcopy(good); r["frobnicate"] = 1; bad.append(r)
-    r = copy.deepcopy(good); r["bodies"][0]["material"]["colour"] = "red"; bad.append(r)
-    r = copy.deepcopy(good); del r["bodies"]; bad.append(r)
-    r = copy.deepcopy(good); r["bodies"][0]["material"]["youngs_modulus"] = "200"; bad.append(r)
-    r = copy.deepcopy(good); r["method"] = "simplex"; bad.append(r)
+
+    def mutated(change):
+        r = copy.deepcopy(good)
+        change(r)
+        return r
+
+    bad = [
+        mutated(lambda r: r.update(frobnicate=1)),
+        mutated(lambda r: r["bodies"][0]["material"].update(colour="red")),
+        mutated(lambda r: r.pop("bodies")),
+        mutated(lambda r: r["bodies"][0]["material"].update(youngs_modulus="200")),
+        mutated(lambda r: r.update(method="simplex")),
+    ]
     for r in bad:
         assert not v.is_valid(r), r
 
@@ -109,7 +116,9 @@ def test_reply_with_all_outputs_validates_and_is_exact(client, validators):
 
 def test_error_replies_validate(client, validators):
     bad = [b"{", {"version": "99"}, square_block() | {"frobnicate": 1}]
-    r = square_block(); r["bodies"][0]["material"]["poisson_ratio"] = 0.5; bad.append(r)
+    r = square_block()
+    r["bodies"][0]["material"]["poisson_ratio"] = 0.5
+    bad.append(r)
     for payload in bad:
         with pytest.raises(ContactError) as ei:
             client.solve(payload)

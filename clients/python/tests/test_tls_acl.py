@@ -27,7 +27,6 @@ import zenoh
 
 from contact_client import Client, TransportError, make_config
 from contact_client.secure import CLIENT_CN, ThrowawayCA, routed_service
-
 from support import REPO
 
 pytest.importorskip("cryptography")

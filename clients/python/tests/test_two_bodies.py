@@ -6,7 +6,6 @@ from __future__ import annotations
 import json
 
 from contact_client import scenes
-
 from support import PROTO
 
 
@@ -45,8 +44,9 @@ def test_two_bodies_example_is_valid_and_solved(client, proto_schemas):
 
 
 def test_body_held_only_by_contact_and_pulled_away_is_refused(client):
-    from contact_client import ContactError
     import pytest
+
+    from contact_client import ContactError
 
     req = scenes.two_cylinders()
     # The upper cylinder loses its support and is pulled up by a traction.

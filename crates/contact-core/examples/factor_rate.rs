@@ -42,7 +42,8 @@ fn main() {
                 let r = Cholesky::with_symbolic(analysis.clone(), &k);
                 let stopped = t.elapsed().as_secs_f64();
                 println!(
-                    "{:>8} DOF, factorization {full:.2} s, limit {:.2} s: {} after {stopped:.3} s, {:+.3} s past the limit",
+                    "{:>8} DOF, factorization {full:.2} s, limit {:.2} s: {} after {stopped:.3} s, {:+.3} s past the \
+                        limit",
                     k.nrows(),
                     limit.as_secs_f64(),
                     if r.is_err() { "stopped" } else { "finished" },
@@ -73,7 +74,8 @@ fn main() {
             }
         }
         println!(
-            "1M-DOF grid, fastest of 4: stoppable {ours:.3} s ({ours_cpu:.3} s on CPU), faer's one call {theirs:.3} s ({theirs_cpu:.3} s on CPU)"
+            "1M-DOF grid, fastest of 4: stoppable {ours:.3} s ({ours_cpu:.3} s on CPU), faer's one call {theirs:.3} s \
+                ({theirs_cpu:.3} s on CPU)"
         );
         return;
     }

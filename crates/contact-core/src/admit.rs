@@ -70,7 +70,9 @@ pub fn search_work(scene: &Scene, meshes: &[Mesh2d]) -> Result<(), CoreError> {
             return Err(CoreError::TooLarge {
                 path: format!("{}/edges", pair.path),
                 reason: format!(
-                    "the contact search of this two-body pair would cast {:.1e} rays ({} slave edges against {} master edges); this service accepts at most {MAX_SEARCH_CASTS:.0e}: restrict the edge sets to the faces that can touch",
+                    "the contact search of this two-body pair would cast {:.1e} rays ({} slave edges against {} master \
+                        edges); this service accepts at most {MAX_SEARCH_CASTS:.0e}: restrict the edge sets to the \
+                        faces that can touch",
                     points * master,
                     slave,
                     master
@@ -127,7 +129,8 @@ pub fn traction_ranges(scene: &Scene, meshes: &[Mesh2d]) -> Result<(), CoreError
                 InvalidKind::Request,
                 format!("{}/tractions/{k}/x_range", body.path),
                 format!(
-                    "x_range [{}, {}] meets no edge of set '{edges}', whose x spans [{}, {}]: the load would act nowhere",
+                    "x_range [{}, {}] meets no edge of set '{edges}', whose x spans [{}, {}]: the load would act \
+                        nowhere",
                     shown(l(range[0])),
                     shown(l(range[1])),
                     shown(l(lo)),
@@ -147,7 +150,8 @@ pub fn candidates(scene: &Scene, cons: &ConstraintSet) -> Result<(), CoreError> 
                 InvalidKind::NoContactCandidates,
                 format!("{}/edges", pair.path),
                 format!(
-                    "no node of edge set '{}' can reach {} along its outward normal ({} pruned: the ray misses the obstacle or the gap exceeds prune_gap_ratio × body size)",
+                    "no node of edge set '{}' can reach {} along its outward normal ({} pruned: the ray misses the \
+                        obstacle or the gap exceeds prune_gap_ratio × body size)",
                     pair.edges,
                     target_name(scene, &pair.target),
                     cons.pruned[p]
@@ -179,14 +183,16 @@ pub fn route(scene: &Scene, model: Parts, limits: &Limits) -> Result<Route, Core
             return Err(CoreError::invalid(
                 InvalidKind::Request,
                 "/settings/formulation",
-                "load-controlled punches, bodies held only by contact and foundations are solved on the condensed formulation only",
+                "load-controlled punches, bodies held only by contact and foundations are solved on the condensed \
+                    formulation only",
             ));
         }
         if !cons.rows_are_nodal() {
             return Err(CoreError::invalid(
                 InvalidKind::Request,
                 "/settings/formulation",
-                "the full formulation needs nodal contact rows (one node per row, as T3 and discretization 'nodal' give); mortar rows (the T6 default) and two-body rows are solved on the condensed formulation only",
+                "the full formulation needs nodal contact rows (one node per row, as T3 and discretization 'nodal' \
+                    give); mortar rows (the T6 default) and two-body rows are solved on the condensed formulation only",
             ));
         }
         return full_method(scene, model.dofs.n_free).map(|()| Route::Full);
@@ -222,7 +228,8 @@ fn full_method(scene: &Scene, n_free: usize) -> Result<(), CoreError> {
         Method::InteriorPoint if n_free > FULL_IPM_MAX_DOFS => Err(CoreError::TooLarge {
             path: "/settings/formulation".into(),
             reason: format!(
-                "interior_point on the full formulation is limited to {FULL_IPM_MAX_DOFS} DOFs ({} requested); use the condensed formulation",
+                "interior_point on the full formulation is limited to {FULL_IPM_MAX_DOFS} DOFs ({} requested); use the \
+                    condensed formulation",
                 n_free
             ),
         }),
@@ -263,7 +270,8 @@ pub fn frictional_route(
     limits: &Limits,
 ) -> Result<(Route, Option<String>), CoreError> {
     const CONDENSED_ONLY: &str =
-        "load-controlled punches and bodies held only by contact are solved with friction on the condensed formulation only";
+        "load-controlled punches and bodies held only by contact are solved with friction on the condensed formulation \
+            only";
     // Why the full system cannot take the step; asked only where it might.
     let unfit = || {
         if block {
@@ -288,13 +296,15 @@ pub fn frictional_route(
         return Err(CoreError::TooLarge {
             path: "/contacts".into(),
             reason: format!(
-                "{rows} contact rows ({normal} normal and {tangential} tangential); this service accepts at most {} on the condensed formulation, and {why}",
+                "{rows} contact rows ({normal} normal and {tangential} tangential); this service accepts at most {} on \
+                    the condensed formulation, and {why}",
                 limits.max_candidates
             ),
         });
     }
     let note = format!(
-        "solved on the full system (active_set_full): {rows} contact rows ({normal} normal and {tangential} tangential) exceed the {} the condensed formulation holds",
+        "solved on the full system (active_set_full): {rows} contact rows ({normal} normal and {tangential} \
+            tangential) exceed the {} the condensed formulation holds",
         limits.max_candidates
     );
     Ok((Route::Full, Some(note)))

@@ -73,7 +73,7 @@ impl Timings {
 /// 2 cores) to the Hertz block, T3 73k to 2.1M DOF and T6 1.6M DOF: meshing
 /// 5.7e-7 to 8.2e-7 s per node, assembly 7e-7 (T6 1.05e-6),
 /// post-processing 1.0e-7 to 1.3e-7 per node; and on T3 66k to 1.2M DOF
-/// (`contact bench --floor`): the factorization 4.0e-9 to 6.4e-9 n^1.5 for n
+/// (`contact-bench --floor`): the factorization 4.0e-9 to 6.4e-9 n^1.5 for n
 /// DOFs, the condensation 14 % to 16 % of it and the contact solve 9 % (one
 /// forward and one backward sweep and the LCP).
 pub fn predicted(nodes: f64, t6: bool) -> [f64; 6] {

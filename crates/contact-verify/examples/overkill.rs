@@ -66,7 +66,8 @@ fn main() {
             r.size.dofs, r.size.candidates, r.status
         );
         let line = format!(
-            "T6, h_min {h}, grading ratio {}, extent {}, far-field size {size}: {} DOF, {} candidates, {} iterations, status {:?}, {dt:.1} s",
+            "T6, h_min {h}, grading ratio {}, extent {}, far-field size {size}: {} DOF, {} candidates, {} iterations, \
+                status {:?}, {dt:.1} s",
             grading["ratio"], grading["extent"], r.size.dofs, r.size.candidates, r.iterations, r.status
         );
         let reference = Reference::from_report(scene, &r, Vec::new())
@@ -119,27 +120,38 @@ fn main() {
     fine.uncertainty_l2 = d_level.0 + d_far.0 + d_window.0;
     fine.uncertainty_fy = d_level.1.abs() + d_far.1.abs();
     fine.uncertainty_edge = d_level.2.abs() + d_far.2.abs() + d_window.1;
-    fine.header = vec![
-        format!("Overkill reference of the convergence scene {scene} (contact-verify::overkill, contact {}).", env!("CARGO_PKG_VERSION")),
+    fine.header =
+        vec![
+        format!("Overkill reference of the convergence scene {scene} (contact-verify::overkill, contact \
+            {}).", env!("CARGO_PKG_VERSION")),
         format!("Made by: cargo run --release -p contact-verify --example overkill -- {scene} {h} {size}"),
         format!("Solve: the scene's request (convergence::{}_request_sized) with {fine_line}.", match scene {
             "disk_on_flat" => "disk",
             "ball_on_flat" => "ball",
             _ => "block",
         }),
-        format!("Stations: x (undeformed, along the flat) and nodal pressure of the surface nodes up to fit_from = the last node within {FIT_FROM} of the zone."),
-        format!("Past fit_from: p = sqrt(fit_c0 + fit_c1 x + fit_c2 x^2), least squares on p^2 over the nodes in {FIT_WINDOW_START}-{FIT_FROM} of the zone; edge = its falling root."),
-        format!("Between stations p^2 is interpolated by the cubic through the four nearest. Stations and fit differ by {jump:+.2e} p0 at fit_from;"),
-        format!("past it the nodes in contact differ from the fit by up to {outer:.2e} p0 (the last ones, whose values depend on where the edge falls between them)."),
+        format!("Stations: x (undeformed, along the flat) and nodal pressure of the surface nodes up to fit_from = the \
+            last node within {FIT_FROM} of the zone."),
+        format!("Past fit_from: p = sqrt(fit_c0 + fit_c1 x + fit_c2 x^2), least squares on p^2 over the nodes in \
+            {FIT_WINDOW_START}-{FIT_FROM} of the zone; edge = its falling root."),
+        format!("Between stations p^2 is interpolated by the cubic through the four nearest. Stations and fit differ \
+            by {jump:+.2e} p0 at fit_from;"),
+        format!("past it the nodes in contact differ from the fit by up to {outer:.2e} p0 (the last ones, whose values \
+            depend on where the edge falls between them)."),
         if scene == "hertz_block" {
             "fy: the block's resultant per unit thickness at the prescribed indentation.".to_string()
         } else {
-            "fy: the model's resultant (the quarter's per unit thickness, or the ball's over the circumference) at the prescribed approach.".to_string()
+            "fy: the model's resultant (the quarter's per unit thickness, or the ball's over the circumference) at the \
+                prescribed approach.".to_string()
         },
-        format!("Check 1, {level_line}: L2 difference {:.2e}, fy {:+.2e}, edge {:+.2e}.", d_level.0, d_level.1, d_level.2),
-        format!("Check 2, {far_line}: against check 1, L2 {:.2e}, fy {:+.2e}, edge {:+.2e}.", d_far.0, d_far.1, d_far.2),
-        format!("Check 3, the fit's window moved to 0.7-0.9 / 0.85-0.97 of the zone: L2 {:.2e} / {:.2e}, edge {:+.2e} / {:+.2e}.", w_in.0, w_out.0, w_in.1, w_out.1),
-        "uncertainty_*: the sum of the checks' differences, the larger of check 3's (relative L2 of the pressure over the zone, relative fy, the edge in the scene's length unit).".to_string(),
+        format!("Check 1, {level_line}: L2 difference {:.2e}, fy {:+.2e}, edge \
+            {:+.2e}.", d_level.0, d_level.1, d_level.2),
+        format!("Check 2, {far_line}: against check 1, L2 {:.2e}, fy {:+.2e}, edge \
+            {:+.2e}.", d_far.0, d_far.1, d_far.2),
+        format!("Check 3, the fit's window moved to 0.7-0.9 / 0.85-0.97 of the zone: L2 {:.2e} / {:.2e}, edge {:+.2e} \
+            / {:+.2e}.", w_in.0, w_out.0, w_in.1, w_out.1),
+        "uncertainty_*: the sum of the checks' differences, the larger of check 3's (relative L2 of the pressure over \
+            the zone, relative fy, the edge in the scene's length unit).".to_string(),
     ];
     print!("{}", fine.to_csv());
 }

@@ -52,7 +52,10 @@ pub struct Row {
 }
 
 impl Row {
-    pub const HEADER: &'static str = "scene,element,h_min,dofs,candidates,method,iterations,t_mesh,t_assembly,t_factorization,t_condensation,t_contact,t_post,t_total,t_floor,ratio_solve_to_floor,ratio_total_to_floor,err_half_width,err_peak,err_l2,max_penetration,certificate,status,t_floor_factor,t_floor_solve,ratio_factor,ratio_contact,threads";
+    pub const HEADER: &'static str = "scene,element,h_min,dofs,candidates,method,iterations,t_mesh,t_assembly,\
+        t_factorization,t_condensation,t_contact,t_post,t_total,t_floor,ratio_solve_to_floor,ratio_total_to_floor,\
+        err_half_width,err_peak,err_l2,max_penetration,certificate,status,t_floor_factor,t_floor_solve,ratio_factor,\
+        ratio_contact,threads";
 
     /// The factorization against the floor's: the same factor of K on the same
     /// kernels and parallelism, so 1 up to run-to-run spread.
@@ -72,7 +75,8 @@ impl Row {
 
     pub fn csv(&self) -> String {
         format!(
-            "{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.3},{:.3},{:.3e},{:.3e},{:.3e},{:.3e},{:.1e},{},{:.6},{:.6},{:.3},{:.3},{}",
+            "{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.3},{:.3},{:.3e},{:.3e},{:.3e},\
+                {:.3e},{:.1e},{},{:.6},{:.6},{:.3},{:.3},{}",
             self.scene,
             self.element,
             self.h_min,
@@ -106,7 +110,8 @@ impl Row {
 
     pub fn table_header() -> String {
         format!(
-            "{:<13} {:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>6} {:>9} {:>9} {:>9} {:>8}",
+            "{:<13} {:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8} {:>8} {:>8} {:>8} {:>8} \
+                {:>6} {:>6} {:>6} {:>9} {:>9} {:>9} {:>8}",
             "scene",
             "element",
             "h_min",
@@ -131,7 +136,8 @@ impl Row {
 
     pub fn table_line(&self) -> String {
         format!(
-            "{:<13} {:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8.3} {:>8.3} {:>8.4} {:>8.3} {:>8.3} {:>6.2} {:>6.2} {:>6.2} {:>+9.2e} {:>+9.2e} {:>9.2e} {:>8.1e}",
+            "{:<13} {:<7} {:>7} {:>8} {:>5} {:<28} {:>4} {:>8.3} {:>8.3} {:>8.4} {:>8.3} {:>8.3} \
+                {:>6.2} {:>6.2} {:>6.2} {:>+9.2e} {:>+9.2e} {:>9.2e} {:>8.1e}",
             self.scene,
             self.element,
             self.h_min,
@@ -301,7 +307,7 @@ pub fn run(mode: Mode, repeat: usize, mut progress: impl FnMut(&Row)) -> Vec<Row
                 let mut req = hertz_request(h_el, element, &name);
                 // The methods are timed alone: the error estimate's coarser
                 // second solve (default on, about a quarter of the time) is
-                // measured by `contact bench --convergence` (effectivity.csv).
+                // measured by `contact-bench --convergence` (effectivity.csv).
                 let mut settings = json!({ "formulation": formulation, "estimate": false });
                 if with_friction {
                     req["contacts"][0]["friction"] = json!({ "coefficient": FRICTION });

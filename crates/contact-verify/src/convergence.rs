@@ -1,4 +1,4 @@
-//! Convergence under mesh refinement against Hertz (`contact bench --convergence`).
+//! Convergence under mesh refinement against Hertz (`contact-bench --convergence`).
 //!
 //! Two scenes, six nested levels each (h_min halves), T3 and T6 at equal node
 //! spacing on the contact surface (a T6 element is twice as long):
@@ -97,7 +97,9 @@ pub struct Row {
 }
 
 impl Row {
-    pub const HEADER: &'static str = "scene,element,h_min,dofs,candidates,iterations,t_total,err_l2,err_l2_field,err_moment_half_width,err_peak,alternation,order_l2,order_moment,edge_estimate,edge_error,edge_effectivity,status,ref_err_l2,ref_order_l2,ref_err_fy,ref_order_fy";
+    pub const HEADER: &'static str = "scene,element,h_min,dofs,candidates,iterations,t_total,err_l2,err_l2_field,\
+        err_moment_half_width,err_peak,alternation,order_l2,order_moment,edge_estimate,edge_error,edge_effectivity,\
+        status,ref_err_l2,ref_order_l2,ref_err_fy,ref_order_fy";
 
     /// Estimate over true error of the zone end, where the true error is known.
     pub fn edge_effectivity(&self) -> Option<f64> {
@@ -136,7 +138,8 @@ impl Row {
 
     pub fn table_header() -> String {
         format!(
-            "{:<14} {:<3} {:>9} {:>8} {:>5} {:>3} {:>8} {:>9} {:>9} {:>10} {:>10} {:>8} {:>6} {:>6} {:>9} {:>9} {:>5} {:>9} {:>6} {:>10} {:>6}",
+            "{:<14} {:<3} {:>9} {:>8} {:>5} {:>3} {:>8} {:>9} {:>9} {:>10} {:>10} {:>8} {:>6} {:>6} {:>9} {:>9} {:>5} \
+                {:>9} {:>6} {:>10} {:>6}",
             "scene",
             "el",
             "h_min",
@@ -164,7 +167,8 @@ impl Row {
     pub fn table_line(&self) -> String {
         let o = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{x:.2}"));
         format!(
-            "{:<14} {:<3} {:>9.2e} {:>8} {:>5} {:>3} {:>8.3} {:>9.3e} {:>9.3e} {:>+10.3e} {:>+10.3e} {:>8.1e} {:>6} {:>6} {:>9.2e} {:>9} {:>5} {:>9} {:>6} {:>10} {:>6}",
+            "{:<14} {:<3} {:>9.2e} {:>8} {:>5} {:>3} {:>8.3} {:>9.3e} {:>9.3e} {:>+10.3e} {:>+10.3e} {:>8.1e} {:>6} \
+                {:>6} {:>9.2e} {:>9} {:>5} {:>9} {:>6} {:>10} {:>6}",
             self.scene,
             self.element,
             self.h_min,

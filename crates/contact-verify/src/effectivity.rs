@@ -159,7 +159,8 @@ pub struct Row {
 
 impl Row {
     pub const HEADER: &'static str =
-        "scene,element,factor,dofs,err_l2,est_l2,eff_l2,err_edge,est_edge,eff_edge,err_resultant,est_resultant,eff_resultant,err_peak,est_peak,eff_peak,cost,err_curve,eff_curve,err_fit,est_fit,eff_fit";
+        "scene,element,factor,dofs,err_l2,est_l2,eff_l2,err_edge,est_edge,eff_edge,err_resultant,est_resultant,\
+            eff_resultant,err_peak,est_peak,eff_peak,cost,err_curve,eff_curve,err_fit,est_fit,eff_fit";
 
     fn eff(est: Option<f64>, err: f64) -> Option<f64> {
         est.filter(|_| err > 0.0).map(|e| e / err)
@@ -214,7 +215,8 @@ impl Row {
 
     pub fn table_header() -> String {
         format!(
-            "{:<20} {:<3} {:>4} {:>8} {:>8} {:>8} {:>6} {:>9} {:>9} {:>6} {:>8} {:>8} {:>6} {:>8} {:>8} {:>6} {:>5} {:>8} {:>6} {:>9} {:>9} {:>6}",
+            "{:<20} {:<3} {:>4} {:>8} {:>8} {:>8} {:>6} {:>9} {:>9} {:>6} {:>8} {:>8} \
+                {:>6} {:>8} {:>8} {:>6} {:>5} {:>8} {:>6} {:>9} {:>9} {:>6}",
             "scene",
             "el",
             "f",
@@ -244,7 +246,8 @@ impl Row {
         let pct = |v: Option<f64>| v.map_or("-".into(), |v| format!("{:.3}%", 100.0 * v));
         let e = |v: Option<f64>| v.map_or("-".into(), |v| format!("{v:.2}"));
         format!(
-            "{:<20} {:<3} {:>4} {:>8} {:>8} {:>8} {:>6} {:>9} {:>9.2e} {:>6} {:>8} {:>8} {:>6} {:>8} {:>8} {:>6} {:>5.2} {:>8} {:>6} {:>9} {:>9} {:>6}",
+            "{:<20} {:<3} {:>4} {:>8} {:>8} {:>8} {:>6} {:>9} {:>9.2e} {:>6} {:>8} {:>8} \
+                {:>6} {:>8} {:>8} {:>6} {:>5.2} {:>8} {:>6} {:>9} {:>9} {:>6}",
             self.scene,
             self.element,
             self.factor,

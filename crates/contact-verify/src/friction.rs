@@ -1,4 +1,4 @@
-//! Friction under mesh refinement (`contact bench --convergence`, after the
+//! Friction under mesh refinement (`contact-bench --convergence`, after the
 //! frictionless tables): the Cattaneo–Mindlin stick zone.
 //!
 //! The scene is the roller of `signorini_roller_on_flat.json` (half-disk
@@ -58,7 +58,10 @@ pub fn roller_request(h_min: f64, element: &str) -> Value {
         {"loads": {"/bodies/0/supports/1": 0.0}},
         {"loads": {"/bodies/0/supports/1": SHIFT}}
     ]);
-    r["description"] = json!("convergence: elastic roller (nu = 0.499) pressed 0.05 onto a rigid floor, mu = 0.5, then shifted 0.025 sideways");
+    r["description"] = json!(
+        "convergence: elastic roller (nu = 0.499) pressed 0.05 onto a rigid floor, mu = 0.5, then \
+        shifted 0.025 sideways"
+    );
     r
 }
 
@@ -76,7 +79,10 @@ pub fn two_cylinders_request(h: f64) -> Value {
         {"loads": {"/bodies/0/supports/1": 0.0}},
         {"loads": {"/bodies/0/supports/1": TWO_BODY_SHIFT}}
     ]);
-    r["description"] = json!("convergence: two identical cylinders (nu = 0.3, beta = 0) pressed by 0.08, mu = 0.5, then the upper one shifted 0.035 sideways");
+    r["description"] = json!(
+        "convergence: two identical cylinders (nu = 0.3, beta = 0) pressed by 0.08, mu = 0.5, \
+        then the upper one shifted 0.035 sideways"
+    );
     r
 }
 
@@ -113,7 +119,8 @@ pub struct Row {
 
 impl Row {
     pub const HEADER: &'static str =
-        "scene,element,h_min,dofs,q_over_mu_p,c_over_a,cm_over_a,err_c,order,resolution,iterations_per_step,t_total,status";
+        "scene,element,h_min,dofs,q_over_mu_p,c_over_a,cm_over_a,err_c,order,resolution,iterations_per_step,t_total,\
+            status";
 
     pub fn csv(&self) -> String {
         format!(

@@ -7,7 +7,7 @@
 //! the Cattaneo–Mindlin stick zone), the error estimate against
 //! the true error (`effectivity`), time to a tolerance with and
 //! without refinement (`tolerance`) and the numerical stress suite
-//! (`stability`). Used by the tests, the CI smoke run and `contact bench`.
+//! (`stability`). Used by the tests, the CI smoke run and `contact-bench`.
 
 pub mod bench;
 pub mod build;

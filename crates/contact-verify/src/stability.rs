@@ -1,4 +1,4 @@
-//! The numerical stress suite (`contact bench --stability`): every scene kind
+//! The numerical stress suite (`contact-bench --stability`): every scene kind
 //! pushed along one axis at a time to the extremes users send, each row either
 //! certified or refused with a clear status, with its error against a reference
 //! where one exists, the factor's condition estimate and the time.
@@ -50,7 +50,8 @@ pub struct Row {
 
 impl Row {
     pub const HEADER: &'static str =
-        "scene,axis,value,status,dofs,candidates,iterations,certificate,error,condition_estimate,refinements,seconds,reference";
+        "scene,axis,value,status,dofs,candidates,iterations,certificate,error,condition_estimate,refinements,seconds,\
+            reference";
 
     pub fn csv(&self) -> String {
         format!(
@@ -273,7 +274,8 @@ fn compression_block(nx: usize, ny: usize, delta: f64, g0: f64) -> Value {
                 "edge_sets": { "bottom": bottom, "top": top, "left": left } } },
             "supports": [{ "edges": "bottom", "uy": 0.0 }, { "edges": "left", "ux": 0.0 }]
         }],
-        "obstacles": [{ "name": "flat", "shape": { "line": { "point": [0.0, h + g0 - delta], "normal": [0.0, -1.0] } } }],
+        "obstacles": [{ "name": "flat",
+            "shape": { "line": { "point": [0.0, h + g0 - delta], "normal": [0.0, -1.0] } } }],
         "contacts": [{ "body": "block", "edges": "top", "obstacle": "flat" }]
     })
 }

@@ -149,8 +149,6 @@ enum Cmd {
         #[arg(long, value_enum, default_value_t = LogFormat::Text)]
         log_format: LogFormat,
     },
-    /// Time-against-error benchmark (Hertz, T3/T6, every method): table on stdout, CSV file.
-    Bench(crate::cli_bench::Bench),
     /// Write the JSON Schemas of the protocol.
     Schema {
         /// Output directory.
@@ -314,7 +312,6 @@ fn run(cli: Cli) -> anyhow::Result<u8> {
             rt.block_on(crate::service::router::run(config, listen, tls, acl))?;
             Ok(0)
         }
-        Cmd::Bench(b) => crate::cli_bench::run(b),
         Cmd::Schema { out } => {
             std::fs::create_dir_all(&out)?;
             for (name, text) in crate::proto::schema::schemas() {

@@ -11,7 +11,6 @@ pub use contact_proto as proto;
 
 #[cfg(feature = "service")]
 pub mod cli;
-pub mod cli_bench;
 pub mod cli_files;
 pub mod output;
 pub mod parse;

@@ -250,7 +250,8 @@ pub fn reply(r: &SolveReply) -> String {
     for pu in &r.punches {
         let _ = writeln!(
             o,
-            "punch        '{}': alpha1 {}{length}, alpha2 {}{length}, theta {} rad; loads p1 {}{force}, p2 {}{force}, m {}{moment}",
+            "punch        '{}': alpha1 {}{length}, alpha2 {}{length}, theta {} rad; loads p1 {}{force}, p2 {}{force}, \
+                m {}{moment}",
             pu.name,
             num(pu.alpha1),
             num(pu.alpha2),
@@ -287,7 +288,8 @@ pub fn reply(r: &SolveReply) -> String {
     let t = &r.timings;
     let _ = writeln!(
         o,
-        "time         {:.3} s (mesh {:.3}, assembly {:.3}, factorization {:.3}, condensation {:.3}, contact {:.3}, post {:.3}, estimate {:.3})",
+        "time         {:.3} s (mesh {:.3}, assembly {:.3}, factorization {:.3}, condensation {:.3}, contact {:.3}, \
+            post {:.3}, estimate {:.3})",
         t.total, t.mesh, t.assembly, t.factorization, t.condensation, t.contact_solve, t.post, t.estimate
     );
     if let Some(steps) = &r.steps {

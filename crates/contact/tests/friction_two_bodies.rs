@@ -148,7 +148,8 @@ fn cattaneo_mindlin_between_two_cylinders() {
                 .fold(0.0, f64::max);
             let sampled = pr.points.iter().map(|q| cm(q.x)).fold(0.0, f64::max);
             println!(
-                "{discretization} Q/μP {ratio:.3}: c/c_CM − 1 = {:+.4}, stick centre {:+.4} a, peak {peak:.4} vs μ p0 √(Q/μP) {:.4} ({:+.4}), vs sampled {sampled:.4} ({:+.4})",
+                "{discretization} Q/μP {ratio:.3}: c/c_CM − 1 = {:+.4}, stick centre {:+.4} a, peak {peak:.4} vs μ p0 \
+                    √(Q/μP) {:.4} ({:+.4}), vs sampled {sampled:.4} ({:+.4})",
                 c / expect - 1.0,
                 stick_run(&pr.points).1 / a,
                 MU * p0 * ratio.sqrt(),

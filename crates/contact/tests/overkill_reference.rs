@@ -93,7 +93,7 @@ fn reference_edge_matches_the_converged_edge_constants() {
 }
 
 /// T6 at a middle level against the reference. Measured over the bench's T6
-/// levels from h_min 4× the one tested down to the finest (`contact bench
+/// levels from h_min 4× the one tested down to the finest (`contact-bench
 /// --convergence`), the nodal L2 error falls from 2.3e-3 to 2.3e-4 on the
 /// disk, from 2.7e-3 to 6.4e-4 on the ball and from 4.9e-3 to 5.0e-4 on the
 /// block; at the level tested 7.9e-4, 1.02e-3 and 1.20e-3. The tolerance,

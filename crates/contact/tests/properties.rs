@@ -172,7 +172,8 @@ proptest! {
         for p in &a.pairs[0].points {
             let twin = b.pairs[0].points.iter().find(|q| (q.x - (s.w - p.x)).abs() < 1e-9 * s.w);
             let twin = twin.ok_or_else(|| TestCaseError::fail(format!("no mirror node of x = {}", p.x)))?;
-            prop_assert!((p.pressure - twin.pressure).abs() <= 1e-8 * pk, "p({}) = {} vs {}", p.x, p.pressure, twin.pressure);
+            prop_assert!((p.pressure - twin.pressure).abs() <= 1e-8 * pk, "p({}) = {} vs \
+                {}", p.x, p.pressure, twin.pressure);
         }
     }
 
@@ -194,7 +195,8 @@ proptest! {
         prop_assert!(res.fx.abs() <= 1e-9 * load);
         // The loads act through x = w/2: the contact's moment about the origin is load · w/2.
         prop_assert!((res.m - load * 0.5 * w).abs() <= 1e-9 * load * w, "moment {} vs {}", res.m, load * 0.5 * w);
-        let scaled = solve(&resting(w, h, e, nu, lambda * q, lambda * g)).map_err(|e| TestCaseError::fail(format!("{e:?}")))?;
+        let scaled =
+            solve(&resting(w, h, e, nu, lambda * q, lambda * g)).map_err(|e| TestCaseError::fail(format!("{e:?}")))?;
         let pk = peak(&r);
         for (p, s) in r.pairs[0].points.iter().zip(&scaled.pairs[0].points) {
             prop_assert!((s.pressure - lambda * p.pressure).abs() <= 1e-9 * lambda * pk);

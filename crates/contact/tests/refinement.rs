@@ -119,7 +119,8 @@ fn an_inline_mesh_is_refined_uniformly() {
 
 /// A curved inline T6 mesh keeps its arc through refinement: the quarter
 /// disk on a flat (h_min = 0.02 R, arc midsides on the circle) given inline
-/// and solved in three rounds (the given mesh, then twice refined) has every contact node within the original arc's interpolation
+/// and solved in three rounds (the given mesh, then twice refined) has every contact node within the original arc's
+/// interpolation
 /// error R θ⁴/32 of the circle (θ the largest half angle of an original arc
 /// edge; measured 1.1e-9 R, was 1.5e-3 R when bisection put midsides on
 /// chords), and its pressure's L2 error against the overkill table is under

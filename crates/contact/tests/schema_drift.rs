@@ -5,7 +5,10 @@ fn checked_in_schemas_match_the_types() {
     for (name, text) in contact::proto::schema::schemas() {
         let path = format!("{}/proto/{name}", concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
         let on_disk = std::fs::read_to_string(&path).unwrap_or_default();
-        assert!(on_disk == text, "{name} is stale: run `cargo run --release -- schema`");
+        assert!(
+            on_disk == text,
+            "{name} is stale: run `cargo run --release --bin contact -- schema`"
+        );
     }
 }
 

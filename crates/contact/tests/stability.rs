@@ -1,4 +1,4 @@
-//! The quick part of the numerical stress suite (`contact bench --stability`):
+//! The quick part of the numerical stress suite (`contact-bench --stability`):
 //! the extreme value of every axis on small meshes. Each row must be certified
 //! or refused with a clear status, never NaN or a panic, and its error against
 //! the reference must be what the physics allows.

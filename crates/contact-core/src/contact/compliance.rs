@@ -101,7 +101,8 @@ impl Foundations {
                             InvalidKind::Geometry,
                             format!("/foundations/{f}/model/half_plane/reference_distance"),
                             format!(
-                                "the reference distance {:.6e} must exceed a quarter of the length the body can load ({:.6e}); otherwise the half-plane's compliance is not positive definite",
+                                "the reference distance {:.6e} must exceed a quarter of the length the body can load \
+                                    ({:.6e}); otherwise the half-plane's compliance is not positive definite",
                                 scene.scales.length(d),
                                 scene.scales.length(0.25 * (hi - lo))
                             ),

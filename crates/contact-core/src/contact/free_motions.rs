@@ -249,7 +249,8 @@ impl FreeMotions {
                     InvalidKind::IncompatibleLoads,
                     bound.path.clone(),
                     format!(
-                        "no contact normal has a component along the {}, so contact cannot carry its load {}: it must be 0",
+                        "no contact normal has a component along the {}, so contact cannot carry its load {}: it must \
+                            be 0",
                         describe(k),
                         load_words(scene, mo, load)
                     ),
@@ -316,7 +317,8 @@ impl FreeMotions {
                         InvalidKind::IncompatibleLoads,
                         motion_path(scene, dofs, &body_loads, motions[live[0]].0),
                         format!(
-                            "the {} can move together without moving any contact candidate along its normal, and their loads do work on that motion: contact cannot balance them",
+                            "the {} can move together without moving any contact candidate along its normal, and their \
+                                loads do work on that motion: contact cannot balance them",
                             names.join(" and ")
                         ),
                     ));
@@ -343,7 +345,8 @@ impl FreeMotions {
             {
                 let parts: Vec<String> = (0..n).filter(|&i| dir[i].abs() > 1e-12).map(describe).collect();
                 notes.push(format!(
-                    "the {} is not determined: no contact normal resists it and no load works on it; the displacements are reported with it at 0, any amount of it is also a solution",
+                    "the {} is not determined: no contact normal resists it and no load works on it; the displacements \
+                        are reported with it at 0, any amount of it is also a solution",
                     parts.join(" combined with the ")
                 ));
             }
@@ -562,7 +565,9 @@ impl FreeMotions {
             InvalidKind::NoSupport,
             path.unwrap_or_default(),
             format!(
-                "nothing holds the {}: it moves away from every contact and no load resists it, so contact, which can only push, carries nothing and the position is not determined; add a support that stops this motion (supports with ux and/or uy on an edge set), or load the body against its contact",
+                "nothing holds the {}: it moves away from every contact and no load resists it, so contact, which can \
+                    only push, carries nothing and the position is not determined; add a support that stops this \
+                    motion (supports with ux and/or uy on an edge set), or load the body against its contact",
                 parts.join(" together with the ")
             ),
         ))
@@ -663,7 +668,8 @@ impl FreeMotions {
                 )
             } else {
                 format!(
-                    "no {force} on the candidate zone balances the loads on {}{slides}; with the other loads as given, {}",
+                    "no {force} on the candidate zone balances the loads on {}{slides}; with the other loads as given, \
+                        {}",
                     what.join(" and "),
                     ranges.join("; or ")
                 )
@@ -751,7 +757,9 @@ fn carried_body(
         InvalidKind::NoSupport,
         body.supports_path(),
         format!(
-            "body '{}' is held by nothing but contact: its {words} moves together with body {} without opening or closing any contact, and no load of its own works on it, so nothing balances the loads that push them; add a support to body '{}' that stops its {words}, e.g. {example}",
+            "body '{}' is held by nothing but contact: its {words} moves together with body {} without opening or \
+                closing any contact, and no load of its own works on it, so nothing balances the loads that push them; \
+                add a support to body '{}' that stops its {words}, e.g. {example}",
             body.name,
             others.join(" and body "),
             body.name
@@ -1001,7 +1009,9 @@ fn body_directions(
                 InvalidKind::IncompatibleLoads,
                 heaviest(loads, dir).unwrap_or_else(|| body.path.clone()),
                 format!(
-                    "contact does not resist the {words} of body '{}' (held only by contact): no contact normal moves with it (beyond the discretization's {:.0e} of its motion), so contact cannot carry the loads' work on it; balance the loads on the body or support it",
+                    "contact does not resist the {words} of body '{}' (held only by contact): no contact normal moves \
+                        with it (beyond the discretization's {:.0e} of its motion), so contact cannot carry the loads' \
+                        work on it; balance the loads on the body or support it",
                     body.name, WEAK_LEVER
                 ),
             ));
@@ -1027,7 +1037,8 @@ fn body_directions(
             col,
             reach,
             note: format!(
-                "the {words} of body '{}' is not determined: contact does not resist it and no load works on it; the displacements are reported with it at 0, any amount of it is also a solution",
+                "the {words} of body '{}' is not determined: contact does not resist it and no load works on it; the \
+                    displacements are reported with it at 0, any amount of it is also a solution",
                 body.name
             ),
         });

@@ -243,7 +243,8 @@ fn axis_conditions(
                 InvalidKind::Geometry,
                 format!("{}/mesh", body.path),
                 format!(
-                    "body '{}' has node {node} at x = {} < 0: in axisymmetry x is the radius, and the section must lie at x ≥ 0",
+                    "body '{}' has node {node} at x = {} < 0: in axisymmetry x is the radius, and the section must lie \
+                        at x ≥ 0",
                     body.name,
                     shown(scales.length(p[0]))
                 ),
@@ -256,7 +257,8 @@ fn axis_conditions(
                     InvalidKind::Request,
                     format!("{}/supports", body.path),
                     format!(
-                        "body '{}' prescribes u_x = {} at node {node} on the axis, where the radial displacement of a body of revolution is 0",
+                        "body '{}' prescribes u_x = {} at node {node} on the axis, where the radial displacement of a \
+                            body of revolution is 0",
                         body.name,
                         shown(scales.length(prescribed[d]))
                     ),

@@ -44,7 +44,7 @@ pub fn stiffness_selective(order: Order, x: &[[f64; 2]], d: &D4, lambda: f64, ke
 /// The strain columns of DOF a (component a % 2 of node a / 2) at radius r.
 fn b_column(a: usize, n: &[f64; 6], dx: &[f64; 6], dy: &[f64; 6], r: f64) -> [f64; 4] {
     let i = a / 2;
-    if a % 2 == 0 {
+    if a.is_multiple_of(2) {
         [dx[i], 0.0, dy[i], n[i] / r]
     } else {
         [0.0, dy[i], dx[i], 0.0]

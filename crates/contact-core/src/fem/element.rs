@@ -154,7 +154,7 @@ impl<const S: usize, F: Fn(usize, &[f64; 6], &[f64; 6], &[f64; 6], f64) -> [f64;
 /// Plane strains (xx, yy, xy): u_x gives (∂x, 0, ∂y), u_y gives (0, ∂y, ∂x).
 fn plane_column(a: usize, _n: &[f64; 6], dx: &[f64; 6], dy: &[f64; 6], _r: f64) -> [f64; 3] {
     let i = a / 2;
-    if a % 2 == 0 {
+    if a.is_multiple_of(2) {
         [dx[i], 0.0, dy[i]]
     } else {
         [0.0, dy[i], dx[i]]

@@ -41,7 +41,8 @@ pub fn locate_all(scene: &Scene, meshes: &[Mesh2d]) -> Result<Vec<Vec<Located>>,
                             InvalidKind::Geometry,
                             format!("{}/at", pl.path),
                             format!(
-                                "the point ({:.6e}, {:.6e}) is {:.3e} from edge set '{}' (nearest point ({:.6e}, {:.6e})): a point load must lie on its edge set",
+                                "the point ({:.6e}, {:.6e}) is {:.3e} from edge set '{}' (nearest point ({:.6e}, \
+                                    {:.6e})): a point load must lie on its edge set",
                                 sc.length(pl.at[0]),
                                 sc.length(pl.at[1]),
                                 sc.length(distance),

@@ -24,7 +24,8 @@ pub enum LinalgError {
     Clarabel(String),
     /// The numeric factorization would not end within the time left.
     #[error(
-        "the factorization was predicted to take {:.1} s (nnz(L) = {:.2e}, {:.2e} multiply-adds), more than the {:.1} s left of the time limit: refused before starting it",
+        "the factorization was predicted to take {:.1} s (nnz(L) = {:.2e}, {:.2e} multiply-adds), more than the {:.1} \
+            s left of the time limit: refused before starting it",
         cost.predicted_secs(),
         cost.nnz as f64,
         cost.flops,

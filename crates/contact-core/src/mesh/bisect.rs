@@ -576,7 +576,12 @@ mod tests {
             off_arc = off_arc.max(d);
             off_circle = off_circle.max(((p[0] - center[0]).hypot(p[1] - center[1]) - radius).abs());
         }
-        println!("arc: {} → {} edges, θ = {theta:.4}; off the original T6 arc {off_arc:.2e}, off the circle {off_circle:.2e} (bound {bound:.2e})", old_arc.len(), new_arc.len());
+        println!(
+            "arc: {} → {} edges, θ = {theta:.4}; off the original T6 arc {off_arc:.2e}, off the circle \
+            {off_circle:.2e} (bound {bound:.2e})",
+            old_arc.len(),
+            new_arc.len()
+        );
         assert!(off_arc < 1e-14 * radius, "{off_arc}");
         assert!(off_circle < 1.05 * bound, "{off_circle} vs {bound}");
         // The flat stays flat.

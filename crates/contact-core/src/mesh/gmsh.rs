@@ -223,7 +223,10 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
     if version != "4.1" {
         return Err(bad(
             path,
-            format!("MSH version '{version}' is not read; save the mesh as MSH 4.1 (gmsh: -format msh41, or option Mesh.MshFileVersion = 4.1)"),
+            format!(
+                "MSH version '{version}' is not read; save the mesh as MSH 4.1 (gmsh: -format msh41, or option \
+                Mesh.MshFileVersion = 4.1)"
+            ),
         ));
     }
     if file_type != "0" {
@@ -367,17 +370,21 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
         let entity = t.int()?;
         let etype = t.int()?;
         let n = t.count()?;
-        let npe = nodes_per_element(etype).ok_or_else(|| {
-            bad(
+        let npe =
+            nodes_per_element(etype).ok_or_else(|| {
+                bad(
                 path,
-                format!("Gmsh element type {etype} (entity {entity} of dimension {dim}) is not supported: a 2D body is made of 3-node (type 2) or 6-node (type 9) triangles"),
+                format!("Gmsh element type {etype} (entity {entity} of dimension {dim}) is not supported: a 2D body is \
+                    made of 3-node (type 2) or 6-node (type 9) triangles"),
             )
-        })?;
+            })?;
         let unsupported = |what: &str| {
             bad(
                 path,
                 format!(
-                    "Gmsh {} elements (type {etype}) on {what} entity {entity} are not supported: a 2D body is made of 3-node (type 2) or 6-node (type 9) triangles, its edge sets of 2-node (type 1) or 3-node (type 8) lines",
+                    "Gmsh {} elements (type {etype}) on {what} entity {entity} are not supported: a 2D body is made of \
+                        3-node (type 2) or 6-node (type 9) triangles, its edge sets of 2-node (type 1) or 3-node (type \
+                        8) lines",
                     type_name(etype)
                 ),
             )
@@ -496,7 +503,10 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
             if local[a] == usize::MAX || local[b] == usize::MAX {
                 return Err(bad(
                     path,
-                    format!("Gmsh physical curve group '{name}', line element {tag}: its nodes are not nodes of the body's triangles"),
+                    format!(
+                        "Gmsh physical curve group '{name}', line element {tag}: its nodes are not nodes of the \
+                        body's triangles"
+                    ),
                 ));
             }
             edges.push([local[a], local[b]]);
@@ -523,7 +533,8 @@ mod tests {
     /// the surface the physical group "plate". `tri` replaces the triangle block.
     fn square(tri: &str) -> String {
         format!(
-            "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n1 1 \"bottom\"\n2 2 \"plate\"\n$EndPhysicalNames\n\
+            "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n1 1 \"bottom\"\n2 2 \
+                \"plate\"\n$EndPhysicalNames\n\
 $Entities\n0 1 1 0\n1 0 0 0 1 0 0 1 1 0\n1 0 0 0 1 1 0 1 2 0\n$EndEntities\n\
 $Nodes\n1 4 1 4\n2 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n$EndNodes\n\
 $Elements\n2 3 1 3\n1 1 1 1\n1 1 2\n{tri}$EndElements\n"

@@ -142,7 +142,8 @@ pub fn try_build(
                 Item::Element(e),
                 // Ratios, not lengths: the coordinates here are nondimensional.
                 format!(
-                    "degenerate element: its area is {:.3e} of its longest edge squared (at least {MIN_SHAPE_RATIO:.0e} is needed)",
+                    "degenerate element: its area is {:.3e} of its longest edge squared (at least \
+                        {MIN_SHAPE_RATIO:.0e} is needed)",
                     area.abs() / longest.max(f64::MIN_POSITIVE)
                 ),
             ));
@@ -163,7 +164,14 @@ pub fn try_build(
                 let off = ((m[0] - mid[0]).powi(2) + (m[1] - mid[1]).powi(2)).sqrt();
                 let len = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
                 if off > 0.25 * len {
-                    return Err(bad(Item::ElementNode(e, 3 + k), format!("midside node is {:.3} edge lengths from the edge midpoint (at most 0.25); the element map would fold", off / len)));
+                    return Err(bad(
+                        Item::ElementNode(e, 3 + k),
+                        format!(
+                            "midside node is {:.3} edge lengths from the \
+                        edge midpoint (at most 0.25); the element map would fold",
+                            off / len
+                        ),
+                    ));
                 }
             }
         }
@@ -313,7 +321,8 @@ fn check_nodes(nodes: &[[f64; 2]], elements: Conn, bad: &dyn Fn(Item, String) ->
         return Err(bad(
             Item::Node(n),
             format!(
-                "the mesh falls apart: node {n} belongs to a piece not connected to node 0; give each piece its own body (with its own supports or contact)"
+                "the mesh falls apart: node {n} belongs to a piece not connected to node 0; give each piece its own \
+                    body (with its own supports or contact)"
             ),
         ));
     }

@@ -197,7 +197,7 @@ pub fn rings(
         let step = h(rho);
         let n = ((2.0 * PI * rho / step).round() as usize).max(6);
         // Alternate rings are turned by half a step: near-equilateral triangles.
-        let offset = if k % 2 == 0 { 0.0 } else { 0.5 };
+        let offset = if k.is_multiple_of(2) { 0.0 } else { 0.5 };
         let dt = 2.0 * PI / n as f64;
         let first = (window.0 / dt - offset).floor() as i64;
         let last = (window.1 / dt - offset).ceil() as i64;

@@ -77,7 +77,8 @@ pub struct Step<'a> {
 pub fn unfit(cons: &ConstraintSet, tangents: &Tangents) -> Option<&'static str> {
     if !cons.rows_are_nodal() {
         return Some(
-            "the full formulation needs nodal contact rows (one node per row, as T3 against a rigid obstacle gives); mortar rows (the T6 default) and two-body rows are solved on the condensed formulation only",
+            "the full formulation needs nodal contact rows (one node per row, as T3 against a rigid obstacle gives); \
+                mortar rows (the T6 default) and two-body rows are solved on the condensed formulation only",
         );
     }
     tangential_coordinates(cons, tangents)

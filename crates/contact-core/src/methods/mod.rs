@@ -116,7 +116,7 @@ pub struct Solution {
 }
 
 /// Runs the requested method (`auto` → condensed active set, the fastest exact
-/// method measured so far; see `contact bench`).
+/// method measured so far; see `contact-bench`).
 pub fn solve(problem: &Problem, method: Method) -> Result<Solution, CoreError> {
     let first = solve_with(problem, method)?;
     if method != Method::Auto || first.converged || crate::cancel::expired() {

@@ -60,14 +60,18 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
         }
         if mesh.order == crate::mesh::Order::T3 {
             notes.push(format!(
-                "body '{}' is nearly incompressible (ν = {}) on linear triangles, which lock in plane strain and axisymmetry: its pressures may be too stiff and oscillate (measured 31 % L2 error on Hertz at ν = 0.4999 in plane strain, 19 % on a sphere into a block at ν = 0.499 in axisymmetry); use T6 elements, which switch to selective reduced integration from ν = {}",
+                "body '{}' is nearly incompressible (ν = {}) on linear triangles, which lock in plane strain and \
+                    axisymmetry: its pressures may be too stiff and oscillate (measured 31 % L2 error on Hertz at ν = \
+                    0.4999 in plane strain, 19 % on a sphere into a block at ν = 0.499 in axisymmetry); use T6 \
+                    elements, which switch to selective reduced integration from ν = {}",
                 body.name,
                 body.poisson_ratio,
                 fem::assembly::NEARLY_INCOMPRESSIBLE
             ));
         } else {
             notes.push(format!(
-                "body '{}' ran the P2–P0 element (T6, the volume change constrained by its mean over each element: locking-free) since ν = {} ≥ {}",
+                "body '{}' ran the P2–P0 element (T6, the volume change constrained by its mean over each element: \
+                    locking-free) since ν = {} ≥ {}",
                 body.name,
                 body.poisson_ratio,
                 fem::assembly::NEARLY_INCOMPRESSIBLE
@@ -134,7 +138,8 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
     if let Some(at) = report.first_non_finite() {
         report.status = Status::NumericalError;
         report.notes.push(format!(
-            "the answer holds a value that is not a finite number (first at {at}; JSON writes it as null): it must not be used"
+            "the answer holds a value that is not a finite number (first at {at}; JSON writes it as null): it must not \
+                be used"
         ));
     }
     report
@@ -192,7 +197,8 @@ fn punch_results(
             unique: undetermined.is_empty(),
             note: (!undetermined.is_empty()).then(|| {
                 format!(
-                    "the {} motion is not determined: no contact normal resists it and its load is 0; it is reported as 0, any value is a solution",
+                    "the {} motion is not determined: no contact normal resists it and its load is 0; it is reported \
+                        as 0, any value is a solution",
                     undetermined.join(" and ")
                 )
             }),

@@ -54,7 +54,7 @@ use crate::solution::report::{PairAccuracy, PairReport, SingularEnd};
 ///
 /// The zone ends' own nodal error (`edge_deviation`) is a second, direct
 /// estimate; the larger of the two is the pressure's. Over seven scenes at
-/// three levels each, T3 and T6 (`contact bench --convergence`,
+/// three levels each, T3 and T6 (`contact-bench --convergence`,
 /// effectivity.csv), the pressure's effectivity is 0.35–2.86, 39 of 42 rows
 /// within [0.5, 2]; without this term the finer levels' last-node error went
 /// unseen (measured with T6 multipliers on the corners only: 0.19 at worst

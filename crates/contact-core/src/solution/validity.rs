@@ -134,14 +134,21 @@ pub fn check(
             strain,
             MAX_STRAIN,
             path.clone(),
-            format!("body '{name}' strains by {strain:.3} (principal strain, mean over patches a tenth of its narrowest contact zone wide), beyond the {MAX_STRAIN} up to which small-strain elasticity holds to about 2.5 %: the answer is that of the linear model, not of the real body"),
+            format!(
+                "body '{name}' strains by {strain:.3} (principal strain, mean over patches a tenth of its \
+                narrowest contact zone wide), beyond the {MAX_STRAIN} up to which small-strain elasticity holds to \
+                about 2.5 %: the answer is that of the linear model, not of the real body"
+            ),
         );
         warn(
             WarningCode::LargeRotation,
             rotation,
             MAX_ROTATION,
             path.clone(),
-            format!("part of body '{name}' turns by {rotation:.3} rad, beyond the {MAX_ROTATION} rad up to which a linearized rotation misplaces points by under 1.1 %"),
+            format!(
+                "part of body '{name}' turns by {rotation:.3} rad, beyond the {MAX_ROTATION} rad up to which a \
+                linearized rotation misplaces points by under 1.1 %"
+            ),
         );
         let moved = biggest / mesh.size();
         warn(
@@ -149,7 +156,10 @@ pub fn check(
             moved,
             MAX_DISPLACEMENT,
             path,
-            format!("body '{name}' moves by {moved:.3} of its size, beyond the {MAX_DISPLACEMENT} up to which equilibrium written on the undeformed shape holds"),
+            format!(
+                "body '{name}' moves by {moved:.3} of its size, beyond the {MAX_DISPLACEMENT} up to which \
+                equilibrium written on the undeformed shape holds"
+            ),
         );
     }
     for &(o, [_, _, theta]) in punch_motions {
@@ -159,7 +169,8 @@ pub fn check(
             MAX_ROTATION,
             format!("/obstacles/{o}"),
             format!(
-                "punch '{}' turns by {:.3} rad, beyond the {MAX_ROTATION} rad up to which its linearized rotation misplaces points by under 1.1 %",
+                "punch '{}' turns by {:.3} rad, beyond the {MAX_ROTATION} rad up to which its linearized rotation \
+                    misplaces points by under 1.1 %",
                 scene.obstacles[o].name,
                 theta.abs()
             ),
@@ -178,7 +189,14 @@ pub fn check(
                 MAX_ROLL,
                 scene.bodies[b].path.clone(),
                 format!(
-                    "body '{name}', held only by contact, turns by {:.3e} rad under its loads: its curved surface has rolled its contact by {} along itself, {:.2}× the zone's half-width {}, beyond the {MAX_ROLL} of it up to which the linear model, which takes the contact forces' levers on the undeformed shape, misplaces their moment by under 5 % of what the zone can carry. The loads' moment about the contact exceeds what a zone this wide can carry (its normal force times its half-width): the body rolls, and the zone, pressure and friction of this answer are those of the linearized roll, not of the scene. Hold the body's rotation (a support on it) or apply the load through the contact's line of action",
+                    "body '{name}', held only by contact, turns by {:.3e} rad under its loads: its curved surface has \
+                        rolled its contact by {} along itself, {:.2}× the zone's half-width {}, beyond the {MAX_ROLL} \
+                        of it up to which the linear model, which takes the contact forces' levers on the undeformed \
+                        shape, misplaces their moment by under 5 % of what the zone can carry. The loads' moment about \
+                        the contact exceeds what a zone this wide can carry (its normal force times its half-width): \
+                        the body rolls, and the zone, pressure and friction of this answer are those of the linearized \
+                        roll, not of the scene. Hold the body's rotation (a support on it) or apply the load through \
+                        the contact's line of action",
                     theta.abs(),
                     shown(roll * length),
                     roll / half,
@@ -199,7 +217,8 @@ pub fn check(
             let width = z.s[1] - z.s[0];
             let hint = if width > 0.0 {
                 format!(
-                    "refine near the zone to an element size of at most {} (a rectangle's or disk's grading: h_min about the zone's width / 16, extent a little beyond the zone)",
+                    "refine near the zone to an element size of at most {} (a rectangle's or disk's grading: h_min \
+                        about the zone's width / 16, extent a little beyond the zone)",
                     shown(width / 16.0)
                 )
             } else {
@@ -213,7 +232,9 @@ pub fn check(
                     limit: MIN_ZONE_EDGES,
                     location: pair.path.clone(),
                     message: format!(
-                        "the contact zone from ({}, {}) to ({}, {}) spans {n} element edge(s), fewer than {MIN_ZONE_EDGES}: its pressure and extent are resolved only to about an element; {hint}. A zone this narrow is also what a unit slip gives (a modulus in Pa with lengths in mm)",
+                        "the contact zone from ({}, {}) to ({}, {}) spans {n} element edge(s), fewer than \
+                            {MIN_ZONE_EDGES}: its pressure and extent are resolved only to about an element; {hint}. A \
+                            zone this narrow is also what a unit slip gives (a modulus in Pa with lengths in mm)",
                         shown(z.start[0]),
                         shown(z.start[1]),
                         shown(z.end[0]),
@@ -236,7 +257,11 @@ pub fn check(
             MAX_ZONE_OVER_RADIUS,
             pair.path.clone(),
             format!(
-                "the contact zone reaches {:.3} of the obstacle's radius of curvature onto its curved part, where the obstacle's surface has turned by {:.1}°, beyond the {MAX_ZONE_OVER_RADIUS} ({:.1}°) the model is meant for: the gap is the distance to the obstacle's true surface, linearized in the displacement, but the body's surface pressed onto it turns as much, a rotation the small-rotation theory follows only approximately, and half-space closed forms (Hertz) no longer describe the scene",
+                "the contact zone reaches {:.3} of the obstacle's radius of curvature onto its curved part, where the \
+                    obstacle's surface has turned by {:.1}°, beyond the {MAX_ZONE_OVER_RADIUS} ({:.1}°) the model is \
+                    meant for: the gap is the distance to the obstacle's true surface, linearized in the displacement, \
+                    but the body's surface pressed onto it turns as much, a rotation the small-rotation theory follows \
+                    only approximately, and half-space closed forms (Hertz) no longer describe the scene",
                 onto / radius,
                 (onto / radius).min(1.0).asin().to_degrees(),
                 MAX_ZONE_OVER_RADIUS.asin().to_degrees()
@@ -277,7 +302,9 @@ pub fn check(
             MAX_CONTACT_MOTION_OVER_RADIUS,
             pair.path.clone(),
             format!(
-                "contact points slide across the obstacle by {slid:.3} of its radius of curvature, beyond the {MAX_CONTACT_MOTION_OVER_RADIUS} up to which the linearized distance errs by under 2.5 % of that motion"
+                "contact points slide across the obstacle by {slid:.3} of its radius of curvature, beyond the \
+                    {MAX_CONTACT_MOTION_OVER_RADIUS} up to which the linearized distance errs by under 2.5 % of that \
+                    motion"
             ),
         );
     }

@@ -123,7 +123,10 @@ pub fn vtu(reply: &SolveReply, stress_zz: &[Vec<f64>], axisymmetric: bool) -> Ve
     if axisymmetric {
         // The section of a body of revolution: the axis is the y axis through
         // the origin (a point and a direction); zz of the tensors is the hoop.
-        x.push_str("<FieldData>\n<DataArray type=\"Float64\" Name=\"revolution_axis\" NumberOfComponents=\"3\" NumberOfTuples=\"2\" format=\"ascii\">0 0 0 0 1 0</DataArray>\n</FieldData>\n");
+        x.push_str(
+            "<FieldData>\n<DataArray type=\"Float64\" Name=\"revolution_axis\" NumberOfComponents=\"3\" \
+            NumberOfTuples=\"2\" format=\"ascii\">0 0 0 0 1 0</DataArray>\n</FieldData>\n",
+        );
     }
     x.push_str(&format!(
         "<Piece NumberOfPoints=\"{n_points}\" NumberOfCells=\"{n_cells}\">\n"

@@ -379,7 +379,8 @@ fn check_mesh_spec(m: &MeshSpec, path: &str) -> Result<(), CoreError> {
                 return Err(invalid(
                     K::Request,
                     format!("{p}/file"),
-                    "a Gmsh file reference is read only by `contact solve FILE` (relative to the request file); send the file's text in `msh`",
+                    "a Gmsh file reference is read only by `contact solve FILE` (relative to the request file); send \
+                        the file's text in `msh`",
                 ));
             }
             if g.msh.is_none() {

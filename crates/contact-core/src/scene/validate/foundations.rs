@@ -39,7 +39,8 @@ pub fn foundations(req: &SolveRequest, scales: Scales) -> Result<(Vec<String>, V
                 return Err(invalid(
                     K::Request,
                     mp,
-                    "the elastic half-plane is not available in axisymmetry (a body of revolution rests on a half-space, whose ring-load kernel is not built yet); Winkler and Pasternak foundations are",
+                    "the elastic half-plane is not available in axisymmetry (a body of revolution rests on a \
+                        half-space, whose ring-load kernel is not built yet); Winkler and Pasternak foundations are",
                 ));
             }
             if x_min < 0.0 {

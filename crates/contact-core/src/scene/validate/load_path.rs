@@ -21,7 +21,8 @@ pub fn load_path(req: &SolveRequest, bodies: &[Body], limits: &Limits) -> Result
         return Err(invalid(
             K::Request,
             "/load_path",
-            "give either 'load_factors' (every load scaled alike) or 'load_path' (named loads scaled per step), not both",
+            "give either 'load_factors' (every load scaled alike) or 'load_path' (named loads scaled per step), not \
+                both",
         ));
     }
     if req.load_path.len() > limits.max_load_steps {
@@ -48,7 +49,9 @@ pub fn load_path(req: &SolveRequest, bodies: &[Body], limits: &Limits) -> Result
                             K::Request,
                             &path,
                             format!(
-                                "'{name}' names no load: expected the JSON pointer of a traction, point load, support, body force or punch motion, e.g. /bodies/0/tractions/1 or /obstacles/0/punch/horizontal"
+                                "'{name}' names no load: expected the JSON pointer of a traction, point load, support, \
+                                    body force or punch motion, e.g. /bodies/0/tractions/1 or \
+                                    /obstacles/0/punch/horizontal"
                             ),
                         )
                     })?;

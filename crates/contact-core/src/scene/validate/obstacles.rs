@@ -162,7 +162,10 @@ pub fn obstacles(req: &SolveRequest, scales: Scales) -> Result<(Vec<String>, Vec
                             return Err(invalid(
                                 K::Request,
                                 format!("{pth}/{name}/{kind}"),
-                                format!("a punch of revolution moves along the axis only: its {name} {kind} must be 0 (left out), got {v}"),
+                                format!(
+                                    "a punch of revolution moves along the axis only: its {name} {kind} must be 0 \
+                                    (left out), got {v}"
+                                ),
                             ));
                         }
                         // Held, not left free under a zero load: no row of a

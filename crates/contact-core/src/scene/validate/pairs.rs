@@ -46,37 +46,37 @@ pub fn pairs(req: &SolveRequest, survey: &Survey, n: &Names) -> Result<(Vec<Pair
             }
         };
         has_edges(body, &c.edges, format!("{cp}/edges"))?;
-        let target = match (&c.obstacle, &c.against, &c.foundation) {
-            (Some(o), None, None) => {
-                Target::Obstacle(resolve(o, obstacle_names, &format!("{cp}/obstacle"), "obstacle")?)
-            }
-            (None, None, Some(f)) => {
-                Target::Foundation(resolve(f, foundation_names, &format!("{cp}/foundation"), "foundation")?)
-            }
-            (None, Some(a), None) => {
-                let other = resolve(&a.body, names, &format!("{cp}/against/body"), "body")?;
-                if other == body {
-                    return Err(invalid(
-                        K::Request,
-                        format!("{cp}/against/body"),
-                        "a body cannot be in contact with itself (self-contact is not supported)",
-                    ));
+        let target =
+            match (&c.obstacle, &c.against, &c.foundation) {
+                (Some(o), None, None) => {
+                    Target::Obstacle(resolve(o, obstacle_names, &format!("{cp}/obstacle"), "obstacle")?)
                 }
-                has_edges(other, &a.edges, format!("{cp}/against/edges"))?;
-                Target::Body {
-                    body: other,
-                    edges: a.edges.clone(),
-                    discretization: discretization(c.discretization),
+                (None, None, Some(f)) => {
+                    Target::Foundation(resolve(f, foundation_names, &format!("{cp}/foundation"), "foundation")?)
                 }
-            }
-            _ => {
-                return Err(invalid(
+                (None, Some(a), None) => {
+                    let other = resolve(&a.body, names, &format!("{cp}/against/body"), "body")?;
+                    if other == body {
+                        return Err(invalid(
+                            K::Request,
+                            format!("{cp}/against/body"),
+                            "a body cannot be in contact with itself (self-contact is not supported)",
+                        ));
+                    }
+                    has_edges(other, &a.edges, format!("{cp}/against/edges"))?;
+                    Target::Body {
+                        body: other,
+                        edges: a.edges.clone(),
+                        discretization: discretization(c.discretization),
+                    }
+                }
+                _ => return Err(invalid(
                     K::Request,
                     cp.clone(),
-                    "a contact pair names exactly one of 'obstacle' (rigid), 'against' (another body's edge set) or 'foundation'",
-                ))
-            }
-        };
+                    "a contact pair names exactly one of 'obstacle' (rigid), 'against' (another body's edge set) or \
+                        'foundation'",
+                )),
+            };
         // The side that carries the pressure (slave) must be the softer one:
         // a stiff slave's pressure oscillates from node to node (measured 80 %
         // at a stiffness ratio of 1e6, against 2 % the other way round).
@@ -96,7 +96,8 @@ pub fn pairs(req: &SolveRequest, survey: &Survey, n: &Names) -> Result<(Vec<Pair
                 discretization,
             } if stiffness(body) > SWAP_STIFFNESS_RATIO * stiffness(other) => {
                 notes.push(format!(
-                    "contact pair {k}: body '{}' is {:.1e} times stiffer than '{}', so '{}' carries the pressure (its edge set '{}' is the slave side) and the pair is reported that way round",
+                    "contact pair {k}: body '{}' is {:.1e} times stiffer than '{}', so '{}' carries the pressure (its \
+                        edge set '{}' is the slave side) and the pair is reported that way round",
                     names[body],
                     stiffness(body) / stiffness(other),
                     names[other],
@@ -156,7 +157,9 @@ fn friction(req: &SolveRequest, c: &proto::ContactSpec, cp: &str, target: &Targe
             K::Request,
             format!("{cp}/friction/coefficient"),
             format!(
-                "the friction coefficient must lie in [0, {MAX_FRICTION:.0e}], got {mu:e}: beyond it the friction a normal force at round-off carries is no longer round-off; a coefficient this large means the surfaces do not slide, which {MAX_FRICTION:.0e} already gives"
+                "the friction coefficient must lie in [0, {MAX_FRICTION:.0e}], got {mu:e}: beyond it the friction a \
+                    normal force at round-off carries is no longer round-off; a coefficient this large means the \
+                    surfaces do not slide, which {MAX_FRICTION:.0e} already gives"
             ),
         ));
     }

@@ -237,7 +237,8 @@ fn check_output_size(outputs: &[OutputKind], steps: usize, nodes: f64, limits: &
     Err(CoreError::TooLarge {
         path: "/outputs".into(),
         reason: format!(
-            "the requested outputs over {} load step(s) come to about {:.3e} numbers; this service returns at most {} per reply (fewer load steps or outputs, or a coarser mesh)",
+            "the requested outputs over {} load step(s) come to about {:.3e} numbers; this service returns at most {} \
+                per reply (fewer load steps or outputs, or a coarser mesh)",
             steps.max(1),
             values,
             limits.max_output_values
@@ -257,7 +258,10 @@ fn check_reply_magnitude(size: f64, scales: Scales, path: &str) -> Result<(), Co
         InvalidKind::Request,
         path,
         format!(
-            "the reply's forces would reach about {reach:.1e} in the request's units (loads of {size:.1e} E·L with E = {:e} and L = {:e}), beyond the {MAX_REPLY_MAGNITUDE:e} that double precision carries through the solve: choose units in which the numbers are moderate (MPa and mm rather than Pa and m), or smaller load factors",
+            "the reply's forces would reach about {reach:.1e} in the request's units (loads of {size:.1e} E·L with E = \
+                {:e} and L = {:e}), beyond the {MAX_REPLY_MAGNITUDE:e} that double precision carries through the \
+                solve: choose units in which the numbers are moderate (MPa and mm rather than Pa and m), or smaller \
+                load factors",
             scales.modulus, scales.length
         ),
     ))
@@ -287,7 +291,8 @@ fn check_load_factors(factors: &[f64], size: f64, scales: Scales, limits: &Limit
                 InvalidKind::Request,
                 path,
                 format!(
-                    "load factor {f:e} scales the loads beyond what the solve can represent (|factor| × load must stay below {MAX_SCALED_LOAD:e} in units of E·L)"
+                    "load factor {f:e} scales the loads beyond what the solve can represent (|factor| × load must stay \
+                        below {MAX_SCALED_LOAD:e} in units of E·L)"
                 ),
             ));
         }
