@@ -373,7 +373,7 @@ def burst(connect: str, size: int = 32, rounds: int = 5, only: str = "hertz_t3",
             ended = threading.Semaphore(0)
             lock = threading.Lock()
 
-            def on_reply(reply, k):
+            def on_reply(reply, k, first=first, lock=lock):
                 now = time.perf_counter()
                 with lock:
                     if first[k] is None:
@@ -465,10 +465,12 @@ def burst_report(r: dict) -> str:
     ]
     sb = r.get("service_busy_latency_s")
     if sb:
-        lines.append(f"busy, in service   : {sb['window']}: p50 {sb['p50'] * 1e3:.3f} ms, p99 {sb['p99'] * 1e3:.3f} ms, "
+        lines.append(f"busy, in service   : {sb['window']}: p50 {sb['p50'] * 1e3:.3f} ms, "
+                     f"p99 {sb['p99'] * 1e3:.3f} ms, "
                      f"max {sb['max'] * 1e3:.3f} ms (arrival to reply handed to zenoh)")
     lines += [
-        f"other replies      : {r['ok']} ({r['timeouts']} timeout, {r['cut']} with a part cut): p50 {lat['p50'] * 1e3:.1f} ms, p99 {lat['p99'] * 1e3:.1f} ms, "
+        f"other replies      : {r['ok']} ({r['timeouts']} timeout, {r['cut']} with a part cut): "
+        f"p50 {lat['p50'] * 1e3:.1f} ms, p99 {lat['p99'] * 1e3:.1f} ms, "
         f"max {lat['max'] * 1e3:.1f} ms",
         f"deadline           : {len(r['late'])} of {r['sent']} later than {r['allowed_s']:.3f} s after sending "
         f"(slowest {r['max_latency_s']:.3f} s)",
