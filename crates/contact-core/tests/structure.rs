@@ -238,3 +238,36 @@ fn the_cycle_search_finds_a_circle() {
     assert_eq!(imports[0][0], "rows");
     assert_eq!(imports[1][0], "gap");
 }
+
+/// The style width: no line of the workspace's Rust sources passes 120
+/// characters (rustfmt's `max_width` cannot fail on a long string or
+/// comment; the client's Python has ruff's E501 for the same).
+#[test]
+fn no_rust_line_passes_120_columns() {
+    fn walk(dir: &std::path::Path, out: &mut Vec<PathBuf>) {
+        for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+            let p = e.path();
+            if p.is_dir() && p.file_name().is_some_and(|n| n != "target") {
+                walk(&p, out);
+            } else if p.extension().is_some_and(|x| x == "rs") {
+                out.push(p);
+            }
+        }
+    }
+    let crates = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut files = Vec::new();
+    walk(&crates, &mut files);
+    assert!(files.len() > 50, "the scan found the sources: {}", files.len());
+    let long: Vec<String> = files
+        .iter()
+        .flat_map(|f| {
+            let text = std::fs::read_to_string(f).unwrap_or_default();
+            text.lines()
+                .enumerate()
+                .filter(|(_, l)| l.chars().count() > 120)
+                .map(|(i, l)| format!("{}:{} ({} characters)", f.display(), i + 1, l.chars().count()))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    assert!(long.is_empty(), "lines over 120 characters:\n{}", long.join("\n"));
+}

@@ -430,7 +430,10 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
                 } else if npe != per {
                     return Err(bad(
                         path,
-                        format!("Gmsh element {tag} (surface entity {entity}): element has {npe} nodes but element 0 has {per}; mixed orders are not supported"),
+                        format!(
+                            "Gmsh element {tag} (surface entity {entity}): element has {npe} nodes but element \
+                            0 has {per}; mixed orders are not supported"
+                        ),
                     ));
                 }
                 for &c in conn.iter() {

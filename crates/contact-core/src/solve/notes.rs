@@ -36,16 +36,21 @@ pub(crate) fn unsettled_bodies(
                 .filter(|s| s.1 > 1.0 + SHORTFALL_SLACK);
             match worst {
                 Some((_, ratio, motion)) => format!(
-                    "body '{name}' is held only by contact and most likely slides: the frictional iteration did not settle \
-                     in {iterations} iterations, and with the normal forces of its last iterate the load along the {motion} \
-                     is {ratio:.4} times the most friction can carry (μ times those normal forces); the check of the loads \
+                    "body '{name}' is held only by contact and most likely slides: the frictional iteration did not \
+                     settle \
+                     in {iterations} iterations, and with the normal forces of its last iterate the load along the \
+                     {motion} \
+                     is {ratio:.4} times the most friction can carry (μ times those normal forces); the check of \
+                     the loads \
                      with the friction cone before the solve sees loads only, not normal forces made by prescribed \
                      displacements: keep the load along that motion below μ times the normal force, or press harder"
                 ),
                 None => format!(
-                    "body '{name}' is held only by contact: the frictional iteration did not settle its points' stick and \
+                    "body '{name}' is held only by contact: the frictional iteration did not settle its points' \
+                     stick and \
                      slip states in {iterations} iterations; its loads pass the check with the friction cone, and the \
-                     normal forces of the last iterate leave friction enough to carry them: raise settings.max_iterations \
+                     normal forces of the last iterate leave friction enough to carry them: raise \
+                     settings.max_iterations \
                      ({}), or apply the loads in more steps (load_path)",
                     scene.settings.max_iterations
                 ),
@@ -125,8 +130,10 @@ pub(crate) fn sliding_punches(scene: &Scene) -> Vec<String> {
                 .fold(0.0, f64::max);
             (mu > 0.0 && q.abs() > mu * p.abs()).then(|| {
                 format!(
-                    "punch '{}': its horizontal load is {:.4} times its vertical load, more than the friction coefficient {mu}: \
-                     on a flat face it would slide; on this profile the compatibility check admitted it (inclined normals), \
+                    "punch '{}': its horizontal load is {:.4} times its vertical load, more than the friction \
+                     coefficient {mu}: \
+                     on a flat face it would slide; on this profile the compatibility check admitted it (inclined \
+                     normals), \
                      and the frictional iteration did not converge; the punch most likely slides (keep |Q| below μ|P|)",
                     ob.name,
                     q.abs() / p.abs().max(f64::MIN_POSITIVE)

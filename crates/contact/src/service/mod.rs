@@ -93,7 +93,8 @@ pub async fn run(cfg: ServiceConfig) -> anyhow::Result<()> {
         workers = cfg.workers,
         queue_limit = cfg.queue_limit,
         max_solve_time_s = cfg.max_solve_time.as_secs_f64(),
-        "contact {} serving {KEY_SOLVE}, {own_solve_key}, {KEY_HEALTH}, {KEY_SCHEMA}; publishing {}/<client_id|request_id> and liveliness {instance_key}",
+        "contact {} serving {KEY_SOLVE}, {own_solve_key}, {KEY_HEALTH}, {KEY_SCHEMA}; publishing \
+            {}/<client_id|request_id> and liveliness {instance_key}",
         env!("CARGO_PKG_VERSION"),
         progress::KEY_PROGRESS
     );
@@ -109,7 +110,9 @@ pub async fn run(cfg: ServiceConfig) -> anyhow::Result<()> {
             },
             q = schema_q.recv_async() => match q {
                 Ok(q) => {
-                    if let Err(e) = q.reply(KEY_SCHEMA, schema_json.clone()).wait() { tracing::warn!("schema reply failed: {e}"); }
+                    if let Err(e) = q.reply(KEY_SCHEMA, schema_json.clone()).wait() {
+                        tracing::warn!("schema reply failed: {e}");
+                    }
                 }
                 Err(e) => { tracing::error!("schema queryable closed: {e}"); break; }
             },

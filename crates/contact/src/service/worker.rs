@@ -157,7 +157,8 @@ fn busy(state: &Arc<State>, arriving: Option<usize>) -> ErrorReply {
             state.cfg.queue_limit
         ),
         Some(len) => format!(
-            "service busy: {} bytes of requests are being read and {len} more would pass the limit of {} bytes; retry later",
+            "service busy: {} bytes of requests are being read and {len} more would pass the limit of {} bytes; \
+                retry later",
             state.door_bytes.load(Ordering::SeqCst),
             state.cfg.max_door_bytes
         ),
@@ -265,7 +266,8 @@ fn queued_past(
     let mut err = ErrorReply::new(
         ErrorCode::Timeout,
         format!(
-            "the request waited {:.3} s for a worker ({running} solving), past its time limit of {} s counted from its arrival; it was not started: retry later, or give a longer time_limit",
+            "the request waited {:.3} s for a worker ({running} solving), past its time limit of {} s counted from \
+                its arrival; it was not started: retry later, or give a longer time_limit",
             arrived.elapsed().as_secs_f64(),
             limit.as_secs_f64()
         ),

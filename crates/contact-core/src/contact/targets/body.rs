@@ -13,7 +13,8 @@
 //! signed distance (`settings.gap`), y is the point of b's surface facing x
 //! along b's (continuous) normal field, g the signed distance to it and
 //! n = −n_b(y): the first-order linearization of d_b(x + u^a − u^b(y)) ≥ 0,
-//! which on a stiff master reduces to the rigid obstacle's rows. With `body_normal`, y is where the slave normal meets b
+//! which on a stiff master reduces to the rigid obstacle's rows. With `body_normal`, y is where the slave normal
+//! meets b
 //! (y = x + g n_a) and n = n_a, the seed's form. On a flat interface the two
 //! coincide, so both pass the contact patch test with mortar rows.
 //!
