@@ -23,6 +23,7 @@ use crate::admit::{self, Route};
 use crate::cache::{self, OperatorCache};
 use crate::error::CoreError;
 use crate::fem::assembly::{assemble_loads, assemble_stiffness};
+use crate::mesh::Mesh2d;
 use crate::methods::{self, full, Problem, PunchBlock};
 use crate::model::Model;
 use crate::observer::{self, Observer, Stage};
@@ -106,7 +107,9 @@ fn step_scenes(scene: &Scene) -> Box<dyn Iterator<Item = StepScene> + '_> {
     Box::new(scene.load_factors.iter().map(|&k| (scene.scaled(k), k, None)))
 }
 
-fn solve_once(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<Report, CoreError> {
+/// The first stage of every route: the progress plan from the predicted
+/// size, the meshes, and their admission against the limits.
+fn meshed(scene: &Scene, limits: &Limits) -> Result<(Vec<Mesh2d>, Observer), CoreError> {
     let t6 = scene.bodies.iter().any(|b| b.is_t6());
     crate::progress::plan(observer::predicted(scene.estimated_nodes, t6));
     let mut obs = Observer::new();
@@ -114,6 +117,12 @@ fn solve_once(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> 
     let meshes = crate::meshing::meshes(scene)?;
     obs.leave(Stage::Mesh)?;
     admit::meshes(&meshes, limits)?;
+    Ok((meshes, obs))
+}
+
+fn solve_once(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<Report, CoreError> {
+    let t6 = scene.bodies.iter().any(|b| b.is_t6());
+    let (meshes, mut obs) = meshed(scene, limits)?;
     let nodes: usize = meshes.iter().map(|m| m.nodes.len()).sum();
     let mut plan = observer::predicted(nodes as f64, t6);
     plan[0] = obs.timings.mesh;

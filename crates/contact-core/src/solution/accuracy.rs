@@ -43,16 +43,6 @@ pub struct Station {
     pub in_contact: bool,
 }
 
-/// The estimated error of a zone's end at `stations[last]` (the last node in
-/// contact going in direction `dir`, ±1, from `stations[first]`): the
-/// stations are one chain of the surface's candidates in order, and `beyond`
-/// is the distance from their last one in direction `dir` to the next surface
-/// node (0 where the surface ends there; the spacing to a pruned node past a
-/// flat punch's corner, where the zone ends before it).
-pub fn end_error(stations: &[Station], first: usize, last: usize, dir: isize, beyond: f64) -> f64 {
-    end_fit(stations, first, last, dir, beyond).error
-}
-
 /// A zone end's estimate (`end_fit`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EndFit {
@@ -68,7 +58,12 @@ pub struct EndFit {
     pub scatter: f64,
 }
 
-/// `end_error`, with the fitted edge's place.
+/// The estimate of a zone's end at `stations[last]` (the last node in
+/// contact going in direction `dir`, ±1, from `stations[first]`): the
+/// stations are one chain of the surface's candidates in order, and `beyond`
+/// is the distance from their last one in direction `dir` to the next surface
+/// node (0 where the surface ends there; the spacing to a pruned node past a
+/// flat punch's corner, where the zone ends before it).
 pub fn end_fit(stations: &[Station], first: usize, last: usize, dir: isize, beyond: f64) -> EndFit {
     let plain = |error: f64| EndFit {
         error,
@@ -249,7 +244,7 @@ pub fn along_polyline(pts: &[(f64, f64, f64)], x: f64, y: f64) -> f64 {
 /// As `along_polyline`, but on a segment from a zone end (a point with
 /// positive value and `reach[i]` > 0) to an open point, the value falls like
 /// a square root to zero at `reach[i]` from the end: the estimated edge
-/// (`end_error`), not linearly to the open point (which puts pressure where
+/// (`end_fit`), not linearly to the open point (which puts pressure where
 /// the zone has ended).
 pub fn along(pts: &[(f64, f64, f64)], reach: Option<&[f64]>, x: f64, y: f64) -> f64 {
     along_with(pts, reach, x, y, false)
@@ -465,7 +460,7 @@ mod tests {
                 .collect()
         };
         let stations = hertz(0.1, 15);
-        let e = end_error(&stations, 0, 9, 1, 0.0);
+        let e = end_fit(&stations, 0, 9, 1, 0.0).error;
         assert!((e - 0.03).abs() < 1e-9, "{e}");
         // p² is exactly quadratic: the edge is found where it is, and
         // leaving the last node out of the fit does not move it.
@@ -488,9 +483,9 @@ mod tests {
                 }
             })
             .collect();
-        assert!((end_error(&corner, 0, 9, 1, 0.0) - 0.1).abs() < 1e-12);
-        assert_eq!(end_error(&stations[..10], 0, 9, 1, 0.0), 0.0);
+        assert!((end_fit(&corner, 0, 9, 1, 0.0).error - 0.1).abs() < 1e-12);
+        assert_eq!(end_fit(&stations[..10], 0, 9, 1, 0.0).error, 0.0);
         // Past the last candidate the surface may go on (pruned nodes).
-        assert_eq!(end_error(&stations[..10], 0, 9, 1, 0.07), 0.07);
+        assert_eq!(end_fit(&stations[..10], 0, 9, 1, 0.07).error, 0.07);
     }
 }

@@ -46,11 +46,10 @@ use crate::solution::report::{PairAccuracy, PairReport, SingularEnd};
 /// (`accuracy::described`: p² linear between nodes, the square-root facet to
 /// each fitted edge), integrated along the answer's surface against the
 /// other level's described field; the nodal difference above is its fallback
-/// where no pressure is described. Against the overkill tables and 4× finer
-/// solves its effectivity is within [0.5, 2] on 38 of 42 smooth-edged rows
-/// (0.43–2.98 in all; `contact-verify`'s effectivity, `err_curve`); a nodal
-/// polyline drawn linearly across the edge's facet was 0.43–0.60 % off on
-/// the disk where the nodes were 0.23–0.43 %.
+/// where no pressure is described. Its effectivity against the overkill
+/// tables and 4× finer solves is `contact-verify`'s effectivity example
+/// (`err_curve`, the README's table); why the field is described so is
+/// `accuracy::described`.
 ///
 /// The zone ends' own nodal error (`edge_deviation`) is a second, direct
 /// estimate; the larger of the two is the pressure's. Over seven scenes at

@@ -10,7 +10,7 @@ use crate::error::CoreError;
 use crate::fem::assembly::{assemble_loads, assemble_stiffness};
 use crate::methods;
 use crate::model::Model;
-use crate::observer::{self, Observer, Stage};
+use crate::observer::{Observer, Stage};
 use crate::scene::{Limits, Scene};
 use crate::solution::compose::{self, Solved};
 use crate::solution::report::{with_steps, CacheState, LoadStep, Report, Status, Timings};
@@ -25,13 +25,7 @@ pub(super) fn solve_frictional(
     limits: &Limits,
     cache: Option<&OperatorCache>,
 ) -> Result<Report, CoreError> {
-    let t6 = scene.bodies.iter().any(|b| b.is_t6());
-    crate::progress::plan(observer::predicted(scene.estimated_nodes, t6));
-    let mut obs = Observer::new();
-    obs.enter(Stage::Mesh);
-    let meshes = crate::meshing::meshes(scene)?;
-    obs.leave(Stage::Mesh)?;
-    admit::meshes(&meshes, limits)?;
+    let (meshes, mut obs) = super::meshed(scene, limits)?;
     let stepped = !scene.load_factors.is_empty() || !scene.load_path.is_empty();
     // A punch pushed, or a body held only by contact loaded, beyond what
     // friction holds in some step is refused before the first step is
