@@ -81,12 +81,28 @@ def _described(pair: dict, samples: int):
     """``described_pressure``, with the index of each contact point among the samples."""
     import numpy as np
 
-    pts = sorted(((p["x"], p["y"], p["pressure"]) for p in pair["points"]), key=lambda q: (q[0], q[1]))
+    pts = sorted(([p["x"], p["y"], p["pressure"]] for p in pair["points"]), key=lambda q: (q[0], q[1]))
     reach = {}
     for z in pair.get("zones_along", []):
-        for end, fit in zip((z["start"], z["end"]), z.get("fitted", [None, None])):
-            if fit is not None:
+        ends = zip((z["start"], z["end"]), z.get("fitted", [None, None]), (1.0, -1.0), (z["s_start"], z["s_end"]))
+        for end, fit, inward, s_end in ends:
+            if fit is None:
+                continue
+            if (fit["s"] - s_end) * inward <= 0.0:
                 reach[(end[0], end[1])] = (fit["x"], fit["y"])
+                continue
+            # An edge fitted inward of the end's node (a mortar row's last
+            # node past the edge): the field ends on the facet from the node
+            # before, and the end's node reads 0 in it.
+            i = next((k for k, q in enumerate(pts) if (q[0], q[1]) == (end[0], end[1])), None)
+            if i is None:
+                continue
+            inner = [k for k in (i - 1, i + 1) if 0 <= k < len(pts) and pts[k][2] > 0.0]
+            if not inner:
+                continue
+            j = min(inner, key=lambda k: math.hypot(pts[k][0] - fit["x"], pts[k][1] - fit["y"]))
+            pts[i][2] = 0.0
+            reach[(pts[j][0], pts[j][1])] = (fit["x"], fit["y"])
     xs, ys, ps, nodes = [], [], [], []
     t = np.arange(samples) / samples
     for (xa, ya, pa), (xb, yb, pb) in zip(pts, pts[1:]):

@@ -125,10 +125,11 @@ pub struct PairAccuracy {
     /// only the zone ends).
     pub basis: EstimateBasis,
     /// Estimated relative L2 error of the pressure over the zone: of the
-    /// field the reply describes, linear between the nodes and falling as a
-    /// square root from each zone's last node in contact to its fitted edge
-    /// (`zones_along[].fitted`), in the L2 norm along the surface; the
-    /// nodal values' error is bounded by it too.
+    /// field the reply describes, p² linear between the nodes and falling as
+    /// a square root on each zone's last facet to its fitted edge
+    /// (`zones_along[].fitted`), in the L2 norm along the surface. A zone's
+    /// last node in contact past its fitted edge reads 0 in that field: its
+    /// value is a weighted mean over its facets, not the pressure there.
     pub pressure_l2: Option<f64>,
     /// Estimated relative error of the peak pressure.
     pub peak: Option<f64>,
@@ -435,12 +436,15 @@ pub struct ZoneAlong {
     #[serde(default)]
     pub uncertainty: [f64; 2],
     /// The start's and the end's smooth edge where the least-squares fit of
-    /// p² (linear in the distance to a square-root edge) places it between
-    /// the last node in contact and the next, or null (a sharp punch
-    /// corner, a foundation's lift-off, the end of the edge set, too few
-    /// nodes in contact to fit). This is the zone end the reply describes:
-    /// on the facet from the last node in contact to it the pressure falls
-    /// as p_last √(1 − d/d_edge) (d from the node), and it is 0 beyond.
+    /// p² (linear in the distance to a square-root edge) places it, within a
+    /// facet of the last node in contact: between it and the next node, or
+    /// between it and the node before (a mortar row's last node can lie
+    /// just past the edge, its pressure a weighted mean over both facets),
+    /// or null (a sharp punch corner, a foundation's lift-off, the end of the
+    /// edge set, too few nodes in contact to fit). This is the zone end the
+    /// reply describes: on the facet from the last node in contact before
+    /// it, the pressure falls as p_node √(1 − d/d_edge) (d from that node),
+    /// and it is 0 beyond.
     /// `accuracy.pressure_l2` estimates the error of that described field
     /// and `accuracy.fitted_edges` the error of these ends.
     #[serde(default)]
@@ -453,7 +457,7 @@ pub struct ZoneAlong {
 pub struct FittedEnd {
     /// Arc length along the surface, as `s_start`/`s_end` [length].
     pub s: f64,
-    /// Undeformed position, on the chord between the two nodes [length].
+    /// Undeformed position, on the chord of the facet it lies on [length].
     pub x: f64,
     pub y: f64,
 }

@@ -15,9 +15,10 @@ fn example(name: &str) -> Value {
 }
 
 /// The disk on a flat from a coarse start (h_min = 0.02 R: 6 element edges
-/// across the half-zone) asked for 0.5 %: the rounds halve the elements until
-/// the estimate is met, and the answer then is within 0.5 % of the disk's
-/// overkill solution.
+/// across the half-zone) asked for 0.5 %: each round shrinks the smallest
+/// element by a step sized from the last estimate (¼ to ¾) until the estimate
+/// is met, and the pressure the answer then describes is within 0.5 % of the
+/// disk's overkill solution, its nodal values too.
 #[test]
 fn a_pressure_tolerance_refines_the_disk_until_met() {
     let mut req = disk_request(0.02, "t3");
@@ -30,16 +31,20 @@ fn a_pressure_tolerance_refines_the_disk_until_met() {
     assert!(rounds.len() >= 2, "{rounds:?}");
     for w in rounds.windows(2) {
         assert!(w[1].dofs > w[0].dofs, "{rounds:?}");
-        assert!((w[1].h_min / w[0].h_min - 0.5).abs() < 1e-12, "{rounds:?}");
+        let step = w[1].h_min / w[0].h_min;
+        assert!((0.25 - 1e-12..=0.75 + 1e-12).contains(&step), "{rounds:?}");
     }
     let last = rounds.last().unwrap();
     assert!(last.pressure_l2.is_some_and(|p| p <= 0.005), "{last:?}");
     let acc = r.pairs[0].accuracy.as_ref().unwrap();
     assert_eq!((acc.basis.as_str(), acc.pressure_l2), ("two_level", last.pressure_l2));
     // The true error, against the disk's overkill table (its own L2
-    // uncertainty 2.4e-5): the target itself (measured 0.18 %).
+    // uncertainty 1.4e-5): the target itself (measured 0.20 % described,
+    // 0.18 % at the nodes).
+    let e = contact_verify::tolerance::described_error(&r);
+    assert!(e <= 0.005, "described L2 error against the overkill reference {e:.4}");
     let e = contact_verify::tolerance::error(&r);
-    assert!(e <= 0.005, "L2 error against the overkill reference {e:.4}");
+    assert!(e <= 0.005, "nodal L2 error against the overkill reference {e:.4}");
     assert!(r.warnings.iter().all(|w| w.code != "tolerance_not_reached"));
 }
 
@@ -213,10 +218,12 @@ fn the_estimate_is_optional_and_the_targets_are_checked() {
 /// effectivity table (`contact_verify::effectivity`), at its middle level
 /// (every element 4× the scene's own), T3 and T6, against the stored overkill
 /// tables (disk, ball, block, and the disk and the block given inline) or the
-/// scene solved 4× finer (the others). Smooth-edged scenes: the pressure's,
-/// the zone ends' and the T3 resultant's within [0.5, 2] of the true error
-/// (measured 0.89–1.71, 0.84–1.09 and 0.92–1.26 here; over all three levels
-/// the pressure's spans 0.56–2.86). At a flat punch's corners the order
+/// scene solved 4× finer (the others). Smooth-edged scenes: the pressure's
+/// within [0.5, 3] (measured 0.92–2.71 here, 0.72–2.98 over all three
+/// levels: the edge's placement term, `two_level::edge_placement`, errs on
+/// the safe side where the edge happens to fall well, and lifted the lowest
+/// row from 0.43), the zone ends' and the T3 resultant's within [0.5, 2]
+/// (0.84–1.09 and 0.92–1.26). At a flat punch's corners the order
 /// assumed is 1 (`two_level::two_level`), which errs on the safe side: the
 /// punches' pressure reads 2.5–4.9 of the true error at this level, tested
 /// within [0.5, 5]. The peak's within [0.5, 3] (1.19–2.74 here) except on
@@ -259,16 +266,8 @@ fn the_estimates_are_the_size_of_the_true_errors() {
             // between nodes, the square-root facet to each fitted edge).
             let eff = row.eff_curve().unwrap();
             // Punches: the order 1 assumed next to a corner errs on the safe
-            // side (3.1–4.1 measured). The block given inline as T6 reads
-            // 2.01: its finer companion's described field differs from the
-            // answer's by 1.8× what the nodes do.
-            let most = if name.starts_with("punch") {
-                5.0
-            } else if name == "hertz_block_inline" && element == "t6" {
-                2.1
-            } else {
-                2.0
-            };
+            // side (2.9–4.1 measured).
+            let most = if name.starts_with("punch") { 5.0 } else { 3.0 };
             assert!(
                 (0.5..=most).contains(&eff),
                 "{name} {label}: pressure effectivity {eff:.3}"

@@ -391,6 +391,8 @@ fn zones(
                 // The fitted edge on the chord from the end's node to the next
                 // candidate, at its distance along the surface.
                 let edge = fit.edge.and_then(|d| {
+                    // Inward of the end's node: on the chord to the node before.
+                    let (d, dir) = if d < 0.0 { (-d, -dir) } else { (d, dir) };
                     let next = to.checked_add_signed(dir).filter(|&q| q < order.len())?;
                     let (here, there) = (cons.candidates[order[to].1].x, cons.candidates[order[next].1].x);
                     let gap = (stations[next].s - stations[to].s).abs();

@@ -398,14 +398,14 @@ pub struct ZoneAlong {
     /// surface (`solution::accuracy`).
     pub uncertainty: [f64; 2],
     /// The start's and the end's smooth edge where the fit of p² places it
-    /// (`solution::accuracy::end_fit`), between the last node in contact
-    /// and the next; None at a sharp corner, a foundation's lift-off, the
+    /// (`solution::accuracy::end_fit`), within a facet of the last node in
+    /// contact, either side; None at a sharp corner, a foundation's lift-off, the
     /// end of the edge set or where too few nodes are in contact to fit.
     pub fitted: [Option<FittedEnd>; 2],
 }
 
 /// A zone's smooth edge between nodes: arc length along the surface, as
-/// `ZoneAlong::s`, and position (on the chord between the two nodes).
+/// `ZoneAlong::s`, and position (on the chord of its facet).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FittedEnd {
     pub s: f64,
