@@ -314,7 +314,7 @@ def two_cylinders(
     sizes ``h_min`` and 1.3 h_min there, so the two meshes do not match. The
     upper arc carries the pressure (slave side); ``discretization`` is
     "mortar" or "node_to_segment". Units are the caller's, consistent.
-    Compare with ``hertz_two_cylinders`` using P = reply["pairs"][0]["resultant"]["fy"].
+    Compare with ``hertz_two_cylinders`` using ``P = reply["pairs"][0]["resultant"]["fy"]``.
 
     ``friction``: Coulomb μ between the two surfaces. ``shifts``: after pressing,
     the upper one's clamped top is moved sideways by each of these displacements
