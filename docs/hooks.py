@@ -23,7 +23,10 @@ PROTO = REPO / "proto"
 SCHEMAS = {
     "request": ("The request", "What a client sends to `contact/solve` (or `contact solve FILE` reads)."),
     "reply": ("The reply", "What a solved request answers (also when its `status` is not `solved`)."),
-    "error": ("The error reply", "What a refused request answers (`reply_err` on zenoh; exit code 1 of `contact solve`)."),
+    "error": (
+        "The error reply",
+        "What a refused request answers (`reply_err` on zenoh; exit code 1 of `contact solve`).",
+    ),
 }
 
 
@@ -167,10 +170,7 @@ def contact_bin() -> Path:
     if env:
         return Path(env)
     target = os.environ.get("CARGO_TARGET_DIR")
-    default = REPO / "target" / "release" / "contact"
-    if target and not default.exists():
-        return Path(target) / "release" / "contact"
-    return default
+    return (Path(target) if target else REPO / "target") / "release" / "contact"
 
 
 def _help(binary: Path, *args: str) -> str:
