@@ -66,4 +66,4 @@ def test_page_snippets_run(page: Path, tmp_path, monkeypatch, contact_bin):
             ran += 1
     finally:
         plt.close("all")
-    assert ran > 0
+    assert ran > 0 or all("no-run" in info for info, _ in blocks(page))
