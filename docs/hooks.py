@@ -155,10 +155,15 @@ def render_schema(kind: str) -> str:
         f"# {title}",
         "",
         f"{lead} Generated at build time from `proto/{kind}.schema.json` (draft 2020-12), which `contact schema`",
-        "writes from the Rust types and a test keeps current. Fields not marked required may be left out;",
-        "no field outside these tables is accepted in a request (`additionalProperties: false`).",
+        "writes from the Rust types and a test keeps current.",
         "",
     ]
+    if kind == "request":
+        out[-1:] = [
+            "Fields not marked required may be left out; no field outside these tables is accepted",
+            "(`additionalProperties: false`: `invalid_request` at its path).",
+            "",
+        ]
     out += render_node(schema.get("title", kind), schema)
     for name, node in sorted(schema.get("$defs", {}).items()):
         out += render_node(name, node)
