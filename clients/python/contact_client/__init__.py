@@ -1,6 +1,7 @@
-"""The ``contact`` 2D frictionless contact solver in Python: in this process
-(``solve_local``, ``Client(local=True)``) or through a ``contact serve``
-service over zenoh (``solve``, ``Client(connect)``), with the same replies.
+"""The ``contact`` 2D elastic contact solver (frictionless or with Coulomb
+friction) in Python: in this process (``solve_local``, ``Client(local=True)``)
+or through a ``contact serve`` service over zenoh (``solve``,
+``Client(connect)``), with the same replies.
 
     >>> from contact_client import solve_local, scenes
     >>> reply = solve_local(scenes.hertz_cylinder())

@@ -4,8 +4,8 @@ throwaway certificates and a mutual-TLS router with the access control of
 
 Certificates are made by :class:`ThrowawayCA` with the ``cryptography`` package
 (``pip install 'contact-client[test]'``); they live one day and are meant for
-loopback tests only (see the repository README's "The service" for the
-production recipe with openssl).
+loopback tests only (see docs/howto/security.md, "TLS and access control", for
+the production recipe with openssl).
 """
 
 from __future__ import annotations

@@ -44,7 +44,7 @@ def test_moment_out_of_range_is_refused(client):
 
 
 def test_a_rounded_punch_keeps_its_rounding_within_half_width():
-    # request.profile's and the README's description of corner_radius: the flat is
+    # request.profile's and docs/howto/rounded-punches.md's description of corner_radius: the flat is
     # |x| <= half_width - corner_radius (0.7), the quarter circles reach to half_width
     # (1.0). Under a light load the zone ends on the rounding, and the pressure there
     # stays bounded: halving h moves the peak by 0.3 % (measured 18.55 -> 18.60),

@@ -1,4 +1,4 @@
-//! # contact — frictionless 2D elastic contact
+//! # contact — 2D elastic contact, frictionless or with Coulomb friction
 //!
 //! Every scene is one quadratic program after discretization:
 //!

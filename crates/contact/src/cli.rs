@@ -19,7 +19,11 @@ use crate::cli_files;
 use crate::service::ServiceConfig;
 
 #[derive(Parser)]
-#[command(name = "contact", version, about = "Frictionless 2D elastic contact solver")]
+#[command(
+    name = "contact",
+    version,
+    about = "2D elastic contact solver (frictionless or with Coulomb friction)"
+)]
 struct Cli {
     #[command(subcommand)]
     cmd: Cmd,

@@ -8,7 +8,7 @@
 //! (a reallocation counted as a new block plus the old one). Counted so: 2.80
 //! for the Gmsh payload (3.8 MB) and 2.37 for the inline one (3.1 MB), where a
 //! list per element, growing vectors and a hash of every element edge cost
-//! 9.13 and 10.18. The README states the service's peak resident memory on
+//! 9.13 and 10.18. docs/howto/service.md states the service's peak resident memory on
 //! 58 MB payloads: 4.4 and 3.5 times (8.8 and 12.1 before).
 
 mod common;

@@ -329,7 +329,7 @@ fn peak_rss(pid: u32) -> u64 {
 /// one answered — `too_large` at the first factor past the limit when read,
 /// `busy` unread when no queue slot is free or the door's 128 MiB of
 /// payloads are taken — and the service's peak resident memory stays under
-/// the README's bound of 1.5 GB with the default limits (measured on main:
+/// the bound of 1.5 GB in docs/howto/service.md with the default limits (measured on main:
 /// 1.3 GB for one such request, 9.7 GB for eight).
 #[test]
 fn a_burst_of_huge_requests_is_answered_in_bounded_memory() {

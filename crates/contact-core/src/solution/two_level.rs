@@ -49,7 +49,7 @@ use crate::solution::report::{PairAccuracy, PairReport, SingularEnd};
 /// other level's described field; the nodal difference above is its fallback
 /// where no pressure is described. Its effectivity against the overkill
 /// tables and 4× finer solves is `contact-verify`'s effectivity example
-/// (`err_curve`, the README's table); why the field is described so is
+/// (`err_curve`, the table in docs/verification/accuracy.md); why the field is described so is
 /// `accuracy::described`.
 ///
 /// The zone ends' own nodal error (`edge_deviation`) is a second, direct

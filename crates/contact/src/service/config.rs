@@ -189,7 +189,7 @@ pub fn refuse_plain_tcp_off_loopback(c: &zenoh::Config) -> anyhow::Result<()> {
     anyhow::bail!(
         "refusing plain TCP off loopback ({}): unencrypted and unauthenticated, anyone who reaches it can read \
          the requests and progress and answer solves in the service's place. Use tls/ endpoints with \
-         --tls-cert, --tls-key and --tls-ca (README, \"The service\"), or pass --insecure to accept this",
+         --tls-cert, --tls-key and --tls-ca (docs/howto/security.md), or pass --insecure to accept this",
         exposed.join(", ")
     )
 }
