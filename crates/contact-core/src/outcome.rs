@@ -42,6 +42,18 @@ macro_rules! named {
 }
 
 named! {
+    /// Whether the answer can be used.
+    Status {
+        /// Converged; the certificate is within the tolerance.
+        Solved = "solved",
+        /// Stopped at the iteration cap; the certificate tells how far off it is.
+        MaxIterations = "max_iterations",
+        /// The linear algebra lost accuracy; the numbers must not be trusted.
+        NumericalError = "numerical_error",
+    }
+}
+
+named! {
     /// The contact method that produced the answer (after `auto` chose).
     MethodRan {
         /// Condensed active set (semismooth Newton on the LCP).

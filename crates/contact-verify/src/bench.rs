@@ -417,7 +417,7 @@ impl Row {
             err_l2: errors.2,
             max_penetration: r.pairs[0].max_penetration,
             certificate: r.certificate.worst(),
-            status: format!("{:?}", r.status).to_lowercase(),
+            status: r.status.as_str().to_string(),
             threads: contact_core::linalg::threads(),
         }
     }

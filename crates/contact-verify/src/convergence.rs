@@ -468,7 +468,7 @@ pub fn run(quick: bool, mut progress: impl FnMut(&Row)) -> Vec<Row> {
                     order_moment: prev.as_ref().and_then(|p| order(p.err_moment, e.moment)),
                     edge_estimate,
                     edge_error: sc.edge.map(|edge| (outer_end - edge).abs()),
-                    status: format!("{:?}", r.status).to_lowercase(),
+                    status: r.status.as_str().to_string(),
                     ref_err_l2: re.map(|e| e.l2),
                     ref_order_l2: prev
                         .as_ref()

@@ -275,7 +275,7 @@ fn measure(
             .as_ref()
             .map_or_else(|| vec![r.iterations], |st| st.iter().map(|s| s.iterations).collect()),
         t_total: r.timings.total,
-        status: format!("{:?}", r.status).to_lowercase(),
+        status: r.status.as_str().to_string(),
     }
 }
 

@@ -19,7 +19,7 @@ use serde_json::{json, Value};
 use crate::bench::{hertz_errors, hertz_request};
 use crate::reference::hertz;
 use contact_core::error::CoreError;
-use contact_core::solution::report::{Report, Status};
+use contact_core::solution::report::Report;
 use contact_core::Limits;
 
 #[derive(Debug, Clone)]
@@ -132,12 +132,7 @@ fn row(
             scene,
             axis,
             value,
-            status: match r.status {
-                Status::Solved => "solved",
-                Status::MaxIterations => "max_iterations",
-                Status::NumericalError => "numerical_error",
-            }
-            .to_string(),
+            status: r.status.as_str().to_string(),
             dofs: r.size.dofs,
             candidates: r.size.candidates,
             iterations: r.iterations,

@@ -161,16 +161,7 @@ impl Report {
     }
 }
 
-/// Whether the answer can be used.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Status {
-    /// Converged; the certificate is within the tolerance.
-    Solved,
-    /// Stopped at the iteration cap; the certificate tells how far off it is.
-    MaxIterations,
-    /// The linear algebra lost accuracy; the numbers must not be trusted.
-    NumericalError,
-}
+pub use crate::outcome::Status;
 
 /// Whether the prepared operator came from a cache.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
