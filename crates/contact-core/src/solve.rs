@@ -188,6 +188,7 @@ fn solve_condensed(
         pivot_ratio: Some(op.pivot_ratio),
         predicted: Some(op.chol.cost().predicted_secs()),
         compliance: compliance.as_ref(),
+        friction: &[],
     };
     Ok(compose::report(scene, &solved, sol, obs, cache_state))
 }
@@ -220,6 +221,7 @@ fn solve_full(scene: &Scene, model: &Model, mut obs: Observer) -> Result<Report,
         pivot_ratio: None,
         predicted: None,
         compliance: None,
+        friction: &[],
     };
     Ok(compose::report(scene, &solved, sol, obs, CacheState::Off))
 }

@@ -17,7 +17,7 @@
 
 use faer::Mat;
 
-use super::{fichera, ConstraintSet};
+use super::{fichera, ConstraintSet, Term};
 use crate::error::LoadBound;
 use crate::error::{CoreError, InvalidKind};
 use crate::fem::loads::{self, Located};
@@ -69,10 +69,6 @@ pub struct FreeMotions {
     /// supports): their columns of C and each candidate's motion with them. A
     /// solution must put no net generalized force on them (`unbalanced`).
     pub unresisted: Vec<(Vec<f64>, Vec<f64>)>,
-    /// With friction, the friction forces' share C_Tᵀτ of each kept motion's
-    /// equilibrium, C_Nᵀλ + C_Tᵀτ = −P, and its largest term max_k |C_T,kj τ_k|,
-    /// the scale of that share (empty without friction).
-    pub friction: Vec<(f64, f64)>,
     /// With friction, the size of each motion's loads, Σ |f_n| |R_k(x_n)|
     /// over a body's nodes (|P| for a punch): a scale of its equilibrium
     /// beside the contact forces (empty without friction).
@@ -106,7 +102,10 @@ impl FreeMotions {
     /// Relative residual of the free motions' equilibrium for the contact
     /// forces λ, for the certificate: (CV)ᵀλ = −VᵀP on the motions solved for,
     /// and no net force on the motions treated as unresisted (`unbalanced`).
-    pub fn equilibrium(&self, lambda: &[f64]) -> f64 {
+    /// With friction, `friction` holds the friction forces' share C_Tᵀτ of
+    /// each kept motion's equilibrium, C_Nᵀλ + C_Tᵀτ = −P, and its largest
+    /// term max_k |C_T,kj τ_k|, the scale of that share (empty without).
+    pub fn equilibrium(&self, lambda: &[f64], friction: &[(f64, f64)]) -> f64 {
         let worst = self.unbalanced(lambda);
         let mut residuals = Vec::with_capacity(self.c.ncols());
         for j in 0..self.c.ncols() {
@@ -115,7 +114,7 @@ impl FreeMotions {
                 ct += self.c[(i, j)] * l;
                 scale = scale.max((self.c[(i, j)] * l).abs());
             }
-            if let Some(&(fr, largest)) = self.friction.get(j) {
+            if let Some(&(fr, largest)) = friction.get(j) {
                 ct += fr;
                 scale = scale.max(largest);
             }
@@ -359,7 +358,6 @@ impl FreeMotions {
             undetermined,
             notes,
             unresisted,
-            friction: Vec::new(),
             load_scale: Vec::new(),
             body_loads,
         };
@@ -398,20 +396,7 @@ impl FreeMotions {
         for (set, rm) in dofs.rigid.iter().enumerate() {
             let mesh = &meshes[rm.body];
             for (k, &dir) in rm.basis.iter().enumerate() {
-                let col = cons
-                    .candidates
-                    .iter()
-                    .map(|cand| {
-                        cand.terms
-                            .iter()
-                            .filter(|t| t.body == rm.body)
-                            .map(|t| {
-                                let d = rm.at(k, mesh.nodes[t.node]);
-                                -(t.coef[0] * d[0] + t.coef[1] * d[1])
-                            })
-                            .sum()
-                    })
-                    .collect();
+                let col = rigid_column(cons.candidates.iter().map(|c| c.terms.as_slice()), rm, mesh, dir).col;
                 let (mut load, mut scale) = (0.0, 0.0);
                 for (n, &x) in mesh.nodes.iter().enumerate() {
                     let d = rm.at(k, x);
@@ -433,15 +418,15 @@ impl FreeMotions {
             undetermined: Vec::new(),
             notes: Vec::new(),
             unresisted: Vec::new(),
-            friction: Vec::new(),
             load_scale,
             body_loads,
         }
     }
 
-    /// Fichera's condition with Coulomb friction: some contact force inside
-    /// the friction cone on every candidate balances the punches' loads. In
-    /// 2D the cone |τ| ≤ μ λ is spanned by two rays, λ (n ± μ t), so the
+    /// Fichera's condition with friction: some contact force inside the
+    /// friction cone on every candidate balances the punches' loads. In 2D
+    /// the cone |τ| ≤ s λ is spanned by two rays, λ (n ± s t) (s = μ for
+    /// Coulomb: `FrictionLaw::ray_slope`), so the
     /// forces are non-negative combinations of two columns per candidate and
     /// the frictionless LP decides (its ranges are then the frictional ones:
     /// a flat punch under P admits the horizontal loads [−μ|P|, μ|P|]).
@@ -461,9 +446,9 @@ impl FreeMotions {
     /// wedge of a linearized gap, g(x − α1) ≈ g(x) − g′(x) α1, that a
     /// cylinder translated over a flat does not have) and admitted Q = 1.05 μP
     /// on the circular punch example, whose step then ran to the iteration
-    /// cap. Rows without friction (`mu` 0) keep their one direction n.
+    /// cap. Rows without friction (`slope` 0) keep their one direction n.
     /// `ct`: each candidate's tangential punch coefficients (0 without a
-    /// tangential row), `mu` its coefficient. Returns the motions neither
+    /// tangential row), `slope` its cone's. Returns the motions neither
     /// the normals nor friction resist and no load works on (a flat punch's
     /// horizontal motion on a frictionless pair): they are not determined,
     /// as in the frictionless case; with a load they fail the test.
@@ -472,7 +457,7 @@ impl FreeMotions {
         scene: &Scene,
         dofs: &DofMap,
         ct: &Mat<f64>,
-        mu: &[f64],
+        slope: &[f64],
         tilt: &[f64],
     ) -> Result<Vec<usize>, CoreError> {
         if self.is_empty() {
@@ -482,13 +467,13 @@ impl FreeMotions {
         // tan of each candidate's two ray angles from n, None: no ray.
         let rays: Vec<Option<[f64; 2]>> = (0..m)
             .map(|i| {
-                if mu[i] <= 0.0 {
+                if slope[i] <= 0.0 {
                     return Some([0.0, 0.0]);
                 }
                 if tilt[i] == 0.0 {
-                    return Some([mu[i], -mu[i]]);
+                    return Some([slope[i], -slope[i]]);
                 }
-                let (half, d) = (mu[i].atan(), tilt[i]);
+                let (half, d) = (slope[i].atan(), tilt[i]);
                 let (hi, lo) = (d.min(0.0) + half, d.max(0.0) - half);
                 (hi >= lo).then(|| [hi.tan(), lo.tan()])
             })
@@ -508,7 +493,6 @@ impl FreeMotions {
             undetermined: Vec::new(),
             notes: Vec::new(),
             unresisted: Vec::new(),
-            friction: Vec::new(),
             load_scale: Vec::new(),
             body_loads: self.body_loads.clone(),
         };
@@ -941,15 +925,19 @@ fn body_directions(
 ) -> Result<Vec<Direction>, CoreError> {
     let r = rm.basis.len();
     let m = cons.len();
-    let at = |k: usize, node: usize| rm.at(k, mesh.nodes[node]);
+    let rows = || cons.candidates.iter().map(|c| c.terms.as_slice());
     // C in the basis (m × r) and the motion Gram of the candidate nodes.
-    let mut c = Mat::<f64>::zeros(m, r);
+    let cols: Vec<Vec<f64>> = rm
+        .basis
+        .iter()
+        .map(|&b| rigid_column(rows(), rm, mesh, b).col)
+        .collect();
+    let c = Mat::<f64>::from_fn(m, r, |i, k| cols[k][i]);
     let mut gr = Mat::<f64>::zeros(r, r);
-    for (i, cand) in cons.candidates.iter().enumerate() {
+    for cand in &cons.candidates {
         for t in cand.terms.iter().filter(|t| t.body == rm.body) {
-            let ms: Vec<[f64; 2]> = (0..r).map(|k| at(k, t.node)).collect();
+            let ms: Vec<[f64; 2]> = (0..r).map(|k| rm.at(k, mesh.nodes[t.node])).collect();
             for k in 0..r {
-                c[(i, k)] -= t.coef[0] * ms[k][0] + t.coef[1] * ms[k][1];
                 for l in 0..r {
                     gr[(k, l)] += ms[k][0] * ms[l][0] + ms[k][1] * ms[l][1];
                 }
@@ -1018,21 +1006,7 @@ fn body_directions(
         }
         // What contact does on this motion after all, per candidate, and how far
         // each candidate moves with it: checked against λ after the solve.
-        let col: Vec<f64> = (0..m).map(|i| (0..r).map(|k| c[(i, k)] * coef[k]).sum()).collect();
-        let reach: Vec<f64> = cons
-            .candidates
-            .iter()
-            .map(|cand| {
-                cand.terms
-                    .iter()
-                    .filter(|t| t.body == rm.body)
-                    .map(|t| {
-                        let d = rm.at_dir(dir, mesh.nodes[t.node]);
-                        d[0].hypot(d[1])
-                    })
-                    .fold(0.0, f64::max)
-            })
-            .collect();
+        let RigidColumn { col, reach } = rigid_column(rows(), rm, mesh, dir);
         out.push(Direction::Free {
             col,
             reach,
@@ -1044,4 +1018,38 @@ fn body_directions(
         });
     }
     Ok(out)
+}
+
+/// What a rigid motion of one body does to a set of rows (normal or
+/// tangential, over nodes).
+pub struct RigidColumn {
+    /// Per row, −Σ coef · R(x) over the row's terms on the body: the row
+    /// reads B u, and a rigid motion R β of its own points enters the rows
+    /// as −C β, so its column of C is −B R.
+    pub col: Vec<f64>,
+    /// Per row, the largest |R(x)| among its points on the body: how far
+    /// the row moves with the motion (0 off the body).
+    pub reach: Vec<f64>,
+}
+
+/// The column and reach over `rows` of the rigid motion `dir` = (ux, uy,
+/// rotation about the centre) of the body of `rm` (`RigidModes::at_dir`).
+pub fn rigid_column<'a>(
+    rows: impl IntoIterator<Item = &'a [Term]>,
+    rm: &RigidModes,
+    mesh: &Mesh2d,
+    dir: [f64; 3],
+) -> RigidColumn {
+    let (mut col, mut reach) = (Vec::new(), Vec::new());
+    for terms in rows {
+        let on_body = || {
+            terms
+                .iter()
+                .filter(|t| t.body == rm.body)
+                .map(|t| (t, rm.at_dir(dir, mesh.nodes[t.node])))
+        };
+        col.push(on_body().map(|(t, d)| -(t.coef[0] * d[0] + t.coef[1] * d[1])).sum());
+        reach.push(on_body().map(|(_, d)| d[0].hypot(d[1])).fold(0.0, f64::max));
+    }
+    RigidColumn { col, reach }
 }

@@ -299,7 +299,9 @@ const GAUSS_SEIDEL_TOL: f64 = 1e-8;
 /// The linear algebra of one Newton step: the multipliers, free motions,
 /// gaps and slips of the system of a state set (None when singular).
 pub(super) trait NewtonSystem {
-    fn solve(&mut self, state: &[State]) -> Result<Option<Iterate>, CoreError>;
+    /// `at`: the normal forces of the last iterate, where a sliding point's
+    /// bound is linearized.
+    fn solve(&mut self, state: &[State], at: &[f64]) -> Result<Option<Iterate>, CoreError>;
     /// The number of free motions β among the unknowns.
     fn free_motions(&self) -> usize;
 }
@@ -399,7 +401,7 @@ fn pdas(
     let mut pulled = vec![0i8; n];
     while !run.converged && run.iterations < budget && !crate::cancel::expired() {
         run.iterations += 1;
-        let mut attempt = sys.solve(&state)?;
+        let mut attempt = sys.solve(&state, &run.lambda)?;
         // A free motion that only friction resists (a block's slide along a
         // flat floor) has no equation left when every point slips: the
         // system is singular. Some point must stick at a solution with
@@ -415,7 +417,7 @@ fn pdas(
                 break;
             };
             state[i] = State::Stick;
-            attempt = sys.solve(&state)?;
+            attempt = sys.solve(&state, &run.lambda)?;
         }
         let Some(Iterate {
             lambda,
@@ -505,9 +507,9 @@ fn alart_curnier_residual(
         .map(|i| {
             let normal = lambda[i].min(c[i] * gap[i]).abs();
             let tangential = t.row_of[i].map_or(0.0, |k| {
-                let bound = t.bound(k, (lambda[i] - c[i] * gap[i]).max(0.0));
+                let bound_at = (lambda[i] - c[i] * gap[i]).max(0.0);
                 let along = t.along(k, lambda[i], tau[k]);
-                (along - (along + ct[k] * slip[k]).clamp(-bound, bound)).abs()
+                (along - t.project(k, bound_at, along + ct[k] * slip[k])).abs()
             });
             normal.max(tangential)
         })
@@ -525,8 +527,8 @@ struct Dense<'a> {
 }
 
 impl NewtonSystem for Dense<'_> {
-    fn solve(&mut self, state: &[State]) -> Result<Option<Iterate>, CoreError> {
-        let Some((lambda, tau, beta)) = newton_step(self.w, self.q, self.e, self.t, self.block, state) else {
+    fn solve(&mut self, state: &[State], at: &[f64]) -> Result<Option<Iterate>, CoreError> {
+        let Some((lambda, tau, beta)) = newton_step(self.w, self.q, self.e, self.t, self.block, (state, at)) else {
             return Ok(None);
         };
         let (gap, slip) = gap_and_slip(self.w, self.q, self.e, self.block, &lambda, &tau, &beta);
@@ -579,7 +581,7 @@ fn newton_step(
     e: &[f64],
     t: &Tangents,
     block: Option<&Block>,
-    state: &[State],
+    (state, at): (&[State], &[f64]),
 ) -> Option<NewtonStep> {
     let n = q.len();
     let on: Vec<usize> = (0..n).filter(|&i| state[i] != State::Open).collect();
@@ -623,8 +625,13 @@ fn newton_step(
             State::Slip(sign) => {
                 m[(r, r)] = 1.0;
                 let li = on.iter().position(|&x| x == i).expect("a sliding point is in contact");
-                // τ + λ n·t = ± μ λ n·m.
-                m[(r, li)] = t.along(k, 1.0, 0.0) - f64::from(sign) * t.bound(k, 1.0);
+                // τ = γ λ + c, the law linearized at the last iterate
+                // (c = 0 for Coulomb: τ + λ n·t = ± μ λ).
+                let (gamma, c) = t.slip_line(k, sign, at[i]);
+                m[(r, li)] = -gamma;
+                if c != 0.0 {
+                    rhs[(r, 0)] = c;
+                }
             }
             _ => {
                 for j in 0..a + b {
@@ -658,6 +665,7 @@ type NewtonStep = (Vec<f64>, Vec<f64>, Vec<f64>);
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contact::friction_law::Coulomb;
 
     /// A deterministic stream of numbers in [−1, 1) (64-bit LCG).
     struct Lcg(u64);
@@ -691,7 +699,7 @@ mod tests {
             let t = Tangents {
                 of: (0..n).collect(),
                 row_of: (0..n).map(Some).collect(),
-                mu: vec![mu; n],
+                law: vec![std::sync::Arc::new(Coulomb { mu }); n],
                 ..Default::default()
             };
             let start = q
@@ -726,5 +734,78 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// A trial law through the seam: Tresca's fixed bound |τ| ≤ g, written
+    /// here and nowhere else, runs through the same active set. On random
+    /// compliances the answer satisfies Tresca's law: λ ≥ 0, w ≥ 0, λ w = 0;
+    /// in contact |τ| ≤ g, and where a point slips (|Δs| > 1e-10) its shear
+    /// is g exactly against the slip (τ = g sign Δs), to 1e-10 of the
+    /// problem's scale (round-off of an LU of size ≤ 16). The slip rows'
+    /// constant bound enters as the right-hand side c = ± g of τ = γ λ + c
+    /// (`friction_law::slip_line`), which Coulomb's law never exercises.
+    #[test]
+    fn a_tresca_law_through_the_seam_slips_at_its_fixed_bound() {
+        #[derive(Debug)]
+        struct Tresca {
+            g: f64,
+        }
+        impl crate::contact::friction_law::FrictionLaw for Tresca {
+            fn bound(&self, _lambda: f64) -> f64 {
+                self.g
+            }
+            fn derivative(&self, _lambda: f64) -> f64 {
+                0.0
+            }
+            fn ray_slope(&self) -> f64 {
+                0.0
+            }
+        }
+        let (n, g) = (8, 0.15);
+        let mut rng = Lcg(31);
+        let mut slipping = 0;
+        for case in 0..100 {
+            let a = Mat::<f64>::from_fn(2 * n, 2 * n, |_, _| rng.next());
+            let w = Mat::<f64>::from_fn(2 * n, 2 * n, |i, j| {
+                (0..2 * n).map(|k| a[(i, k)] * a[(j, k)]).sum::<f64>() / (2 * n) as f64 + f64::from(i == j)
+            });
+            let q: Vec<f64> = (0..n).map(|_| rng.next()).collect();
+            let e: Vec<f64> = (0..n).map(|_| 0.5 * rng.next()).collect();
+            let t = Tangents {
+                of: (0..n).collect(),
+                row_of: (0..n).map(Some).collect(),
+                law: vec![std::sync::Arc::new(Tresca { g }); n],
+                ..Default::default()
+            };
+            let start = q
+                .iter()
+                .map(|&v| if v < 0.0 { State::Stick } else { State::Open })
+                .collect();
+            let r = solve_states(&w, &q, &e, &t, None, start, 200);
+            assert!(r.converged, "case {case}: {} iterations", r.iterations);
+            let (gap, slip) = gap_and_slip(&w, &q, &e, None, &r.lambda, &r.tau, &[]);
+            let tol = 1e-10;
+            for i in 0..n {
+                let (l, tau) = (r.lambda[i], r.tau[i]);
+                assert!(
+                    l >= -tol && gap[i] >= -tol && (l * gap[i]).abs() <= tol,
+                    "case {case}, {i}"
+                );
+                if l <= tol {
+                    assert!(tau.abs() <= tol, "case {case}, {i}: friction off contact {tau}");
+                    continue;
+                }
+                assert!(tau.abs() <= g + tol, "case {case}, {i}: |τ| {tau} > g");
+                if slip[i].abs() > tol {
+                    slipping += 1;
+                    assert!(
+                        (tau - g * slip[i].signum()).abs() <= tol,
+                        "case {case}, {i}: τ {tau}, Δs {}",
+                        slip[i]
+                    );
+                }
+            }
+        }
+        assert!(slipping > 50, "the cases slide somewhere: {slipping} slipping points");
     }
 }
