@@ -37,7 +37,7 @@
 //! punch moves the row's point by c_t · (α1, α2, θ) along t
 //! (`Candidate::punch_tangent`), which the row subtracts; its prescribed
 //! components go to the prescribed part, its load-controlled ones are
-//! unknowns of the step (`punch` here, `methods::friction::Block`).
+//! unknowns of the step (`punch` here, `methods::FreeBlock`).
 //!
 //! Only rows of pairs with μ > 0 get a tangential row, and only where some
 //! free DOF moves along t (a node whose tangential motion is prescribed has

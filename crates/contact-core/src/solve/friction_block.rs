@@ -1,6 +1,6 @@
 //! The block of free rigid motions in a frictional solve: the punches' and
 //! the contact-held bodies' motions as columns over the normal and
-//! tangential rows (`methods::friction::Block`), and their rigid
+//! tangential rows (`methods::FreeBlock`), and their rigid
 //! displacement added back to the answer.
 
 use crate::contact::friction::Tangents;
@@ -20,7 +20,7 @@ fn punch_block(
     scene: &Scene,
     model: &mut Model,
     tangents: &Tangents,
-) -> Result<Option<methods::friction::Block>, CoreError> {
+) -> Result<Option<(methods::FreeBlock, Vec<usize>)>, CoreError> {
     let fm = &model.free;
     if fm.is_empty() {
         return Ok(None);
@@ -56,12 +56,11 @@ fn punch_block(
     let tilt = body_normal_tilts(scene, model, &slope);
     let loose = fm.check_with_friction(scene, &model.dofs, &ct_by_candidate, &slope, &tilt)?;
     let keep: Vec<usize> = (0..k).filter(|j| !loose.contains(j)).collect();
-    let block = methods::friction::Block {
+    let block = methods::FreeBlock {
         cn: faer::Mat::<f64>::from_fn(n, keep.len(), |i, j| fm.c[(i, keep[j])]),
         ct: faer::Mat::<f64>::from_fn(tangents.len(), keep.len(), |r, j| ct[(r, keep[j])]),
         rhs: keep.iter().map(|&j| fm.rhs[j]).collect(),
         bodies: model.dofs.rigid.iter().map(|rm| rm.body).collect(),
-        keep,
     };
     for j in loose {
         model
@@ -69,7 +68,7 @@ fn punch_block(
             .undetermined
             .push((0..k).map(|i| f64::from(u8::from(i == j))).collect());
     }
-    Ok(Some(block))
+    Ok(Some((block, keep)))
 }
 
 /// A step's model with its tangential rows and its block of free motions,
@@ -77,7 +76,10 @@ fn punch_block(
 pub(crate) struct StepModel {
     pub model: Model,
     pub tangents: Tangents,
-    pub block: Option<methods::friction::Block>,
+    pub block: Option<methods::FreeBlock>,
+    /// The free motions (`FreeMotions::motions`) the block holds; the
+    /// others are not determined and stay at 0.
+    pub keep: Vec<usize>,
 }
 
 impl StepModel {
@@ -87,8 +89,13 @@ impl StepModel {
     pub fn build(s: &Scene, meshes: Vec<Mesh2d>) -> Result<Self, CoreError> {
         let mut model = Model::build(s, meshes)?;
         let tangents = Tangents::new(s, &model.meshes, &model.cons, &model.dofs);
-        let block = punch_block(s, &mut model, &tangents)?;
-        Ok(Self { model, tangents, block })
+        let (block, keep) = punch_block(s, &mut model, &tangents)?.unzip();
+        Ok(Self {
+            model,
+            tangents,
+            block,
+            keep: keep.unwrap_or_default(),
+        })
     }
 }
 
@@ -102,14 +109,14 @@ pub(crate) fn settle_block(sm: &StepModel, sol: &mut Solution, friction: &mut Fr
         return Vec::new();
     };
     let mut beta = vec![0.0; model.free.motions.len()];
-    for (j, &m) in b.keep.iter().enumerate() {
+    for (j, &m) in sm.keep.iter().enumerate() {
         beta[m] = sol.beta[j];
     }
     sol.beta = beta.clone();
     add_rigid_motions(model, &beta, &mut friction.history.displacement);
     friction.beta = beta;
     let mut shares = vec![(0.0, 0.0); model.free.motions.len()];
-    for (j, &m) in b.keep.iter().enumerate() {
+    for (j, &m) in sm.keep.iter().enumerate() {
         let terms = (0..sm.tangents.len()).map(|k| b.ct[(k, j)] * friction.tau[k]);
         // A body's slide that only friction resists carries no load at
         // Q = 0, and its friction terms are ~μ λ: judged against them alone

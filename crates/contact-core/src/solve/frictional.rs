@@ -68,7 +68,7 @@ pub(super) fn solve_frictional(
                 };
                 obs.check(Stage::Factorization)?;
                 obs.enter(Stage::ContactSolve);
-                let step = methods::friction::Step {
+                let step = methods::friction::condensed::Step {
                     op: &prepared,
                     f: &f,
                     cons: &model.cons,
@@ -77,7 +77,7 @@ pub(super) fn solve_frictional(
                     settings: &s.settings,
                     block: sm.block.as_ref(),
                 };
-                let (sol, friction) = methods::friction::solve_step(&step, &history);
+                let (sol, friction) = methods::friction::condensed::solve_step(&step, &history);
                 (
                     sol,
                     friction,
@@ -88,7 +88,7 @@ pub(super) fn solve_frictional(
                 // No factorization stage of its own: every Newton iteration
                 // factors K with its state's prescribed coordinates.
                 obs.enter(Stage::ContactSolve);
-                let step = methods::friction_full::Step {
+                let step = methods::friction::full::Step {
                     k: &stiffness.k,
                     f: &f,
                     cons: &model.cons,
@@ -96,7 +96,7 @@ pub(super) fn solve_frictional(
                     dofs: &model.dofs,
                     settings: &s.settings,
                 };
-                let (mut sol, friction) = methods::friction_full::solve_step(&step, &history)?;
+                let (mut sol, friction) = methods::friction::full::solve_step(&step, &history)?;
                 sol.fallback = why_full;
                 (sol, friction, None)
             }
@@ -196,7 +196,7 @@ fn report(
         let short = sm
             .block
             .as_ref()
-            .map(|b| friction_shortfall(s, &sm.model, b, &sm.tangents, &friction.lambda))
+            .map(|b| friction_shortfall(s, &sm.model, (b, &sm.keep), &sm.tangents, &friction.lambda))
             .unwrap_or_default();
         r.notes.extend(unsettled_bodies(s, &sm.model, sol_iterations, &short));
     }

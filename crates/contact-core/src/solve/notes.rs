@@ -72,13 +72,13 @@ const SHORTFALL_SLACK: f64 = 1e-9;
 pub(crate) fn friction_shortfall(
     scene: &Scene,
     model: &Model,
-    block: &methods::friction::Block,
+    (block, keep): (&methods::FreeBlock, &[usize]),
     t: &crate::contact::friction::Tangents,
     lambda: &[f64],
 ) -> Vec<(usize, f64, String)> {
     use crate::contact::free_motions::Motion;
     let mut out = Vec::new();
-    for (j, &m) in block.keep.iter().enumerate() {
+    for (j, &m) in keep.iter().enumerate() {
         let Motion::Body { set, dir } = model.free.motions[m].0 else {
             continue;
         };

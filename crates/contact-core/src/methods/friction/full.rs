@@ -33,7 +33,7 @@
 //! that fails or a GMRES run that stops short of its tolerance is an error of
 //! the linear algebra (`linear_algebra`), not a state set to leave: no
 //! Newton iteration would mend it. The nonsmooth Gauss–Seidel fallback of the
-//! condensed path (`friction_gauss_seidel`) needs W and is not run here.
+//! condensed path (`gauss_seidel`) needs W and is not run here.
 //!
 //! The update's parameters are a tenth of the coordinates' stiffness
 //! K'_nn / c_n² and K'_tt / c_t² (`PARAMETER_SCALE`), the frictionless full
@@ -49,9 +49,8 @@
 use crate::outcome::MethodRan;
 use std::time::Instant;
 
-use super::friction::{finish, restarted, starting_states, Friction, History, Iterate, NewtonSystem, State};
-use super::full::{apply_q, prescribed, rotate, Rotated};
-use super::Solution;
+use super::newton::{finish, restarted, starting_states, Iterate, NewtonSystem};
+use super::{Friction, History, State};
 use crate::contact::friction::Tangents;
 use crate::contact::ConstraintSet;
 use crate::error::CoreError;
@@ -59,6 +58,8 @@ use crate::fem::assembly::DofMap;
 use crate::linalg::cholesky::SymbolicFactor;
 use crate::linalg::sparse::sym_lower_matvec;
 use crate::linalg::{Cholesky, LinalgError};
+use crate::methods::full::{apply_q, prescribed, rotate, Rotated};
+use crate::methods::Solution;
 use crate::scene::Settings;
 
 /// The data of one step on the full system.

@@ -1,7 +1,7 @@
 //! The frictional step's states by nonsmooth Gauss–Seidel (Moreau and Jean's
 //! NSGS): point after point, the exact answer of its own 2 × 2 Coulomb
 //! problem with the others' forces held. It is the fallback of the
-//! semismooth Newton (`friction`), which converges fast from states near the
+//! semismooth Newton (`condensed`), which converges fast from states near the
 //! answer but can cycle from far ones: a press fit whose whole interface
 //! closes through an interference in one step cycled between stick and slip
 //! at most points for every choice of the Newton parameters but two of nine
@@ -19,7 +19,7 @@
 
 use faer::Mat;
 
-use super::friction::State;
+use super::State;
 use crate::contact::friction::Tangents;
 use crate::contact::friction_law::{slip_line, FrictionLaw};
 
