@@ -266,7 +266,8 @@ type NewtonStep = (Vec<f64>, Vec<f64>, Vec<f64>);
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::contact::friction_law::Coulomb;
+    use crate::contact::friction_law::{Coulomb, Law};
+    use std::sync::Arc;
 
     /// A deterministic stream of numbers in [−1, 1) (64-bit LCG).
     struct Lcg(u64);
@@ -280,6 +281,33 @@ mod tests {
         }
     }
 
+    /// A random step of n points, each with the law `law`: a compliance
+    /// W = A Aᵀ/2n + I (symmetric positive definite with normal–tangential
+    /// coupling, as an elastic body's), gaps q and slips e, solved by the
+    /// active set from the states the gaps suggest; the run with the gaps
+    /// and slips of its answer.
+    fn random_step(rng: &mut Lcg, n: usize, law: Law) -> (Run, Vec<f64>, Vec<f64>) {
+        let a = Mat::<f64>::from_fn(2 * n, 2 * n, |_, _| rng.next());
+        let w = Mat::<f64>::from_fn(2 * n, 2 * n, |i, j| {
+            (0..2 * n).map(|k| a[(i, k)] * a[(j, k)]).sum::<f64>() / (2 * n) as f64 + f64::from(i == j)
+        });
+        let q: Vec<f64> = (0..n).map(|_| rng.next()).collect();
+        let e: Vec<f64> = (0..n).map(|_| 0.5 * rng.next()).collect();
+        let t = Tangents {
+            of: (0..n).collect(),
+            row_of: (0..n).map(Some).collect(),
+            law: vec![law; n],
+            ..Default::default()
+        };
+        let start = q
+            .iter()
+            .map(|&v| if v < 0.0 { State::Stick } else { State::Open })
+            .collect();
+        let r = solve_states(&w, &q, &e, &t, None, start, 200);
+        let (gap, slip) = gap_and_slip(&w, &q, &e, None, &r.lambda, &r.tau, &[]);
+        (r, gap, slip)
+    }
+
     /// On random compliances (W = A Aᵀ + I, symmetric positive definite with
     /// normal–tangential coupling, as an elastic body's) and random loads,
     /// the active set ends on a point of the discrete Coulomb law: λ ≥ 0,
@@ -291,29 +319,12 @@ mod tests {
         let (n, mu) = (8, 0.4);
         let mut rng = Lcg(29);
         for case in 0..200 {
-            let a = Mat::<f64>::from_fn(2 * n, 2 * n, |_, _| rng.next());
-            let w = Mat::<f64>::from_fn(2 * n, 2 * n, |i, j| {
-                (0..2 * n).map(|k| a[(i, k)] * a[(j, k)]).sum::<f64>() / (2 * n) as f64 + f64::from(i == j)
-            });
-            let q: Vec<f64> = (0..n).map(|_| rng.next()).collect();
-            let e: Vec<f64> = (0..n).map(|_| 0.5 * rng.next()).collect();
-            let t = Tangents {
-                of: (0..n).collect(),
-                row_of: (0..n).map(Some).collect(),
-                law: vec![std::sync::Arc::new(Coulomb { mu }); n],
-                ..Default::default()
-            };
-            let start = q
-                .iter()
-                .map(|&v| if v < 0.0 { State::Stick } else { State::Open })
-                .collect();
-            let r = solve_states(&w, &q, &e, &t, None, start, 200);
+            let (r, gap, slip) = random_step(&mut rng, n, Arc::new(Coulomb { mu }));
             assert!(
                 r.converged,
                 "case {case}: no convergence in {} iterations",
                 r.iterations
             );
-            let (gap, slip) = gap_and_slip(&w, &q, &e, None, &r.lambda, &r.tau, &[]);
             let tol = 1e-10;
             for i in 0..n {
                 let (l, tau) = (r.lambda[i], r.tau[i]);
@@ -366,25 +377,8 @@ mod tests {
         let mut rng = Lcg(31);
         let mut slipping = 0;
         for case in 0..100 {
-            let a = Mat::<f64>::from_fn(2 * n, 2 * n, |_, _| rng.next());
-            let w = Mat::<f64>::from_fn(2 * n, 2 * n, |i, j| {
-                (0..2 * n).map(|k| a[(i, k)] * a[(j, k)]).sum::<f64>() / (2 * n) as f64 + f64::from(i == j)
-            });
-            let q: Vec<f64> = (0..n).map(|_| rng.next()).collect();
-            let e: Vec<f64> = (0..n).map(|_| 0.5 * rng.next()).collect();
-            let t = Tangents {
-                of: (0..n).collect(),
-                row_of: (0..n).map(Some).collect(),
-                law: vec![std::sync::Arc::new(Tresca { g }); n],
-                ..Default::default()
-            };
-            let start = q
-                .iter()
-                .map(|&v| if v < 0.0 { State::Stick } else { State::Open })
-                .collect();
-            let r = solve_states(&w, &q, &e, &t, None, start, 200);
+            let (r, gap, slip) = random_step(&mut rng, n, Arc::new(Tresca { g }));
             assert!(r.converged, "case {case}: {} iterations", r.iterations);
-            let (gap, slip) = gap_and_slip(&w, &q, &e, None, &r.lambda, &r.tau, &[]);
             let tol = 1e-10;
             for i in 0..n {
                 let (l, tau) = (r.lambda[i], r.tau[i]);
