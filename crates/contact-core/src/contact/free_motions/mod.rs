@@ -16,7 +16,8 @@
 //! refusal of loads contact cannot carry (Fichera's LP, with the friction
 //! cone's rays, and the escape test); `words`, the motions and their loads
 //! in the request's terms; `columns`, what a body's rigid motion does to a
-//! set of rows. Here: the block the solvers and the report read.
+//! set of rows; `tangential`, the motions with friction (their tangential
+//! columns and cones). Here: the block the solvers and the report read.
 
 use faer::Mat;
 
@@ -25,6 +26,7 @@ use crate::scene::{Control, Scene};
 mod build;
 mod columns;
 mod refusal;
+mod tangential;
 mod words;
 
 pub use columns::{rigid_column, RigidColumn};
