@@ -152,7 +152,7 @@ fn local(block: [[f64; 2]; 2], r: [f64; 2], cone: (&dyn FrictionLaw, f64, f64)) 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::contact::friction_law::Coulomb;
+    use crate::contact::friction_law::{Coulomb, Law};
 
     /// A single point whose answer is known in each case: with a = d = 1,
     /// b = b′ = 0.3, μ = 0.5, a gap closed by r_N = −1 and a slip push r_T:
@@ -203,7 +203,7 @@ mod tests {
             let t = Tangents {
                 of: (0..n).collect(),
                 row_of: (0..n).map(Some).collect(),
-                law: vec![std::sync::Arc::new(Coulomb { mu }); n],
+                law: (0..n).map(|_| -> Law { std::sync::Arc::new(Coulomb { mu }) }).collect(),
                 ..Default::default()
             };
             let r = sweep(&w, &q, &e, &t, 100_000, 1e-13);
