@@ -256,7 +256,7 @@ fn full_is_cheaper(n_free: usize, m: usize) -> bool {
 }
 
 /// The route of a frictional step over its rows: the full system
-/// (`methods::friction_full`) when the request asks for it, when `auto`
+/// (`methods::friction::full`) when the request asks for it, when `auto`
 /// finds it cheaper, or when the rows exceed what the condensed operator
 /// (dense in them) may hold, with a note saying so; the free motions of a
 /// block (load-controlled punches, bodies held only by contact) only
@@ -277,7 +277,7 @@ pub fn frictional_route(
         if block {
             Some(CONDENSED_ONLY)
         } else {
-            crate::methods::friction_full::unfit(cons, tangents)
+            crate::methods::friction::full::unfit(cons, tangents)
         }
     };
     let (normal, tangential) = (cons.len(), tangents.len());

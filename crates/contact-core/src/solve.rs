@@ -24,7 +24,7 @@ use crate::cache::{self, OperatorCache};
 use crate::error::CoreError;
 use crate::fem::assembly::{assemble_loads, assemble_stiffness};
 use crate::mesh::Mesh2d;
-use crate::methods::{self, full, Problem, PunchBlock};
+use crate::methods::{self, full, FreeBlock, Problem};
 use crate::model::Model;
 use crate::observer::{self, Observer, Stage};
 use crate::scene::{Limits, Method, Scene};
@@ -171,10 +171,7 @@ fn solve_condensed(
         f: &f,
         cons: &model.cons,
         settings: &scene.settings,
-        punch: (!model.free.is_empty()).then_some(PunchBlock {
-            c: &model.free.c,
-            rhs: &model.free.rhs,
-        }),
+        punch: (!model.free.is_empty()).then(|| FreeBlock::frictionless(&model.free)),
         compliance: compliance.as_ref(),
     };
     obs.enter(Stage::ContactSolve);
@@ -188,6 +185,7 @@ fn solve_condensed(
         pivot_ratio: Some(op.pivot_ratio),
         predicted: Some(op.chol.cost().predicted_secs()),
         compliance: compliance.as_ref(),
+        friction: &[],
     };
     Ok(compose::report(scene, &solved, sol, obs, cache_state))
 }
@@ -220,6 +218,7 @@ fn solve_full(scene: &Scene, model: &Model, mut obs: Observer) -> Result<Report,
         pivot_ratio: None,
         predicted: None,
         compliance: None,
+        friction: &[],
     };
     Ok(compose::report(scene, &solved, sol, obs, CacheState::Off))
 }

@@ -2,15 +2,17 @@
 //!
 //! - the top-level modules depend on each other without a cycle, and so do
 //!   the files of `contact` (whose target kinds once imported each other in a
-//!   circle);
+//!   circle) and of `methods` (whose frictional Newton iteration and its
+//!   Gauss–Seidel fallback did);
 //! - only the scene boundary (`scene::validate` and its modules,
 //!   `scene::size_limit`) reads wire types;
 //! - a source file over 500 lines says why in its module doc (a line
 //!   starting `//! Length:`).
 //!
 //! Dependencies are read from `crate::a::b` paths and `super::` imports
-//! (test modules excluded); a `mod.rs` only declares and re-exports within
-//! `contact`, so it is not a node there.
+//! (test modules excluded); a `mod.rs` is not a node within `contact` and
+//! `methods` (it declares the files and re-exports; `methods/mod.rs` also
+//! holds the types the methods share and the dispatch to them).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -154,14 +156,15 @@ fn top_level_modules_form_no_cycle() {
     assert_eq!(has_cycle(&graph), None, "{graph:#?}");
 }
 
-#[test]
-fn contact_files_form_no_cycle() {
+/// The dependencies between the files under the top-level module `top`
+/// (its `mod.rs` files only declare and re-export, so they are not nodes).
+fn file_graph(top: &str) -> BTreeMap<String, BTreeSet<String>> {
     let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
     let nodes: BTreeSet<Vec<String>> = files()
         .iter()
         .filter(|f| f.file_name().is_some_and(|n| n != "mod.rs"))
         .map(|f| module_of(f))
-        .filter(|m| m.first().is_some_and(|t| t == "contact"))
+        .filter(|m| m.first().is_some_and(|t| t == top))
         .collect();
     for me in &nodes {
         let file = src().join(me.join("/")).with_extension("rs");
@@ -172,7 +175,7 @@ fn contact_files_form_no_cycle() {
             targets.push(parent.iter().cloned().chain(p).collect());
         }
         for t in targets {
-            // The longest prefix of the path that is a file of `contact`.
+            // The longest prefix of the path that is a file of `top`.
             if let Some(dep) = (1..=t.len()).rev().map(|k| t[..k].to_vec()).find(|k| nodes.contains(k)) {
                 if &dep != me {
                     graph.entry(me.join("::")).or_default().insert(dep.join("::"));
@@ -180,11 +183,31 @@ fn contact_files_form_no_cycle() {
             }
         }
     }
+    graph
+}
+
+#[test]
+fn contact_files_form_no_cycle() {
+    let graph = file_graph("contact");
     assert!(
         graph
             .get("contact::targets::body")
             .is_some_and(|d| d.contains("contact::rows")),
         "the scan sees the targets' imports: {graph:#?}"
+    );
+    assert_eq!(has_cycle(&graph), None, "{graph:#?}");
+}
+
+/// The methods' files, the frictional ones among them (whose Newton
+/// iteration and Gauss–Seidel fallback once imported each other).
+#[test]
+fn methods_files_form_no_cycle() {
+    let graph = file_graph("methods");
+    assert!(
+        graph
+            .get("methods::friction::condensed")
+            .is_some_and(|d| d.contains("methods::friction::newton") && d.contains("methods::friction::gauss_seidel")),
+        "the scan sees the frictional files' imports: {graph:#?}"
     );
     assert_eq!(has_cycle(&graph), None, "{graph:#?}");
 }

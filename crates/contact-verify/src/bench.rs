@@ -5,7 +5,7 @@
 //! sequential: the solver's own kernels and parallelism), the ratios per
 //! stage (`r_fact`: factorization, `r_cont`: condensation and contact solve
 //! against the floor's solve). Rows with Coulomb friction (one step, the
-//! active set of `methods::friction`, and on T3 of `methods::friction_full`)
+//! active set of `methods::friction::condensed`, and on T3 of `methods::friction::full`)
 //! follow the frictionless ones of each mesh. The floor mode ends with one
 //! two-body row (`two_bodies_cylinders.json` refined to about 1.18M DOF),
 //! whose contact rows once cost as much as its factorization.

@@ -272,7 +272,7 @@ fn unsupported_friction_is_refused() {
     let mut r = with("signorini_roller_on_flat.json");
     r["method"] = json!("interior_point");
     refused(&r, "/contacts/0/friction");
-    // (`formulation: full` is solved: `friction_full.rs`.)
+    // (`formulation: full` is solved: `methods::friction::full`.)
     let mut r = with("signorini_roller_on_flat.json");
     r["contacts"][0]["friction"] = json!({"coefficient": -0.1});
     refused(&r, "/contacts/0/friction/coefficient");

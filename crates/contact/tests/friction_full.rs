@@ -1,4 +1,4 @@
-//! Coulomb friction on the full system (`methods::friction_full`): the same
+//! Coulomb friction on the full system (`methods::friction::full`): the same
 //! discrete problem as the condensed path, solved on K in coordinates turned
 //! to each contact node's normal and tangent instead of on the condensed
 //! compliance. It serves `formulation: full` and the scenes whose rows

@@ -37,7 +37,7 @@
 //! punch moves the row's point by c_t · (α1, α2, θ) along t
 //! (`Candidate::punch_tangent`), which the row subtracts; its prescribed
 //! components go to the prescribed part, its load-controlled ones are
-//! unknowns of the step (`punch` here, `methods::friction::Block`).
+//! unknowns of the step (`punch` here, `methods::FreeBlock`).
 //!
 //! Only rows of pairs with μ > 0 get a tangential row, and only where some
 //! free DOF moves along t (a node whose tangential motion is prescribed has
@@ -46,6 +46,7 @@
 use std::collections::HashMap;
 
 use super::constraints::{free_row, ConstraintSet};
+use super::friction_law::{law_of, slip_line, Law};
 use super::rows::Term;
 use crate::fem::assembly::DofMap;
 use crate::mesh::boundary::boundary_nodes;
@@ -65,8 +66,8 @@ pub struct Tangents {
     pub terms: Vec<Vec<Term>>,
     /// The prescribed part Σ R coef · ū of each tangential displacement.
     pub prescribed: Vec<f64>,
-    /// μ of each row.
-    pub mu: Vec<f64>,
+    /// The friction law of each row (its pair's).
+    pub law: Vec<Law>,
     /// The punch of each row and its tangential motion coefficients c_t.
     pub punch: Vec<Option<(usize, [f64; 3])>>,
     /// The unit tangent t of each row (along which τ and the slip are
@@ -100,8 +101,7 @@ impl Tangents {
             })
             .collect();
         for (i, c) in cons.candidates.iter().enumerate() {
-            let mu = scene.pairs[c.pair].friction;
-            if mu <= 0.0 {
+            if scene.pairs[c.pair].friction <= 0.0 {
                 continue;
             }
             let n = c.normal;
@@ -148,7 +148,7 @@ impl Tangents {
             t.rows.push(row);
             t.terms.push(terms);
             t.prescribed.push(-minus_prescribed - moved);
-            t.mu.push(mu);
+            t.law.push(law_of(&scene.pairs[c.pair]));
             t.punch.push(punch);
             t.tangent.push(tangent);
             t.lean.push(cos);
@@ -207,9 +207,21 @@ impl Tangents {
         tau + self.lean.get(k).copied().unwrap_or(0.0) * lambda
     }
 
-    /// The cone's bound μ λ of row k for the normal force λ.
+    /// The cone's bound of row k for the normal force λ (μ λ for Coulomb).
     pub fn bound(&self, k: usize, lambda: f64) -> f64 {
-        self.mu[k] * lambda
+        self.law[k].bound(lambda)
+    }
+
+    /// The whole tangential force of row k projected onto its cone at λ.
+    pub fn project(&self, k: usize, lambda: f64, z: f64) -> f64 {
+        self.law[k].project(lambda, z)
+    }
+
+    /// A sliding point's friction force τ = γ λ + c on row k, sliding along
+    /// `sign`, the law linearized at the normal force `at`
+    /// (`friction_law::slip_line`).
+    pub fn slip_line(&self, k: usize, sign: i8, at: f64) -> (f64, f64) {
+        slip_line(self.law[k].as_ref(), sign, self.along(k, 1.0, 0.0), at)
     }
 
     /// Accumulates B_Tᵀ τ into y.

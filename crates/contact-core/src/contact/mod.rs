@@ -8,6 +8,7 @@
 //! - `constraints`: the rows on the free DOFs (`Candidate`, `ConstraintSet`);
 //! - `targets`: one file per kind of contact target, and `build`;
 //! - `compliance`: the foundations' compliance, which joins the condensed operator;
+//! - `friction_law`: the bound of the tangential force (Coulomb's μ λ);
 //! - `friction`: the tangential rows of frictional pairs, beside the normal ones;
 //! - `free_motions` and `fichera`: rigid motions left to contact and the
 //!   compatibility of their loads.
@@ -17,6 +18,7 @@ pub mod constraints;
 pub mod fichera;
 pub mod free_motions;
 pub mod friction;
+pub mod friction_law;
 pub mod gap;
 pub mod rows;
 pub mod targets;

@@ -78,8 +78,12 @@ pub fn solve_condensed(
     exact: bool,
     lcp: &dyn Fn(&Mat<f64>, &[f64]) -> LcpResult,
 ) -> Result<Solution, CoreError> {
-    let none = Mat::<f64>::zeros(p.cons.len(), 0);
-    let pb = super::PunchBlock { c: &none, rhs: &[] };
+    let pb = super::FreeBlock {
+        cn: Mat::<f64>::zeros(p.cons.len(), 0),
+        ct: Mat::<f64>::zeros(0, 0),
+        rhs: Vec::new(),
+        bodies: Vec::new(),
+    };
     solve_condensed_mixed(p, &pb, name, exact, &|w, q| (lcp(w, q), Vec::new()))
 }
 
@@ -94,7 +98,7 @@ pub fn solve_condensed(
 /// the refined path, two refined solves with K.
 pub fn solve_condensed_mixed(
     p: &Problem,
-    pb: &super::PunchBlock,
+    pb: &super::FreeBlock,
     name: MethodRan,
     exact: bool,
     mlcp: super::MixedSolver,
@@ -130,7 +134,7 @@ type Displacements<'a> = &'a dyn Fn(&[f64]) -> Option<(Vec<f64>, usize)>;
 #[allow(clippy::too_many_arguments)]
 fn contact_stage(
     p: &Problem,
-    pb: &super::PunchBlock,
+    pb: &super::FreeBlock,
     name: MethodRan,
     exact: bool,
     mlcp: super::MixedSolver,
@@ -154,7 +158,7 @@ fn contact_stage(
     let wl = dense::matvec(w, &res.lambda);
     let in_contact = (0..q.len())
         .map(|i| {
-            let cb: f64 = (0..beta.len()).map(|j| pb.c[(i, j)] * beta[j]).sum();
+            let cb: f64 = (0..beta.len()).map(|j| pb.cn[(i, j)] * beta[j]).sum();
             res.lambda[i] > 0.0 && res.lambda[i] * w[(i, i)] > wl[i] + q[i] + cb
         })
         .collect();
@@ -209,12 +213,12 @@ fn residual(op: &Prepared, b: &[f64], x: &[f64], size: f64) -> (Vec<f64>, f64) {
 }
 
 /// The gaps g − B u + C β + F λ of the rows, from the sparse solution u.
-fn gaps(p: &Problem, pb: &super::PunchBlock, u: &[f64], lambda: &[f64], beta: &[f64]) -> Vec<f64> {
+fn gaps(p: &Problem, pb: &super::FreeBlock, u: &[f64], lambda: &[f64], beta: &[f64]) -> Vec<f64> {
     let bu = p.cons.apply(u);
     let opened = p.compliance.map(|f| dense::matvec(f, lambda));
     (0..bu.len())
         .map(|i| {
-            let cb: f64 = (0..beta.len()).map(|j| pb.c[(i, j)] * beta[j]).sum();
+            let cb: f64 = (0..beta.len()).map(|j| pb.cn[(i, j)] * beta[j]).sum();
             p.cons.candidates[i].g - bu[i] + cb + opened.as_ref().map_or(0.0, |o| o[i])
         })
         .collect()
@@ -234,7 +238,7 @@ fn gaps(p: &Problem, pb: &super::PunchBlock, u: &[f64], lambda: &[f64], beta: &[
 /// Returns the steps taken.
 fn refine_contact(
     p: &Problem,
-    pb: &super::PunchBlock,
+    pb: &super::FreeBlock,
     w: &Mat<f64>,
     u: &mut Vec<f64>,
     lambda: &mut [f64],
@@ -255,9 +259,9 @@ fn refine_contact(
         }
         // The punch equilibrium's residual C_Aᵀ λ_A − r goes in as −(r − C_Aᵀ λ_A).
         let eq: Vec<f64> = (0..pb.rhs.len())
-            .map(|j| pb.rhs[j] - idx.iter().map(|&i| pb.c[(i, j)] * lambda[i]).sum::<f64>())
+            .map(|j| pb.rhs[j] - idx.iter().map(|&i| pb.cn[(i, j)] * lambda[i]).sum::<f64>())
             .collect();
-        let Some((dl, db)) = super::active_set::saddle(w, &g, pb.c, &eq, &idx) else {
+        let Some((dl, db)) = super::active_set::saddle(w, &g, &pb.cn, &eq, &idx) else {
             return step;
         };
         let mut l2 = lambda.to_vec();

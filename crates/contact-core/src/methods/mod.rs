@@ -13,7 +13,7 @@
 //!
 //! i.e. the LCP  λ ≥ 0,  w = Wλ + q ≥ 0,  λᵀw = 0  (w is the gap after deformation).
 //! Load-controlled punch motions β add −Cβ to the rows and their equilibrium
-//! Cᵀλ = −P as equalities: a mixed LCP, w = Wλ + q + Cβ (`PunchBlock`).
+//! Cᵀλ = −P as equalities: a mixed LCP, w = Wλ + q + Cβ (`FreeBlock`).
 //! Coulomb friction adds tangential rows and is solved per load step by
 //! `friction`. `settings.formulation = full` runs the exact methods on the uncondensed system
 //! instead (`full`), for comparison.
@@ -22,8 +22,6 @@ pub mod active_set;
 pub mod barrier;
 pub mod condensed;
 pub mod friction;
-pub mod friction_full;
-pub mod friction_gauss_seidel;
 pub mod full;
 pub mod interior_point;
 pub mod penalty;
@@ -41,7 +39,7 @@ pub struct Problem<'a> {
     pub settings: &'a Settings,
     /// Free rigid motions (punches, bodies held by contact): rows −C β and
     /// their equilibrium Cᵀλ = rhs.
-    pub punch: Option<PunchBlock<'a>>,
+    pub punch: Option<FreeBlock>,
     /// Compliance added to W (foundations), m × m.
     pub compliance: Option<&'a faer::Mat<f64>>,
 }
@@ -49,9 +47,42 @@ pub struct Problem<'a> {
 /// A solver of the mixed LCP (W, q) with the punch block bound in: returns (λ, β).
 pub type MixedSolver<'a> = &'a dyn Fn(&faer::Mat<f64>, &[f64]) -> (LcpResult, Vec<f64>);
 
-pub struct PunchBlock<'a> {
-    pub c: &'a faer::Mat<f64>,
-    pub rhs: &'a [f64],
+/// The free rigid motions β of a solve (load-controlled punches, bodies
+/// held only by contact), one block of the mixed problem: the gaps gain
+/// C_N β (w = W λ + q + C_N β) and, with friction, the slips −C_T β, and the
+/// motions bring their equilibrium C_Nᵀλ + C_Tᵀτ = rhs (−P, P their loads).
+pub struct FreeBlock {
+    /// C_N: candidates × motions.
+    pub cn: faer::Mat<f64>,
+    /// C_T: tangential rows × motions (no rows without friction).
+    pub ct: faer::Mat<f64>,
+    pub rhs: Vec<f64>,
+    /// The bodies held only by contact whose rigid modes are among the
+    /// motions: with friction their points start closed (they rest on their
+    /// contacts at the start).
+    pub bodies: Vec<usize>,
+}
+
+impl FreeBlock {
+    /// The frictionless block of the free motions contact determines (the
+    /// combinations γ of `FreeMotions::v`).
+    pub fn frictionless(fm: &crate::contact::free_motions::FreeMotions) -> Self {
+        Self {
+            cn: fm.c.clone(),
+            ct: faer::Mat::zeros(0, fm.c.ncols()),
+            rhs: fm.rhs.clone(),
+            bodies: Vec::new(),
+        }
+    }
+
+    /// The number of free motions.
+    pub fn len(&self) -> usize {
+        self.rhs.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.rhs.is_empty()
+    }
 }
 
 /// Result of the LCP stage.
@@ -147,7 +178,7 @@ fn solve_with(problem: &Problem, method: Method) -> Result<Solution, CoreError> 
     };
     let s = problem.settings;
     if let Some(pb) = &problem.punch {
-        let (c, r) = (pb.c, pb.rhs);
+        let (c, r) = (&pb.cn, pb.rhs.as_slice());
         let run = |name: MethodRan, exact: bool, mlcp: MixedSolver| {
             condensed::solve_condensed_mixed(problem, pb, name, exact, mlcp)
         };

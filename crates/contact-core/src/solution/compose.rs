@@ -33,6 +33,9 @@ pub struct Solved<'a> {
     pub predicted: Option<f64>,
     /// The foundations' compliance D F D (condensed path, with foundations).
     pub compliance: Option<&'a Mat<f64>>,
+    /// With friction, its share of the free motions' equilibrium
+    /// (`FreeMotions::equilibrium`).
+    pub friction: &'a [(f64, f64)],
 }
 
 /// Certificate, status, contact zones, optional fields: the report.
@@ -49,7 +52,9 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
         s.iter_mut().zip(&opened).for_each(|(a, b)| *a += b);
     }
     let (mut certificate, gaps) = certify(st.k, st.f, &m.cons, &sol.u, &sol.lambda, shift.as_deref());
-    certificate.equilibrium = certificate.equilibrium.max(m.free.equilibrium(&sol.lambda));
+    certificate.equilibrium = certificate
+        .equilibrium
+        .max(m.free.equilibrium(&sol.lambda, st.friction));
     let punches = free
         .map(|p| punch_results(scene, &m.cons, p, &beta, &sol.lambda))
         .unwrap_or_default();

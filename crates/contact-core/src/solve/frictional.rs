@@ -1,17 +1,19 @@
 //! The frictional route: load step after load step, each from the state the
 //! previous one left, on one factorization (`admit::frictional_route`).
 
-use super::friction_block::{add_rigid_motions, punch_block};
+use super::friction_block::{settle_block, StepModel};
 use super::notes::{friction_shortfall, sliding_punches, unsettled_bodies};
 use super::step_scenes;
 use crate::admit::{self, Route};
-use crate::cache::OperatorCache;
+use crate::cache::{OperatorCache, Prepared};
+use crate::contact::friction::Tangents;
 use crate::error::CoreError;
-use crate::fem::assembly::{assemble_loads, assemble_stiffness};
-use crate::methods;
+use crate::fem::assembly::{assemble_loads, assemble_stiffness, Stiffness};
+use crate::mesh::Mesh2d;
+use crate::methods::{self, friction::History, Solution};
 use crate::model::Model;
 use crate::observer::{Observer, Stage};
-use crate::scene::{Limits, Scene};
+use crate::scene::{Control, Limits, Scene};
 use crate::solution::compose::{self, Solved};
 use crate::solution::report::{with_steps, CacheState, LoadStep, Report, Status, Timings};
 use std::sync::Arc;
@@ -27,22 +29,7 @@ pub(super) fn solve_frictional(
 ) -> Result<Report, CoreError> {
     let (meshes, mut obs) = super::meshed(scene, limits)?;
     let stepped = !scene.load_factors.is_empty() || !scene.load_path.is_empty();
-    // A punch pushed, or a body held only by contact loaded, beyond what
-    // friction holds in some step is refused before the first step is
-    // solved (Fichera's condition with friction).
-    let loaded_punch = scene.obstacles.iter().any(|o| {
-        o.punch
-            .as_ref()
-            .is_some_and(|p| p.controls.iter().any(|c| matches!(c, crate::scene::Control::Load(_))))
-    });
-    let free_body = !crate::fem::assembly::dof_map(scene, &meshes)?.rigid.is_empty();
-    if stepped && (loaded_punch || free_body) {
-        for (s, _, _) in step_scenes(scene) {
-            let mut model = Model::build(&s, meshes.clone())?;
-            let tangents = crate::contact::friction::Tangents::new(&s, &model.meshes, &model.cons, &model.dofs);
-            punch_block(&s, &mut model, &tangents)?;
-        }
-    }
+    let mut prebuilt = checked_models(scene, &meshes, stepped)?.into_iter();
     let steps_in = if stepped {
         step_scenes(scene)
     } else {
@@ -51,20 +38,18 @@ pub(super) fn solve_frictional(
     // K is the same in every step (the loads and prescribed values change,
     // not the mesh or the materials): assembled once, and on the condensed
     // route factored and condensed once for every step.
-    let mut op: Option<Arc<crate::cache::Prepared>> = None;
-    let mut k_once: Option<Arc<crate::fem::assembly::Stiffness>> = None;
-    let mut history = methods::friction::History::default();
+    let (mut op, mut k_once): (Option<Arc<Prepared>>, Option<Arc<Stiffness>>) = (None, None);
+    let mut history = History::default();
     let (mut steps, mut timings, mut last) = (Vec::new(), Timings::default(), None);
     for (s, k, loads) in steps_in {
         obs.enter(Stage::Assembly);
-        let mut model = Model::build(&s, meshes.clone())?;
-        let tangents = crate::contact::friction::Tangents::new(&s, &model.meshes, &model.cons, &model.dofs);
-        // Load-controlled punch motions and the rigid modes of bodies held
-        // only by contact join the step's unknowns, once Fichera's condition
-        // with the friction cone admits their loads.
-        let block = punch_block(&s, &mut model, &tangents)?;
+        let sm = match prebuilt.next() {
+            Some(sm) => sm,
+            None => StepModel::build(&s, meshes.clone())?,
+        };
+        let (model, tangents) = (&sm.model, &sm.tangents);
         let (route, why_full) =
-            admit::frictional_route(&s, &model.cons, &tangents, model.dofs.n_free, block.is_some(), limits)?;
+            admit::frictional_route(&s, &model.cons, tangents, model.dofs.n_free, sm.block.is_some(), limits)?;
         let stiffness = match &k_once {
             Some(k) => k.clone(),
             None => k_once
@@ -77,113 +62,67 @@ pub(super) fn solve_frictional(
             Route::Condensed => {
                 let prepared = match &op {
                     Some(p) => p.clone(),
-                    None => {
-                        obs.enter(Stage::Factorization);
-                        let rows: Vec<&[(usize, f64)]> = model
-                            .cons
-                            .candidates
-                            .iter()
-                            .map(|c| c.row.as_slice())
-                            .chain(tangents.rows.iter().map(|r| r.as_slice()))
-                            .collect();
-                        let p = Arc::new(methods::condensed::prepare_rows(stiffness.clone(), &rows, cache)?);
-                        obs.timings.factorization = p.t_factorization;
-                        obs.timings.condensation = p.t_condensation;
-                        op = Some(p.clone());
-                        p
-                    }
+                    None => op
+                        .insert(prepare(&mut obs, &stiffness, model, tangents, cache)?)
+                        .clone(),
                 };
                 obs.check(Stage::Factorization)?;
                 obs.enter(Stage::ContactSolve);
-                let step = methods::friction::Step {
+                let step = methods::friction::condensed::Step {
                     op: &prepared,
                     f: &f,
                     cons: &model.cons,
-                    tangents: &tangents,
+                    tangents,
                     dofs: &model.dofs,
                     settings: &s.settings,
-                    block: block.as_ref(),
+                    block: sm.block.as_ref(),
                 };
-                let (sol, friction) = methods::friction::solve_step(&step, &history);
-                let factor = (prepared.pivot_ratio, prepared.chol.cost().predicted_secs());
-                (sol, friction, Some(factor))
+                let (sol, friction) = methods::friction::condensed::solve_step(&step, &history);
+                (
+                    sol,
+                    friction,
+                    Some((prepared.pivot_ratio, prepared.chol.cost().predicted_secs())),
+                )
             }
             Route::Full => {
                 // No factorization stage of its own: every Newton iteration
                 // factors K with its state's prescribed coordinates.
                 obs.enter(Stage::ContactSolve);
-                let step = methods::friction_full::Step {
+                let step = methods::friction::full::Step {
                     k: &stiffness.k,
                     f: &f,
                     cons: &model.cons,
-                    tangents: &tangents,
+                    tangents,
                     dofs: &model.dofs,
                     settings: &s.settings,
                 };
-                let (mut sol, friction) = methods::friction_full::solve_step(&step, &history)?;
+                let (mut sol, friction) = methods::friction::full::solve_step(&step, &history)?;
                 sol.fallback = why_full;
                 (sol, friction, None)
             }
         };
-        // Every free motion's amplitude, 0 for those not determined.
-        if let Some(b) = &block {
-            let mut beta = vec![0.0; model.free.motions.len()];
-            for (j, &m) in b.keep.iter().enumerate() {
-                beta[m] = sol.beta[j];
-            }
-            sol.beta = beta.clone();
-            // The next step's slip is measured from the whole displacement,
-            // the bodies' rigid motions R β included.
-            add_rigid_motions(&model, &beta, &mut friction.history.displacement);
-            friction.beta = beta;
-        }
+        let shares = settle_block(&sm, &mut sol, &mut friction);
         obs.leave(Stage::ContactSolve)?;
         obs.timings.contact_solve = sol.t_contact;
         // The friction forces join the loads: the certificate's equilibrium is
         // then K u = f − B_Nᵀ λ − B_Tᵀ τ.
         let mut f_eff = f.clone();
         let minus_tau: Vec<f64> = friction.tau.iter().map(|t| -t).collect();
-        tangents.apply_transpose_into(&minus_tau, &mut f_eff);
-        // Likewise the punches' equilibrium: C_Nᵀλ + C_Tᵀτ = −P.
-        if let Some(b) = &block {
-            let mut shares = vec![(0.0, 0.0); model.free.motions.len()];
-            for (j, &m) in b.keep.iter().enumerate() {
-                let terms = (0..tangents.len()).map(|k| b.ct[(k, j)] * friction.tau[k]);
-                // A body's slide that only friction resists carries no load
-                // at Q = 0, and its friction terms are ~μ λ: judged against
-                // them alone the LU's round-off on λ read 1.2e-7 at μ = 1e-9
-                // (measured), so the size of the body's loads is a scale too.
-                let largest = terms.clone().fold(0.0, |a: f64, v| a.max(v.abs()));
-                let loads = model.free.load_scale.get(m).copied().unwrap_or(0.0);
-                shares[m] = (terms.sum(), largest.max(loads));
-            }
-            model.free.friction = shares;
-        }
-        for o in 0..s.obstacles.len() {
-            if s.obstacles[o].punch.is_some() {
-                let a = crate::contact::free_motions::punch_motion(&s, &model.free, &friction.beta, o);
-                friction.history.punches.insert(o, a);
-            }
+        sm.tangents.apply_transpose_into(&minus_tau, &mut f_eff);
+        for o in (0..s.obstacles.len()).filter(|&o| s.obstacles[o].punch.is_some()) {
+            let a = crate::contact::free_motions::punch_motion(&s, &sm.model.free, &friction.beta, o);
+            friction.history.punches.insert(o, a);
         }
         let composed = Solved {
-            model: &model,
+            model: &sm.model,
             k: &stiffness.k,
             f: &f_eff,
             pivot_ratio: factor.map(|f| f.0),
             predicted: factor.map(|f| f.1),
             compliance: None,
+            friction: &shares,
         };
-        let sol_iterations = sol.iterations;
-        let mut r = compose::report(&s, &composed, sol, obs, CacheState::Off);
-        crate::solution::friction::attach(&mut r, &s, &model, &tangents, &friction);
-        if r.status == Status::MaxIterations {
-            r.notes.extend(sliding_punches(&s));
-            let short = block
-                .as_ref()
-                .map(|b| friction_shortfall(&s, &model, b, &tangents, &friction.lambda))
-                .unwrap_or_default();
-            r.notes.extend(unsettled_bodies(&s, &model, sol_iterations, &short));
-        }
+        let r = report(&s, &composed, &sm, sol, &friction, obs);
         history = friction.history;
         obs = Observer::new();
         steps.push(LoadStep::of(k, loads, &r));
@@ -195,4 +134,71 @@ pub(super) fn solve_frictional(
         last.steps = None;
     }
     Ok(last)
+}
+
+/// The models of every step, built before the first step is solved when a
+/// punch pushed, or a body held only by contact loaded, beyond what friction
+/// holds in some step must be refused up front (Fichera's condition with
+/// friction, in `punch_block`); each serves its step's solve. Empty
+/// otherwise: each step builds its model when it comes.
+fn checked_models(scene: &Scene, meshes: &[Mesh2d], stepped: bool) -> Result<Vec<StepModel>, CoreError> {
+    let loaded_punch = scene.obstacles.iter().any(|o| {
+        o.punch
+            .as_ref()
+            .is_some_and(|p| p.controls.iter().any(|c| matches!(c, Control::Load(_))))
+    });
+    let free_body = !crate::fem::assembly::dof_map(scene, meshes)?.rigid.is_empty();
+    if !stepped || !(loaded_punch || free_body) {
+        return Ok(Vec::new());
+    }
+    step_scenes(scene)
+        .map(|(s, _, _)| StepModel::build(&s, meshes.to_vec()))
+        .collect()
+}
+
+/// Factors K and condenses it onto the normal and tangential rows together.
+fn prepare(
+    obs: &mut Observer,
+    stiffness: &Arc<Stiffness>,
+    model: &Model,
+    tangents: &Tangents,
+    cache: Option<&OperatorCache>,
+) -> Result<Arc<Prepared>, CoreError> {
+    obs.enter(Stage::Factorization);
+    let rows: Vec<&[(usize, f64)]> = model
+        .cons
+        .candidates
+        .iter()
+        .map(|c| c.row.as_slice())
+        .chain(tangents.rows.iter().map(|r| r.as_slice()))
+        .collect();
+    let p = Arc::new(methods::condensed::prepare_rows(stiffness.clone(), &rows, cache)?);
+    obs.timings.factorization = p.t_factorization;
+    obs.timings.condensation = p.t_condensation;
+    Ok(p)
+}
+
+/// The step's report with its friction, and the notes of a step that ran
+/// out of iterations.
+fn report(
+    s: &Scene,
+    composed: &Solved,
+    sm: &StepModel,
+    sol: Solution,
+    friction: &methods::friction::Friction,
+    obs: Observer,
+) -> Report {
+    let sol_iterations = sol.iterations;
+    let mut r = compose::report(s, composed, sol, obs, CacheState::Off);
+    crate::solution::friction::attach(&mut r, s, &sm.model, &sm.tangents, friction);
+    if r.status == Status::MaxIterations {
+        r.notes.extend(sliding_punches(s));
+        let short = sm
+            .block
+            .as_ref()
+            .map(|b| friction_shortfall(s, &sm.model, (b, &sm.keep), &sm.tangents, &friction.lambda))
+            .unwrap_or_default();
+        r.notes.extend(unsettled_bodies(s, &sm.model, sol_iterations, &short));
+    }
+    r
 }

@@ -72,13 +72,13 @@ const SHORTFALL_SLACK: f64 = 1e-9;
 pub(crate) fn friction_shortfall(
     scene: &Scene,
     model: &Model,
-    block: &methods::friction::Block,
+    (block, keep): (&methods::FreeBlock, &[usize]),
     t: &crate::contact::friction::Tangents,
     lambda: &[f64],
 ) -> Vec<(usize, f64, String)> {
     use crate::contact::free_motions::Motion;
     let mut out = Vec::new();
-    for (j, &m) in block.keep.iter().enumerate() {
+    for (j, &m) in keep.iter().enumerate() {
         let Motion::Body { set, dir } = model.free.motions[m].0 else {
             continue;
         };
@@ -112,6 +112,7 @@ pub(crate) fn friction_shortfall(
 /// normals are inclined together (a face and a surface both sloping) it can
 /// admit it, and a step that then does not converge gets this note.
 pub(crate) fn sliding_punches(scene: &Scene) -> Vec<String> {
+    use crate::contact::friction_law::law_of;
     use crate::scene::{Control, Target};
     scene
         .obstacles
@@ -122,13 +123,15 @@ pub(crate) fn sliding_punches(scene: &Scene) -> Vec<String> {
             let (Control::Load(q), Control::Load(p)) = (punch.controls[0], punch.controls[1]) else {
                 return None;
             };
-            let mu = scene
-                .pairs
-                .iter()
-                .filter(|pr| matches!(pr.target, Target::Obstacle(t) if t == o))
-                .map(|pr| pr.friction)
-                .fold(0.0, f64::max);
-            (mu > 0.0 && q.abs() > mu * p.abs()).then(|| {
+            let pairs = || {
+                scene
+                    .pairs
+                    .iter()
+                    .filter(move |pr| matches!(pr.target, Target::Obstacle(t) if t == o))
+            };
+            let mu = pairs().map(|pr| pr.friction).fold(0.0, f64::max);
+            let most = pairs().map(|pr| law_of(pr).bound(p.abs())).fold(0.0, f64::max);
+            (mu > 0.0 && q.abs() > most).then(|| {
                 format!(
                     "punch '{}': its horizontal load is {:.4} times its vertical load, more than the friction \
                      coefficient {mu}: \

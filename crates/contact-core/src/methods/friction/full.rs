@@ -33,7 +33,7 @@
 //! that fails or a GMRES run that stops short of its tolerance is an error of
 //! the linear algebra (`linear_algebra`), not a state set to leave: no
 //! Newton iteration would mend it. The nonsmooth Gauss–Seidel fallback of the
-//! condensed path (`friction_gauss_seidel`) needs W and is not run here.
+//! condensed path (`gauss_seidel`) needs W and is not run here.
 //!
 //! The update's parameters are a tenth of the coordinates' stiffness
 //! K'_nn / c_n² and K'_tt / c_t² (`PARAMETER_SCALE`), the frictionless full
@@ -49,9 +49,8 @@
 use crate::outcome::MethodRan;
 use std::time::Instant;
 
-use super::friction::{finish, restarted, starting_states, Friction, History, Iterate, NewtonSystem, State};
-use super::full::{apply_q, prescribed, rotate, Rotated};
-use super::Solution;
+use super::newton::{finish, restarted, starting_states, Iterate, NewtonSystem};
+use super::{Friction, History, State};
 use crate::contact::friction::Tangents;
 use crate::contact::ConstraintSet;
 use crate::error::CoreError;
@@ -59,6 +58,8 @@ use crate::fem::assembly::DofMap;
 use crate::linalg::cholesky::SymbolicFactor;
 use crate::linalg::sparse::sym_lower_matvec;
 use crate::linalg::{Cholesky, LinalgError};
+use crate::methods::full::{apply_q, prescribed, rotate, Rotated};
+use crate::methods::Solution;
 use crate::scene::Settings;
 
 /// The data of one step on the full system.
@@ -149,7 +150,7 @@ pub fn solve_step(p: &Step, previous: &History) -> Result<(Solution, Friction), 
         // No iteration ran (no candidates, no iterations allowed, or the
         // deadline): the displacement of the states as they are.
         None => {
-            sys.solve(&run.state)?;
+            sys.solve(&run.state, &run.lambda)?;
             sys.last_u.take().unwrap_or_else(|| vec![0.0; p.f.len()])
         }
     };
@@ -207,13 +208,13 @@ const GMRES_STEPS: usize = 200;
 const GMRES_TOL: f64 = 1e-14;
 
 impl NewtonSystem for Rows<'_> {
-    fn solve(&mut self, state: &[State]) -> Result<Option<Iterate>, CoreError> {
+    fn solve(&mut self, state: &[State], at: &[f64]) -> Result<Option<Iterate>, CoreError> {
         crate::cancel::check("contact_solve")?;
         let (rot, t) = (&self.rot, self.p.tangents);
         let n = rot.k.nrows();
         let m = rot.coord.len();
         let mut fixed = vec![f64::NAN; n];
-        // (tangential coordinate, normal coordinate, α) of each sliding point.
+        // (tangential coordinate, normal coordinate, α, c_t c) of each sliding point.
         let mut sliding = Vec::new();
         for (i, &st) in state.iter().enumerate() {
             if st == State::Open {
@@ -225,8 +226,9 @@ impl NewtonSystem for Rows<'_> {
             let (dt, ct) = self.tangential[k];
             match st {
                 State::Slip(sign) => {
-                    let gamma = f64::from(sign) * t.bound(k, 1.0) - t.along(k, 1.0, 0.0);
-                    sliding.push((dt, dn, ct * gamma / cn));
+                    // τ = γ λ + c: r_t − α r_n = −c_t c (c = 0 for Coulomb).
+                    let (gamma, c) = t.slip_line(k, sign, at[i]);
+                    sliding.push((dt, dn, ct * gamma / cn, ct * c));
                 }
                 _ => fixed[dt] = self.stick_rhs[k] / ct,
             }
@@ -246,8 +248,11 @@ impl NewtonSystem for Rows<'_> {
             .collect();
         if !sliding.is_empty() {
             let kx = sym_lower_matvec(&rot.k, &x_p);
-            for &(dt, dn, alpha) in &sliding {
+            for &(dt, dn, alpha, shift) in &sliding {
                 b[dt] -= alpha * (self.fp[dn] - kx[dn]);
+                if shift != 0.0 {
+                    b[dt] -= shift;
+                }
             }
         }
         let y = if sliding.is_empty() {
@@ -257,7 +262,7 @@ impl NewtonSystem for Rows<'_> {
             let apply = |z: &[f64]| -> Vec<f64> {
                 let ky = sym_lower_matvec(&rot.k, &solve(z));
                 let mut out = z.to_vec();
-                for &(dt, dn, alpha) in &sliding {
+                for &(dt, dn, alpha, _) in &sliding {
                     out[dt] -= alpha * ky[dn];
                 }
                 out

@@ -1,7 +1,7 @@
 //! The frictional step's states by nonsmooth Gauss–Seidel (Moreau and Jean's
 //! NSGS): point after point, the exact answer of its own 2 × 2 Coulomb
 //! problem with the others' forces held. It is the fallback of the
-//! semismooth Newton (`friction`), which converges fast from states near the
+//! semismooth Newton (`condensed`), which converges fast from states near the
 //! answer but can cycle from far ones: a press fit whose whole interface
 //! closes through an interference in one step cycled between stick and slip
 //! at most points for every choice of the Newton parameters but two of nine
@@ -19,8 +19,9 @@
 
 use faer::Mat;
 
-use super::friction::State;
+use super::State;
 use crate::contact::friction::Tangents;
+use crate::contact::friction_law::{slip_line, FrictionLaw};
 
 /// The forces and states after the sweeps, and whether they settled.
 pub struct Sweeps {
@@ -59,7 +60,8 @@ pub fn sweep(w: &Mat<f64>, q: &[f64], e: &[f64], t: &Tangents, max_sweeps: usize
                     let (b, b2, d) = (w[(i, n + k)], w[(n + k, i)], w[(n + k, n + k)]);
                     let r_n = gap[i] - a * l0 - b * t0;
                     let r_t = slip[k] + b2 * l0 + d * t0;
-                    local([[a, b], [b2, d]], [r_n, r_t], (t.mu[k], t.along(k, 1.0, 0.0)))
+                    let cone = (t.law[k].as_ref(), t.along(k, 1.0, 0.0), l0);
+                    local([[a, b], [b2, d]], [r_n, r_t], cone)
                 }
             };
             state[i] = st;
@@ -101,29 +103,37 @@ pub fn sweep(w: &Mat<f64>, q: &[f64], e: &[f64], t: &Tangents, max_sweeps: usize
 
 /// One point's Coulomb problem (module docs): its (λ, τ) and state.
 /// `block` is the point's [[a, b], [b′, d]], `r` its (r_N, r_T), `cone` its
-/// (μ, ℓ).
-fn local(block: [[f64; 2]; 2], r: [f64; 2], cone: (f64, f64)) -> (f64, f64, State) {
+/// law, ℓ and the normal force where a sliding point's bound is linearized.
+fn local(block: [[f64; 2]; 2], r: [f64; 2], cone: (&dyn FrictionLaw, f64, f64)) -> (f64, f64, State) {
     let [[a, b], [b2, d]] = block;
     let [r_n, r_t] = r;
-    let (mu, lean) = cone;
+    let (law, lean, at) = cone;
     let det = a * d - b * b2;
     if det > 0.0 {
         let l = (-r_n * d - b * r_t) / det;
         let tau = (a * r_t + b2 * r_n) / det;
-        if l >= 0.0 && (tau + lean * l).abs() <= mu * l {
+        if l >= 0.0 && (tau + lean * l).abs() <= law.bound(l) {
             return (l, tau, State::Stick);
         }
     }
     for sign in [1i8, -1] {
-        let g = f64::from(sign) * mu - lean;
+        // τ = g λ + c on the cone's edge (c = 0 for Coulomb, left out of
+        // the sums then so that its answers stay what they were).
+        let (g, c) = slip_line(law, sign, lean, at);
         let den = a + b * g;
         if den <= 0.0 {
             continue;
         }
-        let l = -r_n / den;
-        let s = r_t - b2 * l - d * g * l;
+        let (l, tau, s) = if c == 0.0 {
+            let l = -r_n / den;
+            (l, g * l, r_t - b2 * l - d * g * l)
+        } else {
+            let l = -(r_n + b * c) / den;
+            let tau = g * l + c;
+            (l, tau, r_t - b2 * l - d * tau)
+        };
         if l >= 0.0 && f64::from(sign) * s >= 0.0 {
-            return (l, g * l, State::Slip(sign));
+            return (l, tau, State::Slip(sign));
         }
     }
     if r_n >= 0.0 {
@@ -134,7 +144,7 @@ fn local(block: [[f64; 2]; 2], r: [f64; 2], cone: (f64, f64)) -> (f64, f64, Stat
     // toward the stick answer.
     let l = (-r_n / a).max(0.0);
     let stick = if det > 0.0 { (a * r_t + b2 * r_n) / det } else { 0.0 };
-    let along = (stick + lean * l).clamp(-mu * l, mu * l);
+    let along = law.project(l, stick + lean * l);
     let sign = if along >= 0.0 { 1 } else { -1 };
     (l, along - lean * l, State::Slip(sign))
 }
@@ -142,6 +152,7 @@ fn local(block: [[f64; 2]; 2], r: [f64; 2], cone: (f64, f64)) -> (f64, f64, Stat
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contact::friction_law::{Coulomb, Law};
 
     /// A single point whose answer is known in each case: with a = d = 1,
     /// b = b′ = 0.3, μ = 0.5, a gap closed by r_N = −1 and a slip push r_T:
@@ -152,17 +163,20 @@ mod tests {
     fn the_local_problem_takes_the_case_that_holds() {
         let (a, b, d, mu) = (1.0, 0.3, 1.0, 0.5);
         let block = [[a, b], [b, d]];
-        let (l, tau, st) = local(block, [-1.0, 0.1], (mu, 0.0));
+        let (l, tau, st) = local(block, [-1.0, 0.1], (&Coulomb { mu }, 0.0, 0.0));
         assert_eq!(st, State::Stick);
         assert!((a * l + b * tau - 1.0).abs() < 1e-15 && (0.1 - b * l - d * tau).abs() < 1e-15);
         for (r_t, sign) in [(2.0, 1), (-2.0, -1)] {
-            let (l, tau, st) = local(block, [-1.0, r_t], (mu, 0.0));
+            let (l, tau, st) = local(block, [-1.0, r_t], (&Coulomb { mu }, 0.0, 0.0));
             assert_eq!(st, State::Slip(sign));
             assert!((tau - f64::from(sign) * mu * l).abs() < 1e-15);
             assert!((a * l + b * tau - 1.0).abs() < 1e-15);
             assert!(f64::from(sign) * (r_t - b * l - d * tau) > 0.0);
         }
-        assert_eq!(local(block, [1.0, 0.3], (mu, 0.0)), (0.0, 0.0, State::Open));
+        assert_eq!(
+            local(block, [1.0, 0.3], (&Coulomb { mu }, 0.0, 0.0)),
+            (0.0, 0.0, State::Open)
+        );
     }
 
     /// On random compliances with normal–tangential coupling (W = A Aᵀ/2n + I,
@@ -189,7 +203,7 @@ mod tests {
             let t = Tangents {
                 of: (0..n).collect(),
                 row_of: (0..n).map(Some).collect(),
-                mu: vec![mu; n],
+                law: (0..n).map(|_| -> Law { std::sync::Arc::new(Coulomb { mu }) }).collect(),
                 ..Default::default()
             };
             let r = sweep(&w, &q, &e, &t, 100_000, 1e-13);
