@@ -151,9 +151,34 @@ fn checked_models(scene: &Scene, meshes: &[Mesh2d], stepped: bool) -> Result<Vec
     if !stepped || !(loaded_punch || free_body) {
         return Ok(Vec::new());
     }
-    step_scenes(scene)
-        .map(|(s, _, _)| StepModel::build(&s, meshes.to_vec()))
-        .collect()
+    // Every step is built for the check; the first ones are kept for the
+    // solves, up to `KEEP_BYTES`, and the later ones built again there.
+    let (mut kept, mut bytes) = (Vec::new(), 0usize);
+    for (s, _, _) in step_scenes(scene) {
+        let sm = StepModel::build(&s, meshes.to_vec())?;
+        bytes = bytes.saturating_add(model_bytes(&sm.model));
+        if bytes <= KEEP_BYTES {
+            kept.push(sm);
+        }
+    }
+    Ok(kept)
+}
+
+/// The step models kept from the up-front check, at most (their meshes,
+/// loads and rows): each holds a copy of the meshes, so keeping a long load
+/// path's every step on a large mesh would hold them all at once, where a
+/// step built in turn holds one.
+const KEEP_BYTES: usize = 256 << 20;
+
+/// A model's heap, roughly: its meshes, its load vector and its rows.
+fn model_bytes(model: &crate::model::Model) -> usize {
+    let meshes: usize = model
+        .meshes
+        .iter()
+        .map(|m| m.nodes.len() * std::mem::size_of::<[f64; 2]>() + m.elems.len() * std::mem::size_of::<usize>())
+        .sum();
+    let rows: usize = model.cons.candidates.iter().map(|c| c.row.len()).sum();
+    meshes + model.external.len() * std::mem::size_of::<f64>() + rows * std::mem::size_of::<(usize, f64)>()
 }
 
 /// Factors K and condenses it onto the normal and tangential rows together.
