@@ -31,7 +31,7 @@ from .closed_forms import (
     hertz_reference,
     hertz_sphere_reference,
     hertz_two_cylinders,
-    lame_press_fit_pressure as lame_press_fit_pressure,
+    lame_press_fit_pressure,
     pasternak_deflection,
     rigid_footing_pressure,
     sadowsky_pressure,
@@ -63,6 +63,7 @@ __all__ = [
     "boussinesq_pressure",
     "boussinesq_settlement",
     "cattaneo_mindlin_stick",
+    "lame_press_fit_pressure",
 ]
 
 
