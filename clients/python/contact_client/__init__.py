@@ -8,7 +8,7 @@ or through a ``contact serve`` service over zenoh (``solve``,
     >>> reply["resultant"]["fy"]
 """
 
-from . import scenes
+from . import closed_forms, scenes
 from .client import (
     DEFAULT_CONNECT,
     STAGES,
@@ -41,6 +41,7 @@ __all__ = [
     "make_config",
     "schema",
     "scenes",
+    "closed_forms",
     "solve",
     "solve_local",
     "plot_pressure",

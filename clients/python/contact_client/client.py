@@ -47,6 +47,12 @@ unless it was sent unread: ``busy``, ``too_large``); an answer that does
 not is a :class:`TransportError` (``verify=False`` skips the schema check,
 whose cost grows with the reply: 14 ms for the 59 kB reply of the Hertz
 example, against a 6 ms round trip of a small solve).
+
+Length: this docstring (the service's keys, the failure kinds, what is checked) is a
+tenth of the file; the rest is one transport: the zenoh configuration, the checks of
+an answer, the query with its retries, :class:`Client` (a quarter of the file),
+``solve_local`` and the module-level shortcuts, all sharing the private query,
+decoding and progress helpers. The exceptions live in ``errors``, the reply in ``reply``.
 """
 
 from __future__ import annotations
@@ -62,6 +68,7 @@ from typing import Any, Callable, Union
 
 import zenoh
 
+from .errors import ContactError, NotSolved, TransportError
 from .reply import Reply
 
 __all__ = [
@@ -101,46 +108,6 @@ INSTANCE_REFRESH_S = 2.0
 BUSY_BACKOFF_S = 0.05
 
 Request = Union[dict, str, bytes, bytearray]
-
-
-class ContactError(Exception):
-    """A structured error reply of the service.
-
-    Attributes: ``code`` (e.g. ``"invalid_material"``), ``message``, ``path``
-    (JSON pointer into the request, ``""`` for the whole request), ``version``,
-    ``details`` (the refusal as data where there is more to it than a path, e.g.
-    ``{"loads": [{"path", "value", "min", "max"}]}`` with ``incompatible_loads``;
-    ``None`` otherwise) and ``reply`` (the whole decoded error JSON).
-    """
-
-    def __init__(self, code: str, message: str, path: str = "", *, version: str | None = None,
-                 reply: dict | None = None):
-        super().__init__(f"{code} at {path!r}: {message}" if path else f"{code}: {message}")
-        self.code = code
-        self.message = message
-        self.path = path
-        self.version = version
-        self.reply = reply if reply is not None else {
-            "version": version, "code": code, "message": message, "path": path}
-        self.details = self.reply.get("details")
-
-
-class TransportError(Exception):
-    """No structured answer: session failure, zenoh timeout, no reply, or a payload that is not the service's JSON."""
-
-
-class NotSolved(ContactError):
-    """The service answered, but the solve did not certify (``status`` is not
-    ``"solved"``: ``max_iterations`` or ``numerical_error``). ``code`` is the
-    status and ``reply`` the whole solve reply: its numbers must not be used as
-    an answer. Pass ``check=False`` to get such replies back instead."""
-
-    def __init__(self, reply: dict):
-        status = str(reply.get("status"))
-        cert = reply.get("certificate", {})
-        super().__init__(status, f"the solve ended '{status}' (method {reply.get('method')}, "
-                         f"{reply.get('iterations')} iterations, certificate {cert}); its pressures are not an answer",
-                         reply=reply)
 
 
 #: Default time a solve may take, seconds: the service's own default limit

@@ -50,6 +50,11 @@ with certificates made for the run (``contact_client.secure``; needs the
 ``cryptography`` package). Same mix, same checks::
 
     python -m contact_client.load_test --serve target/release/contact --tls --clients 16 --requests 50
+
+Length: one command-line tool, this docstring (a tenth of the file) its manual; its
+modes (the mix, ``--deadline``, ``--burst``, through ``--router`` or ``--tls``) share
+the workload, the judging of answers against the references sent alone and the
+start-up of the service, so they stay together.
 """
 
 from __future__ import annotations

@@ -17,6 +17,8 @@ from __future__ import annotations
 import json
 from typing import Any
 
+from .errors import NotSolved
+
 __all__ = ["Reply", "POINT_COLUMNS", "FRICTION_COLUMNS"]
 
 #: The columns of :meth:`Reply.points` and :meth:`Reply.to_dataframe`, one row per
@@ -122,8 +124,6 @@ class Reply(dict):
         (its numbers are then not an answer). Returns the reply, so
         ``solve_local(req, check=False).raise_for_status()`` chains."""
         if not self.ok:
-            from .client import NotSolved
-
             raise NotSolved(self)
         return self
 

@@ -10,7 +10,7 @@ import time
 import pytest
 
 import contact_client
-from contact_client import Client, ContactError, TransportError, client as client_mod, scenes
+from contact_client import Client, ContactError, TransportError, client as client_mod, closed_forms, scenes
 from scenes_small import expected_pressure, square_block
 from support import free_loopback_port
 
@@ -87,7 +87,7 @@ def test_hertz_reference_closed_form():
     # use E* = 109.89, which is two equal elastic bodies; for a rigid cylinder
     # they are a = 0.6808, p0 = 9.351, the values asserted below.)
     # a = sqrt(4 P R / (pi E*)); p0 = 2P/(pi a) = sqrt(P E* / (pi R)).
-    a, p0 = scenes.hertz_reference(10.0, 8.0, 200.0, 0.3)
+    a, p0 = closed_forms.hertz_reference(10.0, 8.0, 200.0, 0.3)
     e_star = 200.0 / 0.91
     assert a == pytest.approx(math.sqrt(320.0 / (math.pi * e_star)), rel=1e-14)
     assert p0 == pytest.approx(math.sqrt(10.0 * e_star / (math.pi * 8.0)), rel=1e-12)
@@ -96,7 +96,7 @@ def test_hertz_reference_closed_form():
     # The load balances the elliptical pressure: integral of p over [-a, a] = pi a p0 / 2 = P.
     assert math.pi * a * p0 / 2.0 == pytest.approx(10.0, rel=1e-14)
     # Plane stress: E* = E.
-    a_s, _ = scenes.hertz_reference(10.0, 8.0, 200.0, 0.3, "plane_stress")
+    a_s, _ = closed_forms.hertz_reference(10.0, 8.0, 200.0, 0.3, "plane_stress")
     assert a_s == pytest.approx(math.sqrt(320.0 / (math.pi * 200.0)), rel=1e-14)
 
 

@@ -7,7 +7,7 @@ import json
 
 import pytest
 
-from contact_client import ContactError, scenes
+from contact_client import ContactError, closed_forms, scenes
 from support import PROTO
 
 
@@ -29,18 +29,18 @@ def test_pasternak_footing_follows_the_closed_form(client):
     reply = client.solve(req)
     assert reply["status"] == "solved"
     f = reply["foundations"][0]
-    w0 = scenes.pasternak_deflection(0.0, 2.0, 1.0, k, mu)
+    w0 = closed_forms.pasternak_deflection(0.0, 2.0, 1.0, k, mu)
     for x, w in zip(f["x"], f["w"]):
         if abs(x) < 6.0:  # 1 %: the layer's cells are at most a fifth of the decay length
-            assert abs(w - scenes.pasternak_deflection(x, 2.0, 1.0, k, mu)) < 0.01 * w0
+            assert abs(w - closed_forms.pasternak_deflection(x, 2.0, 1.0, k, mu)) < 0.01 * w0
 
 
 def test_half_plane_roller_matches_hertz(client):
     req = json.loads((PROTO / "examples" / "foundation_half_plane_roller.json").read_text())
     reply = client.solve(req)
     assert reply["status"] == "solved"
-    m = scenes.hertz_measure(reply)
-    a, p0 = scenes.hertz_reference(m["P"], 8.0, 200.0, 0.3)
+    m = closed_forms.hertz_measure(reply)
+    a, p0 = closed_forms.hertz_reference(m["P"], 8.0, 200.0, 0.3)
     assert abs(m["a"] / a - 1.0) < 0.01  # panels of 0.005: 0.7 % of a
     assert abs(m["p0"] / p0 - 1.0) < 0.01
     assert reply["foundations"][0]["reference_distance"] == 20.0

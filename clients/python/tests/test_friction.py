@@ -8,7 +8,7 @@ import math
 
 import pytest
 
-from contact_client import ContactError, scenes
+from contact_client import ContactError, closed_forms, scenes
 
 MU = 0.5
 
@@ -41,9 +41,9 @@ def test_roller_stick_zone_follows_cattaneo_mindlin(client):
     for k, st in enumerate(steps[1:], start=1):
         p, q = st["resultant"]["fy"], -st["resultant"]["fx"]
         assert 0.25 < q / (MU * p) < 0.75, f"step {k}: Q/muP = {q / (MU * p)}"
-        a, _ = scenes.hertz_reference(p, radius, e, nu)
+        a, _ = closed_forms.hertz_reference(p, radius, e, nu)
         c = _stick_half_width(st["pairs"][0]["points"])
-        expect = scenes.cattaneo_mindlin_stick(a, q, MU, p)
+        expect = closed_forms.cattaneo_mindlin_stick(a, q, MU, p)
         assert c == pytest.approx(expect, rel=0.02), f"step {k}: Q/muP = {q / (MU * p)}"
 
 
@@ -112,9 +112,9 @@ def test_two_cylinders_stick_zone_follows_cattaneo_mindlin(client):
         pair = st["pairs"][0]
         p, q = st["resultant"]["fy"], -st["resultant"]["fx"]
         assert 0.25 < q / (MU * p) < 0.75, f"step {k}: Q/muP = {q / (MU * p)}"
-        a, _ = scenes.hertz_two_cylinders(p, radius, radius, e, nu, e, nu)
+        a, _ = closed_forms.hertz_two_cylinders(p, radius, radius, e, nu, e, nu)
         c = _stick_half_width(pair["points"])
-        expect = scenes.cattaneo_mindlin_stick(a, q, MU, p)
+        expect = closed_forms.cattaneo_mindlin_stick(a, q, MU, p)
         assert c == pytest.approx(expect, rel=0.02), f"step {k}: Q/muP = {q / (MU * p)}"
         other = pair["other_resultant"]
         assert other["fx"] == pytest.approx(-pair["resultant"]["fx"], abs=1e-12 * p)
@@ -127,4 +127,4 @@ def test_shifts_need_displacement_control():
         scenes.roller_on_floor(load=5.0, friction=MU, shifts=[0.01])
     with pytest.raises(ValueError):
         scenes.two_cylinders(friction=MU, shifts=[])
-    assert math.isclose(scenes.cattaneo_mindlin_stick(1.0, 0.75, 1.0, 1.0), 0.5)
+    assert math.isclose(closed_forms.cattaneo_mindlin_stick(1.0, 0.75, 1.0, 1.0), 0.5)

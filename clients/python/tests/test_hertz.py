@@ -24,7 +24,7 @@ import copy
 
 import pytest
 
-from contact_client import scenes
+from contact_client import closed_forms, scenes
 from support import EXAMPLES, load_json
 
 # Hertz agreement promised for the example (see the module docstring).
@@ -73,8 +73,8 @@ def assert_hertz(r: dict, R: float, E: float, nu: float, analysis: str = "plane_
     """Half-width, peak pressure and pressure profile of a solve reply against Hertz."""
     assert r["status"] == "solved"
     assert r["resultant"]["fy"] < 0, "the obstacle pushes the block down"
-    m = scenes.hertz_measure(r)
-    a_h, p0_h = scenes.hertz_reference(m["P"], R, E, nu, analysis)
+    m = closed_forms.hertz_measure(r)
+    a_h, p0_h = closed_forms.hertz_reference(m["P"], R, E, nu, analysis)
     info = (f"P={m['P']:.6g} zone={m['zone']} a_fe={m['a']:.6g} a_hertz={a_h:.6g} "
             f"p0_fe={m['p0']:.6g} p0_hertz={p0_h:.6g} node spacing at zone ends={m['h_edge']:.3g}")
     # The zone is centred: the scene is symmetric about x = 0.
@@ -93,8 +93,8 @@ def assert_hertz(r: dict, R: float, E: float, nu: float, analysis: str = "plane_
     # error in a moves the exact profile by at most 0.02 * 0.49 / sqrt(0.51) ~ 1.4 % of p0.
     inner = [p for p in pts if abs(p["x"]) <= 0.7 * a_h]
     assert len(inner) >= 10, "too few nodes in the contact to compare profiles"
-    worst = max(inner, key=lambda p: abs(p["pressure"] - scenes.hertz_pressure(p["x"], a_h, p0_h)))
-    err = abs(worst["pressure"] - scenes.hertz_pressure(worst["x"], a_h, p0_h))
+    worst = max(inner, key=lambda p: abs(p["pressure"] - closed_forms.hertz_pressure(p["x"], a_h, p0_h)))
+    err = abs(worst["pressure"] - closed_forms.hertz_pressure(worst["x"], a_h, p0_h))
     assert err <= HERTZ_REL_TOL * p0_h, f"{info}; worst at x={worst['x']:.4g}: {worst['pressure']:.6g}"
 
 
@@ -107,7 +107,7 @@ def test_hertz_complementarity_and_certificate(hertz_example, hertz_reply):
     r = hertz_reply
     s = _setup(hertz_example)
     pts = r["pairs"][0]["points"]
-    m = scenes.hertz_measure(r)
+    m = closed_forms.hertz_measure(r)
     peak = m["p0"]
     L = _length_scale(r, m["a"], s["R"])
     for p in pts:
@@ -132,7 +132,7 @@ def test_hertz_complementarity_and_certificate(hertz_example, hertz_reply):
 def test_hertz_resultant_symmetry_and_equilibrium(hertz_example, hertz_reply):
     r = hertz_reply
     fx, fy, mom = (r["resultant"][k] for k in ("fx", "fy", "m"))
-    m = scenes.hertz_measure(r)
+    m = closed_forms.hertz_measure(r)
     # The scene is mirror-symmetric about x = 0, so fx and the moment about the
     # origin vanish in the exact solution. The generated mesh is graded
     # symmetrically from the focus x = 0 and triangulated mirror-symmetrically, so

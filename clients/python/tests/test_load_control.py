@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from contact_client import ContactError, scenes, solve_local
+from contact_client import ContactError, closed_forms, scenes, solve_local
 
 # Equilibrium of a body held only by contact: the contact resultant is the load. The
 # certificate holds the normwise backward error of equilibrium under the tolerance
@@ -33,7 +33,7 @@ def test_hertz_cylinder_under_a_load_is_hertz_with_that_load():
     req = scenes.hertz_cylinder(load=P)
     assert req["bodies"][0]["supports"] == [{"edges": "bottom", "ux": 0.0}]
     reply = solve_local(req)
-    _hertz_check(reply, P, lambda P: scenes.hertz_reference(P, 8.0, 200.0, 0.3), 0.03, 0.02)
+    _hertz_check(reply, P, lambda P: closed_forms.hertz_reference(P, 8.0, 200.0, 0.3), 0.03, 0.02)
     # The circle pushes the block down; the loads have no moment, nor has the contact.
     assert reply["resultant"]["fy"] < 0 and abs(reply["resultant"]["m"]) < EQUILIBRIUM * P * 8.0
 
@@ -42,7 +42,7 @@ def test_roller_on_floor_under_a_load_is_hertz_with_that_load():
     # a/h_min ~ 48: zone within 3 %; peak measured +0.1 % (2 %).
     P = 5.0
     reply = solve_local(scenes.roller_on_floor(load=P))
-    _hertz_check(reply, P, lambda P: scenes.hertz_reference(P, 8.0, 200.0, 0.3), 0.03, 0.02)
+    _hertz_check(reply, P, lambda P: closed_forms.hertz_reference(P, 8.0, 200.0, 0.3), 0.03, 0.02)
     assert not reply.get("notes"), "ux = 0 on the flat fixes the sideways slide: nothing is undetermined"
 
 
@@ -50,7 +50,7 @@ def test_roller_on_plate_under_a_load_is_two_body_hertz_with_that_load():
     # a/h_min ~ 42 (the plate's nodes are 1.3 h_min apart): zone within 3 %, peak 2 %.
     P = 1.0
     reply = solve_local(scenes.roller_on_plate(load=P))
-    _hertz_check(reply, P, lambda P: scenes.hertz_two_cylinders(P, 8.0, math.inf, 200.0, 0.3, 70.0, 0.33),
+    _hertz_check(reply, P, lambda P: closed_forms.hertz_two_cylinders(P, 8.0, math.inf, 200.0, 0.3, 70.0, 0.33),
                  0.03, 0.02)
     pair = reply["pairs"][0]
     assert pair["other_resultant"]["fy"] == pytest.approx(-pair["resultant"]["fy"], rel=1e-12)
@@ -63,7 +63,7 @@ def test_ball_on_flat_under_a_load_is_3d_hertz_with_that_load():
     req = scenes.ball_on_flat(load=P)
     assert req["bodies"][0]["supports"] == [], "the axial translation is the ball's only rigid motion"
     reply = solve_local(req)
-    _hertz_check(reply, P, lambda P: scenes.hertz_sphere_reference(P, 10.0, 200.0, 0.3), 0.023, 0.01)
+    _hertz_check(reply, P, lambda P: closed_forms.hertz_sphere_reference(P, 10.0, 200.0, 0.3), 0.023, 0.01)
 
 
 def test_a_roller_with_no_support_has_its_slide_reported_as_undetermined():

@@ -4,15 +4,15 @@ from __future__ import annotations
 
 import pytest
 
-from contact_client import scenes
+from contact_client import closed_forms, scenes
 
 
 def test_roller_on_floor_obeys_hertz(client):
     # Hertz to the 2 % of the Hertz tests (tests/test_hertz.py says where the budget goes).
     r = client.solve(scenes.roller_on_floor())
     assert r["status"] == "solved" and r["resultant"]["fy"] > 0, "the floor pushes the roller up"
-    m = scenes.hertz_measure(r)
-    a, p0 = scenes.hertz_reference(m["P"], 8.0, 200.0, 0.3)
+    m = closed_forms.hertz_measure(r)
+    a, p0 = closed_forms.hertz_reference(m["P"], 8.0, 200.0, 0.3)
     assert m["a"] == pytest.approx(a, rel=0.02) and m["p0"] == pytest.approx(p0, rel=0.02)
 
 
@@ -78,7 +78,7 @@ def test_roller_on_plate_obeys_hertz_for_two_bodies():
     r = solve_local(scenes.roller_on_plate(h_min=0.02))
     pair = r["pairs"][0]
     P = abs(pair["resultant"]["fy"])
-    a, p0 = scenes.hertz_two_cylinders(P, 8.0, math.inf, 200.0, 0.3, 70.0, 0.33)
+    a, p0 = closed_forms.hertz_two_cylinders(P, 8.0, math.inf, 200.0, 0.3, 70.0, 0.33)
     zone = pair["zones"][0]
     # The zone ends are node positions: h/a is about 3 % here (measured +1.6 %);
     # the peak is resolved much better (measured +0.2 %).
@@ -100,7 +100,7 @@ def test_eccentric_footing_on_winkler_is_the_rigid_footing(e, M):
     # pressure within 1.5 % of P/B away from the ends (measured 0.6 %).
     for p in r["pairs"][0]["points"]:
         if abs(p["x"]) < 0.95:
-            ref = scenes.rigid_footing_pressure(p["x"], P, e - M / P, B)
+            ref = closed_forms.rigid_footing_pressure(p["x"], P, e - M / P, B)
             assert abs(p["pressure"] - ref) < 0.015 * P / B
 
 
