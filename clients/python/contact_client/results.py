@@ -9,9 +9,8 @@ import base64
 import math
 from typing import Any, Callable
 
-# The closed forms of plot_pressure's reference curves, under the name _closed_form
-# reads them by (they were in scenes until they moved to closed_forms).
-from . import closed_forms as scenes
+# The closed forms of plot_pressure's reference curves.
+from . import closed_forms
 
 __all__ = ["to_numpy", "described_pressure", "plot_pressure", "save_vtu"]
 
@@ -177,10 +176,11 @@ def _closed_form(request: dict, result: dict, pair: int) -> tuple[Callable[[floa
         R1 = _curvature_radius(body["mesh"], contact["edges"])
         R2 = _curvature_radius(other["mesh"], contact["against"]["edges"])
         m2 = other["material"]
-        a, p0 = scenes.hertz_two_cylinders(P, R1, R2, E, nu, m2["youngs_modulus"], m2["poisson_ratio"], analysis)
+        a, p0 = closed_forms.hertz_two_cylinders(P, R1, R2, E, nu, m2["youngs_modulus"], m2["poisson_ratio"], analysis)
         disk = body["mesh"].get("half_disk") or other["mesh"].get("half_disk") or {"center": [0.0, 0.0]}
         cx = disk["center"][0]
-        return (lambda x: scenes.hertz_pressure(x - cx, a, p0)), f"Hertz (P = {P:.4g}, a = {a:.4g}, p0 = {p0:.4g})"
+        label = f"Hertz (P = {P:.4g}, a = {a:.4g}, p0 = {p0:.4g})"
+        return (lambda x: closed_forms.hertz_pressure(x - cx, a, p0)), label
     if "obstacle" not in contact:
         raise ValueError("no closed form for a foundation pair here: give reference= a callable p(x)")
     obstacle = next(o for o in request.get("obstacles", []) if o["name"] == contact["obstacle"])
@@ -200,17 +200,17 @@ def _closed_form(request: dict, result: dict, pair: int) -> tuple[Callable[[floa
         b = shape["profile"]["psi"]["flat"]["half_width"]
         cx = shape["profile"]["reference"][0]
         if axi:
-            return (lambda x: scenes.boussinesq_pressure(x - cx, P, b)), f"Boussinesq (P = {P:.4g}, a = {b:.4g})"
-        return (lambda x: scenes.sadowsky_pressure(x - cx, P, b)), f"Sadowsky (P = {P:.4g}, b = {b:.4g})"
+            return (lambda x: closed_forms.boussinesq_pressure(x - cx, P, b)), f"Boussinesq (P = {P:.4g}, a = {b:.4g})"
+        return (lambda x: closed_forms.sadowsky_pressure(x - cx, P, b)), f"Sadowsky (P = {P:.4g}, b = {b:.4g})"
     else:
         raise ValueError(f"no closed form known for obstacle {obstacle['name']!r}: give reference= a callable p(x)")
     if axi:
-        a, p0 = scenes.hertz_sphere_reference(P, R, E, nu)
+        a, p0 = closed_forms.hertz_sphere_reference(P, R, E, nu)
         label = "Hertz, sphere"
     else:
-        a, p0 = scenes.hertz_reference(P, R, E, nu, analysis)
+        a, p0 = closed_forms.hertz_reference(P, R, E, nu, analysis)
         label = "Hertz"
-    return (lambda x: scenes.hertz_pressure(x - cx, a, p0)), f"{label} (P = {P:.4g}, a = {a:.4g}, p0 = {p0:.4g})"
+    return (lambda x: closed_forms.hertz_pressure(x - cx, a, p0)), f"{label} (P = {P:.4g}, a = {a:.4g}, p0 = {p0:.4g})"
 
 
 def _unit(result: dict, kind: str) -> str:
