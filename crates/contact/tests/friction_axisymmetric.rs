@@ -84,3 +84,57 @@ fn a_press_fit_pushed_out_slides_at_mu_times_the_fit_force() {
         }
     }
 }
+
+/// The press fit pulled out by the shaft's top (its far end from the ring's
+/// held bottom) with friction μ: the bore's points that stay in contact
+/// stick, and μ large is the stick limit. Why the top: with both bottoms
+/// held axially (`press_fit`), the bore's bottom node lies on both held
+/// faces, so moving the shaft's bottom prescribes its slip (0.01 over the
+/// step). It must slide there with the friction force μ λ, which grows with
+/// μ without bound (2.2e4 at μ = 1e4) and reaches the free nodes through
+/// the mortar weights: that scene has no bounded limit as μ grows, and at
+/// μ ≥ 100 its second step ends at `max_iterations`.
+///
+/// Measured (h = 0.05, 21 points): the bore opens except on z ∈ [0.15, 0.55];
+/// z ∈ [0.25, 0.4] sticks; the four points at the zone's two ends slip with
+/// a pressure that vanishes as 1/μ (≤ 8.8/μ of the peak, measured) while
+/// their shear stays finite (0.3–1.9, the stuck points' order): the limit
+/// μ → ∞ of Coulomb's law lets a point carry shear at a pressure → 0, so
+/// those points slip at every finite μ. The push-out force is 3.2774,
+/// 3.3179 and 3.3183 at μ = 1e2, 1e4 and 1e6: it approaches its stick
+/// limit as 1/μ, 1.2 % apart between 1e2 and 1e4, tested at 2 %.
+#[test]
+fn a_press_fit_pulled_by_its_far_end_sticks_as_mu_grows() {
+    let mut push = Vec::new();
+    for mu in [1e2, 1e4] {
+        let mut req = press_fit(mu);
+        req["bodies"][0]["supports"][0]["edges"] = json!("top");
+        let r = solved(&req);
+        assert_kkt(&r, 1e-10);
+        let friction = r.certificate.friction.expect("friction residuals");
+        for v in [friction.cone, friction.dissipation, friction.stick] {
+            assert!(v <= 1e-10, "μ {mu}: {friction:?}");
+        }
+        let all = steps(&r);
+        assert!(all.iter().all(|s| s.2 == SolveStatus::Solved), "μ {mu}");
+        let pair = &all[1].0[0];
+        let peak = pair.points.iter().map(|p| p.pressure).fold(0.0, f64::max);
+        let mut stuck = 0;
+        for p in &pair.points {
+            match p.state {
+                Some(FrictionState::Stick) => stuck += 1,
+                Some(FrictionState::Slip) => assert!(p.pressure <= 10.0 / mu * peak, "μ {mu}: {p:?}"),
+                _ => {}
+            }
+        }
+        assert!(stuck >= 4, "μ {mu}: the middle of the zone sticks");
+        let f = pair.friction.as_ref().expect("friction").tangential_resultant;
+        let other = pair.other_resultant.expect("the shaft's force");
+        assert!((other.fy + pair.resultant.fy).abs() <= 1e-12 * f.fy.abs(), "{other:?}");
+        push.push(f.fy);
+    }
+    assert!(
+        push[0] > 0.0 && (push[1] / push[0] - 1.0).abs() < 0.02,
+        "push-out forces {push:?}"
+    );
+}
