@@ -18,11 +18,13 @@
 use std::cell::Cell;
 use std::time::{Duration, Instant};
 
+pub use crate::outcome::ProgressStage;
+
 /// The deadline passed; `stage` is the one just finished or cut (it becomes
 /// `CoreError::Timeout`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Timeout {
-    pub stage: &'static str,
+    pub stage: ProgressStage,
     pub limit_s: f64,
 }
 
@@ -79,7 +81,7 @@ pub fn expired() -> bool {
 }
 
 /// `Err(Timeout)` naming `stage` (the one just finished or cut) once the deadline has passed.
-pub fn check(stage: &'static str) -> Result<(), Timeout> {
+pub fn check(stage: ProgressStage) -> Result<(), Timeout> {
     match DEADLINE.with(|d| d.get()) {
         Some(l) if Instant::now() >= l.at => Err(Timeout {
             stage,
@@ -91,7 +93,7 @@ pub fn check(stage: &'static str) -> Result<(), Timeout> {
 
 /// `Err(Timeout)` naming `stage` when less than `secs` are left: work known
 /// to take that long, and that does not poll, cannot end in time.
-pub fn check_room(stage: &'static str, secs: f64) -> Result<(), Timeout> {
+pub fn check_room(stage: ProgressStage, secs: f64) -> Result<(), Timeout> {
     match DEADLINE.with(|d| d.get()) {
         Some(l) if remaining_secs() < secs => Err(Timeout {
             stage,
@@ -116,7 +118,7 @@ mod tests {
     #[test]
     fn no_deadline_never_expires() {
         assert!(!expired());
-        assert!(check("mesh").is_ok());
+        assert!(check(ProgressStage::Mesh).is_ok());
         assert_eq!(remaining_secs(), f64::INFINITY);
     }
 
@@ -125,7 +127,7 @@ mod tests {
         {
             let _d = Deadline::install(Duration::ZERO);
             assert!(expired());
-            match check("assembly") {
+            match check(ProgressStage::Assembly) {
                 Err(Timeout { stage, limit_s }) => {
                     assert_eq!(stage, "assembly");
                     assert_eq!(limit_s, 0.0);
@@ -133,16 +135,19 @@ mod tests {
                 other => panic!("expected a timeout, got {other:?}"),
             }
         }
-        assert!(check("assembly").is_ok());
+        assert!(check(ProgressStage::Assembly).is_ok());
     }
 
     #[test]
     fn work_longer_than_the_time_left_is_not_started() {
-        assert!(check_room("factorization", 1e9).is_ok(), "no deadline, no limit");
+        assert!(
+            check_room(ProgressStage::Factorization, 1e9).is_ok(),
+            "no deadline, no limit"
+        );
         let _d = Deadline::install(Duration::from_secs(3600));
-        assert!(check_room("factorization", 1.0).is_ok());
-        let t = check_room("factorization", 7200.0).unwrap_err();
-        assert_eq!((t.stage, t.limit_s), ("factorization", 3600.0));
+        assert!(check_room(ProgressStage::Factorization, 1.0).is_ok());
+        let t = check_room(ProgressStage::Factorization, 7200.0).unwrap_err();
+        assert_eq!((t.stage, t.limit_s), (ProgressStage::Factorization, 3600.0));
     }
 
     #[test]

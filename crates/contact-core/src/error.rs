@@ -63,7 +63,7 @@ impl From<crate::linalg::LinalgError> for CoreError {
 impl From<crate::cancel::Timeout> for CoreError {
     fn from(t: crate::cancel::Timeout) -> Self {
         CoreError::Timeout {
-            stage: t.stage,
+            stage: t.stage.as_str(),
             limit_s: t.limit_s,
         }
     }

@@ -2,6 +2,7 @@
 //! progress sink, times it, and checks the deadline when it ends, so a stage
 //! is named once (in [`Stage`]) rather than three times by string.
 
+use crate::outcome::ProgressStage;
 use std::time::Instant;
 
 use crate::error::CoreError;
@@ -18,22 +19,22 @@ pub enum Stage {
 }
 
 impl Stage {
-    /// The name progress reports carry (`progress::STAGES`).
-    pub fn name(self) -> &'static str {
+    /// The stage progress reports name (`progress::STAGES`).
+    pub fn name(self) -> ProgressStage {
         match self {
-            Stage::Mesh => "mesh",
-            Stage::Assembly => "assembly",
-            Stage::Factorization => "factorization",
-            Stage::ContactSolve => "contact_solve",
-            Stage::Post => "post",
+            Stage::Mesh => ProgressStage::Mesh,
+            Stage::Assembly => ProgressStage::Assembly,
+            Stage::Factorization => ProgressStage::Factorization,
+            Stage::ContactSolve => ProgressStage::ContactSolve,
+            Stage::Post => ProgressStage::Post,
         }
     }
 
     /// The stage a timeout says it stopped after: the factorization stage ends
     /// with the condensation (its own progress report, `methods::condensed`).
-    fn done(self) -> &'static str {
+    fn done(self) -> ProgressStage {
         match self {
-            Stage::Factorization => "condensation",
+            Stage::Factorization => ProgressStage::Condensation,
             s => s.name(),
         }
     }
@@ -98,10 +99,13 @@ const SECS_PER_CONDENSATION_FLOP: f64 = 2.3e-11;
 /// `symbolic_secs`, done) is known, and what follows from it (condensation of
 /// `condensation_flops` multiply–adds, the contact solve).
 pub fn revise_factorization(symbolic_secs: f64, predicted_secs: f64, condensation_flops: f64) {
-    crate::progress::revise("factorization", symbolic_secs + predicted_secs);
+    crate::progress::revise(ProgressStage::Factorization, symbolic_secs + predicted_secs);
     crate::progress::credit(symbolic_secs);
-    crate::progress::revise("condensation", SECS_PER_CONDENSATION_FLOP * condensation_flops);
-    crate::progress::revise("contact_solve", 0.09 * predicted_secs);
+    crate::progress::revise(
+        ProgressStage::Condensation,
+        SECS_PER_CONDENSATION_FLOP * condensation_flops,
+    );
+    crate::progress::revise(ProgressStage::ContactSolve, 0.09 * predicted_secs);
     // Told at once: the factorization is most of a large solve, and the
     // estimate of what is left should not wait for its end.
     crate::progress::report();

@@ -42,6 +42,26 @@ macro_rules! named {
 }
 
 named! {
+    /// The stage a solve is in, as progress reports and timeouts name it.
+    ProgressStage {
+        /// Reading or generating the meshes.
+        Mesh = "mesh",
+        /// The stiffness, the loads and the contact rows.
+        Assembly = "assembly",
+        /// The sparse Cholesky factorization of K.
+        Factorization = "factorization",
+        /// K's inverse condensed onto the contact rows.
+        Condensation = "condensation",
+        /// The contact iterations.
+        ContactSolve = "contact_solve",
+        /// Pressures, zones, certificate and fields.
+        Post = "post",
+        /// The error estimate's companion solve.
+        Estimate = "estimate",
+    }
+}
+
+named! {
     /// Whether the answer can be used.
     Status {
         /// Converged; the certificate is within the tolerance.

@@ -12,11 +12,13 @@ use std::cell::RefCell;
 use std::rc::Rc;
 use std::time::Instant;
 
+pub use crate::outcome::ProgressStage;
+
 /// One report: the stage being run, and within `contact_solve` the iteration
 /// and its residual (the largest |min(λ_i, w_i)|, 0 at the solution; nondimensional).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Progress {
-    pub stage: &'static str,
+    pub stage: ProgressStage,
     pub iteration: Option<usize>,
     pub residual: Option<f64>,
     /// Seconds since the sink was installed.
@@ -35,13 +37,13 @@ pub struct Progress {
 
 /// The stages in the order a condensed solve runs them (`factorization` and
 /// `condensation` are skipped on a cache hit).
-pub const STAGES: [&str; 6] = [
-    "mesh",
-    "assembly",
-    "factorization",
-    "condensation",
-    "contact_solve",
-    "post",
+pub const STAGES: [ProgressStage; 6] = [
+    ProgressStage::Mesh,
+    ProgressStage::Assembly,
+    ProgressStage::Factorization,
+    ProgressStage::Condensation,
+    ProgressStage::ContactSolve,
+    ProgressStage::Post,
 ];
 
 /// The stage after `STAGES` when the reply's error is estimated: the
@@ -49,12 +51,13 @@ pub const STAGES: [&str; 6] = [
 /// this one's share of the plan (`Sink::nested`). Without it the bar sat at
 /// the end of `post` for the whole companion solve, up to five times the
 /// solve's own time on a given mesh.
-pub const ESTIMATE: &str = "estimate";
+pub const ESTIMATE: ProgressStage = ProgressStage::Estimate;
 
 struct Installed {
     sink: Box<dyn FnMut(&Progress)>,
     start: Instant,
-    stage: &'static str,
+    /// The stage entered last (`Mesh` before the first).
+    stage: ProgressStage,
     /// Predicted seconds of each stage of `STAGES`.
     plan: [f64; 6],
     /// Contact iterations reported in the current stage.
@@ -79,7 +82,7 @@ impl Installed {
         Self {
             sink,
             start: Instant::now(),
-            stage: "",
+            stage: ProgressStage::Mesh,
             plan: [0.0; 6],
             iterations: 0,
             credit: 0.0,
@@ -96,7 +99,7 @@ impl Installed {
         }
         let k = STAGES.iter().position(|s| *s == self.stage).unwrap_or(0);
         let before: f64 = self.plan[..k].iter().sum();
-        let within = if self.stage == "contact_solve" {
+        let within = if self.stage == ProgressStage::ContactSolve {
             (self.iterations as f64 / EXPECTED_ITERATIONS).min(0.95) * self.plan[k]
         } else {
             0.0
@@ -192,7 +195,7 @@ impl Drop for Sink {
     }
 }
 
-fn emit(stage: Option<&'static str>, iteration: Option<usize>, residual: Option<f64>) {
+fn emit(stage: Option<ProgressStage>, iteration: Option<usize>, residual: Option<f64>) {
     SINK.with(|s| {
         // A sink that reports progress itself would find the cell borrowed: skip, never panic.
         let Ok(mut slot) = s.try_borrow_mut() else { return };
@@ -225,7 +228,7 @@ pub fn expect_estimate(share: f64) {
 /// A better prediction of one stage, once the solve knows more (the
 /// factorization's cost after its symbolic analysis; 0 for a stage the cache
 /// skips).
-pub fn revise(stage: &str, seconds: f64) {
+pub fn revise(stage: ProgressStage, seconds: f64) {
     with_installed(|i| {
         if let Some(k) = STAGES.iter().position(|s| *s == stage) {
             i.plan[k] = seconds;
@@ -277,7 +280,7 @@ pub fn report() {
 }
 
 /// The solve enters `name`.
-pub fn stage(name: &'static str) {
+pub fn stage(name: ProgressStage) {
     emit(Some(name), None, None);
 }
 
@@ -296,21 +299,37 @@ mod tests {
     use super::*;
     use std::sync::{Arc, Mutex};
 
+    /// Every stage a solve can report is in the plan or is the estimate's,
+    /// once: a stage added to `ProgressStage` and not placed fails here.
+    #[test]
+    fn every_stage_is_planned_or_the_estimate() {
+        let mut placed: Vec<ProgressStage> = STAGES.to_vec();
+        placed.push(ESTIMATE);
+        assert_eq!(placed.len(), ProgressStage::ALL.len());
+        for s in ProgressStage::ALL {
+            assert_eq!(placed.iter().filter(|&&p| p == *s).count(), 1, "{s}");
+        }
+    }
+
     #[test]
     fn reports_go_to_the_installed_sink_in_order_and_stop_on_drop() {
         let seen = Arc::new(Mutex::new(Vec::new()));
         {
             let s = seen.clone();
             let _g = Sink::install(move |p| s.lock().unwrap().push((p.stage, p.iteration)));
-            stage("mesh");
-            stage("contact_solve");
+            stage(ProgressStage::Mesh);
+            stage(ProgressStage::ContactSolve);
             iteration(1, 0.5);
         }
-        stage("post");
+        stage(ProgressStage::Post);
         let seen = seen.lock().unwrap();
         assert_eq!(
             *seen,
-            vec![("mesh", None), ("contact_solve", None), ("contact_solve", Some(1))]
+            vec![
+                (ProgressStage::Mesh, None),
+                (ProgressStage::ContactSolve, None),
+                (ProgressStage::ContactSolve, Some(1))
+            ]
         );
     }
 
@@ -322,7 +341,7 @@ mod tests {
         let s = seen.clone();
         let _g = Sink::install(move |p| s.lock().unwrap().push(p.done));
         plan([1.0, 1.0, 10.0, 0.0, 0.0, 0.0]);
-        stage("factorization");
+        stage(ProgressStage::Factorization);
         credit(2.0);
         within(0.5);
         assert_eq!(seen.lock().unwrap().len(), 1, "no report sooner than 0.25 s");
@@ -342,18 +361,18 @@ mod tests {
         let _g = Sink::install(move |p| s.lock().unwrap().push((p.stage, p.done, p.total)));
         plan([1.0; 6]);
         expect_estimate(0.5);
-        stage("post");
+        stage(ProgressStage::Post);
         stage(ESTIMATE);
         {
             let _inner = Sink::nested();
             plan([1.0, 0.0, 0.0, 0.0, 0.0, 1.0]);
-            stage("mesh");
+            stage(ProgressStage::Mesh);
             std::thread::sleep(std::time::Duration::from_millis(260));
-            stage("post");
+            stage(ProgressStage::Post);
             // A revision that lowers the companion's fraction done (1 of 4)
             // does not move the bar back.
             std::thread::sleep(std::time::Duration::from_millis(260));
-            revise("post", 3.0);
+            revise(ProgressStage::Post, 3.0);
             report();
         }
         report();
@@ -362,7 +381,7 @@ mod tests {
         assert_eq!(
             *seen.lock().unwrap(),
             vec![
-                ("post", 5.0, 9.0),
+                (ProgressStage::Post, 5.0, 9.0),
                 (ESTIMATE, 6.0, 9.0),
                 (ESTIMATE, 7.5, 9.0),
                 (ESTIMATE, 7.5, 9.0),

@@ -146,8 +146,8 @@ fn solve_condensed(
     let key = cache::key(scene, &model.meshes, &model.dofs, &model.cons);
     let (op, cache_state) = match cache.and_then(|c| c.get(key)) {
         Some(op) => {
-            crate::progress::revise("factorization", 0.0);
-            crate::progress::revise("condensation", 0.0);
+            crate::progress::revise(crate::outcome::ProgressStage::Factorization, 0.0);
+            crate::progress::revise(crate::outcome::ProgressStage::Condensation, 0.0);
             (op, CacheState::Hit)
         }
         None => {
@@ -196,9 +196,9 @@ fn solve_full(scene: &Scene, model: &Model, mut obs: Observer) -> Result<Report,
     // No factorization stage of its own: the active set refactors a few times
     // inside the contact solve.
     let factor = observer::predicted(model.dofs.n_free as f64 / 2.0, false)[2];
-    crate::progress::revise("factorization", 0.0);
-    crate::progress::revise("condensation", 0.0);
-    crate::progress::revise("contact_solve", 3.0 * factor);
+    crate::progress::revise(crate::outcome::ProgressStage::Factorization, 0.0);
+    crate::progress::revise(crate::outcome::ProgressStage::Condensation, 0.0);
+    crate::progress::revise(crate::outcome::ProgressStage::ContactSolve, 3.0 * factor);
     let stiffness = assemble_stiffness(scene, &model.meshes, &model.dofs)?;
     let f = assemble_loads(&model.external, &model.dofs, &stiffness);
     obs.leave(Stage::Assembly)?;

@@ -75,7 +75,7 @@ fn install(callback: Py<PyAny>, failed: Arc<Mutex<Option<PyErr>>>) -> contact::p
         Python::attach(|py| {
             let call = || -> PyResult<()> {
                 let msg = PyDict::new(py);
-                msg.set_item("stage", p.stage)?;
+                msg.set_item("stage", p.stage.as_str())?;
                 msg.set_item("elapsed", p.elapsed)?;
                 msg.set_item("done", p.done)?;
                 msg.set_item("total", p.total)?;

@@ -15,7 +15,7 @@ fn a_solve_reports_every_stage_in_order() {
     );
     let reply = contact::solve_bytes(&std::fs::read(example).unwrap(), &contact::Limits::default()).unwrap();
     let seen = seen.lock().unwrap();
-    let mut stages: Vec<&str> = seen.iter().map(|p| p.stage).collect();
+    let mut stages: Vec<_> = seen.iter().map(|p| p.stage).collect();
     stages.dedup();
     // The example's error is estimated (the default): its companion solve is
     // the last stage, and the bar ends where the plan does.
@@ -53,7 +53,7 @@ fn refinement_reports_each_round() {
     let numbers: Vec<usize> = seen.iter().map(|p| p.round.expect("a round number")).collect();
     assert!(numbers.windows(2).all(|w| w[0] <= w[1]), "{numbers:?}");
     for k in 1..=rounds {
-        let mut stages: Vec<&str> = seen.iter().filter(|p| p.round == Some(k)).map(|p| p.stage).collect();
+        let mut stages: Vec<_> = seen.iter().filter(|p| p.round == Some(k)).map(|p| p.stage).collect();
         stages.dedup();
         let mut expected = STAGES.to_vec();
         expected.push(ESTIMATE);

@@ -152,7 +152,7 @@ pub(crate) fn factorize(
         .map(|_| ())
         .map_err(|_| Stop::NotPositiveDefinite);
     };
-    crate::cancel::check("factorization").map_err(Stop::Deadline)?;
+    crate::cancel::check(crate::outcome::ProgressStage::Factorization).map_err(Stop::Deadline)?;
     let col_ptr_val = sym.col_ptr_for_val();
     const NONE: usize = usize::MAX;
     let mut global_to_local = vec![NONE; n];
@@ -172,7 +172,7 @@ pub(crate) fn factorize(
         if work >= WORK_BETWEEN_CHECKS {
             done += work;
             work = 0.0;
-            crate::cancel::check("factorization").map_err(Stop::Deadline)?;
+            crate::cancel::check(crate::outcome::ProgressStage::Factorization).map_err(Stop::Deadline)?;
             crate::progress::within(done / total.max(1.0));
         }
         Ok(())
@@ -414,6 +414,9 @@ mod tests {
             panic!("expected a stop at the deadline, got {r:?}")
         };
         let e = crate::error::CoreError::from(crate::linalg::LinalgError::Deadline(t));
-        assert_eq!((e.code(), t.stage), ("timeout", "factorization"));
+        assert_eq!(
+            (e.code(), t.stage),
+            ("timeout", crate::outcome::ProgressStage::Factorization)
+        );
     }
 }

@@ -178,7 +178,7 @@ impl Reach {
             // Every supernode with work (a look at the clock is ~25 ns beside
             // its dense products): one in 256 let a deadline at 0.5M DOF be
             // seen 0.20 s late, the top supernodes holding most of the work.
-            crate::cancel::check("condensation")?;
+            crate::cancel::check(crate::outcome::ProgressStage::Condensation)?;
         }
         let np = self.owner.len();
         let mut g = Mat::<f64>::zeros(np, np);

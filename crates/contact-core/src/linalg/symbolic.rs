@@ -26,7 +26,8 @@ pub(super) fn symbolic(a: &SparseColMat<usize, f64>) -> Result<SymbolicCholesky<
     // 1.5 s limit on a graded block was answered after 2.9–3.3 s, 1.7 s of
     // it in the ordering).
     let predicted = (ORDERING_PER_DOF + SYMBOLIC_PER_DOF) * a.nrows() as f64 * super::rate::scale();
-    crate::cancel::check_room("factorization", predicted).map_err(LinalgError::Deadline)?;
+    crate::cancel::check_room(crate::outcome::ProgressStage::Factorization, predicted)
+        .map_err(LinalgError::Deadline)?;
     let started = std::time::Instant::now();
     let (fwd, inv) = ordering(a)?;
     // Neither the ordering nor faer's symbolic factorization after it polls
@@ -34,8 +35,8 @@ pub(super) fn symbolic(a: &SparseColMat<usize, f64>) -> Result<SymbolicCholesky<
     // at 2M): a deadline passed during the ordering stops the solve here, and
     // so does one the symbolic factorization, about as long, would pass.
     let took = started.elapsed().as_secs_f64();
-    crate::cancel::check("factorization").map_err(LinalgError::Deadline)?;
-    crate::cancel::check_room("factorization", took).map_err(LinalgError::Deadline)?;
+    crate::cancel::check(crate::outcome::ProgressStage::Factorization).map_err(LinalgError::Deadline)?;
+    crate::cancel::check_room(crate::outcome::ProgressStage::Factorization, took).map_err(LinalgError::Deadline)?;
     let perm = PermRef::new_checked(&fwd, &inv, a.nrows());
     let params = CholeskySymbolicParams {
         supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,

@@ -57,8 +57,8 @@ pub fn prepare_rows(
     );
     let chol = Cholesky::with_symbolic(symbolic, &stiffness.k)?;
     let t_factorization = t0.elapsed().as_secs_f64();
-    crate::cancel::check("factorization")?;
-    crate::progress::stage("condensation");
+    crate::cancel::check(crate::outcome::ProgressStage::Factorization)?;
+    crate::progress::stage(crate::outcome::ProgressStage::Condensation);
     let t1 = Instant::now();
     let condensed = reach.condense(&chol)?;
     Ok(Prepared {

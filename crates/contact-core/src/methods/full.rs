@@ -174,7 +174,7 @@ fn active_set_full(
     let mut seen: Vec<Vec<bool>> = Vec::new();
     let mut last = None;
     for it in 1..=s.max_iterations {
-        crate::cancel::check("contact_solve")?;
+        crate::cancel::check(crate::outcome::ProgressStage::ContactSolve)?;
         let mut fixed = vec![f64::NAN; n];
         for i in 0..m {
             if active[i] {

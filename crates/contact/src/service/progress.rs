@@ -42,7 +42,8 @@ pub fn install(session: zenoh::Session, key: String, request_id: String) -> crat
             }
             last_iteration = Instant::now();
         }
-        let mut v = serde_json::json!({"stage": p.stage, "elapsed": p.elapsed, "done": p.done, "total": p.total});
+        let mut v =
+            serde_json::json!({"stage": p.stage.as_str(), "elapsed": p.elapsed, "done": p.done, "total": p.total});
         if let Some(k) = p.iteration {
             v["iteration"] = k.into();
         }

@@ -450,7 +450,7 @@ mod tests {
         let json: serde_json::Value = serde_json::from_slice(&body.unwrap_err()).unwrap();
         assert_eq!(json["request_id"], "inst-7");
         // The thread goes on, without the panicking solve's deadline.
-        assert!(crate::cancel::check("post").is_ok());
+        assert!(crate::cancel::check(crate::cancel::ProgressStage::Post).is_ok());
     }
 
     #[test]
@@ -466,7 +466,7 @@ mod tests {
         let err = result.unwrap_err();
         assert_eq!(err.code, ErrorCode::Timeout);
         assert!(err.message.contains("'mesh'"), "{}", err.message);
-        assert!(crate::cancel::check("mesh").is_ok());
+        assert!(crate::cancel::check(crate::cancel::ProgressStage::Mesh).is_ok());
     }
 
     #[test]

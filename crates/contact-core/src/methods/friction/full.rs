@@ -209,7 +209,7 @@ const GMRES_TOL: f64 = 1e-14;
 
 impl NewtonSystem for Rows<'_> {
     fn solve(&mut self, state: &[State], at: &[f64]) -> Result<Option<Iterate>, CoreError> {
-        crate::cancel::check("contact_solve")?;
+        crate::cancel::check(crate::outcome::ProgressStage::ContactSolve)?;
         let (rot, t) = (&self.rot, self.p.tangents);
         let n = rot.k.nrows();
         let m = rot.coord.len();
