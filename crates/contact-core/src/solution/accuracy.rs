@@ -404,7 +404,7 @@ pub fn described_l2(
 }
 
 /// `described_l2` of the points and reach of `described`.
-fn described_l2_of(
+pub(crate) fn described_l2_of(
     pts: &[(f64, f64, f64)],
     reach: &[f64],
     f: &dyn Fn(f64, f64) -> f64,
@@ -527,7 +527,14 @@ mod tests {
         let mut reach = vec![0.0; pts.len()];
         end_inside(&mut pts, &mut reach, [1.0, 0.0], [a, 0.0]);
         let inside = error(&pts, &reach);
-        assert!(inside < before / 3.0, "{inside} against {before}");
+        // Ended at the edge, the field is Hertz's p² interpolated at spacing
+        // 0.1 with its edge exact, as in the test above (< 0.004; 0.0017
+        // measured). Ended at the node, it carries p₉² (1 − x)/0.1 on
+        // [a, 1], where the pressure is 0: that span alone is
+        // √(p₉² 0.025² / 0.2 / (2a³/3)) = 0.0267 of the zone's norm.
+        let on_the_open_span = ((a * a - 0.81) * 0.025f64.powi(2) / 0.2 / (2.0 * a.powi(3) / 3.0)).sqrt();
+        assert!(inside < 0.004, "{inside}");
+        assert!(before >= on_the_open_span, "{before} against {on_the_open_span}");
         assert_eq!(described_at(&pts, &reach, 0.99, 0.0), 0.0);
         assert_eq!(described_at(&pts, &reach, 1.0, 0.0), 0.0);
         let p9 = exact(0.9, 0.0);

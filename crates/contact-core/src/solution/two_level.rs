@@ -8,7 +8,7 @@
 use crate::outcome::EstimateBasis;
 use crate::solution::accuracy;
 use crate::solution::accuracy::{
-    along, along_polyline, described, described_at, described_l2, field, field_with_reach, fit_quadratic, MIN_FIT,
+    along, along_polyline, described, described_at, described_l2_of, field, field_with_reach, fit_quadratic, MIN_FIT,
 };
 use crate::solution::corners;
 use crate::solution::report::{PairAccuracy, PairReport, SingularEnd};
@@ -49,16 +49,15 @@ use crate::solution::report::{PairAccuracy, PairReport, SingularEnd};
 /// other level's described field; the nodal difference above is its fallback
 /// where no pressure is described. Its effectivity against the overkill
 /// tables and 4× finer solves is `contact-verify`'s effectivity example
-/// (`err_curve`, the table in docs/verification/accuracy.md); why the field is described so is
-/// `accuracy::described`.
+/// (`err_curve`, the table in docs/verification/accuracy.md); why the field
+/// is described so is `accuracy::described`.
 ///
 /// The zone ends' own nodal error (`edge_deviation`) is a second, direct
-/// estimate; the larger of the two is the pressure's. Over seven scenes at
-/// three levels each, T3 and T6 (`contact-bench --convergence`,
-/// effectivity.csv), the pressure's effectivity is 0.35–2.86, 39 of 42 rows
-/// within [0.5, 2]; without this term the finer levels' last-node error went
-/// unseen (measured with T6 multipliers on the corners only: 0.19 at worst
-/// on the smooth-edged scenes, against 0.56 with it). Zone ends where the
+/// estimate, and the edge's placement (`edge_placement`) a third; the
+/// largest is the pressure's (effectivities: the table cited above). Without
+/// the nodal term the finer levels' last-node error went unseen (measured
+/// with T6 multipliers on the corners only: 0.19 at worst on the
+/// smooth-edged scenes, against 0.56 with it). Zone ends where the
 /// pressure is unbounded are left out with a band around them (`corners`).
 ///
 /// The peak's error is the nodal difference between the levels where the
@@ -81,9 +80,10 @@ pub fn two_level(answer: &PairReport, other: &PairReport, ratio: f64) -> PairAcc
     let edge = if den > 0.0 { edge_deviation(answer) / den } else { 0.0 };
     // The described field's difference (the square-root facets to the
     // fitted edges included), along the answer's surface.
+    let (pa, ra) = described(answer);
     let (po, ro) = described(other);
-    let (num, den, _) = described_l2(answer, &|x, y| described_at(&po, &ro, x, y), &counted);
-    let curve = (den > 0.0).then(|| (num / den).sqrt());
+    let (num, of_curve, _) = described_l2_of(&pa, &ra, &|x, y| described_at(&po, &ro, x, y), &counted);
+    let curve = (of_curve > 0.0).then(|| (num / of_curve).sqrt());
     // A zone of a few nodes has no fitted edges and its described facets are
     // guesses: there the nodal difference counts too (the Hertz example at
     // E × 1000, three nodes in contact: 2.7 % from the described field
@@ -94,8 +94,8 @@ pub fn two_level(answer: &PairReport, other: &PairReport, ratio: f64) -> PairAcc
         (c, n) => c.or(n),
     };
     // Where the described edge may lie, which both levels can miss alike.
-    let placement = if den > 0.0 {
-        (edge_placement(answer) / den).sqrt()
+    let placement = if of_curve > 0.0 {
+        (edge_placement(&pa, &ra) / of_curve).sqrt()
     } else {
         0.0
     };
@@ -264,8 +264,7 @@ fn peak_difference(answer: &PairReport, other: &PairReport, counted: &dyn Fn(f64
 /// chance: on the T3 disk at h_min = 0.00202 R (6.6k DOF) the described
 /// field was 0.68 % off its overkill table, 82 % of its square on the edge's
 /// facet, where the two levels' estimate read 0.36 %; with this term 0.51 %.
-fn edge_placement(pair: &PairReport) -> f64 {
-    let (pts, reach) = described(pair);
+fn edge_placement(pts: &[(f64, f64, f64)], reach: &[f64]) -> f64 {
     let mut sum = 0.0;
     for i in 0..pts.len() {
         if reach[i] <= 0.0 || pts[i].2 <= 0.0 {
@@ -306,10 +305,8 @@ fn edge_placement(pair: &PairReport) -> f64 {
 /// The fitted edge's typical error as a fraction of its facet: over ten
 /// levels of the disk on a flat (T3 and T6, h_min 0.01 to 0.000625 R) its
 /// distance to the overkill table's edge was 0.00–0.24 facets, root mean
-/// square 0.13. With 0.1 the pressure's effectivity over the seven
-/// convergence scenes at three levels (`contact-verify`'s effectivity
-/// example) stays at or above 0.6, where without it the block's coarsest T3
-/// level read 0.43; rows whose error is not the edge's read up to 2.9.
+/// square 0.13. What it does to the pressure's effectivity over the
+/// convergence scenes is the table in docs/verification/accuracy.md.
 const PLACEMENT: f64 = 0.1;
 /// Midpoint samples of a placement integral (its square-root end converges
 /// like n^(−2)).
