@@ -413,3 +413,68 @@ fn refinement_predicts_its_rounds_within_the_time_limit() {
         .expect("warned");
     assert!(w.message.contains("time limit"), "{}", w.message);
 }
+
+/// The estimator seam (`adapt::estimator`): an estimator defined here alone,
+/// which needs no companion, makes every pair's accuracy with no companion
+/// solve; the registered two-level estimator called through the seam gives
+/// the default estimate exactly.
+#[test]
+fn a_trial_estimator_through_the_seam_needs_no_companion() {
+    use contact_core::adapt::estimator::{Companion, Estimator, TwoLevel};
+    use contact_core::outcome::EstimateBasis;
+    use contact_core::solution::report::{PairAccuracy, PairReport, Report};
+    use contact_core::{Limits, Scene};
+
+    /// The zone ends' uncertainties doubled, and nothing else.
+    struct Trial;
+    impl Estimator for Trial {
+        fn companion(&self, _: &Scene, _: &Report, _: usize) -> Result<Option<Companion>, String> {
+            Ok(None)
+        }
+        fn pair(&self, answer: &PairReport, companion: Option<(&PairReport, f64)>) -> PairAccuracy {
+            assert!(companion.is_none());
+            PairAccuracy {
+                basis: EstimateBasis::ZoneEdges,
+                pressure_l2: None,
+                peak: None,
+                resultant: None,
+                zone_edges: answer
+                    .zones_along
+                    .iter()
+                    .map(|z| z.uncertainty.map(|u| 2.0 * u))
+                    .collect(),
+                fitted_edges: Vec::new(),
+                singular_ends: Vec::new(),
+            }
+        }
+        fn share(&self, _: &Scene) -> f64 {
+            0.0
+        }
+    }
+
+    let mut req = disk_request(0.0088, "t3");
+    let with_estimate = solve(&req);
+    req["settings"] = json!({"estimate": false});
+    let parsed: contact_proto::SolveRequest = serde_json::from_value(req).unwrap();
+    let limits = Limits::default();
+    let scene = Scene::try_new(&parsed, &limits).unwrap();
+    let bare = contact_core::solve(&scene, &limits, None).unwrap();
+
+    let mut report = bare.clone();
+    let no_solve = |_: &Scene| -> Result<Report, contact_core::CoreError> { panic!("Trial needs no companion") };
+    let next = contact_core::adapt::estimate_by(&Trial, &scene, &mut report, &no_solve, usize::MAX);
+    assert!(next.is_none());
+    let pair = &report.pairs[0];
+    let acc = pair.accuracy.as_ref().expect("the trial's accuracy");
+    assert_eq!(acc.basis, EstimateBasis::ZoneEdges);
+    assert_eq!(acc.zone_edges.len(), pair.zones_along.len());
+    for (e, z) in acc.zone_edges.iter().zip(&pair.zones_along) {
+        assert_eq!(*e, z.uncertainty.map(|u| 2.0 * u));
+    }
+
+    // The two-level estimator through the seam: the default estimate, to the bit.
+    let mut report = bare;
+    let solver = |s: &Scene| contact_core::solve(s, &limits, None);
+    contact_core::adapt::estimate_by(&TwoLevel, &scene, &mut report, &solver, usize::MAX);
+    assert_eq!(report.pairs[0].accuracy, with_estimate.pairs[0].accuracy);
+}

@@ -1,7 +1,8 @@
 //! The error bar of an answer, and refinement until it meets a requested
 //! accuracy.
 //!
-//! **Estimate.** After the solve, the same scene is solved again on a
+//! **Estimate** (`estimator`: the seam; `estimator::TwoLevel`, the one
+//! registered). After the solve, the same scene is solved again on a
 //! companion whose every element differs by a factor 2 in size, far field
 //! included, and each pair's nodal pressure, peak and resultant are compared
 //! (`solution::two_level`, Richardson-scaled). On generated meshes
@@ -37,20 +38,20 @@
 //! solved, `solved` with a `tolerance_not_reached` warning. A target is
 //! only reached by a two-level estimate, never by the zone ends alone.
 
+mod cost;
+pub mod estimator;
 mod sizing;
 
 use crate::outcome::{EstimateBasis, StopReason, WarningCode};
 use std::time::Instant;
 
 use crate::error::CoreError;
-use crate::scene::{AccuracyTarget, MeshSource, Scene};
+use crate::scene::{AccuracyTarget, Scene};
+use crate::solution::accuracy;
 use crate::solution::report::{PairAccuracy, Refinement, Report, Round, Status, Warning};
-use crate::solution::{accuracy, two_level};
-use sizing::{resized, smallest_size};
-
-/// Element size ratio of the estimate's companion and of one round in the
-/// zones.
-const RATIO: f64 = 2.0;
+use cost::{solve_seconds, TIME_GROWTH};
+use estimator::Estimator;
+use sizing::{given, resized, smallest_size, RATIO};
 /// A generated round's factor f on `h_min` is sized to land its estimate at
 /// `AIM` of the target's met value, from the last estimate e and the order
 /// the estimate assumes (h² for the pressure, h for a zone end):
@@ -85,17 +86,6 @@ const PROGRESS: f64 = 0.9;
 /// their overkill tables): at the target itself the true error came out up to
 /// 1.5× above it.
 const SAFETY: f64 = 0.6;
-/// A solve's time grows like its unknowns to this power: the Hertz example
-/// took 0.080, 0.335 and 1.713 s at 30k, 104k and 391k DOF (exponent 1.19).
-const TIME_GROWTH: f64 = 1.2;
-/// The coarser companion's time over its solve's, at most (14–50 %
-/// measured, the larger on small scenes).
-const ESTIMATE_SHARE: f64 = 0.5;
-/// Largest finer companion of a given mesh: about 1 kB of factor per unknown
-/// at this size (81 M entries of L at 612k DOF), so 1.3 GB of factor besides
-/// the mesh and the workspace; a larger mesh's reply carries the zone ends
-/// alone.
-const FINER_MAX_DOFS: f64 = 1.2e6;
 
 /// A solve of a whole scene (its load factors included).
 pub type Solver<'a> = dyn Fn(&Scene) -> Result<Report, CoreError> + 'a;
@@ -107,71 +97,48 @@ pub type Solver<'a> = dyn Fn(&Scene) -> Result<Report, CoreError> + 'a;
 /// service also bounds by its memory per request), which a finer companion
 /// may not pass.
 pub fn estimate(scene: &Scene, report: &mut Report, solve: &Solver, max_dofs: usize) {
-    estimate_with(scene, report, solve, max_dofs);
+    estimate_by(estimator::of(scene), scene, report, solve, max_dofs);
 }
 
-/// The estimate's companion solve over the solve's own time, for the
-/// progress plan: at most `ESTIMATE_SHARE` for a coarser companion, the
-/// growth of four times the unknowns for a given mesh's finer one.
+/// The estimate's time over the solve's own, for the progress plan (the
+/// scene's estimator's `share`).
 pub fn estimate_share(scene: &Scene) -> f64 {
-    if given(scene) {
-        (RATIO * RATIO).powf(TIME_GROWTH)
-    } else {
-        ESTIMATE_SHARE
-    }
+    estimator::of(scene).share(scene)
 }
 
-/// Whether a body of the scene has a given (inline or Gmsh) mesh, which
-/// cannot be coarsened.
-fn given(scene: &Scene) -> bool {
-    scene.bodies.iter().any(|b| matches!(b.mesh, MeshSource::Inline(_)))
-}
-
-/// `estimate`, returning the finer companion (a given mesh's, every triangle
-/// split in four) with its solved report, which is the next refinement
-/// round.
-fn estimate_with(scene: &Scene, report: &mut Report, solve: &Solver, max_dofs: usize) -> Option<(Scene, Report)> {
+/// `estimate` by `est`, returning the companion with its solved report when
+/// it is also the next refinement round (`Companion::next_round`).
+pub fn estimate_by(
+    est: &dyn Estimator,
+    scene: &Scene,
+    report: &mut Report,
+    solve: &Solver,
+    max_dofs: usize,
+) -> Option<(Scene, Report)> {
     let t = Instant::now();
     let mut finer = None;
     let outcome: Result<(), Option<String>> = (|| {
         if report.status != Status::Solved {
             return Err(None);
         }
-        let fine = given(scene);
-        let (what, ratio) = if fine {
-            ("finer solve (every triangle split in four)", 1.0 / RATIO)
-        } else {
-            ("coarser solve (elements twice as large)", RATIO)
+        let Some(companion) = est.companion(scene, report, max_dofs).map_err(Some)? else {
+            for p in report.pairs.iter_mut() {
+                p.accuracy = Some(est.pair(p, None));
+            }
+            return Ok(());
         };
-        let predicted = report.size.dofs as f64 * (RATIO * RATIO);
-        let most = FINER_MAX_DOFS.min(max_dofs as f64);
-        if fine && predicted > most {
-            return Err(Some(format!(
-                "the error estimate needs a finer solve of about {predicted:.0} DOFs (every triangle split in four), \
-                 more than the {most:.0} it may take (its own bound, or the service's size or memory limit); only \
-                 the zone ends' uncertainty is estimated"
-            )));
-        }
-        let seconds = solve_seconds(report) * (RATIO * RATIO).powf(TIME_GROWTH);
-        if fine && seconds > crate::cancel::remaining_secs() {
-            return Err(Some(format!(
-                "the error estimate needs a finer solve (every triangle split in four) of about {seconds:.2} s, \
-                 more than the {:.2} s left of the time limit; only the zone ends' uncertainty is estimated",
-                crate::cancel::remaining_secs()
-            )));
-        }
-        let companion = resized(scene, [ratio; 3], None).expect("a companion of its kind");
         // The companion's own stages would restart the caller's bar: they
         // move it across the estimate's share instead.
         crate::progress::stage(crate::progress::ESTIMATE);
         let _nested = crate::progress::Sink::nested();
-        match solve(&companion) {
+        let what = companion.what;
+        match solve(&companion.scene) {
             Ok(c) if c.status == Status::Solved && c.pairs.len() == report.pairs.len() => {
                 for (f, cp) in report.pairs.iter_mut().zip(&c.pairs) {
-                    f.accuracy = Some(two_level::two_level(f, cp, ratio));
+                    f.accuracy = Some(est.pair(f, Some((cp, companion.ratio))));
                 }
-                if fine {
-                    finer = Some((companion, c));
+                if companion.next_round {
+                    finer = Some((companion.scene, c));
                 }
                 Ok(())
             }
@@ -206,9 +173,10 @@ pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver, max_dofs: u
         ..target
     };
     let started = Instant::now();
+    let est = estimator::of(scene);
     crate::progress::round(1);
     let mut report = solve(scene)?;
-    let mut finer = estimate_with(scene, &mut report, solve, max_dofs);
+    let mut finer = estimate_by(est, scene, &mut report, solve, max_dofs);
     // Given meshes refine uniformly: each round is the previous one's finer
     // companion (module doc).
     let uniform = given(scene);
@@ -245,8 +213,9 @@ pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver, max_dofs: u
                 if report.size.dofs as f64 * g > target.max_dofs as f64 {
                     break StopReason::MaxDofs;
                 }
-                // A generated round also solves its coarser companion.
-                let companion = if uniform { 1.0 } else { 1.0 + ESTIMATE_SHARE };
+                // A generated round also solves its coarser companion; a
+                // given mesh's round is the last one's finer companion.
+                let companion = if uniform { 1.0 } else { 1.0 + est.share(&current) };
                 if solve_seconds(&report) * g.powf(TIME_GROWTH) * companion > crate::cancel::remaining_secs() {
                     break StopReason::TimeLimit;
                 }
@@ -275,7 +244,7 @@ pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver, max_dofs: u
             // round is its coarser companion.
             if fine.pairs.len() == report.pairs.len() && fine.status == Status::Solved {
                 for (f, c) in fine.pairs.iter_mut().zip(&report.pairs) {
-                    f.accuracy = Some(two_level::two_level(f, c, RATIO));
+                    f.accuracy = Some(est.pair(f, Some((c, RATIO))));
                 }
             } else {
                 for p in fine.pairs.iter_mut() {
@@ -283,7 +252,7 @@ pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver, max_dofs: u
                 }
             }
         } else {
-            estimate_with(&next, &mut fine, solve, max_dofs);
+            estimate_by(est, &next, &mut fine, solve, max_dofs);
         }
         let h_step = smallest_size(&next) / smallest_size(&current);
         if h_step > 0.0 && h_step < 1.0 {
@@ -349,11 +318,6 @@ fn step(report: &Report, target: &AccuracyTarget) -> f64 {
     };
     let by_edge = target.zone_edge.map_or(STEP_MAX, |t| want(t, z, 1.0));
     by_pressure.min(by_edge).clamp(STEP_MIN, STEP_MAX)
-}
-
-/// Seconds of the report's own solve, its estimate left out.
-fn solve_seconds(report: &Report) -> f64 {
-    (report.timings.total - report.timings.estimate).max(0.0)
 }
 
 /// Whether every pair's estimate meets the target with the margin

@@ -8,6 +8,15 @@ use crate::solution::report::Report;
 
 /// Growth of the graded window over the farthest zone end it must cover.
 const MARGIN: f64 = 1.25;
+/// Element size ratio of the estimate's companion and of one round in the
+/// zones.
+pub(super) const RATIO: f64 = 2.0;
+
+/// Whether a body of the scene has a given (inline or Gmsh) mesh, which
+/// cannot be coarsened.
+pub(super) fn given(scene: &Scene) -> bool {
+    scene.bodies.iter().any(|b| matches!(b.mesh, MeshSource::Inline(_)))
+}
 
 /// The shortest element side of a given mesh (its own, nondimensional units).
 fn shortest_edge(m: &crate::mesh::Mesh2d) -> f64 {
