@@ -120,9 +120,12 @@ named! {
 named! {
     /// What a pair's error estimate is based on.
     EstimateBasis {
-        /// Against a companion with every element twice as large.
+        /// Against a companion with every element twice as large (a given
+        /// mesh's region meshed again so).
         TwoLevel = "two_level",
-        /// A given mesh against itself with every triangle split in four.
+        /// A given mesh whose region cannot be meshed again (a hole, more
+        /// than one boundary loop) against itself with every triangle split
+        /// in four.
         TwoLevelFiner = "two_level_finer",
         /// No companion could be solved: the zone ends only.
         ZoneEdges = "zone_edges",

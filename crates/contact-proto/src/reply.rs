@@ -118,9 +118,12 @@ pub struct RefinementRound {
 #[serde(deny_unknown_fields)]
 pub struct PairAccuracy {
     /// How the estimate was made: `two_level` (this solve against one with
-    /// every generated element twice as large, Richardson-scaled),
-    /// `two_level_finer` (a given inline or Gmsh mesh against the same mesh
-    /// with every triangle split in four) or `zone_edges` (the companion
+    /// every element twice as large, Richardson-scaled: generated meshes
+    /// with their sizes doubled, a given inline or Gmsh mesh's region meshed
+    /// again from every other boundary node and interior node),
+    /// `two_level_finer` (a given mesh whose region cannot be meshed again, a
+    /// hole or several boundary loops, against the same mesh with every
+    /// triangle split in four) or `zone_edges` (the companion
     /// could not be solved or would be too large, as the reply's notes say:
     /// only the zone ends).
     pub basis: EstimateBasis,
@@ -287,9 +290,12 @@ pub enum StopReason {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum EstimateBasis {
-    /// Against a companion with every generated element twice as large.
+    /// Against a companion with every element twice as large (generated
+    /// meshes resized; a given mesh's region meshed again).
     TwoLevel,
-    /// A given inline or Gmsh mesh against itself with every triangle split in four.
+    /// A given inline or Gmsh mesh whose region cannot be meshed again (a
+    /// hole, several boundary loops) against itself with every triangle split
+    /// in four.
     TwoLevelFiner,
     /// No companion could be solved: the zone ends only.
     ZoneEdges,

@@ -72,9 +72,9 @@ fn a_round_limit_stops_short_with_a_warning() {
     assert!(w["message"].as_str().unwrap().contains("max_rounds"), "{w}");
 }
 
-/// A given (inline) mesh cannot be coarsened: its estimate is made against
-/// the same mesh with every element split in four (`two_level_finer`), and
-/// with a target it is refined that way round after round: the block on a
+/// A given (inline) mesh is estimated against its region meshed again with
+/// elements twice as large (`two_level`, `mesh::coarsen`), and with a target
+/// it is refined by splitting every element in four round after round: the block on a
 /// vee refined to a zone-end error of 0.02 keeps its edge sets (the same pair
 /// solves on every round), each round has about four times the unknowns of
 /// the one before, and each round's zone end lies within twice its
@@ -84,7 +84,7 @@ fn an_inline_mesh_is_refined_uniformly() {
     let base = example("signorini_inline_block_on_vee.json");
     let plain = solve(&base);
     let acc = plain.pairs[0].accuracy.as_ref().unwrap();
-    assert_eq!(acc.basis, "two_level_finer");
+    assert_eq!(acc.basis, "two_level");
     assert!(
         acc.pressure_l2.is_some() && acc.peak.is_some() && acc.resultant.is_some(),
         "{acc:?}"
@@ -219,7 +219,7 @@ fn the_estimate_is_optional_and_the_targets_are_checked() {
 /// (every element 4× the scene's own), T3 and T6, against the stored overkill
 /// tables (disk, ball, block, and the disk and the block given inline) or the
 /// scene solved 4× finer (the others). Smooth-edged scenes: the pressure's
-/// within [0.5, 3] (measured 0.92–2.71 here, 0.72–2.98 over all three
+/// within [0.5, 3] (measured 0.92–2.71 here, 0.69–2.98 over all three
 /// levels: the edge's placement term, `two_level::edge_placement`, errs on
 /// the safe side where the edge happens to fall well, and lifted the lowest
 /// row from 0.43), the zone ends' and the T3 resultant's within [0.5, 2]
@@ -228,7 +228,11 @@ fn the_estimate_is_optional_and_the_targets_are_checked() {
 /// punches' pressure reads 2.5–4.9 of the true error at this level, tested
 /// within [0.5, 5]. The peak's within [0.5, 3] (1.19–2.74 here) except on
 /// the two cylinders, whose T3 peak at this level is 0.018 % off between
-/// levels 0.48 % and 0.054 % off (a crossing no estimate can foresee). The
+/// levels 0.48 % and 0.054 % off (a crossing no estimate can foresee), and
+/// on the T3 meshes given inline, within [0.5, 10]: their companion, the
+/// region meshed again, has nodal pressures a few % apart near the peak
+/// where the given mesh's are smooth (measured 6.96 on the disk and 2.56 on
+/// the block here, 2.3–3.3 with the finer companion that cost 2.5–7.5 solves). The
 /// T6 resultant, 0.002–0.24 % off, is estimated 0.02–42× and not tested. At
 /// a flat punch's corners the pressure is unbounded: both the estimate and
 /// the true error leave out the band the reply names there (`singular_ends`,
@@ -273,7 +277,12 @@ fn the_estimates_are_the_size_of_the_true_errors() {
                 "{name} {label}: pressure effectivity {eff:.3}"
             );
             if let Some(eff) = row.eff_peak().filter(|_| name != "two_cylinders") {
-                assert!((0.5..=3.0).contains(&eff), "{name} {label}: peak effectivity {eff:.3}");
+                let most = if name.ends_with("_inline") && element == "t3" {
+                    10.0
+                } else {
+                    3.0
+                };
+                assert!((0.5..=most).contains(&eff), "{name} {label}: peak effectivity {eff:.3}");
             }
             if let Some(eff) = row.eff_edge() {
                 assert!(
@@ -301,10 +310,11 @@ fn the_estimates_are_the_size_of_the_true_errors() {
 /// full estimate, and it sees the far field's error: against the disk's
 /// overkill table (its own L2 uncertainty 1.4e-5) the pressure's and the
 /// resultant's estimates are within [0.5, 2] of their true errors, the
-/// estimate's effectivity band (measured 0.931 % against 0.713 % for the
-/// described field, whose nodes are 0.325 % off; 0.216 % against 0.221 % for
+/// estimate's effectivity band (measured 0.473 % against 0.560 % for the
+/// described field, whose nodes are 0.325 % off; 0.234 % against 0.221 % for
 /// the resultant, the far field's stiffness, which a companion refined only
-/// around the zone does not see). Asked for 0.3 %, the rounds stop with the
+/// around the zone does not see; the companion, the region meshed again with
+/// elements twice as large, took half the solve's time). Asked for 0.3 %, the rounds stop with the
 /// true error below it (measured at 169k DOF: 0.090 % estimated, the
 /// described field 0.050 % and the nodes 0.085 % off).
 #[test]
@@ -312,7 +322,7 @@ fn a_users_graded_mesh_has_its_far_field_error_estimated() {
     let req = contact_verify::run::inlined(&disk_request(0.0015, "t3"));
     let r = solve(&req);
     let acc = r.pairs[0].accuracy.as_ref().unwrap();
-    assert_eq!(acc.basis, "two_level_finer");
+    assert_eq!(acc.basis, "two_level");
     let e = contact_verify::overkill::reference_error("disk_on_flat", &r).unwrap();
     let row = contact_verify::effectivity::compare("disk_on_flat_inline", "T3", 1.0, &r, None);
     for (what, est, err) in [
@@ -334,13 +344,13 @@ fn a_users_graded_mesh_has_its_far_field_error_estimated() {
 
 /// The Gmsh example (the Hertz block meshed by Gmsh, 8.4k DOF) carries its
 /// pressure's, peak's and resultant's estimates, each within [0.5, 2] of its
-/// true error against the block's overkill table (measured 0.44 % against
-/// 0.42 %, 0.38 % against 0.39 %, 0.29 % against 0.30 %).
+/// true error against the block's overkill table (measured 0.372 % against
+/// 0.417 %, 0.669 % against 0.390 %, 0.278 % against 0.298 %).
 #[test]
 fn the_gmsh_example_has_its_error_estimated() {
     let r = solve(&example("signorini_hertz_cylinder_gmsh.json"));
     let acc = r.pairs[0].accuracy.as_ref().unwrap();
-    assert_eq!(acc.basis, "two_level_finer");
+    assert_eq!(acc.basis, "two_level");
     let table = contact_verify::overkill::reference("hertz_block").unwrap();
     let e = contact_verify::overkill::errors(table, &r);
     let peak = r.pairs[0].points.iter().map(|q| q.pressure).fold(0.0, f64::max);
@@ -381,11 +391,11 @@ fn nothing_in_contact_stops_the_refinement_at_once() {
 }
 
 /// Refinement keeps the time limit by predicting each round before building
-/// it: with a limit of twice the given mesh's own solve, neither the
-/// estimate's finer companion nor the next round (each about 5× the solve:
-/// four times the unknowns, time growing like DOF^1.2) can fit, so both are
-/// left out at once, and the reply says why (the limit is set from the solve
-/// measured here, so a slower machine moves both alike).
+/// it: with a limit of twice the given mesh's own solve, the estimate's
+/// coarser companion fits but the next round (about 5× the solve: four times
+/// the unknowns, time growing like DOF^1.2) cannot, so it is left out at
+/// once, and the warning says why (the limit is set from the solve measured
+/// here, so a slower machine moves both alike).
 #[test]
 fn refinement_predicts_its_rounds_within_the_time_limit() {
     let mut req = contact_verify::run::inlined(&disk_request(0.0008, "t3"));
@@ -401,11 +411,7 @@ fn refinement_predicts_its_rounds_within_the_time_limit() {
     let f = r.refinement.as_ref().unwrap();
     assert_eq!((f.stopped.as_str(), f.rounds.len()), ("time_limit", 1), "{f:?}");
     assert!(took <= limit, "answered after {took:.3} s, limit {limit:.3} s");
-    assert!(
-        r.notes.iter().any(|n| n.contains("left of the time limit")),
-        "{:?}",
-        r.notes
-    );
+    assert_eq!(r.pairs[0].accuracy.as_ref().unwrap().basis, "two_level");
     let w = r
         .warnings
         .iter()

@@ -10,11 +10,16 @@
 //! × 2, the graded window unchanged): about a quarter of the unknowns, its
 //! cost measured in `timings.estimate` (14–16 % of the solve on the Hertz
 //! example at 30k–391k DOF). A given (inline or Gmsh) mesh cannot be
-//! coarsened, so its companion is the mesh with every triangle split in four
-//! (`mesh::uniform`: conforming, edge sets and curved T6 edges kept): about
-//! four times the unknowns, so the estimate costs several solves, and beyond
-//! `FINER_MAX_DOFS` it is left out with a note (the zone ends alone, basis
-//! `zone_edges`). A companion that only refined around the zones would not
+//! coarsened, so its region is meshed again with elements twice as large
+//! (`mesh::coarsen`: every other boundary node, a maximal independent set of
+//! the interior nodes, edge sets and curved T6 sides kept), its far field
+//! included: the estimate cost 0.34–0.46 of the solve on the inline T3 disk
+//! at 10.7k–286k DOF and 0.23–0.28 with T6 at 14.6k–85k (median of five, at
+//! load 7), where the finer companion (every triangle split in four) cost
+//! 2.5–7.5 solves. The finer one remains for a region that cannot be meshed
+//! again (a hole, several boundary loops; basis `two_level_finer`), and
+//! beyond `FINER_MAX_DOFS` it is left out with a note (the zone ends alone,
+//! basis `zone_edges`). A companion that only refined around the zones would not
 //! see the far field's error: on a user's disk mesh with far field R/8 it
 //! said 0.30 % where the true error was 0.73 %, and 0.0003 % for a
 //! resultant 0.59 % off.
@@ -28,8 +33,9 @@
 //! two rounds are not in Richardson's ratio, and each round is estimated
 //! against its own coarser companion as above. Given meshes: each round
 //! splits every triangle in four (its far field too), and is estimated against
-//! the round before, which is its coarser companion exactly; the first
-//! round's finer companion is the second round, solved once. The rounds stop
+//! the round before, which is its coarser companion exactly (the first round
+//! against its region meshed again; where that companion is the finer one, it
+//! is the second round, solved once). The rounds stop
 //! when every estimate meets its target, when nothing is in contact (no
 //! contact error to reduce), or at `max_rounds`, at `max_dofs` (predicted
 //! from the step and the growth of the last round), at the service's size or time limit,

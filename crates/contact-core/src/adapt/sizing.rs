@@ -46,15 +46,18 @@ pub(super) fn smallest_size(scene: &Scene) -> f64 {
 /// its grading's growth times `growth` and its far-field size times `size`;
 /// with a `report`, each graded window widened (or, ungraded, created) to
 /// cover the body's zones. Each given (inline or Gmsh) mesh has every
-/// triangle split in four when refining (`h` < 1); None when coarsening one.
+/// triangle split in four when refining (`h` < 1), and its region meshed
+/// again when coarsening (None where it cannot be).
 pub(super) fn resized(scene: &Scene, [h, growth, size]: [f64; 3], report: Option<&Report>) -> Option<Scene> {
     let mut out = scene.clone();
     for (b, body) in out.bodies.iter_mut().enumerate() {
         let ends = report.map(|r| zone_ends(scene, r, b)).unwrap_or_default();
         body.mesh = match &body.mesh {
-            // A given mesh cannot be coarsened; it is refined by splitting
-            // every triangle in four (halving its sides), far field included.
-            MeshSource::Inline(_) if h >= 1.0 => return None,
+            // A given mesh is coarsened by meshing its region again with
+            // elements twice as large (`mesh::coarsen`; None where it cannot
+            // be), and refined by splitting every triangle in four (halving
+            // its sides), far field included.
+            MeshSource::Inline(m) if h >= 1.0 => MeshSource::Inline(crate::mesh::coarsen::coarsened(m)?),
             MeshSource::Inline(m) => MeshSource::Inline(crate::mesh::uniform::refine_uniform(m)),
             MeshSource::Disk {
                 center,

@@ -11,6 +11,7 @@
 
 pub mod bisect;
 pub mod boundary;
+pub mod coarsen;
 pub mod estimate;
 pub mod generate;
 pub mod gmsh;

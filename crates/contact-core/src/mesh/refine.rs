@@ -27,9 +27,9 @@ pub const MIN_ANGLE_DEG: f64 = 28.0;
 /// A closed boundary loop, counter-clockwise (body on the left): the points,
 /// and for each segment `points[i] → points[i + 1]` (the last one closing the
 /// loop) the edge set it belongs to.
-pub struct Outline {
+pub struct Outline<'a> {
     pub points: Vec<[f64; 2]>,
-    pub sets: Vec<&'static str>,
+    pub sets: Vec<&'a str>,
 }
 
 /// Triangles (counter-clockwise, 3 node indices each), nodes, and the edge
@@ -49,7 +49,7 @@ pub struct Triangulated {
 pub struct MeshFailure(pub String);
 
 pub fn triangulate(
-    outline: &Outline,
+    outline: &Outline<'_>,
     seeds: &[[f64; 2]],
     size: f64,
     snap: &dyn Fn(&str, [f64; 2]) -> [f64; 2],
