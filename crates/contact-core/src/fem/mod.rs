@@ -2,9 +2,11 @@
 
 pub mod assembly;
 pub mod axisymmetric;
+pub mod constitutive;
 pub mod element;
 pub mod loads;
 pub mod material;
+pub mod reference;
 pub mod rigid_modes;
 
 pub use assembly::{assemble, Assembled, DofMap};
