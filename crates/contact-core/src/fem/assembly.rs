@@ -5,8 +5,8 @@
 
 use faer::sparse::SparseColMat;
 
-use super::constitutive::{Constitutive, LinearIsotropic};
-use super::kernel::{self, Plane, Ring};
+use super::constitutive::LinearIsotropic;
+use super::kernel::{self, Integration, Plane, Ring};
 use super::reference::{T3, T6};
 use super::rigid_modes::{self, free_modes, mode_row, virtual_supports, RigidModes};
 use crate::error::{CoreError, InvalidKind};
@@ -277,18 +277,21 @@ pub fn law(body: &crate::scene::Body, analysis: Analysis) -> LinearIsotropic {
     LinearIsotropic::new(body.youngs_modulus, body.poisson_ratio, analysis.into())
 }
 
-/// Lamé's λ of a body that runs the P2–P0 element (nearly incompressible
-/// plane strain or axisymmetry on T6; see `kernel::stiffness_selective`),
-/// None for the others.
-pub fn selective_lambda(body: &crate::scene::Body, order: crate::mesh::Order, analysis: Analysis) -> Option<f64> {
+/// How a body's elements integrate: the P2–P0 element for nearly
+/// incompressible plane strain or axisymmetry on T6 (see
+/// `kernel::Integration`), the full rule otherwise.
+pub fn integration(body: &crate::scene::Body, order: crate::mesh::Order, analysis: Analysis) -> Integration {
     let nu = body.poisson_ratio;
-    (order == crate::mesh::Order::T6 && analysis != Analysis::PlaneStress && nu >= NEARLY_INCOMPRESSIBLE)
-        .then(|| Constitutive::<3>::volumetric_lambda(&law(body, analysis)))
+    if order == crate::mesh::Order::T6 && analysis != Analysis::PlaneStress && nu >= NEARLY_INCOMPRESSIBLE {
+        Integration::MeanDilatation
+    } else {
+        Integration::Full
+    }
 }
 
 /// Assembles K_ff and K_fd of all bodies: the pattern once from the node graph,
 /// then element matrices added in place (no triplet sort). Each (element,
-/// strains, integration) runs its own monomorphised loop (`add_body`).
+/// strains) pair runs its own monomorphised loop (`add_body`).
 pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Result<Stiffness, CoreError> {
     use crate::mesh::Order;
     let n = dofs.n_free;
@@ -302,28 +305,20 @@ pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Re
     for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
         let law = law(body, scene.analysis);
         let axi = scene.analysis == Analysis::Axisymmetric;
-        // Nearly incompressible plane strain or axisymmetry on T6: P2–P0 (see
-        // kernel::stiffness_selective).
-        let selective = selective_lambda(body, mesh.order, scene.analysis).is_some();
+        let how = integration(body, mesh.order, scene.analysis);
         let g = &mut global;
-        match (mesh.order, axi, selective) {
-            (Order::T3, false, _) => add_body(mesh, b, dofs, g, |x, ke| {
-                kernel::stiffness::<T3, Plane, _, 2, 3, 3>(x, &law, ke)
+        match (mesh.order, axi) {
+            (Order::T3, false) => add_body(mesh, b, dofs, g, |x, ke| {
+                kernel::stiffness::<T3, Plane, _, 2, 3, 3>(x, &law, how, ke)
             }),
-            (Order::T3, true, _) => add_body(mesh, b, dofs, g, |x, ke| {
-                kernel::stiffness::<T3, Ring, _, 2, 3, 4>(x, &law, ke)
+            (Order::T3, true) => add_body(mesh, b, dofs, g, |x, ke| {
+                kernel::stiffness::<T3, Ring, _, 2, 3, 4>(x, &law, how, ke)
             }),
-            (Order::T6, false, false) => add_body(mesh, b, dofs, g, |x, ke| {
-                kernel::stiffness::<T6, Plane, _, 2, 6, 3>(x, &law, ke)
+            (Order::T6, false) => add_body(mesh, b, dofs, g, |x, ke| {
+                kernel::stiffness::<T6, Plane, _, 2, 6, 3>(x, &law, how, ke)
             }),
-            (Order::T6, false, true) => add_body(mesh, b, dofs, g, |x, ke| {
-                kernel::stiffness_selective::<T6, Plane, _, 2, 6, 3>(x, &law, ke)
-            }),
-            (Order::T6, true, false) => add_body(mesh, b, dofs, g, |x, ke| {
-                kernel::stiffness::<T6, Ring, _, 2, 6, 4>(x, &law, ke)
-            }),
-            (Order::T6, true, true) => add_body(mesh, b, dofs, g, |x, ke| {
-                kernel::stiffness_selective::<T6, Ring, _, 2, 6, 4>(x, &law, ke)
+            (Order::T6, true) => add_body(mesh, b, dofs, g, |x, ke| {
+                kernel::stiffness::<T6, Ring, _, 2, 6, 4>(x, &law, how, ke)
             }),
         }
     }

@@ -26,7 +26,7 @@ fn arrays<const K: usize>(x: &[[f64; 2]], ue: &[f64]) -> ([[f64; 2]; K], [[f64; 
 }
 
 /// Centroid stress (rr, zz, rz, θθ) of the P2–P0 element
-/// (`kernel::stiffness_selective`): the deviatoric part from the centroid
+/// (`kernel::Integration::MeanDilatation`): the deviatoric part from the centroid
 /// strain, the volumetric part λ θ̄ from the element's mean dilatation, as
 /// the stiffness has it. The centroid's own div u is not θ̄ next to the axis
 /// (u_r / r varies by O(1) there): measured on a ball on a flat at ν = 0.49,
@@ -65,12 +65,13 @@ pub fn centroid_stress(order: Order, x: &[[f64; 2]], law: &impl Constitutive<4>,
 mod tests {
     use super::*;
     use crate::fem::constitutive::{LinearIsotropic, Section};
+    use crate::fem::kernel::Integration;
 
     /// K_e of a T3 or T6 ring element through the generic kernel.
     fn stiffness(x: &[[f64; 2]], law: &impl Constitutive<4>, ke: &mut [f64; 144]) {
         match x.len() {
-            3 => kernel::stiffness::<T3, Ring, _, 2, 3, 4>(&std::array::from_fn(|i| x[i]), law, ke),
-            _ => kernel::stiffness::<T6, Ring, _, 2, 6, 4>(&std::array::from_fn(|i| x[i]), law, ke),
+            3 => kernel::stiffness::<T3, Ring, _, 2, 3, 4>(&std::array::from_fn(|i| x[i]), law, Integration::Full, ke),
+            _ => kernel::stiffness::<T6, Ring, _, 2, 6, 4>(&std::array::from_fn(|i| x[i]), law, Integration::Full, ke),
         }
     }
 
@@ -156,7 +157,7 @@ mod tests {
         let exact = 0.5 * lambda * volume * theta * theta;
         let x = straight_t6(corners);
         let mut ke = [0.0; 144];
-        kernel::stiffness_selective::<T6, Ring, _, 2, 6, 4>(&x, &Volumetric(lambda), &mut ke);
+        kernel::stiffness::<T6, Ring, _, 2, 6, 4>(&x, &Volumetric(lambda), Integration::MeanDilatation, &mut ke);
         let u: Vec<f64> = x.iter().flat_map(|p| [p[0] * p[0], 0.0]).collect();
         let energy: f64 = 0.5
             * (0..12)

@@ -60,7 +60,7 @@ pub trait Constitutive<const S: usize> {
     fn energy(&self, strain: &[f64; S]) -> f64;
     /// λ of the split D = D_dev + λ m mᵀ (m the strains whose sum is the
     /// volume change) that the P2–P0 element integrates on the mean
-    /// dilatation (`kernel::stiffness_selective`): Lamé's λ for isotropy.
+    /// dilatation (`kernel::Integration::MeanDilatation`): Lamé's λ for isotropy.
     fn volumetric_lambda(&self) -> f64;
 }
 

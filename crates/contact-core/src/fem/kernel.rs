@@ -8,7 +8,7 @@
 //! revolution adds the hoop strain N_i / r and the measure 2πr; a solid has
 //! (xx, yy, zz, yz, xz, xy) with engineering shear.
 //!
-//! The P2–P0 element (`stiffness_selective`, Nagtegaal, Parks & Rice 1974;
+//! The P2–P0 element (`Integration::MeanDilatation`, Nagtegaal, Parks & Rice 1974;
 //! Hughes 1980) integrates D − λ m mᵀ with the full rule and the volumetric
 //! part λ m mᵀ on the element's mean dilatation θ̄ = ∫ m·ε dV / V, m the
 //! strains whose sum is the volume change: the mixed element with its
@@ -129,25 +129,21 @@ fn dot<const S: usize>(u: &[f64; S], v: &[f64; S]) -> f64 {
     s
 }
 
-/// K_e of the element with nodes `x` for `law` (its tangent at ε = 0).
-pub fn stiffness<E, K, L, const D: usize, const N: usize, const S: usize>(x: &[[f64; D]; N], law: &L, ke: &mut [f64])
-where
-    E: ReferenceElement<D, N>,
-    K: Strains<D, S>,
-    L: Constitutive<S>,
-{
-    let nd = D * N;
-    let ke = &mut ke[..nd * nd];
-    ke.fill(0.0);
-    add_stiffness::<E, K, D, N, S>(x, &law.tangent(&[0.0; S]), ke);
-    symmetrize(nd, ke);
+/// How an element integrates the volumetric part of D.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Integration {
+    /// All of D with the element's rule.
+    Full,
+    /// The P2–P0 element (module doc): D − λ m mᵀ with the element's rule,
+    /// λ V b̄ b̄ᵀ on the mean dilatation θ̄ = b̄·u_e.
+    MeanDilatation,
 }
 
-/// K_e of the P2–P0 element (module doc): D − λ m mᵀ with the element's
-/// rule, λ V b̄ b̄ᵀ on the mean dilatation θ̄ = b̄·u_e.
-pub fn stiffness_selective<E, K, L, const D: usize, const N: usize, const S: usize>(
+/// K_e of the element with nodes `x` for `law` (its tangent at ε = 0).
+pub fn stiffness<E, K, L, const D: usize, const N: usize, const S: usize>(
     x: &[[f64; D]; N],
     law: &L,
+    integration: Integration,
     ke: &mut [f64],
 ) where
     E: ReferenceElement<D, N>,
@@ -157,12 +153,18 @@ pub fn stiffness_selective<E, K, L, const D: usize, const N: usize, const S: usi
     let nd = D * N;
     let ke = &mut ke[..nd * nd];
     ke.fill(0.0);
-    let lambda = law.volumetric_lambda();
-    add_stiffness::<E, K, D, N, S>(x, &deviatoric(&law.tangent(&[0.0; S]), lambda, K::VOLUME), ke);
-    let (bbar, volume) = mean_dilatation::<E, K, D, N, S>(x);
-    for a in 0..nd {
-        for b in a..nd {
-            ke[a * nd + b] += lambda * volume * bbar[a / D][a % D] * bbar[b / D][b % D];
+    let d = law.tangent(&[0.0; S]);
+    match integration {
+        Integration::Full => add_stiffness::<E, K, D, N, S>(x, &d, ke),
+        Integration::MeanDilatation => {
+            let lambda = law.volumetric_lambda();
+            add_stiffness::<E, K, D, N, S>(x, &deviatoric(&d, lambda, K::VOLUME), ke);
+            let (bbar, volume) = mean_dilatation::<E, K, D, N, S>(x);
+            for a in 0..nd {
+                for b in a..nd {
+                    ke[a * nd + b] += lambda * volume * bbar[a / D][a % D] * bbar[b / D][b % D];
+                }
+            }
         }
     }
     symmetrize(nd, ke);

@@ -11,6 +11,7 @@ use crate::contact::{
     compliance::Foundations,
     free_motions::{self, FreeMotions, Motion},
 };
+use crate::fem::kernel::Integration;
 use crate::fem::{self, element};
 use crate::mesh::Mesh2d;
 use crate::methods;
@@ -293,18 +294,20 @@ fn body_outputs(scene: &Scene, meshes: &[Mesh2d], disp: &[Vec<[f64; 2]>]) -> Opt
                 // stress from u_r / r.
                 let stress4: Option<Vec<[f64; 4]>> = o_stress.then(|| {
                     let law = crate::fem::assembly::law(body, scene.analysis);
-                    let selective = crate::fem::assembly::selective_lambda(body, mesh.order, scene.analysis);
+                    let how = crate::fem::assembly::integration(body, mesh.order, scene.analysis);
                     (0..mesh.n_elems())
                         .map(|e| {
                             let conn = mesh.elem(e);
                             let x: Vec<[f64; 2]> = conn.iter().map(|&n| mesh.nodes[n]).collect();
                             let ue: Vec<f64> = conn.iter().flat_map(|&n| disp[n]).collect();
                             let s = match scene.analysis {
-                                Analysis::Axisymmetric => match selective {
-                                    Some(_) => {
+                                Analysis::Axisymmetric => match how {
+                                    Integration::MeanDilatation => {
                                         crate::fem::axisymmetric::centroid_stress_selective(mesh.order, &x, &law, &ue)
                                     }
-                                    None => crate::fem::axisymmetric::centroid_stress(mesh.order, &x, &law, &ue),
+                                    Integration::Full => {
+                                        crate::fem::axisymmetric::centroid_stress(mesh.order, &x, &law, &ue)
+                                    }
                                 },
                                 Analysis::PlaneStrain | Analysis::PlaneStress => {
                                     let s = element::centroid_stress(mesh.order, &x, &law, &ue);

@@ -27,6 +27,11 @@ pub struct Point<const D: usize> {
     pub weight: f64,
 }
 
+/// The point at `xi` of weight `weight` (for the rules' tables).
+pub const fn point<const D: usize>(xi: [f64; D], weight: f64) -> Point<D> {
+    Point { xi, weight }
+}
+
 /// A reference element of dimension D with N nodes.
 pub trait ReferenceElement<const D: usize, const N: usize> {
     /// The dimension of the cell (and of the space it maps into).

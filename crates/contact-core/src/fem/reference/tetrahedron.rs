@@ -14,35 +14,20 @@
 //! force (N_i, degree 2); a T10 consistent mass (degree 4) would need a
 //! larger rule.
 
-use super::{Point, ReferenceElement};
+use super::{point, Point, ReferenceElement};
 
 /// The centroid rule (degree 1).
-pub const TET1: [Point<3>; 1] = [Point {
-    xi: [0.25, 0.25, 0.25],
-    weight: 1.0 / 6.0,
-}];
+pub const TET1: [Point<3>; 1] = [point([0.25, 0.25, 0.25], 1.0 / 6.0)];
 
 const A: f64 = 0.585_410_196_624_968_5;
 const B: f64 = 0.138_196_601_125_010_5;
 
 /// The symmetric 4-point rule (degree 2).
 pub const TET4: [Point<3>; 4] = [
-    Point {
-        xi: [B, B, B],
-        weight: 1.0 / 24.0,
-    },
-    Point {
-        xi: [A, B, B],
-        weight: 1.0 / 24.0,
-    },
-    Point {
-        xi: [B, A, B],
-        weight: 1.0 / 24.0,
-    },
-    Point {
-        xi: [B, B, A],
-        weight: 1.0 / 24.0,
-    },
+    point([B, B, B], 1.0 / 24.0),
+    point([A, B, B], 1.0 / 24.0),
+    point([B, A, B], 1.0 / 24.0),
+    point([B, B, A], 1.0 / 24.0),
 ];
 
 /// The corners (a, b) of the edge of each T10 midside node 4..9 (Gmsh order).

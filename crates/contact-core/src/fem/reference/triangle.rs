@@ -5,28 +5,16 @@
 //! 3-point rule (degree 2) is exact for an affine T6 (B linear) and standard
 //! for curved ones.
 
-use super::{Point, ReferenceElement};
+use super::{point, Point, ReferenceElement};
 
 /// The centroid rule (degree 1).
-pub const RULE1: [Point<2>; 1] = [Point {
-    xi: [1.0 / 3.0, 1.0 / 3.0],
-    weight: 0.5,
-}];
+pub const RULE1: [Point<2>; 1] = [point([1.0 / 3.0, 1.0 / 3.0], 0.5)];
 
 /// The 3-point interior rule (degree 2).
 pub const RULE3: [Point<2>; 3] = [
-    Point {
-        xi: [1.0 / 6.0, 1.0 / 6.0],
-        weight: 1.0 / 6.0,
-    },
-    Point {
-        xi: [2.0 / 3.0, 1.0 / 6.0],
-        weight: 1.0 / 6.0,
-    },
-    Point {
-        xi: [1.0 / 6.0, 2.0 / 3.0],
-        weight: 1.0 / 6.0,
-    },
+    point([1.0 / 6.0, 1.0 / 6.0], 1.0 / 6.0),
+    point([2.0 / 3.0, 1.0 / 6.0], 1.0 / 6.0),
+    point([1.0 / 6.0, 2.0 / 3.0], 1.0 / 6.0),
 ];
 
 /// The 3-node linear triangle.
