@@ -21,7 +21,7 @@ use std::collections::HashMap;
 use contact_core::fem::constitutive::{Constitutive, LinearIsotropic, Section};
 use contact_core::fem::kernel::{self, Integration, Solid};
 use contact_core::fem::reference::tetrahedron::T10_EDGES;
-use contact_core::fem::reference::{ReferenceElement, T10, T4};
+use contact_core::fem::reference::{boundary_faces, ReferenceElement, T10, T4};
 
 const LAW: (f64, f64) = (200.0, 0.3);
 
@@ -404,4 +404,42 @@ fn uniaxial_block_has_hookes_reaction_and_contraction() {
         uniaxial::<T4, 4>,
         uniaxial::<T10, 10>,
     );
+}
+
+/// The boundary faces of the box's T4 and T10 meshes tile its surface: 2 · 3²
+/// triangles a side, areas summing to 2(ab + bc + ca) to 1e-14, each normal
+/// (the right-hand rule on the face's corners) pointing out of the box, and a
+/// T10 face's midsides at its edges' midpoints (straight edges).
+#[test]
+fn boundary_faces_tile_the_surface_and_point_out() {
+    fn check<E: ReferenceElement<3, N>, const N: usize>(m: &Mesh<N>, size: [f64; 3]) {
+        let faces = boundary_faces::<E, 3, N>(&m.elems);
+        assert_eq!(faces.len(), 6 * 2 * 9);
+        let centre = size.map(|s| 0.5 * s);
+        let mut area = 0.0;
+        for (e, f) in faces {
+            let nodes = E::FACES[f].iter().map(|&l| m.nodes[m.elems[e][l]]).collect::<Vec<_>>();
+            let d = |a: usize| -> [f64; 3] { std::array::from_fn(|c| nodes[a][c] - nodes[0][c]) };
+            let (u, v) = (d(1), d(2));
+            let n = [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ];
+            let out: f64 = (0..3).map(|c| n[c] * (nodes[0][c] - centre[c])).sum();
+            assert!(out > 0.0, "element {e}, face {f} points in");
+            area += 0.5 * n.iter().map(|x| x * x).sum::<f64>().sqrt();
+            for (k, mid) in nodes.iter().enumerate().skip(3) {
+                let (p, q) = (nodes[k - 3], nodes[(k - 2) % 3]);
+                assert!((0..3).all(|c| (mid[c] - 0.5 * (p[c] + q[c])).abs() < 1e-15));
+            }
+        }
+        let [a, b, c] = size;
+        let want = 2.0 * (a * b + b * c + c * a);
+        assert!((area / want - 1.0).abs() < 1e-14, "{area} vs {want}");
+    }
+    let size = [1.0, 1.5, 2.0];
+    let t4 = box_t4(3, size, 0.3);
+    check::<T4, 4>(&t4, size);
+    check::<T10, 10>(&quadratic(&t4), size);
 }

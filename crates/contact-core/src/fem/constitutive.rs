@@ -71,9 +71,9 @@ pub trait Constitutive<const S: usize> {
 /// leading S × S block.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LinearIsotropic {
-    pub youngs_modulus: f64,
-    pub poisson_ratio: f64,
-    pub section: Section,
+    youngs_modulus: f64,
+    poisson_ratio: f64,
+    section: Section,
     d: [[f64; 6]; 6],
 }
 
@@ -114,6 +114,11 @@ impl LinearIsotropic {
             section,
             d,
         }
+    }
+
+    /// The section the law was built for (its D is that section's).
+    pub fn section(&self) -> Section {
+        self.section
     }
 
     /// Shear modulus μ = E / (2(1 + ν)).
