@@ -1,10 +1,12 @@
-//! T3/T6 kernels of a body of revolution on its r–z half-section (x = r,
-//! y = z): strains (ε_rr, ε_zz, γ_rz, ε_θθ) with the hoop strain
-//! ε_θθ = u_r / r, and the measure 2πr dA, so that stiffness, loads and
-//! forces are totals over the circumference (Zienkiewicz & Taylor, The Finite
-//! Element Method, vol. 1, ch. 5). Every quadrature point is inside the
-//! element, where r > 0 even for an element touching the axis: the hoop term
-//! N_i / r stays finite (an axis node's u_r is held at 0 by the DOF map).
+//! A body of revolution on its r–z half-section (x = r, y = z): strains
+//! (ε_rr, ε_zz, γ_rz, ε_θθ) with the hoop strain ε_θθ = u_r / r, and the
+//! measure 2πr dA, so that stiffness, loads and forces are totals over the
+//! circumference (Zienkiewicz & Taylor, The Finite Element Method, vol. 1,
+//! ch. 5). The stiffness is `kernel::stiffness` with `kernel::Ring`; here are
+//! the stresses the reply recovers at the centroid. Every quadrature point is
+//! inside the element, where r > 0 even for an element touching the axis: the
+//! hoop term N_i / r stays finite (an axis node's u_r is held at 0 by the DOF
+//! map).
 
 use super::constitutive::Constitutive;
 use super::kernel::{self, Ring, Strains};

@@ -66,9 +66,9 @@ pub trait Constitutive<const S: usize> {
 
 /// Linear isotropic elasticity (Young's modulus E, Poisson's ratio ν).
 ///
-/// D is built once (a 1.2M-DOF assembly evaluates it at about 4·10⁵ points)
-/// and held as its largest, 6 × 6, form: a law of S components reads the
-/// leading S × S block.
+/// D is built once, not at every quadrature point the assembly asks, and held
+/// as its largest, 6 × 6, form: a law of S components reads the leading S × S
+/// block.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LinearIsotropic {
     youngs_modulus: f64,
