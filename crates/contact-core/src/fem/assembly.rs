@@ -5,9 +5,10 @@
 
 use faer::sparse::SparseColMat;
 
-use super::material::d_matrix;
+use super::constitutive::LinearIsotropic;
+use super::kernel::{self, Integration, Plane, Ring};
+use super::reference::{T3, T6};
 use super::rigid_modes::{self, free_modes, mode_row, virtual_supports, RigidModes};
-use super::{axisymmetric, element};
 use crate::error::{CoreError, InvalidKind};
 use crate::mesh::Mesh2d;
 use crate::scene::scaling::shown;
@@ -271,75 +272,114 @@ fn axis_conditions(
     Ok(())
 }
 
-/// Lamé's λ of a body that runs the P2–P0 element (nearly incompressible
-/// plane strain or axisymmetry on T6; see `element::stiffness_selective`),
-/// None for the others.
-pub fn selective_lambda(body: &crate::scene::Body, order: crate::mesh::Order, analysis: Analysis) -> Option<f64> {
-    let (e, nu) = (body.youngs_modulus, body.poisson_ratio);
-    (order == crate::mesh::Order::T6 && analysis != Analysis::PlaneStress && nu >= NEARLY_INCOMPRESSIBLE)
-        .then(|| e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)))
+/// The law of a body in the scene's analysis.
+pub fn law(body: &crate::scene::Body, analysis: Analysis) -> LinearIsotropic {
+    LinearIsotropic::new(body.youngs_modulus, body.poisson_ratio, analysis.into())
+}
+
+/// How a body's elements integrate: the P2–P0 element for nearly
+/// incompressible plane strain or axisymmetry on T6 (see
+/// `kernel::Integration`), the full rule otherwise.
+pub fn integration(body: &crate::scene::Body, order: crate::mesh::Order, analysis: Analysis) -> Integration {
+    let nu = body.poisson_ratio;
+    if order == crate::mesh::Order::T6 && analysis != Analysis::PlaneStress && nu >= NEARLY_INCOMPRESSIBLE {
+        Integration::MeanDilatation
+    } else {
+        Integration::Full
+    }
 }
 
 /// Assembles K_ff and K_fd of all bodies: the pattern once from the node graph,
-/// then element matrices added in place (no triplet sort).
+/// then element matrices added in place (no triplet sort). Each (element,
+/// strains) pair runs its own monomorphised loop (`add_body`).
 pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Result<Stiffness, CoreError> {
+    use crate::mesh::Order;
     let n = dofs.n_free;
     let (col_ptr, row_idx) = pattern(meshes, dofs);
-    let mut vals = vec![0.0; row_idx.len()];
-    let mut k_fd = Vec::new();
-    let mut ke = [0.0; 144];
+    let mut global = Global {
+        col_ptr: &col_ptr,
+        row_idx: &row_idx,
+        vals: vec![0.0; row_idx.len()],
+        k_fd: Vec::new(),
+    };
     for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
-        let d = d_matrix(body.youngs_modulus, body.poisson_ratio, scene.analysis);
-        let (e, nu) = (body.youngs_modulus, body.poisson_ratio);
-        let d4 = axisymmetric::d_matrix(e, nu);
+        let law = law(body, scene.analysis);
         let axi = scene.analysis == Analysis::Axisymmetric;
-        // Nearly incompressible plane strain or axisymmetry on T6: P2–P0 (see
-        // element::stiffness_selective).
-        let selective = selective_lambda(body, mesh.order, scene.analysis);
-        let k = mesh.order.nodes_per_element();
-        let nd = 2 * k;
-        let mut x = [[0.0; 2]; 6];
-        let mut gd = [0usize; 12];
-        for e in 0..mesh.n_elems() {
-            let conn = mesh.elem(e);
-            for (i, &node) in conn.iter().enumerate() {
-                x[i] = mesh.nodes[node];
-                gd[2 * i] = dofs.dof(b, node, 0);
-                gd[2 * i + 1] = dofs.dof(b, node, 1);
-            }
-            match (axi, selective) {
-                (false, Some(lambda)) => element::stiffness_selective(mesh.order, &x[..k], &d, lambda, &mut ke),
-                (false, None) => element::stiffness(mesh.order, &x[..k], &d, &mut ke),
-                (true, Some(lambda)) => axisymmetric::stiffness_selective(mesh.order, &x[..k], &d4, lambda, &mut ke),
-                (true, None) => axisymmetric::stiffness(mesh.order, &x[..k], &d4, &mut ke),
-            }
-            for a in 0..nd {
-                let fa = dofs.free[gd[a]];
-                if fa == FIXED {
-                    continue;
-                }
-                for c in 0..nd {
-                    let fc = dofs.free[gd[c]];
-                    let v = ke[a * nd + c];
-                    if fc == FIXED {
-                        if v != 0.0 {
-                            k_fd.push((fa, gd[c], v));
-                        }
-                    } else if fc <= fa {
-                        let col = &row_idx[col_ptr[fc]..col_ptr[fc + 1]];
-                        let pos = col.binary_search(&fa).expect("pattern covers every element coupling");
-                        vals[col_ptr[fc] + pos] += v;
-                    }
-                }
-            }
+        let how = integration(body, mesh.order, scene.analysis);
+        let g = &mut global;
+        match (mesh.order, axi) {
+            (Order::T3, false) => add_body(mesh, b, dofs, g, |x, ke| {
+                kernel::stiffness::<T3, Plane, _, 2, 3, 3>(x, &law, how, ke)
+            }),
+            (Order::T3, true) => add_body(mesh, b, dofs, g, |x, ke| {
+                kernel::stiffness::<T3, Ring, _, 2, 3, 4>(x, &law, how, ke)
+            }),
+            (Order::T6, false) => add_body(mesh, b, dofs, g, |x, ke| {
+                kernel::stiffness::<T6, Plane, _, 2, 6, 3>(x, &law, how, ke)
+            }),
+            (Order::T6, true) => add_body(mesh, b, dofs, g, |x, ke| {
+                kernel::stiffness::<T6, Ring, _, 2, 6, 4>(x, &law, how, ke)
+            }),
         }
     }
+    let Global { vals, k_fd, .. } = global;
     // SAFETY-free construction: the checked constructor validates sortedness and bounds.
     let sym = faer::sparse::SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
     Ok(Stiffness {
         k: SparseColMat::new(sym, vals),
         k_fd,
     })
+}
+
+/// The global matrices being assembled: K_ff's values on its pattern and K_fd.
+struct Global<'a> {
+    col_ptr: &'a [usize],
+    row_idx: &'a [usize],
+    vals: Vec<f64>,
+    k_fd: Vec<(usize, usize, f64)>,
+}
+
+/// Adds the K elements of body `b` (K nodes each), whose stiffness
+/// `element` writes into a (2K)² row-major buffer.
+fn add_body<const K: usize>(
+    mesh: &Mesh2d,
+    b: usize,
+    dofs: &DofMap,
+    g: &mut Global,
+    element: impl Fn(&[[f64; 2]; K], &mut [f64]),
+) {
+    let nd = 2 * K;
+    let mut ke = [0.0; 144];
+    let mut x = [[0.0; 2]; K];
+    let mut gd = [0usize; 12];
+    for e in 0..mesh.n_elems() {
+        let conn = mesh.elem(e);
+        for (i, &node) in conn.iter().enumerate() {
+            x[i] = mesh.nodes[node];
+            gd[2 * i] = dofs.dof(b, node, 0);
+            gd[2 * i + 1] = dofs.dof(b, node, 1);
+        }
+        element(&x, &mut ke);
+        for a in 0..nd {
+            let fa = dofs.free[gd[a]];
+            if fa == FIXED {
+                continue;
+            }
+            for c in 0..nd {
+                let fc = dofs.free[gd[c]];
+                let v = ke[a * nd + c];
+                if fc == FIXED {
+                    if v != 0.0 {
+                        g.k_fd.push((fa, gd[c], v));
+                    }
+                } else if fc <= fa {
+                    let col = &g.row_idx[g.col_ptr[fc]..g.col_ptr[fc + 1]];
+                    let pos = col.binary_search(&fa).expect("pattern covers every element coupling");
+                    g.vals[g.col_ptr[fc] + pos] += v;
+                }
+            }
+        }
+    }
 }
 
 /// Right-hand side f_f − K_fd u_d from the external loads on every global DOF

@@ -1,88 +1,81 @@
-//! T3/T6 kernels of a body of revolution on its r–z half-section (x = r,
-//! y = z): strains (ε_rr, ε_zz, γ_rz, ε_θθ) with the hoop strain
-//! ε_θθ = u_r / r, and the measure 2πr dA, so that stiffness, loads and
-//! forces are totals over the circumference (Zienkiewicz & Taylor, The Finite
-//! Element Method, vol. 1, ch. 5). Every quadrature point is inside the
-//! element, where r > 0 even for an element touching the axis: the hoop term
-//! N_i / r stays finite (an axis node's u_r is held at 0 by the DOF map).
+//! A body of revolution on its r–z half-section (x = r, y = z): strains
+//! (ε_rr, ε_zz, γ_rz, ε_θθ) with the hoop strain ε_θθ = u_r / r, and the
+//! measure 2πr dA, so that stiffness, loads and forces are totals over the
+//! circumference (Zienkiewicz & Taylor, The Finite Element Method, vol. 1,
+//! ch. 5). The stiffness is `kernel::stiffness` with `kernel::Ring`; here are
+//! the stresses the reply recovers at the centroid. Every quadrature point is
+//! inside the element, where r > 0 even for an element touching the axis: the
+//! hoop term N_i / r stays finite (an axis node's u_r is held at 0 by the DOF
+//! map).
 
-use super::element::{self, gradients, order_len};
+use super::constitutive::Constitutive;
+use super::kernel::{self, Ring, Strains};
+use super::reference::{ReferenceElement, T3, T6};
 use crate::mesh::Order;
 
-/// Voigt order of the axisymmetric strains and stresses.
-pub type D4 = [[f64; 4]; 4];
+/// The centroid of the reference triangle.
+const CENTROID: [f64; 2] = [1.0 / 3.0, 1.0 / 3.0];
 
 /// The strains whose sum is the volume change: ε_rr + ε_zz + ε_θθ.
-const VOLUME: [f64; 4] = [1.0, 1.0, 0.0, 1.0];
+const VOLUME: [f64; 4] = <Ring as Strains<2, 4>>::VOLUME;
 
-/// Isotropic D for (rr, zz, rz, θθ) with engineering shear strain.
-pub fn d_matrix(e: f64, nu: f64) -> D4 {
-    let c = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
-    let (a, b) = (c * (1.0 - nu), c * nu);
-    [
-        [a, b, 0.0, b],
-        [b, a, 0.0, b],
-        [0.0, 0.0, c * (1.0 - 2.0 * nu) / 2.0, 0.0],
-        [b, b, 0.0, a],
-    ]
+/// The element's nodes and nodal displacements (u_r, u_z) as arrays of its order.
+fn arrays<const K: usize>(x: &[[f64; 2]], ue: &[f64]) -> ([[f64; 2]; K], [[f64; 2]; K]) {
+    (
+        std::array::from_fn(|i| x[i]),
+        std::array::from_fn(|i| [ue[2 * i], ue[2 * i + 1]]),
+    )
 }
 
-/// Element stiffness (2k × 2k, row-major into `ke`), DOF order u0r, u0z, u1r, ...
-pub fn stiffness(order: Order, x: &[[f64; 2]], d: &D4, ke: &mut [f64; 144]) {
-    element::stiffness_of(order, x, d, b_column, true, ke);
-}
-
-/// The P2–P0 element of `element::stiffness_selective` in axisymmetry: the
-/// volumetric part λ m mᵀ, m = (1, 1, 0, 1) (the hoop strain is part of the
-/// volume change), on the mean dilatation over the ring's volume 2πr dA (not
-/// at the centroid: see `element::add_mean_dilatation`), the deviatoric part
-/// with the full rule.
-pub fn stiffness_selective(order: Order, x: &[[f64; 2]], d: &D4, lambda: f64, ke: &mut [f64; 144]) {
-    element::selective_of(order, x, d, lambda, VOLUME, b_column, true, ke);
-}
-
-/// The strain columns of DOF a (component a % 2 of node a / 2) at radius r.
-fn b_column(a: usize, n: &[f64; 6], dx: &[f64; 6], dy: &[f64; 6], r: f64) -> [f64; 4] {
-    let i = a / 2;
-    if a.is_multiple_of(2) {
-        [dx[i], 0.0, dy[i], n[i] / r]
-    } else {
-        [0.0, dy[i], dx[i], 0.0]
+/// Centroid stress (rr, zz, rz, θθ) of the P2–P0 element
+/// (`kernel::Integration::MeanDilatation`): the deviatoric part from the centroid
+/// strain, the volumetric part λ θ̄ from the element's mean dilatation, as
+/// the stiffness has it. The centroid's own div u is not θ̄ next to the axis
+/// (u_r / r varies by O(1) there): measured on a ball on a flat at ν = 0.49,
+/// a/h ≈ 21, the stresses within a/2 of the contact were off by up to 21 % of
+/// p0 on elements touching the axis.
+pub fn centroid_stress_selective(order: Order, x: &[[f64; 2]], law: &impl Constitutive<4>, ue: &[f64]) -> [f64; 4] {
+    fn of<E: ReferenceElement<2, K>, const K: usize>(x: &[[f64; 2]], ue: &[f64]) -> ([f64; 4], f64) {
+        let (x, u) = arrays::<K>(x, ue);
+        let (bbar, _) = kernel::mean_dilatation::<E, Ring, 2, K, 4>(&x);
+        let theta: f64 = u.iter().flatten().zip(bbar.iter().flatten()).map(|(u, b)| u * b).sum();
+        (kernel::strain::<E, Ring, 2, K, 4>(&x, &CENTROID, &u), theta)
     }
-}
-
-/// Centroid stress (rr, zz, rz, θθ) of the P2–P0 element (`lambda` the Lamé
-/// λ): the deviatoric part from the centroid strain, the volumetric part λ θ̄
-/// from the element's mean dilatation, as the stiffness has it. The centroid's
-/// own div u is not θ̄ next to the axis (u_r / r varies by O(1) there):
-/// measured on a ball on a flat at ν = 0.49, a/h ≈ 21, the stresses within a/2
-/// of the contact were off by up to 21 % of p0 on elements touching the axis.
-pub fn centroid_stress_selective(order: Order, x: &[[f64; 2]], d: &D4, lambda: f64, ue: &[f64]) -> [f64; 4] {
-    let (bbar, _) = element::mean_dilatation(order, x, VOLUME, b_column, true);
-    let theta: f64 = ue.iter().zip(&bbar).map(|(u, b)| u * b).sum();
-    let s = centroid_stress(order, x, &element::deviatoric(d, lambda, VOLUME), ue);
-    std::array::from_fn(|i| s[i] + lambda * theta * VOLUME[i])
+    let (eps, theta) = match order {
+        Order::T3 => of::<T3, 3>(x, ue),
+        Order::T6 => of::<T6, 6>(x, ue),
+    };
+    let lambda = law.volumetric_lambda();
+    let d = kernel::deviatoric(&law.tangent(&eps), lambda, VOLUME);
+    std::array::from_fn(|i| (0..4).map(|j| d[i][j] * eps[j]).sum::<f64>() + lambda * theta * VOLUME[i])
 }
 
 /// Centroid stress (rr, zz, rz, θθ).
-pub fn centroid_stress(order: Order, x: &[[f64; 2]], d: &D4, ue: &[f64]) -> [f64; 4] {
-    let k = order_len(order);
-    let (mut n, mut dx, mut dy) = ([0.0; 6], [0.0; 6], [0.0; 6]);
-    gradients(order, x, 1.0 / 3.0, 1.0 / 3.0, &mut n, &mut dx, &mut dy);
-    let r: f64 = (0..k).map(|i| n[i] * x[i][0]).sum();
-    let mut eps = [0.0; 4];
-    for (a, &u) in ue.iter().enumerate().take(2 * k) {
-        let b = b_column(a, &n, &dx, &dy, r);
-        for i in 0..4 {
-            eps[i] += b[i] * u;
-        }
+pub fn centroid_stress(order: Order, x: &[[f64; 2]], law: &impl Constitutive<4>, ue: &[f64]) -> [f64; 4] {
+    fn of<E: ReferenceElement<2, K>, const K: usize>(x: &[[f64; 2]], ue: &[f64]) -> [f64; 4] {
+        let (x, u) = arrays::<K>(x, ue);
+        kernel::strain::<E, Ring, 2, K, 4>(&x, &CENTROID, &u)
     }
-    std::array::from_fn(|i| (0..4).map(|j| d[i][j] * eps[j]).sum())
+    let eps = match order {
+        Order::T3 => of::<T3, 3>(x, ue),
+        Order::T6 => of::<T6, 6>(x, ue),
+    };
+    law.stress(&eps)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fem::constitutive::{LinearIsotropic, Section};
+    use crate::fem::kernel::Integration;
+
+    /// K_e of a T3 or T6 ring element through the generic kernel.
+    fn stiffness(x: &[[f64; 2]], law: &impl Constitutive<4>, ke: &mut [f64; 144]) {
+        match x.len() {
+            3 => kernel::stiffness::<T3, Ring, _, 2, 3, 4>(&std::array::from_fn(|i| x[i]), law, Integration::Full, ke),
+            _ => kernel::stiffness::<T6, Ring, _, 2, 6, 4>(&std::array::from_fn(|i| x[i]), law, Integration::Full, ke),
+        }
+    }
 
     /// The straight-sided T6 on `corners` (midside nodes at the midpoints).
     fn straight_t6(c: [[f64; 2]; 3]) -> [[f64; 2]; 6] {
@@ -99,7 +92,7 @@ mod tests {
     #[test]
     fn uniform_dilatation_has_the_exact_energy() {
         let (e, nu, eps) = (200.0, 0.3, 1e-3);
-        let d = d_matrix(e, nu);
+        let law = LinearIsotropic::new(e, nu, Section::Axisymmetric);
         let corners = [[0.5, 0.0], [2.0, 0.3], [0.9, 1.4]];
         let area = 0.5
             * ((corners[1][0] - corners[0][0]) * (corners[2][1] - corners[0][1])
@@ -109,16 +102,20 @@ mod tests {
         let bulk = e / (3.0 * (1.0 - 2.0 * nu));
         let exact = 0.5 * 9.0 * bulk * eps * eps * volume;
         let t6 = straight_t6(corners);
-        for (order, x) in [(Order::T3, &corners[..]), (Order::T6, &t6[..])] {
+        for x in [&corners[..], &t6[..]] {
             let mut ke = [0.0; 144];
-            stiffness(order, x, &d, &mut ke);
+            stiffness(x, &law, &mut ke);
             let nd = 2 * x.len();
             let u: Vec<f64> = x.iter().flat_map(|p| [eps * p[0], eps * p[1]]).collect();
             let energy: f64 = 0.5
                 * (0..nd)
                     .map(|a| (0..nd).map(|b| u[a] * ke[a * nd + b] * u[b]).sum::<f64>())
                     .sum::<f64>();
-            assert!((energy / exact - 1.0).abs() < 1e-12, "{order:?}: {energy} vs {exact}");
+            assert!(
+                (energy / exact - 1.0).abs() < 1e-12,
+                "{} nodes: {energy} vs {exact}",
+                x.len()
+            );
         }
     }
 
@@ -132,9 +129,24 @@ mod tests {
     /// 0.84 θ̄, the energy 0.71 of the exact one.
     #[test]
     fn p2_p0_constraint_is_the_mean_dilatation_over_the_ring() {
+        /// A law whose tangent is its volumetric part alone.
+        struct Volumetric(f64);
+        impl Constitutive<4> for Volumetric {
+            fn stress(&self, eps: &[f64; 4]) -> [f64; 4] {
+                let tr: f64 = (0..4).map(|i| VOLUME[i] * eps[i]).sum();
+                VOLUME.map(|m| self.0 * tr * m)
+            }
+            fn tangent(&self, _: &[f64; 4]) -> [[f64; 4]; 4] {
+                std::array::from_fn(|i| std::array::from_fn(|j| self.0 * VOLUME[i] * VOLUME[j]))
+            }
+            fn energy(&self, eps: &[f64; 4]) -> f64 {
+                0.5 * (0..4).map(|i| self.stress(eps)[i] * eps[i]).sum::<f64>()
+            }
+            fn volumetric_lambda(&self) -> f64 {
+                self.0
+            }
+        }
         let lambda = 7.0;
-        let m = [1.0, 1.0, 0.0, 1.0];
-        let d: D4 = std::array::from_fn(|i| std::array::from_fn(|j| lambda * m[i] * m[j]));
         let corners = [[0.0, 0.2], [0.7, 0.0], [0.3, 1.1]];
         let area = 0.5
             * ((corners[1][0] - corners[0][0]) * (corners[2][1] - corners[0][1])
@@ -147,7 +159,7 @@ mod tests {
         let exact = 0.5 * lambda * volume * theta * theta;
         let x = straight_t6(corners);
         let mut ke = [0.0; 144];
-        stiffness_selective(Order::T6, &x, &d, lambda, &mut ke);
+        kernel::stiffness::<T6, Ring, _, 2, 6, 4>(&x, &Volumetric(lambda), Integration::MeanDilatation, &mut ke);
         let u: Vec<f64> = x.iter().flat_map(|p| [p[0] * p[0], 0.0]).collect();
         let energy: f64 = 0.5
             * (0..12)
@@ -161,10 +173,10 @@ mod tests {
     /// stretches the hoops).
     #[test]
     fn axial_translation_is_free_and_radial_is_not() {
-        let d = d_matrix(1.0, 0.25);
+        let law = LinearIsotropic::new(1.0, 0.25, Section::Axisymmetric);
         let x = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
         let mut ke = [0.0; 144];
-        stiffness(Order::T3, &x, &d, &mut ke);
+        stiffness(&x, &law, &mut ke);
         let apply = |u: [f64; 6]| -> f64 {
             (0..6)
                 .map(|a| (0..6).map(|b| ke[a * 6 + b] * u[b]).sum::<f64>().abs())

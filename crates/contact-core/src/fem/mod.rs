@@ -1,10 +1,14 @@
-//! Finite elements of 2D linear elasticity: materials, element kernels, assembly.
+//! Finite elements of linear elasticity: the constitutive seam (`constitutive`),
+//! the element seam (`reference`), the one stiffness kernel over both
+//! (`kernel`), and the 2D assembly, loads and post-processing kernels.
 
 pub mod assembly;
 pub mod axisymmetric;
+pub mod constitutive;
 pub mod element;
+pub mod kernel;
 pub mod loads;
-pub mod material;
+pub mod reference;
 pub mod rigid_modes;
 
 pub use assembly::{assemble, Assembled, DofMap};

@@ -485,9 +485,9 @@ mod tests {
         (0..m.n_elems())
             .map(|e| {
                 let x: Vec<[f64; 2]> = m.elem(e).iter().map(|&n| m.nodes[n]).collect();
-                crate::fem::element::RULE3
+                crate::fem::reference::triangle::RULE3
                     .iter()
-                    .map(|q| q[2] * map(&x, q[0], q[1]).1)
+                    .map(|q| q.weight * map(&x, q.xi[0], q.xi[1]).1)
                     .sum::<f64>()
             })
             .sum()

@@ -11,7 +11,8 @@ use crate::contact::{
     compliance::Foundations,
     free_motions::{self, FreeMotions, Motion},
 };
-use crate::fem::{self, element, material::d_matrix};
+use crate::fem::kernel::Integration;
+use crate::fem::{self, element};
 use crate::mesh::Mesh2d;
 use crate::methods;
 use crate::model::Model;
@@ -292,23 +293,24 @@ fn body_outputs(scene: &Scene, meshes: &[Mesh2d], disp: &[Vec<[f64; 2]>]) -> Opt
                 // 0 in plane stress; in axisymmetry (rr, zz, rz, θθ), the hoop
                 // stress from u_r / r.
                 let stress4: Option<Vec<[f64; 4]>> = o_stress.then(|| {
-                    let dm = d_matrix(body.youngs_modulus, body.poisson_ratio, scene.analysis);
-                    let d4 = crate::fem::axisymmetric::d_matrix(body.youngs_modulus, body.poisson_ratio);
-                    let selective = crate::fem::assembly::selective_lambda(body, mesh.order, scene.analysis);
+                    let law = crate::fem::assembly::law(body, scene.analysis);
+                    let how = crate::fem::assembly::integration(body, mesh.order, scene.analysis);
                     (0..mesh.n_elems())
                         .map(|e| {
                             let conn = mesh.elem(e);
                             let x: Vec<[f64; 2]> = conn.iter().map(|&n| mesh.nodes[n]).collect();
                             let ue: Vec<f64> = conn.iter().flat_map(|&n| disp[n]).collect();
                             let s = match scene.analysis {
-                                Analysis::Axisymmetric => match selective {
-                                    Some(lambda) => crate::fem::axisymmetric::centroid_stress_selective(
-                                        mesh.order, &x, &d4, lambda, &ue,
-                                    ),
-                                    None => crate::fem::axisymmetric::centroid_stress(mesh.order, &x, &d4, &ue),
+                                Analysis::Axisymmetric => match how {
+                                    Integration::MeanDilatation => {
+                                        crate::fem::axisymmetric::centroid_stress_selective(mesh.order, &x, &law, &ue)
+                                    }
+                                    Integration::Full => {
+                                        crate::fem::axisymmetric::centroid_stress(mesh.order, &x, &law, &ue)
+                                    }
                                 },
                                 Analysis::PlaneStrain | Analysis::PlaneStress => {
-                                    let s = element::centroid_stress(mesh.order, &x, &dm, &ue);
+                                    let s = element::centroid_stress(mesh.order, &x, &law, &ue);
                                     let nu_zz = if scene.analysis == Analysis::PlaneStrain {
                                         body.poisson_ratio
                                     } else {
