@@ -36,19 +36,22 @@ pub enum Conn<'a> {
 }
 
 impl<'a> Conn<'a> {
-    fn len(&self) -> usize {
+    pub fn len(&self) -> usize {
         match *self {
             Conn::Ragged { ends, .. } => ends.len(),
             Conn::Flat { nodes, per } => nodes.len() / per.max(1),
         }
     }
-    fn get(&self, e: usize) -> &'a [usize] {
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    pub fn get(&self, e: usize) -> &'a [usize] {
         match *self {
             Conn::Ragged { nodes, ends } => &nodes[if e == 0 { 0 } else { ends[e - 1] }..ends[e]],
             Conn::Flat { nodes, per } => &nodes[e * per..(e + 1) * per],
         }
     }
-    fn iter(&self) -> impl Iterator<Item = &'a [usize]> + '_ {
+    pub fn iter(&self) -> impl Iterator<Item = &'a [usize]> + '_ {
         (0..self.len()).map(|e| self.get(e))
     }
 }
@@ -91,7 +94,7 @@ pub fn try_build(
     if nodes.len() < 3 {
         return Err(bad(Item::Nodes, "a mesh needs at least 3 nodes".into()));
     }
-    if elements.len() == 0 {
+    if elements.is_empty() {
         return Err(bad(Item::Elements, "a mesh needs at least one element".into()));
     }
     let npe = elements.get(0).len();
