@@ -14,6 +14,7 @@ pub mod boundary;
 pub mod estimate;
 pub mod generate;
 pub mod gmsh;
+pub(crate) mod msh;
 pub mod quality;
 pub mod refine;
 pub mod uniform;
