@@ -21,6 +21,7 @@
 //!   order, the 2D T6 order).
 
 pub mod generate;
+pub mod gmsh;
 pub mod quality;
 
 use std::collections::{BTreeMap, HashMap};
