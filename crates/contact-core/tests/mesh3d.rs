@@ -260,7 +260,7 @@ fn bad_meshes_are_refused_naming_the_item() {
             vec![0, 1, 2, 3, 0, 2, 2, 3],
             vec![],
             "/m/elements/1",
-            "repeats node 2",
+            "repeats a node",
         ),
         (
             nodes.clone(),

@@ -27,7 +27,7 @@
 
 use std::collections::BTreeMap;
 
-use super::msh::{self, bad, nodes_per_element, type_name, Tokens};
+use super::msh::{self, bad, Tokens};
 use super::{quality, signed_area, Mesh2d};
 use crate::error::CoreError;
 
@@ -57,21 +57,7 @@ impl Parsed {
     /// JSON pointer of the MSH text (errors point there and name the Gmsh tags).
     pub fn try_mesh(&self, length: f64, path: &str) -> Result<Mesh2d, CoreError> {
         let scaled: Vec<[f64; 2]> = self.nodes.iter().map(|p| [p[0] / length, p[1] / length]).collect();
-        let locate = |item: quality::Item| {
-            let context = match item {
-                quality::Item::Nodes | quality::Item::Elements | quality::Item::Node(_) => "Gmsh mesh: ".to_string(),
-                quality::Item::Element(e) | quality::Item::ElementNode(e, _) => {
-                    let (tag, entity) = self.element_tags[e];
-                    format!("Gmsh element {tag} (surface entity {entity}): ")
-                }
-                quality::Item::EdgeSet(name) => format!("Gmsh physical curve group '{name}': "),
-                quality::Item::Edge(name, k) => {
-                    let tag = self.edge_tags.get(name).and_then(|t| t.get(k)).copied().unwrap_or(0);
-                    format!("Gmsh physical curve group '{name}', line element {tag}: ")
-                }
-            };
-            (path.to_string(), context)
-        };
+        let locate = msh::locate(path, &self.element_tags, &self.edge_tags, WORDS);
         let elements = quality::Conn::Flat {
             nodes: &self.elements,
             per: self.per_element,
@@ -79,6 +65,16 @@ impl Parsed {
         quality::try_build(scaled, elements, &self.edge_sets, &locate)
     }
 }
+
+/// The words of this reader's messages.
+const WORDS: msh::Words = msh::Words {
+    entity: "surface",
+    group: "curve",
+    member: "line element",
+    elements: "triangles",
+    body_types: "a 2D body is made of 3-node (type 2) or 6-node (type 9) triangles",
+    set_types: "its edge sets of 2-node (type 1) or 3-node (type 8) lines",
+};
 
 /// Parses MSH 4.1 ASCII text; `surfaces` names the physical surface groups that
 /// make up the body (empty: every triangle). `path`: JSON pointer of the text.
@@ -93,37 +89,19 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
 
     // Elements: triangles of the body, lines of the physical curves.
     let (mut t, blocks) = Tokens::blocks(text, "Elements", path)?;
-    // Triangles flat, `per` file indices each (a list per triangle cost 70
-    // bytes more each), with their (tag, entity).
-    let mut tris: Vec<usize> = Vec::new();
-    let mut tri_tags: Vec<(u64, i64)> = Vec::new();
-    let mut per = 0;
+    let mut tris = msh::Body::default();
     let mut lines: BTreeMap<String, Vec<(u64, [usize; 2])>> = BTreeMap::new();
     let node_of = |tag: u64, element: u64| file_nodes.index(tag, element, path);
     for _ in 0..blocks {
-        let dim = t.int()?;
-        let entity = t.int()?;
-        let etype = t.int()?;
-        let n = t.count()?;
-        let npe =
-            nodes_per_element(etype).ok_or_else(|| {
-                bad(
-                path,
-                format!("Gmsh element type {etype} (entity {entity} of dimension {dim}) is not supported: a 2D body is \
-                    made of 3-node (type 2) or 6-node (type 9) triangles"),
-            )
-            })?;
-        let unsupported = |what: &str| {
-            bad(
-                path,
-                format!(
-                    "Gmsh {} elements (type {etype}) on {what} entity {entity} are not supported: a 2D body is made of \
-                        3-node (type 2) or 6-node (type 9) triangles, its edge sets of 2-node (type 1) or 3-node (type \
-                        8) lines",
-                    type_name(etype)
-                ),
-            )
-        };
+        let block = t.block(WORDS)?;
+        let msh::Block {
+            dim,
+            entity,
+            etype,
+            n,
+            npe,
+        } = block;
+        let unsupported = |on: &str| block.unsupported(on, WORDS, path);
         let curve_groups: Vec<String> = match dim {
             1 => header.groups_of(1, entity),
             _ => Vec::new(),
@@ -146,32 +124,14 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
         }
         let body = dim == 2 && in_body(entity);
         if body {
-            tris.reserve_exact(t.at_most(n, 1 + npe) * npe);
-            tri_tags.reserve_exact(t.at_most(n, 1 + npe));
+            tris.reserve(&t, n, npe);
         }
         let mut conn = [0; 10];
         for _ in 0..n {
-            let tag = t.tag()?;
             let conn = &mut conn[..npe];
-            for c in conn.iter_mut() {
-                *c = t.tag()?;
-            }
+            let tag = t.element(conn)?;
             if body {
-                if per == 0 {
-                    per = npe;
-                } else if npe != per {
-                    return Err(bad(
-                        path,
-                        format!(
-                            "Gmsh element {tag} (surface entity {entity}): element has {npe} nodes but element \
-                            0 has {per}; mixed orders are not supported"
-                        ),
-                    ));
-                }
-                for &c in conn.iter() {
-                    tris.push(node_of(c, tag)?);
-                }
-                tri_tags.push((tag, entity));
+                tris.push((tag, entity), conn, &file_nodes, WORDS, path)?;
             } else if dim == 1 {
                 for g in &curve_groups {
                     let ends = [node_of(conn[0], tag)?, node_of(conn[1], tag)?];
@@ -180,7 +140,7 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
             }
         }
     }
-    if tris.is_empty() {
+    if tris.tags.is_empty() {
         return Err(bad(
             path,
             if surfaces.is_empty() {
@@ -192,18 +152,18 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
     }
 
     // Keep the nodes the triangles use, in file order.
-    let mut used = vec![false; node_tags.len()];
-    for &n in &tris {
-        used[n] = true;
-    }
-    let mut local = vec![usize::MAX; node_tags.len()];
-    let mut nodes = Vec::with_capacity(used.iter().filter(|&&u| u).count());
-    for (i, c) in coords.iter().enumerate().filter(|(i, _)| used[*i]) {
-        local[i] = nodes.len();
-        nodes.push([c[0], c[1]]);
-    }
+    let local = tris.keep_used(node_tags.len());
+    let used = |i: usize| local[i] != usize::MAX;
+    let mut nodes = Vec::with_capacity(local.iter().filter(|&&l| l != usize::MAX).count());
+    nodes.extend(
+        coords
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| used(*i))
+            .map(|(_, c)| [c[0], c[1]]),
+    );
     let size = super::extent(&nodes);
-    for (i, c) in coords.iter().enumerate().filter(|(i, _)| used[*i]) {
+    for (i, c) in coords.iter().enumerate().filter(|(i, _)| used(*i)) {
         // z is written with ~16 digits: anything beyond round-off of the size is a 3D node.
         if c[2].abs() > 1e-9 * size {
             return Err(bad(
@@ -215,11 +175,12 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
             ));
         }
     }
-    let mut elements = tris;
+    let msh::Body {
+        nodes: mut elements,
+        tags: element_tags,
+        per,
+    } = tris;
     for e in elements.chunks_exact_mut(per) {
-        for n in e.iter_mut() {
-            *n = local[*n];
-        }
         if signed_area(nodes[e[0]], nodes[e[1]], nodes[e[2]]) < 0.0 {
             // Clockwise: swap corners 1 and 2; midsides (01, 12, 20) become (02, 21, 10).
             e.swap(1, 2);
@@ -228,28 +189,7 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
             }
         }
     }
-    let element_tags = tri_tags;
-    let mut edge_sets = BTreeMap::new();
-    let mut edge_tags = BTreeMap::new();
-    for (name, ls) in lines {
-        let mut edges = Vec::with_capacity(ls.len());
-        let mut tags = Vec::with_capacity(ls.len());
-        for (tag, [a, b]) in ls {
-            if local[a] == usize::MAX || local[b] == usize::MAX {
-                return Err(bad(
-                    path,
-                    format!(
-                        "Gmsh physical curve group '{name}', line element {tag}: its nodes are not nodes of the \
-                        body's triangles"
-                    ),
-                ));
-            }
-            edges.push([local[a], local[b]]);
-            tags.push(tag);
-        }
-        edge_sets.insert(name.clone(), edges);
-        edge_tags.insert(name, tags);
-    }
+    let (edge_sets, edge_tags) = msh::try_sets(lines, &local, WORDS, path)?;
     Ok(Parsed {
         nodes,
         elements,

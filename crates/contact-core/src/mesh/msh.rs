@@ -1,13 +1,20 @@
 //! MSH 4.1 ASCII text, the parts the 2D and 3D readers share: sections and
-//! their tokens, the header (`$MeshFormat`, `$PhysicalNames`, `$Entities`)
-//! and the nodes (`$Nodes`). What each reader makes of the elements is its own
+//! their tokens, the header (`$MeshFormat`, `$PhysicalNames`, `$Entities`),
+//! the nodes (`$Nodes`), the element blocks' headers and elements, the body's
+//! elements kept flat, the named sets and the messages naming Gmsh's tags.
+//! Which blocks make the body and which the sets is each reader's own
 //! (`mesh::gmsh` for triangles, `mesh3d::gmsh` for tetrahedra).
 //!
 //! Counts read from the file reserve memory only up to what the section's text
 //! can hold (`Tokens::at_most`): a hostile count fails on the missing data.
+//!
+//! Length: about 545 lines, all of the MSH reading that the 2D and 3D
+//! readers share (listed above); each reader keeps only what its dimension
+//! decides.
 
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 
+use super::quality::Item;
 use crate::error::{CoreError, InvalidKind};
 
 pub(crate) fn bad(path: &str, reason: impl Into<String>) -> CoreError {
@@ -15,7 +22,7 @@ pub(crate) fn bad(path: &str, reason: impl Into<String>) -> CoreError {
 }
 
 /// Gmsh's name of an element type, for messages.
-pub(crate) fn type_name(t: i64) -> &'static str {
+fn type_name(t: i64) -> &'static str {
     match t {
         1 => "2-node line",
         2 => "3-node triangle",
@@ -38,7 +45,7 @@ pub(crate) fn type_name(t: i64) -> &'static str {
 }
 
 /// Nodes per element of the types whose blocks we may meet; None: unknown type.
-pub(crate) fn nodes_per_element(t: i64) -> Option<usize> {
+fn nodes_per_element(t: i64) -> Option<usize> {
     Some(match t {
         15 => 1,
         1 => 2,
@@ -334,4 +341,209 @@ pub(crate) fn try_nodes(text: &str, path: &str) -> Result<Nodes, CoreError> {
         coords,
         index_of_tag,
     })
+}
+
+/// The words of a reader's messages: the dimension of its body's entities
+/// ("surface"), of its sets' physical groups ("curve"), what a member of a
+/// set is ("line element"), what the body is made of ("triangles") and, in
+/// full, which element types a body and its sets are made of.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Words {
+    pub entity: &'static str,
+    pub group: &'static str,
+    pub member: &'static str,
+    pub elements: &'static str,
+    pub body_types: &'static str,
+    pub set_types: &'static str,
+}
+
+/// The header of an element block: its entity (dim, tag), element type,
+/// element count and nodes per element.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Block {
+    pub dim: i64,
+    pub entity: i64,
+    pub etype: i64,
+    pub n: usize,
+    pub npe: usize,
+}
+
+impl Block {
+    /// The refusal of this block's elements on an entity of the body or a set (`on`: its dimension's name).
+    pub(crate) fn unsupported(&self, on: &str, words: Words, path: &str) -> CoreError {
+        let Block { etype, entity, .. } = *self;
+        bad(
+            path,
+            format!(
+                "Gmsh {} elements (type {etype}) on {on} entity {entity} are not supported: {}, {}",
+                type_name(etype),
+                words.body_types,
+                words.set_types
+            ),
+        )
+    }
+}
+
+impl Tokens<'_> {
+    /// The next element block's header; a type of unknown node count is refused.
+    pub(crate) fn block(&mut self, words: Words) -> Result<Block, CoreError> {
+        let (dim, entity, etype, n) = (self.int()?, self.int()?, self.int()?, self.count()?);
+        let npe = nodes_per_element(etype).ok_or_else(|| {
+            bad(
+                self.path,
+                format!(
+                    "Gmsh element type {etype} (entity {entity} of dimension {dim}) is not supported: {}",
+                    words.body_types
+                ),
+            )
+        })?;
+        Ok(Block {
+            dim,
+            entity,
+            etype,
+            n,
+            npe,
+        })
+    }
+
+    /// The next element of a block: its tag, and its nodes' tags into `conn`.
+    pub(crate) fn element(&mut self, conn: &mut [u64]) -> Result<u64, CoreError> {
+        let tag = self.tag()?;
+        for c in conn.iter_mut() {
+            *c = self.tag()?;
+        }
+        Ok(tag)
+    }
+}
+
+/// Where an item of a mesh read from the MSH text at `path` is: the text's
+/// JSON pointer, and a message prefix naming Gmsh's own tags (`element_tags`:
+/// (element tag, entity tag) of each element; `member_tags`: the element tags
+/// of each set's members, in order).
+pub(crate) fn locate<'a>(
+    path: &'a str,
+    element_tags: &'a [(u64, i64)],
+    member_tags: &'a BTreeMap<String, Vec<u64>>,
+    words: Words,
+) -> impl Fn(Item) -> (String, String) + 'a {
+    move |item: Item| {
+        let Words {
+            entity, group, member, ..
+        } = words;
+        let context = match item {
+            Item::Nodes | Item::Elements | Item::Node(_) => "Gmsh mesh: ".to_string(),
+            Item::Element(e) | Item::ElementNode(e, _) => {
+                let (tag, ent) = element_tags[e];
+                format!("Gmsh element {tag} ({entity} entity {ent}): ")
+            }
+            Item::Set(name) => format!("Gmsh physical {group} group '{name}': "),
+            Item::Member(name, k) => {
+                let tag = member_tags.get(name).and_then(|t| t.get(k)).copied().unwrap_or(0);
+                format!("Gmsh physical {group} group '{name}', {member} {tag}: ")
+            }
+        };
+        (path.to_string(), context)
+    }
+}
+
+/// The elements that make up a body, kept flat as they are read (a list per
+/// element cost 70 bytes more each).
+#[derive(Debug, Default)]
+pub(crate) struct Body {
+    /// File node indices, `per` each, one element after the other.
+    pub nodes: Vec<usize>,
+    /// (element tag, entity tag) of each element.
+    pub tags: Vec<(u64, i64)>,
+    /// Nodes per element (0 before the first).
+    pub per: usize,
+}
+
+impl Body {
+    /// Room for a block of `n` elements of `npe` nodes, as far as the section's text can hold them.
+    pub(crate) fn reserve(&mut self, t: &Tokens, n: usize, npe: usize) {
+        self.nodes.reserve_exact(t.at_most(n, 1 + npe) * npe);
+        self.tags.reserve_exact(t.at_most(n, 1 + npe));
+    }
+
+    /// Adds element `tag` of `entity` (a `words.entity`) with its nodes' tags `conn`.
+    pub(crate) fn push(
+        &mut self,
+        (tag, entity): (u64, i64),
+        conn: &[u64],
+        file: &Nodes,
+        words: Words,
+        path: &str,
+    ) -> Result<(), CoreError> {
+        if self.per == 0 {
+            self.per = conn.len();
+        } else if conn.len() != self.per {
+            return Err(bad(
+                path,
+                format!(
+                    "Gmsh element {tag} ({} entity {entity}): element has {} nodes but element 0 has {}; mixed \
+                        orders are not supported",
+                    words.entity,
+                    conn.len(),
+                    self.per
+                ),
+            ));
+        }
+        for &c in conn {
+            self.nodes.push(file.index(c, tag, path)?);
+        }
+        self.tags.push((tag, entity));
+        Ok(())
+    }
+
+    /// Keeps the file's nodes that the elements use, in file order, and
+    /// renumbers the elements to them: for each of the file's `n` nodes, its
+    /// index among the kept ones (usize::MAX: unused).
+    pub(crate) fn keep_used(&mut self, n: usize) -> Vec<usize> {
+        let mut local = vec![usize::MAX; n];
+        for &k in &self.nodes {
+            local[k] = 0;
+        }
+        for (kept, l) in local.iter_mut().filter(|l| **l == 0).enumerate() {
+            *l = kept;
+        }
+        for k in self.nodes.iter_mut() {
+            *k = local[*k];
+        }
+        local
+    }
+}
+
+/// A reader's named sets (K corner nodes per member) and their members' element tags.
+pub(crate) type Sets<const K: usize> = (BTreeMap<String, Vec<[usize; K]>>, BTreeMap<String, Vec<u64>>);
+
+/// The named sets' members (K corner nodes as file node indices, with their
+/// element tags) renumbered to the body's nodes (`local`, from
+/// `Body::keep_used`), and the tags of each set's members apart.
+pub(crate) fn try_sets<const K: usize>(
+    members: BTreeMap<String, Vec<(u64, [usize; K])>>,
+    local: &[usize],
+    words: Words,
+    path: &str,
+) -> Result<Sets<K>, CoreError> {
+    let (mut sets, mut tags) = (BTreeMap::new(), BTreeMap::new());
+    for (name, ms) in members {
+        let mut set = Vec::with_capacity(ms.len());
+        let mut set_tags = Vec::with_capacity(ms.len());
+        for (tag, c) in ms {
+            if c.iter().any(|&n| local[n] == usize::MAX) {
+                return Err(bad(
+                    path,
+                    format!(
+                        "Gmsh physical {} group '{name}', {} {tag}: its nodes are not nodes of the body's {}",
+                        words.group, words.member, words.elements
+                    ),
+                ));
+            }
+            set.push(c.map(|n| local[n]));
+            set_tags.push(tag);
+        }
+        sets.insert(name.clone(), set);
+        tags.insert(name, set_tags);
+    }
+    Ok((sets, tags))
 }

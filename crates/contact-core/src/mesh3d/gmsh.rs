@@ -27,10 +27,10 @@
 
 use std::collections::BTreeMap;
 
-use super::quality::{self, Item};
+use super::quality;
 use super::Mesh3d;
 use crate::error::CoreError;
-use crate::mesh::msh::{self, bad, nodes_per_element, type_name, Tokens};
+use crate::mesh::msh::{self, bad, Tokens};
 use crate::mesh::quality::Conn;
 
 /// A parsed MSH file restricted to one body, in the file's units.
@@ -51,28 +51,14 @@ pub struct Parsed {
 impl Parsed {
     /// Largest side of the bounding box and the node count (for scales and limits).
     pub fn extent_and_nodes(&self) -> (f64, f64) {
-        (super::extent(&self.nodes), self.nodes.len() as f64)
+        (crate::mesh::extent(&self.nodes), self.nodes.len() as f64)
     }
 
     /// The checked mesh with coordinates divided by `length`; `path` is the
     /// JSON pointer of the MSH text (errors point there and name the Gmsh tags).
     pub fn try_mesh(&self, length: f64, path: &str) -> Result<Mesh3d, CoreError> {
         let scaled: Vec<[f64; 3]> = self.nodes.iter().map(|p| p.map(|c| c / length)).collect();
-        let locate = |item: Item| {
-            let context = match item {
-                Item::Nodes | Item::Elements | Item::Node(_) => "Gmsh mesh: ".to_string(),
-                Item::Element(e) | Item::ElementNode(e, _) => {
-                    let (tag, entity) = self.element_tags[e];
-                    format!("Gmsh element {tag} (volume entity {entity}): ")
-                }
-                Item::FaceSet(name) => format!("Gmsh physical surface group '{name}': "),
-                Item::Face(name, k) => {
-                    let tag = self.face_tags.get(name).and_then(|t| t.get(k)).copied().unwrap_or(0);
-                    format!("Gmsh physical surface group '{name}', triangle {tag}: ")
-                }
-            };
-            (path.to_string(), context)
-        };
+        let locate = msh::locate(path, &self.element_tags, &self.face_tags, WORDS);
         let elements = Conn::Flat {
             nodes: &self.elements,
             per: self.per_element,
@@ -80,6 +66,16 @@ impl Parsed {
         quality::try_build(scaled, elements, &self.face_sets, &locate)
     }
 }
+
+/// The words of this reader's messages.
+const WORDS: msh::Words = msh::Words {
+    entity: "volume",
+    group: "surface",
+    member: "triangle",
+    elements: "tetrahedra",
+    body_types: "a 3D body is made of 4-node (type 4) or 10-node (type 11) tetrahedra",
+    set_types: "its face sets of 3-node (type 2) or 6-node (type 9) triangles",
+};
 
 /// Parses MSH 4.1 ASCII text; `volumes` names the physical volume groups that
 /// make up the body (empty: every tetrahedron). `path`: JSON pointer of the text.
@@ -90,36 +86,19 @@ pub fn try_parse(text: &str, volumes: &[String], path: &str) -> Result<Parsed, C
 
     // Elements: tetrahedra of the body, triangles of the physical surfaces.
     let (mut t, blocks) = Tokens::blocks(text, "Elements", path)?;
-    let mut tets: Vec<usize> = Vec::new();
-    let mut tet_tags: Vec<(u64, i64)> = Vec::new();
-    let mut per = 0;
+    let mut tets = msh::Body::default();
     let mut triangles: BTreeMap<String, Vec<(u64, [usize; 3])>> = BTreeMap::new();
     let node_of = |tag: u64, element: u64| file_nodes.index(tag, element, path);
     for _ in 0..blocks {
-        let dim = t.int()?;
-        let entity = t.int()?;
-        let etype = t.int()?;
-        let n = t.count()?;
-        let npe = nodes_per_element(etype).ok_or_else(|| {
-            bad(
-                path,
-                format!(
-                    "Gmsh element type {etype} (entity {entity} of dimension {dim}) is not supported: a 3D body is \
-                        made of 4-node (type 4) or 10-node (type 11) tetrahedra"
-                ),
-            )
-        })?;
-        let unsupported = |what: &str| {
-            bad(
-                path,
-                format!(
-                    "Gmsh {} elements (type {etype}) on {what} entity {entity} are not supported: a 3D body is made \
-                        of 4-node (type 4) or 10-node (type 11) tetrahedra, its face sets of 3-node (type 2) or \
-                        6-node (type 9) triangles",
-                    type_name(etype)
-                ),
-            )
-        };
+        let block = t.block(WORDS)?;
+        let msh::Block {
+            dim,
+            entity,
+            etype,
+            n,
+            npe,
+        } = block;
+        let unsupported = |on: &str| block.unsupported(on, WORDS, path);
         let surface_groups = match dim {
             2 => header.groups_of(2, entity),
             _ => Vec::new(),
@@ -141,32 +120,14 @@ pub fn try_parse(text: &str, volumes: &[String], path: &str) -> Result<Parsed, C
             }
         }
         if body {
-            tets.reserve_exact(t.at_most(n, 1 + npe) * npe);
-            tet_tags.reserve_exact(t.at_most(n, 1 + npe));
+            tets.reserve(&t, n, npe);
         }
         let mut conn = [0; 10];
         for _ in 0..n {
-            let tag = t.tag()?;
             let conn = &mut conn[..npe];
-            for c in conn.iter_mut() {
-                *c = t.tag()?;
-            }
+            let tag = t.element(conn)?;
             if body {
-                if per == 0 {
-                    per = npe;
-                } else if npe != per {
-                    return Err(bad(
-                        path,
-                        format!(
-                            "Gmsh element {tag} (volume entity {entity}): element has {npe} nodes but the first \
-                                tetrahedron has {per}; mixed orders are not supported"
-                        ),
-                    ));
-                }
-                for &c in conn.iter() {
-                    tets.push(node_of(c, tag)?);
-                }
-                tet_tags.push((tag, entity));
+                tets.push((tag, entity), conn, &file_nodes, WORDS, path)?;
             } else if !surface_groups.is_empty() {
                 let corners = [node_of(conn[0], tag)?, node_of(conn[1], tag)?, node_of(conn[2], tag)?];
                 for g in &surface_groups {
@@ -175,7 +136,7 @@ pub fn try_parse(text: &str, volumes: &[String], path: &str) -> Result<Parsed, C
             }
         }
     }
-    if tets.is_empty() {
+    if tets.tags.is_empty() {
         return Err(bad(
             path,
             if volumes.is_empty() {
@@ -187,48 +148,23 @@ pub fn try_parse(text: &str, volumes: &[String], path: &str) -> Result<Parsed, C
     }
 
     // Keep the nodes the tetrahedra use, in file order.
-    let (node_tags, coords) = (&file_nodes.tags, &file_nodes.coords);
-    let mut used = vec![false; node_tags.len()];
-    for &n in &tets {
-        used[n] = true;
-    }
-    let mut local = vec![usize::MAX; node_tags.len()];
-    let mut nodes = Vec::with_capacity(used.iter().filter(|&&u| u).count());
-    for (i, c) in coords.iter().enumerate().filter(|(i, _)| used[*i]) {
-        local[i] = nodes.len();
-        nodes.push(*c);
-    }
-    let mut elements = tets;
-    for n in elements.iter_mut() {
-        *n = local[*n];
-    }
-    let mut face_sets = BTreeMap::new();
-    let mut face_tags = BTreeMap::new();
-    for (name, tris) in triangles {
-        let mut faces = Vec::with_capacity(tris.len());
-        let mut tags = Vec::with_capacity(tris.len());
-        for (tag, c) in tris {
-            if c.iter().any(|&n| local[n] == usize::MAX) {
-                return Err(bad(
-                    path,
-                    format!(
-                        "Gmsh physical surface group '{name}', triangle {tag}: its nodes are not nodes of the body's \
-                            tetrahedra"
-                    ),
-                ));
-            }
-            faces.push(c.map(|n| local[n]));
-            tags.push(tag);
-        }
-        face_sets.insert(name.clone(), faces);
-        face_tags.insert(name, tags);
-    }
+    let local = tets.keep_used(file_nodes.tags.len());
+    let mut nodes = Vec::with_capacity(local.iter().filter(|&&l| l != usize::MAX).count());
+    nodes.extend(
+        file_nodes
+            .coords
+            .iter()
+            .zip(&local)
+            .filter(|(_, &l)| l != usize::MAX)
+            .map(|(c, _)| *c),
+    );
+    let (face_sets, face_tags) = msh::try_sets(triangles, &local, WORDS, path)?;
     Ok(Parsed {
         nodes,
-        elements,
-        per_element: per,
+        elements: tets.nodes,
+        per_element: tets.per,
         face_sets,
-        element_tags: tet_tags,
+        element_tags: tets.tags,
         face_tags,
     })
 }

@@ -99,7 +99,7 @@ impl Mesh3d {
 
     /// Largest side of the bounding box: the body's size.
     pub fn size(&self) -> f64 {
-        extent(&self.nodes)
+        crate::mesh::extent(&self.nodes)
     }
 
     /// Signed volume of element `e`'s corner tetrahedron (the element's volume
@@ -142,25 +142,9 @@ impl Mesh3d {
 
     /// Nodes of a face set, each once, in order of first appearance.
     pub fn face_set_nodes(&self, name: &str) -> Vec<usize> {
-        let mut seen = std::collections::HashSet::new();
-        let mut out = Vec::new();
-        for f in self.face_sets.get(name).into_iter().flatten() {
-            out.extend(f.nodes().filter(|&n| seen.insert(n)));
-        }
-        out
+        let faces = self.face_sets.get(name).into_iter().flatten();
+        crate::mesh::each_once(faces.flat_map(Face::nodes))
     }
-}
-
-/// Largest side of the bounding box of `nodes`.
-pub fn extent(nodes: &[[f64; 3]]) -> f64 {
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for p in nodes {
-        for c in 0..3 {
-            lo[c] = lo[c].min(p[c]);
-            hi[c] = hi[c].max(p[c]);
-        }
-    }
-    (0..3).map(|c| hi[c] - lo[c]).fold(0.0, f64::max)
 }
 
 pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {

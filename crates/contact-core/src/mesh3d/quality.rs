@@ -20,7 +20,8 @@ use std::collections::{BTreeMap, HashMap};
 
 use super::{signed_volume, sub, Face, Mesh3d, Order, EDGES, FACES};
 use crate::error::{CoreError, InvalidKind};
-use crate::mesh::quality::Conn;
+pub use crate::mesh::quality::Item;
+use crate::mesh::quality::{check_used_and_connected, index_fault, inline_locate, Conn};
 
 /// Smallest admissible ratio of an element's volume (and of det J / 6 at the
 /// sampled points of a T10) to its longest edge cubed; a regular
@@ -33,21 +34,6 @@ const MIN_SHAPE_RATIO: f64 = 1e-8;
 const RULE_A: f64 = 0.585_410_196_624_968_5;
 const RULE_B: f64 = 0.138_196_601_125_010_5;
 
-/// A part of a user-given mesh, to say where a check failed.
-#[derive(Debug, Clone, Copy)]
-pub enum Item<'a> {
-    Nodes,
-    /// Node k.
-    Node(usize),
-    Elements,
-    Element(usize),
-    /// Local node `k` of element `e`.
-    ElementNode(usize, usize),
-    FaceSet(&'a str),
-    /// Face `k` of the named face set.
-    Face(&'a str, usize),
-}
-
 /// Builds a mesh from inline data; `path` is the JSON pointer of the inline mesh.
 pub fn try_inline(
     nodes: Vec<[f64; 3]>,
@@ -55,18 +41,7 @@ pub fn try_inline(
     face_sets: &BTreeMap<String, Vec<[usize; 3]>>,
     path: &str,
 ) -> Result<Mesh3d, CoreError> {
-    let locate = |item: Item| {
-        let p = match item {
-            Item::Nodes => format!("{path}/nodes"),
-            Item::Node(k) => format!("{path}/nodes/{k}"),
-            Item::Elements => format!("{path}/elements"),
-            Item::Element(e) => format!("{path}/elements/{e}"),
-            Item::ElementNode(e, k) => format!("{path}/elements/{e}/{k}"),
-            Item::FaceSet(name) => format!("{path}/face_sets/{name}"),
-            Item::Face(name, k) => format!("{path}/face_sets/{name}/{k}"),
-        };
-        (p, String::new())
-    };
+    let locate = inline_locate(path, "face_sets");
     try_build(nodes, elements, face_sets, &locate)
 }
 
@@ -109,35 +84,14 @@ pub fn try_build(
     };
     let mut elems = Vec::with_capacity(elements.len() * npe);
     for (e, el) in elements.iter().enumerate() {
-        if el.len() != npe {
-            return Err(bad(
-                Item::Element(e),
-                format!(
-                    "element has {} nodes but element 0 has {npe}; mixed orders are not supported",
-                    el.len()
-                ),
-            ));
-        }
-        for (k, &n) in el.iter().enumerate() {
-            if n >= nodes.len() {
-                return Err(bad(
-                    Item::ElementNode(e, k),
-                    format!("node index {n} out of range (mesh has {} nodes)", nodes.len()),
-                ));
-            }
-        }
-        let mut sorted = [0; 10];
-        let sorted = &mut sorted[..npe];
-        sorted.copy_from_slice(el);
-        sorted.sort_unstable();
-        if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
-            return Err(bad(Item::Element(e), format!("element repeats node {}", w[0])));
+        if let Err((k, why)) = index_fault(el, npe, nodes.len()) {
+            return Err(bad(k.map_or(Item::Element(e), |k| Item::ElementNode(e, k)), why));
         }
         let x: Vec<[f64; 3]> = el.iter().map(|&n| nodes[n]).collect();
         check_shape(&x).map_err(|r| bad(Item::Element(e), r))?;
         elems.extend_from_slice(el);
     }
-    check_nodes(nodes.len(), elements, &bad)?;
+    check_used_and_connected(nodes.len(), elements, &bad)?;
     let mesh = Mesh3d {
         order,
         nodes,
@@ -220,48 +174,6 @@ fn t10_det(x: &[[f64; 3]], l: [f64; 4]) -> f64 {
     6.0 * signed_volume(zero, sub(g[1], g[0]), sub(g[2], g[0]), sub(g[3], g[0]))
 }
 
-/// Every node is used and the elements form one connected piece: an unused
-/// node makes K singular, and separate pieces are separate bodies (each needs
-/// its own supports or contact).
-fn check_nodes(n: usize, elements: Conn, bad: &dyn Fn(Item, String) -> CoreError) -> Result<(), CoreError> {
-    let mut used = vec![false; n];
-    for el in elements.iter() {
-        for &k in el {
-            used[k] = true;
-        }
-    }
-    if let Some(k) = used.iter().position(|u| !u) {
-        return Err(bad(Item::Node(k), format!("node {k} is used by no element")));
-    }
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn root(parent: &mut [usize], mut a: usize) -> usize {
-        while parent[a] != a {
-            parent[a] = parent[parent[a]];
-            a = parent[a];
-        }
-        a
-    }
-    for el in elements.iter() {
-        for w in el.windows(2) {
-            let (a, b) = (root(&mut parent, w[0]), root(&mut parent, w[1]));
-            if a != b {
-                parent[a.max(b)] = a.min(b);
-            }
-        }
-    }
-    let first = root(&mut parent, 0);
-    if let Some(k) = (1..n).find(|&k| root(&mut parent, k) != first) {
-        return Err(bad(
-            Item::Node(k),
-            format!(
-                "the mesh falls apart: node {k} belongs to a piece not connected to node 0; give each piece its own \
-                    body (with its own supports or contact)"
-            ),
-        ));
-    }
-    Ok(())
-}
-
 /// The face sets as outward faces of their elements. Only the sets' faces are
 /// looked up, so only they are kept: by sorted corners, the last element face
 /// met and how many elements use it.
@@ -288,13 +200,13 @@ fn match_faces(
     let mut sets = BTreeMap::new();
     for (name, faces) in face_sets {
         if faces.is_empty() {
-            return Err(bad(Item::FaceSet(name), "face set is empty".into()));
+            return Err(bad(Item::Set(name), "face set is empty".into()));
         }
         let mut out = Vec::with_capacity(faces.len());
         for (k, &c) in faces.iter().enumerate() {
             if let Some(&n) = c.iter().find(|&&n| n >= mesh.nodes.len()) {
                 return Err(bad(
-                    Item::Face(name, k),
+                    Item::Member(name, k),
                     format!("node {n} does not exist (the mesh has {} nodes)", mesh.nodes.len()),
                 ));
             }
@@ -302,13 +214,13 @@ fn match_faces(
                 Some(&(Some(face), 1)) => out.push(face),
                 Some((Some(_), _)) => {
                     return Err(bad(
-                        Item::Face(name, k),
+                        Item::Member(name, k),
                         format!("face {c:?} is interior (shared by two elements), not on the boundary"),
                     ))
                 }
                 _ => {
                     return Err(bad(
-                        Item::Face(name, k),
+                        Item::Member(name, k),
                         format!("face {c:?} is not a face of any element"),
                     ))
                 }
