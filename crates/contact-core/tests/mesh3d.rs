@@ -330,3 +330,20 @@ fn a_folded_t10_is_refused() {
     assert!(e.path() == "/m/elements/0" && e.to_string().contains("folds"), "{e}");
     assert!(signed_volume(a, b, m.nodes[t[2]], m.nodes[t[3]]) > 0.0);
 }
+
+/// Two tetrahedra sharing an edge but not its midside node leave a crack.
+#[test]
+fn a_t10_edge_with_two_midsides_is_refused() {
+    let m = box_mesh([0.0; 3], [1.0; 3], 1.0, None, Order::T10);
+    let (mut nodes, mut elems) = (m.nodes.clone(), m.elems.clone());
+    // Every Kuhn tetrahedron of the cell has the main diagonal as its edge 3-0
+    // (local midside 7): element 1 gets a copy of that midside node.
+    nodes.push(nodes[elems[10 + 7]]);
+    elems[10 + 7] = nodes.len() - 1;
+    let conn = Conn::Flat { nodes: &elems, per: 10 };
+    let e = quality::try_inline(nodes, conn, &BTreeMap::new(), "/m").unwrap_err();
+    assert!(
+        e.path() == "/m/elements/1/7" && e.to_string().contains("not conforming"),
+        "{e}"
+    );
+}

@@ -1,13 +1,15 @@
 //! Checks and assembly of user-given tetrahedral meshes (inline or read from
 //! a Gmsh file): finite coordinates, index ranges, element orientation and
-//! shape, T10 maps that do not fold, face sets that are boundary faces.
+//! shape, T10 maps that do not fold and midsides shared along each edge, face
+//! sets that are boundary faces.
 //!
 //! Orientation: an element of negative volume is refused, not renumbered.
-//! Gmsh's 3D meshers write every tetrahedron with positive volume, so a
-//! negative one means the connectivity follows another convention (a
-//! mirrored mesh, another program's node order, a T10 with VTK's last two
-//! midsides) or a typing error; renumbering would hide the first two and
-//! could not repair the last.
+//! Gmsh's 3D meshers write every tetrahedron with positive volume (unlike
+//! its triangles, which the 2D reader turns counter-clockwise because a
+//! surface may face −z), so a negative one means the connectivity follows
+//! another convention (a mirrored mesh, another program's node order) or a
+//! typing error. Renumbering would accept such a mesh silently, with its T10
+//! midsides possibly in the other program's order too.
 //!
 //! A T10's isoparametric map x(ξ) = Σ xₙ Nₙ(ξ) must stay invertible. Its
 //! Jacobian determinant is a quadratic polynomial in ξ, so positivity at
@@ -92,6 +94,9 @@ pub fn try_build(
         elems.extend_from_slice(el);
     }
     check_used_and_connected(nodes.len(), elements, &bad)?;
+    if order == Order::T10 {
+        check_shared_midsides(&elems, &bad)?;
+    }
     let mesh = Mesh3d {
         order,
         nodes,
@@ -172,6 +177,31 @@ fn t10_det(x: &[[f64; 3]], l: [f64; 4]) -> f64 {
     }
     let zero = [0.0; 3];
     6.0 * signed_volume(zero, sub(g[1], g[0]), sub(g[2], g[0]), sub(g[3], g[0]))
+}
+
+/// Each edge has one midside node: two elements that share an edge but not
+/// its midside leave a crack along it (their quadratic edges part).
+fn check_shared_midsides(elems: &[usize], bad: &dyn Fn(Item, String) -> CoreError) -> Result<(), CoreError> {
+    let mut mid: HashMap<(usize, usize), usize> = HashMap::with_capacity(elems.len() / 5);
+    for (e, t) in elems.chunks_exact(10).enumerate() {
+        for (k, &[i, j]) in EDGES.iter().enumerate() {
+            let key = (t[i].min(t[j]), t[i].max(t[j]));
+            let first = *mid.entry(key).or_insert(t[4 + k]);
+            if first != t[4 + k] {
+                return Err(bad(
+                    Item::ElementNode(e, 4 + k),
+                    format!(
+                        "edge [{}, {}] has midside node {} here and {first} in an element before: the mesh is not \
+                            conforming (share the midside node)",
+                        key.0,
+                        key.1,
+                        t[4 + k]
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The face sets as outward faces of their elements. Only the sets' faces are
