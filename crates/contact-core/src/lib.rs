@@ -28,6 +28,7 @@ pub mod error;
 pub mod fem;
 pub mod linalg;
 pub mod mesh;
+pub mod mesh3d;
 pub mod meshing;
 pub mod methods;
 pub mod model;

@@ -17,18 +17,19 @@
 //! has had no release since 2020) and a JSON request carries text anyway.
 //!
 //! Counts read from the file reserve memory only up to what the section's text
-//! can hold (`Tokens::at_most`): a hostile count fails on the missing data.
+//! can hold (`msh::Tokens::at_most`): a hostile count fails on the missing data.
 //! Triangles are kept flat, `per_element` indices each: reading a 58 MB file of
 //! 1.1M triangles costs 4.4 times its size (peak resident memory of the
 //! service), where a list per triangle and growing vectors cost 8.8 times.
 //!
-//! Length: about 470 lines of MSH 4.1 parser (sections, physical groups,
-//! T3/T6 elements, edge sets) and its tests.
+//! The sections, their tokens, the physical groups and the nodes are read by
+//! `msh`, which the tetrahedral reader (`mesh3d::gmsh`) shares.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 
+use super::msh::{self, bad, Tokens};
 use super::{quality, signed_area, Mesh2d};
-use crate::error::{CoreError, InvalidKind};
+use crate::error::CoreError;
 
 /// A parsed MSH file restricted to one body, in the file's units.
 #[derive(Debug, Clone)]
@@ -56,21 +57,7 @@ impl Parsed {
     /// JSON pointer of the MSH text (errors point there and name the Gmsh tags).
     pub fn try_mesh(&self, length: f64, path: &str) -> Result<Mesh2d, CoreError> {
         let scaled: Vec<[f64; 2]> = self.nodes.iter().map(|p| [p[0] / length, p[1] / length]).collect();
-        let locate = |item: quality::Item| {
-            let context = match item {
-                quality::Item::Nodes | quality::Item::Elements | quality::Item::Node(_) => "Gmsh mesh: ".to_string(),
-                quality::Item::Element(e) | quality::Item::ElementNode(e, _) => {
-                    let (tag, entity) = self.element_tags[e];
-                    format!("Gmsh element {tag} (surface entity {entity}): ")
-                }
-                quality::Item::EdgeSet(name) => format!("Gmsh physical curve group '{name}': "),
-                quality::Item::Edge(name, k) => {
-                    let tag = self.edge_tags.get(name).and_then(|t| t.get(k)).copied().unwrap_or(0);
-                    format!("Gmsh physical curve group '{name}', line element {tag}: ")
-                }
-            };
-            (path.to_string(), context)
-        };
+        let locate = msh::locate(path, &self.element_tags, &self.edge_tags, WORDS);
         let elements = quality::Conn::Flat {
             nodes: &self.elements,
             per: self.per_element,
@@ -79,321 +66,44 @@ impl Parsed {
     }
 }
 
-fn bad(path: &str, reason: impl Into<String>) -> CoreError {
-    CoreError::invalid(InvalidKind::Mesh, path, reason.into())
-}
-
-/// Gmsh's name of an element type, for messages.
-fn type_name(t: i64) -> &'static str {
-    match t {
-        1 => "2-node line",
-        2 => "3-node triangle",
-        3 => "4-node quadrangle",
-        4 => "4-node tetrahedron",
-        5 => "8-node hexahedron",
-        6 => "6-node prism",
-        7 => "5-node pyramid",
-        8 => "3-node line",
-        9 => "6-node triangle",
-        10 => "9-node quadrangle",
-        11 => "10-node tetrahedron",
-        15 => "1-node point",
-        16 => "8-node quadrangle",
-        20 => "9-node incomplete triangle",
-        21 => "10-node triangle",
-        26 => "4-node line",
-        _ => "element",
-    }
-}
-
-/// Nodes per element of the types whose blocks we may meet; None: unknown type.
-fn nodes_per_element(t: i64) -> Option<usize> {
-    Some(match t {
-        15 => 1,
-        1 => 2,
-        2 | 8 => 3,
-        3 | 4 | 26 => 4,
-        7 => 5,
-        6 | 9 => 6,
-        5 | 16 => 8,
-        10 | 20 => 9,
-        11 | 21 => 10,
-        _ => return None,
-    })
-}
-
-/// Whitespace-separated tokens of one section, with the section's name for errors.
-struct Tokens<'a> {
-    it: std::str::SplitAsciiWhitespace<'a>,
-    section: &'static str,
-    path: &'a str,
-    /// Length of the section's text: what bounds any count read from it.
-    len: usize,
-}
-
-impl<'a> Tokens<'a> {
-    /// The tokens of the required section `$name` (`$Nodes`, `$Elements`) after its
-    /// header `numEntityBlocks numItems minTag maxTag`, and the number of blocks.
-    fn blocks(text: &'a str, name: &'static str, path: &'a str) -> Result<(Self, usize), CoreError> {
-        let body = section(text, name, path)?.ok_or_else(|| bad(path, format!("MSH file has no ${name} section")))?;
-        let mut t = Tokens {
-            it: body.split_ascii_whitespace(),
-            section: name,
-            path,
-            len: body.len(),
-        };
-        let blocks = t.count()?;
-        t.count()?;
-        t.int()?;
-        t.int()?;
-        Ok((t, blocks))
-    }
-    /// `count` items of `tokens` tokens each, but never more than the
-    /// section's text can hold (a token and its separator take 2 bytes at
-    /// least): what may be reserved for them. Reserving the real count
-    /// spares the doubling of growing vectors, whose slack and copies were
-    /// 130 MB of the 290 MB that reading a 58 MB Gmsh mesh took.
-    fn at_most(&self, count: usize, tokens: usize) -> usize {
-        count.min(self.len / (2 * tokens))
-    }
-    fn next_str(&mut self) -> Result<&'a str, CoreError> {
-        self.it
-            .next()
-            .ok_or_else(|| bad(self.path, format!("MSH section ${} ends early", self.section)))
-    }
-    fn int(&mut self) -> Result<i64, CoreError> {
-        let t = self.next_str()?;
-        t.parse().map_err(|_| {
-            bad(
-                self.path,
-                format!("MSH section ${}: expected an integer, got '{t}'", self.section),
-            )
-        })
-    }
-    fn count(&mut self) -> Result<usize, CoreError> {
-        let v = self.int()?;
-        usize::try_from(v).map_err(|_| bad(self.path, format!("MSH section ${}: negative count {v}", self.section)))
-    }
-    fn tag(&mut self) -> Result<u64, CoreError> {
-        let v = self.int()?;
-        u64::try_from(v).map_err(|_| bad(self.path, format!("MSH section ${}: negative tag {v}", self.section)))
-    }
-    fn real(&mut self) -> Result<f64, CoreError> {
-        let t = self.next_str()?;
-        match t.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(v),
-            _ => Err(bad(
-                self.path,
-                format!("MSH section ${}: expected a finite number, got '{t}'", self.section),
-            )),
-        }
-    }
-}
-
-/// The text between `$name` and `$Endname`, if the section is present.
-fn section<'a>(text: &'a str, name: &str, path: &str) -> Result<Option<&'a str>, CoreError> {
-    let open = format!("${name}");
-    let close = format!("$End{name}");
-    let mut start = None;
-    let mut offset = 0;
-    for line in text.split_inclusive('\n') {
-        let l = line.trim();
-        if start.is_none() && l == open {
-            start = Some(offset + line.len());
-        } else if let Some(s) = start {
-            if l == close {
-                return Ok(Some(&text[s..offset]));
-            }
-        }
-        offset += line.len();
-    }
-    match start {
-        Some(_) => Err(bad(path, format!("MSH section {open} has no {close}"))),
-        None => Ok(None),
-    }
-}
+/// The words of this reader's messages.
+const WORDS: msh::Words = msh::Words {
+    entity: "surface",
+    group: "curve",
+    member: "line element",
+    elements: "triangles",
+    body_types: "a 2D body is made of 3-node (type 2) or 6-node (type 9) triangles",
+    set_types: "its edge sets of 2-node (type 1) or 3-node (type 8) lines",
+};
 
 /// Parses MSH 4.1 ASCII text; `surfaces` names the physical surface groups that
 /// make up the body (empty: every triangle). `path`: JSON pointer of the text.
 pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, CoreError> {
-    let format =
-        section(text, "MeshFormat", path)?.ok_or_else(|| bad(path, "not a Gmsh MSH file: no $MeshFormat section"))?;
-    let mut f = format.split_ascii_whitespace();
-    let (version, file_type) = (f.next().unwrap_or(""), f.next().unwrap_or(""));
-    if version != "4.1" {
-        return Err(bad(
-            path,
-            format!(
-                "MSH version '{version}' is not read; save the mesh as MSH 4.1 (gmsh: -format msh41, or option \
-                Mesh.MshFileVersion = 4.1)"
-            ),
-        ));
-    }
-    if file_type != "0" {
-        return Err(bad(
-            path,
-            "binary MSH is not read; save the mesh as ASCII (gmsh: option Mesh.Binary = 0, the default)",
-        ));
-    }
+    let header = msh::try_header(text, path)?;
+    header.check_named(2, surfaces, "surface", path)?;
+    let in_body = |entity: i64| header.in_body(2, entity, surfaces);
 
-    // Physical group (dim, tag) → name.
-    let mut names: HashMap<(i64, i64), String> = HashMap::new();
-    if let Some(s) = section(text, "PhysicalNames", path)? {
-        for line in s.lines().skip(1) {
-            let l = line.trim();
-            if l.is_empty() {
-                continue;
-            }
-            let mut parts = l.splitn(3, char::is_whitespace);
-            let dim = parts.next().and_then(|v| v.parse::<i64>().ok());
-            let tag = parts.next().and_then(|v| v.parse::<i64>().ok());
-            let name = parts.next().map(|v| v.trim().trim_matches('"').to_string());
-            match (dim, tag, name) {
-                (Some(d), Some(t), Some(n)) => {
-                    names.insert((d, t), n);
-                }
-                _ => return Err(bad(path, format!("MSH section $PhysicalNames: cannot read '{l}'"))),
-            }
-        }
-    }
-    let group_name = |dim: i64, tag: i64| names.get(&(dim, tag)).cloned().unwrap_or_else(|| tag.to_string());
-
-    // Entity (dim, tag) → its physical group tags.
-    let mut physicals: HashMap<(i64, i64), Vec<i64>> = HashMap::new();
-    if let Some(s) = section(text, "Entities", path)? {
-        let mut t = Tokens {
-            it: s.split_ascii_whitespace(),
-            section: "Entities",
-            path,
-            len: s.len(),
-        };
-        let counts = [t.count()?, t.count()?, t.count()?, t.count()?];
-        for (dim, &n) in counts.iter().enumerate() {
-            for _ in 0..n {
-                let tag = t.int()?;
-                // A point has its coordinates, the others their bounding box.
-                for _ in 0..if dim == 0 { 3 } else { 6 } {
-                    t.real()?;
-                }
-                let np = t.count()?;
-                let mut groups = Vec::new();
-                for _ in 0..np {
-                    groups.push(t.int()?);
-                }
-                if dim > 0 {
-                    let nb = t.count()?;
-                    for _ in 0..nb {
-                        t.int()?;
-                    }
-                }
-                physicals.insert((dim as i64, tag), groups);
-            }
-        }
-    }
-    for s in surfaces {
-        if !names.iter().any(|(&(d, _), n)| d == 2 && n == s) {
-            let mut have: Vec<&str> = names
-                .iter()
-                .filter(|((d, _), _)| *d == 2)
-                .map(|(_, n)| n.as_str())
-                .collect();
-            have.sort_unstable();
-            return Err(CoreError::invalid(
-                InvalidKind::Request,
-                path,
-                format!(
-                    "no physical surface group named '{s}' in the MSH file (it has: {})",
-                    if have.is_empty() {
-                        "none".to_string()
-                    } else {
-                        have.join(", ")
-                    }
-                ),
-            ));
-        }
-    }
-    let in_body = |entity: i64| {
-        surfaces.is_empty()
-            || physicals
-                .get(&(2, entity))
-                .is_some_and(|g| g.iter().any(|&p| surfaces.contains(&group_name(2, p))))
-    };
-
-    // Nodes in file order: tag → (x, y).
-    let (mut t, blocks) = Tokens::blocks(text, "Nodes", path)?;
-    let mut node_tags: Vec<u64> = Vec::new();
-    let mut coords: Vec<[f64; 3]> = Vec::new();
-    for _ in 0..blocks {
-        let dim = t.int()?;
-        t.int()?;
-        let parametric = t.int()? != 0;
-        let n = t.count()?;
-        node_tags.reserve_exact(t.at_most(n, 4));
-        coords.reserve_exact(t.at_most(n, 4));
-        for _ in 0..n {
-            node_tags.push(t.tag()?);
-        }
-        for _ in 0..n {
-            coords.push([t.real()?, t.real()?, t.real()?]);
-            if parametric {
-                for _ in 0..dim.clamp(0, 3) {
-                    t.real()?;
-                }
-            }
-        }
-    }
-    let mut index_of_tag: HashMap<u64, usize> = HashMap::with_capacity(node_tags.len());
-    for (i, &tag) in node_tags.iter().enumerate() {
-        if index_of_tag.insert(tag, i).is_some() {
-            return Err(bad(path, format!("Gmsh node tag {tag} appears twice in $Nodes")));
-        }
-    }
+    // Nodes in file order.
+    let file_nodes = msh::try_nodes(text, path)?;
+    let (node_tags, coords) = (&file_nodes.tags, &file_nodes.coords);
 
     // Elements: triangles of the body, lines of the physical curves.
     let (mut t, blocks) = Tokens::blocks(text, "Elements", path)?;
-    // Triangles flat, `per` file indices each (a list per triangle cost 70
-    // bytes more each), with their (tag, entity).
-    let mut tris: Vec<usize> = Vec::new();
-    let mut tri_tags: Vec<(u64, i64)> = Vec::new();
-    let mut per = 0;
+    let mut tris = msh::Body::default();
     let mut lines: BTreeMap<String, Vec<(u64, [usize; 2])>> = BTreeMap::new();
-    let node_of = |tag: u64, element: u64| {
-        index_of_tag.get(&tag).copied().ok_or_else(|| {
-            bad(
-                path,
-                format!("Gmsh element {element} refers to node {tag}, which $Nodes does not list"),
-            )
-        })
-    };
+    let node_of = |tag: u64, element: u64| file_nodes.index(tag, element, path);
     for _ in 0..blocks {
-        let dim = t.int()?;
-        let entity = t.int()?;
-        let etype = t.int()?;
-        let n = t.count()?;
-        let npe =
-            nodes_per_element(etype).ok_or_else(|| {
-                bad(
-                path,
-                format!("Gmsh element type {etype} (entity {entity} of dimension {dim}) is not supported: a 2D body is \
-                    made of 3-node (type 2) or 6-node (type 9) triangles"),
-            )
-            })?;
-        let unsupported = |what: &str| {
-            bad(
-                path,
-                format!(
-                    "Gmsh {} elements (type {etype}) on {what} entity {entity} are not supported: a 2D body is made of \
-                        3-node (type 2) or 6-node (type 9) triangles, its edge sets of 2-node (type 1) or 3-node (type \
-                        8) lines",
-                    type_name(etype)
-                ),
-            )
-        };
+        let block = t.block(WORDS)?;
+        let msh::Block {
+            dim,
+            entity,
+            etype,
+            n,
+            npe,
+        } = block;
+        let unsupported = |on: &str| block.unsupported(on, WORDS, path);
         let curve_groups: Vec<String> = match dim {
-            1 => physicals
-                .get(&(1, entity))
-                .map(|g| g.iter().map(|&p| group_name(1, p)).collect())
-                .unwrap_or_default(),
+            1 => header.groups_of(1, entity),
             _ => Vec::new(),
         };
         match (dim, etype) {
@@ -414,32 +124,14 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
         }
         let body = dim == 2 && in_body(entity);
         if body {
-            tris.reserve_exact(t.at_most(n, 1 + npe) * npe);
-            tri_tags.reserve_exact(t.at_most(n, 1 + npe));
+            tris.reserve(&t, n, npe);
         }
         let mut conn = [0; 10];
         for _ in 0..n {
-            let tag = t.tag()?;
             let conn = &mut conn[..npe];
-            for c in conn.iter_mut() {
-                *c = t.tag()?;
-            }
+            let tag = t.element(conn)?;
             if body {
-                if per == 0 {
-                    per = npe;
-                } else if npe != per {
-                    return Err(bad(
-                        path,
-                        format!(
-                            "Gmsh element {tag} (surface entity {entity}): element has {npe} nodes but element \
-                            0 has {per}; mixed orders are not supported"
-                        ),
-                    ));
-                }
-                for &c in conn.iter() {
-                    tris.push(node_of(c, tag)?);
-                }
-                tri_tags.push((tag, entity));
+                tris.push((tag, entity), conn, &file_nodes, WORDS, path)?;
             } else if dim == 1 {
                 for g in &curve_groups {
                     let ends = [node_of(conn[0], tag)?, node_of(conn[1], tag)?];
@@ -448,7 +140,7 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
             }
         }
     }
-    if tris.is_empty() {
+    if tris.tags.is_empty() {
         return Err(bad(
             path,
             if surfaces.is_empty() {
@@ -460,18 +152,18 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
     }
 
     // Keep the nodes the triangles use, in file order.
-    let mut used = vec![false; node_tags.len()];
-    for &n in &tris {
-        used[n] = true;
-    }
-    let mut local = vec![usize::MAX; node_tags.len()];
-    let mut nodes = Vec::with_capacity(used.iter().filter(|&&u| u).count());
-    for (i, c) in coords.iter().enumerate().filter(|(i, _)| used[*i]) {
-        local[i] = nodes.len();
-        nodes.push([c[0], c[1]]);
-    }
+    let local = tris.keep_used(node_tags.len());
+    let used = |i: usize| local[i] != usize::MAX;
+    let mut nodes = Vec::with_capacity(local.iter().filter(|&&l| l != usize::MAX).count());
+    nodes.extend(
+        coords
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| used(*i))
+            .map(|(_, c)| [c[0], c[1]]),
+    );
     let size = super::extent(&nodes);
-    for (i, c) in coords.iter().enumerate().filter(|(i, _)| used[*i]) {
+    for (i, c) in coords.iter().enumerate().filter(|(i, _)| used(*i)) {
         // z is written with ~16 digits: anything beyond round-off of the size is a 3D node.
         if c[2].abs() > 1e-9 * size {
             return Err(bad(
@@ -483,11 +175,12 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
             ));
         }
     }
-    let mut elements = tris;
+    let msh::Body {
+        nodes: mut elements,
+        tags: element_tags,
+        per,
+    } = tris;
     for e in elements.chunks_exact_mut(per) {
-        for n in e.iter_mut() {
-            *n = local[*n];
-        }
         if signed_area(nodes[e[0]], nodes[e[1]], nodes[e[2]]) < 0.0 {
             // Clockwise: swap corners 1 and 2; midsides (01, 12, 20) become (02, 21, 10).
             e.swap(1, 2);
@@ -496,28 +189,7 @@ pub fn try_parse(text: &str, surfaces: &[String], path: &str) -> Result<Parsed, 
             }
         }
     }
-    let element_tags = tri_tags;
-    let mut edge_sets = BTreeMap::new();
-    let mut edge_tags = BTreeMap::new();
-    for (name, ls) in lines {
-        let mut edges = Vec::with_capacity(ls.len());
-        let mut tags = Vec::with_capacity(ls.len());
-        for (tag, [a, b]) in ls {
-            if local[a] == usize::MAX || local[b] == usize::MAX {
-                return Err(bad(
-                    path,
-                    format!(
-                        "Gmsh physical curve group '{name}', line element {tag}: its nodes are not nodes of the \
-                        body's triangles"
-                    ),
-                ));
-            }
-            edges.push([local[a], local[b]]);
-            tags.push(tag);
-        }
-        edge_sets.insert(name.clone(), edges);
-        edge_tags.insert(name, tags);
-    }
+    let (edge_sets, edge_tags) = msh::try_sets(lines, &local, WORDS, path)?;
     Ok(Parsed {
         nodes,
         elements,

@@ -15,6 +15,7 @@ pub mod coarsen;
 pub mod estimate;
 pub mod generate;
 pub mod gmsh;
+pub(crate) mod msh;
 pub mod quality;
 pub mod refine;
 pub mod uniform;
@@ -76,38 +77,33 @@ impl Mesh2d {
         &self.elems[e * k..(e + 1) * k]
     }
 
-    /// Nodes of an edge set, each once, in order of first appearance.
     /// Largest side of the bounding box: the body's size.
     pub fn size(&self) -> f64 {
         extent(&self.nodes)
     }
 
+    /// Nodes of an edge set, each once, in order of first appearance.
     pub fn edge_set_nodes(&self, name: &str) -> Vec<usize> {
-        let mut seen = std::collections::HashSet::new();
-        let mut out = Vec::new();
-        if let Some(edges) = self.edge_sets.get(name) {
-            for e in edges {
-                for n in e.nodes() {
-                    if seen.insert(n) {
-                        out.push(n);
-                    }
-                }
-            }
-        }
-        out
+        each_once(self.edge_sets.get(name).into_iter().flatten().flat_map(Edge::nodes))
     }
 }
 
-/// Largest side of the bounding box of `nodes`.
-pub fn extent(nodes: &[[f64; 2]]) -> f64 {
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+/// The nodes of `nodes`, each once, in order of first appearance.
+pub fn each_once(nodes: impl Iterator<Item = usize>) -> Vec<usize> {
+    let mut seen = std::collections::HashSet::new();
+    nodes.filter(|&n| seen.insert(n)).collect()
+}
+
+/// Largest side of the bounding box of `nodes` (2D or 3D).
+pub fn extent<const D: usize>(nodes: &[[f64; D]]) -> f64 {
+    let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
     for p in nodes {
-        for c in 0..2 {
+        for c in 0..D {
             lo[c] = lo[c].min(p[c]);
             hi[c] = hi[c].max(p[c]);
         }
     }
-    (hi[0] - lo[0]).max(hi[1] - lo[1])
+    (0..D).map(|c| hi[c] - lo[c]).fold(f64::NEG_INFINITY, f64::max)
 }
 
 /// Signed area of triangle (p, q, r); positive when counter-clockwise.

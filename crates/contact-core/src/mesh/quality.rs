@@ -1,5 +1,8 @@
 //! Checks and assembly of user-given (inline) meshes: index ranges, element
-//! orientation and shape, edge sets that are real boundary edges.
+//! orientation and shape, edge sets that are real boundary edges. The checks
+//! that do not depend on the dimension (`Item`, `Conn`, `index_fault`,
+//! `check_used_and_connected`) serve the tetrahedral meshes too
+//! (`mesh3d::quality`).
 
 use std::collections::{BTreeMap, HashMap};
 
@@ -21,9 +24,10 @@ pub enum Item<'a> {
     Element(usize),
     /// Local node `k` of element `e`.
     ElementNode(usize, usize),
-    EdgeSet(&'a str),
-    /// Edge `k` of the named edge set.
-    Edge(&'a str, usize),
+    /// A named edge set (2D) or face set (3D).
+    Set(&'a str),
+    /// Edge or face `k` of the named set.
+    Member(&'a str, usize),
 }
 
 /// Element connectivity as it was read, without a list per element (72 bytes
@@ -36,19 +40,22 @@ pub enum Conn<'a> {
 }
 
 impl<'a> Conn<'a> {
-    fn len(&self) -> usize {
+    pub fn len(&self) -> usize {
         match *self {
             Conn::Ragged { ends, .. } => ends.len(),
             Conn::Flat { nodes, per } => nodes.len() / per.max(1),
         }
     }
-    fn get(&self, e: usize) -> &'a [usize] {
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    pub fn get(&self, e: usize) -> &'a [usize] {
         match *self {
             Conn::Ragged { nodes, ends } => &nodes[if e == 0 { 0 } else { ends[e - 1] }..ends[e]],
             Conn::Flat { nodes, per } => &nodes[e * per..(e + 1) * per],
         }
     }
-    fn iter(&self) -> impl Iterator<Item = &'a [usize]> + '_ {
+    pub fn iter(&self) -> impl Iterator<Item = &'a [usize]> + '_ {
         (0..self.len()).map(|e| self.get(e))
     }
 }
@@ -60,19 +67,54 @@ pub fn try_inline(
     edge_sets: &BTreeMap<String, Vec<[usize; 2]>>,
     path: &str,
 ) -> Result<Mesh2d, CoreError> {
-    let locate = |item: Item| {
+    let locate = inline_locate(path, "edge_sets");
+    try_build(nodes, elements, edge_sets, &locate)
+}
+
+/// Where an item of the inline mesh at `path` is: its JSON pointer (`sets`:
+/// the field of the named sets, `edge_sets` or `face_sets`), no message prefix.
+pub fn inline_locate<'a>(path: &'a str, sets: &'a str) -> impl Fn(Item) -> (String, String) + 'a {
+    move |item: Item| {
         let p = match item {
             Item::Nodes => format!("{path}/nodes"),
             Item::Node(k) => format!("{path}/nodes/{k}"),
             Item::Elements => format!("{path}/elements"),
             Item::Element(e) => format!("{path}/elements/{e}"),
             Item::ElementNode(e, k) => format!("{path}/elements/{e}/{k}"),
-            Item::EdgeSet(name) => format!("{path}/edge_sets/{name}"),
-            Item::Edge(name, k) => format!("{path}/edge_sets/{name}/{k}"),
+            Item::Set(name) => format!("{path}/{sets}/{name}"),
+            Item::Member(name, k) => format!("{path}/{sets}/{name}/{k}"),
         };
         (p, String::new())
-    };
-    try_build(nodes, elements, edge_sets, &locate)
+    }
+}
+
+/// What is wrong with the node indices of an element `el` of a mesh of
+/// `n_nodes` nodes whose first element has `npe` (at most 10): the local
+/// node at fault (None: the element as a whole) and why; Ok if nothing.
+pub fn index_fault(el: &[usize], npe: usize, n_nodes: usize) -> Result<(), (Option<usize>, String)> {
+    if el.len() != npe {
+        return Err((
+            None,
+            format!(
+                "element has {} nodes but element 0 has {npe}; mixed orders are not supported",
+                el.len()
+            ),
+        ));
+    }
+    if let Some((k, &n)) = el.iter().enumerate().find(|(_, &n)| n >= n_nodes) {
+        return Err((
+            Some(k),
+            format!("node index {n} out of range (mesh has {n_nodes} nodes)"),
+        ));
+    }
+    let mut sorted = [0; 10];
+    let sorted = &mut sorted[..npe];
+    sorted.copy_from_slice(el);
+    sorted.sort_unstable();
+    if sorted.windows(2).any(|w| w[0] == w[1]) {
+        return Err((None, "element repeats a node".into()));
+    }
+    Ok(())
 }
 
 /// The checks of `try_inline` for a mesh from any source: `locate` turns a
@@ -91,7 +133,7 @@ pub fn try_build(
     if nodes.len() < 3 {
         return Err(bad(Item::Nodes, "a mesh needs at least 3 nodes".into()));
     }
-    if elements.len() == 0 {
+    if elements.is_empty() {
         return Err(bad(Item::Elements, "a mesh needs at least one element".into()));
     }
     let npe = elements.get(0).len();
@@ -107,29 +149,8 @@ pub fn try_build(
     };
     let mut elems = Vec::with_capacity(elements.len() * npe);
     for (e, el) in elements.iter().enumerate() {
-        if el.len() != npe {
-            return Err(bad(
-                Item::Element(e),
-                format!(
-                    "element has {} nodes but element 0 has {npe}; mixed orders are not supported",
-                    el.len()
-                ),
-            ));
-        }
-        for (k, &n) in el.iter().enumerate() {
-            if n >= nodes.len() {
-                return Err(bad(
-                    Item::ElementNode(e, k),
-                    format!("node index {n} out of range (mesh has {} nodes)", nodes.len()),
-                ));
-            }
-        }
-        let mut sorted = [0; 6];
-        let sorted = &mut sorted[..npe];
-        sorted.copy_from_slice(el);
-        sorted.sort_unstable();
-        if sorted.windows(2).any(|w| w[0] == w[1]) {
-            return Err(bad(Item::Element(e), "element repeats a node".into()));
+        if let Err((k, why)) = index_fault(el, npe, nodes.len()) {
+            return Err(bad(k.map_or(Item::Element(e), |k| Item::ElementNode(e, k)), why));
         }
         let (p, q, r) = (nodes[el[0]], nodes[el[1]], nodes[el[2]]);
         let area = signed_area(p, q, r);
@@ -201,13 +222,13 @@ pub fn try_build(
     let mut sets = BTreeMap::new();
     for (name, edges) in edge_sets {
         if edges.is_empty() {
-            return Err(bad(Item::EdgeSet(name), "edge set is empty".into()));
+            return Err(bad(Item::Set(name), "edge set is empty".into()));
         }
         let mut out = Vec::with_capacity(edges.len());
         for (k, &[a, b]) in edges.iter().enumerate() {
             if let Some(&n) = [a, b].iter().find(|&&n| n >= nodes.len()) {
                 return Err(bad(
-                    Item::Edge(name, k),
+                    Item::Member(name, k),
                     format!("node {n} does not exist (the mesh has {} nodes)", nodes.len()),
                 ));
             }
@@ -215,13 +236,13 @@ pub fn try_build(
                 Some(&(Some(edge), 1)) => out.push(edge),
                 Some((Some(_), _)) => {
                     return Err(bad(
-                        Item::Edge(name, k),
+                        Item::Member(name, k),
                         format!("edge [{a}, {b}] is interior (shared by two elements), not on the boundary"),
                     ))
                 }
                 _ => {
                     return Err(bad(
-                        Item::Edge(name, k),
+                        Item::Member(name, k),
                         format!("edge [{a}, {b}] is not an edge of any element"),
                     ))
                 }
@@ -296,11 +317,28 @@ fn check_nodes(nodes: &[[f64; 2]], elements: Conn, bad: &dyn Fn(Item, String) ->
             }
         }
     }
-    if let Some(n) = used.iter().position(|u| !u) {
-        return Err(bad(Item::Node(n), format!("node {n} is used by no element")));
+    check_used_and_connected(nodes.len(), elements, bad)
+}
+
+/// Every one of the `n` nodes is used and the elements form one connected
+/// piece: an unused node makes K singular, and separate pieces are separate
+/// bodies (each needs its own supports or contact).
+pub fn check_used_and_connected(
+    n: usize,
+    elements: Conn,
+    bad: &dyn Fn(Item, String) -> CoreError,
+) -> Result<(), CoreError> {
+    let mut used = vec![false; n];
+    for el in elements.iter() {
+        for &k in el {
+            used[k] = true;
+        }
+    }
+    if let Some(k) = used.iter().position(|u| !u) {
+        return Err(bad(Item::Node(k), format!("node {k} is used by no element")));
     }
     // Connected pieces: union-find over the elements' nodes.
-    let mut parent: Vec<usize> = (0..nodes.len()).collect();
+    let mut parent: Vec<usize> = (0..n).collect();
     fn root(parent: &mut [usize], mut a: usize) -> usize {
         while parent[a] != a {
             parent[a] = parent[parent[a]];
@@ -317,11 +355,11 @@ fn check_nodes(nodes: &[[f64; 2]], elements: Conn, bad: &dyn Fn(Item, String) ->
         }
     }
     let first = root(&mut parent, 0);
-    if let Some(n) = (1..nodes.len()).find(|&n| root(&mut parent, n) != first) {
+    if let Some(k) = (1..n).find(|&k| root(&mut parent, k) != first) {
         return Err(bad(
-            Item::Node(n),
+            Item::Node(k),
             format!(
-                "the mesh falls apart: node {n} belongs to a piece not connected to node 0; give each piece its own \
+                "the mesh falls apart: node {k} belongs to a piece not connected to node 0; give each piece its own \
                     body (with its own supports or contact)"
             ),
         ));
