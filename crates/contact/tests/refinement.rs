@@ -484,3 +484,58 @@ fn a_trial_estimator_through_the_seam_needs_no_companion() {
     contact_core::adapt::estimate_by(&TwoLevel, &scene, &mut report, &solver, usize::MAX);
     assert_eq!(report.pairs[0].accuracy, with_estimate.pairs[0].accuracy);
 }
+
+/// A given mesh whose region has a hole has two boundary loops, which
+/// `mesh::coarsen` does not mesh again: its estimate falls back to the finer
+/// companion (`two_level_finer`) and still carries every quantity.
+#[test]
+fn a_mesh_with_a_hole_is_estimated_against_its_finer_companion() {
+    let mut req = contact_verify::run::inlined(&disk_request(0.0088, "t3"));
+    let mesh = &mut req["bodies"][0]["mesh"]["inline"];
+    let nodes: Vec<[f64; 2]> = serde_json::from_value(mesh["nodes"].clone()).unwrap();
+    let elements: Vec<[usize; 3]> = serde_json::from_value(mesh["elements"].clone()).unwrap();
+    // The quarter disk (centre (0, 1), radius 1) without the elements whose
+    // centroid lies within 0.15 of (0.4, 0.6), far from the contact at (0, 0).
+    let before = elements.len();
+    let kept: Vec<[usize; 3]> = elements
+        .into_iter()
+        .filter(|e| {
+            let c = [0, 1].map(|k| e.iter().map(|&n| nodes[n][k]).sum::<f64>() / 3.0);
+            (c[0] - 0.4).hypot(c[1] - 0.6) > 0.15
+        })
+        .collect();
+    assert!(kept.len() < before, "a hole was cut");
+    let mut index = vec![usize::MAX; nodes.len()];
+    let mut used = Vec::new();
+    for e in &kept {
+        for &n in e {
+            if index[n] == usize::MAX {
+                index[n] = used.len();
+                used.push(nodes[n]);
+            }
+        }
+    }
+    let remap = |n: usize| index[n];
+    mesh["nodes"] = json!(used);
+    mesh["elements"] = json!(kept.iter().map(|e| e.map(remap)).collect::<Vec<_>>());
+    let sets: serde_json::Map<String, Value> = mesh["edge_sets"]
+        .as_object()
+        .unwrap()
+        .iter()
+        .map(|(name, edges)| {
+            let edges: Vec<[usize; 2]> = serde_json::from_value(edges.clone()).unwrap();
+            (
+                name.clone(),
+                json!(edges.iter().map(|e| e.map(remap)).collect::<Vec<_>>()),
+            )
+        })
+        .collect();
+    mesh["edge_sets"] = Value::Object(sets);
+    let r = solve(&req);
+    let acc = r.pairs[0].accuracy.as_ref().unwrap();
+    assert_eq!(acc.basis, "two_level_finer");
+    assert!(
+        acc.pressure_l2.is_some() && acc.peak.is_some() && acc.resultant.is_some(),
+        "{acc:?}"
+    );
+}
