@@ -57,7 +57,10 @@ pub(super) fn resized(scene: &Scene, [h, growth, size]: [f64; 3], report: Option
             // elements twice as large (`mesh::coarsen`; None where it cannot
             // be), and refined by splitting every triangle in four (halving
             // its sides), far field included.
-            MeshSource::Inline(m) if h >= 1.0 => MeshSource::Inline(crate::mesh::coarsen::coarsened(m)?),
+            MeshSource::Inline(m) if h >= 1.0 => {
+                let loads: Vec<[f64; 2]> = body.point_loads.iter().map(|l| l.at).collect();
+                MeshSource::Inline(crate::mesh::coarsen::coarsened(m, &loads)?)
+            }
             MeshSource::Inline(m) => MeshSource::Inline(crate::mesh::uniform::refine_uniform(m)),
             MeshSource::Disk {
                 center,

@@ -34,8 +34,10 @@ use super::{signed_area, Mesh2d, Order};
 const CORNER_DEG: f64 = 20.0;
 
 /// The coarser companion of `mesh`, or None where its boundary is not a
-/// single loop or the new mesh fails the inline checks.
-pub fn coarsened(mesh: &Mesh2d) -> Option<Mesh2d> {
+/// single loop or the new mesh fails the inline checks. `keep`: points of the
+/// boundary (point loads) whose boundary edge is kept as it is, so that they
+/// stay on the new boundary where it is curved.
+pub fn coarsened(mesh: &Mesh2d, keep: &[[f64; 2]]) -> Option<Mesh2d> {
     let k = mesh.order.nodes_per_element();
     // Directed corner edges with the body on their left, each with its midside.
     let mut directed: HashMap<(usize, usize), Option<usize>> = HashMap::new();
@@ -85,9 +87,19 @@ pub fn coarsened(mesh: &Mesh2d) -> Option<Mesh2d> {
             .abs()
             .to_degrees()
     };
-    let feature: Vec<bool> = (0..n)
+    let mut feature: Vec<bool> = (0..n)
         .map(|i| seg_set((i + n - 1) % n) != seg_set(i) || turn(i) > CORNER_DEG)
         .collect();
+    for &q in keep {
+        let nearest = (0..n).min_by(|&i, &j| {
+            let d = |i: usize| dist2(nearest_on_segment(q, p(i), p(i + 1)), q);
+            d(i).total_cmp(&d(j))
+        });
+        if let Some(i) = nearest {
+            feature[i] = true;
+            feature[(i + 1) % n] = true;
+        }
+    }
     // Start the walk at a feature so that chains end on them.
     let first = (0..n).find(|&i| feature[i]).unwrap_or(0);
     let mut kept = vec![first];
@@ -314,7 +326,7 @@ mod tests {
             extent: 0.05,
         };
         let m = rectangle([0.0, 0.0], 2.0, 1.0, 0.2, Some(([1.0, 1.0], g)), Order::T3).unwrap();
-        let c = coarsened(&m).expect("a rectangle has one boundary loop");
+        let c = coarsened(&m, &[]).expect("a rectangle has one boundary loop");
         assert!((area(&c) - 2.0).abs() < 1e-12, "area {}", area(&c));
         for name in m.edge_sets.keys() {
             let (a, b) = (set_length(&m, name), set_length(&c, name));
@@ -338,7 +350,7 @@ mod tests {
             extent: 0.105,
         };
         let m = disk([0.0, 1.0], 1.0, true, DiskPart::Quarter, 0.125, Some(g), Order::T6).unwrap();
-        let c = coarsened(&m).expect("a quarter disk has one boundary loop");
+        let c = coarsened(&m, &[]).expect("a quarter disk has one boundary loop");
         let given: Vec<([f64; 2], [f64; 2])> = m
             .edge_sets
             .values()
@@ -366,6 +378,31 @@ mod tests {
         );
     }
 
+    /// A point load's boundary edge is kept as it is: on a curved side the
+    /// coarse chord through every other node would pass the load by its
+    /// sagitta, and the companion's solve would refuse the load as off its
+    /// edge set.
+    #[test]
+    fn a_point_loads_edge_is_kept() {
+        let g = Grading {
+            h_min: 0.02,
+            ratio: 1.1,
+            extent: 0.105,
+        };
+        let m = disk([0.0, 1.0], 1.0, true, DiskPart::Quarter, 0.125, Some(g), Order::T3).unwrap();
+        let arc = &m.edge_sets["arc"];
+        for e in &arc[arc.len() / 3..arc.len() / 3 + 2] {
+            let (a, b) = (m.nodes[e.a], m.nodes[e.b]);
+            let at = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+            let c = coarsened(&m, &[at]).expect("one loop");
+            let kept = c.edge_sets["arc"].iter().any(|f| {
+                let (p, q) = (c.nodes[f.a], c.nodes[f.b]);
+                dist2(p, a) + dist2(q, b) < 1e-24
+            });
+            assert!(kept, "the edge of the load at {at:?} is not in the companion");
+        }
+    }
+
     /// A region with a hole has two boundary loops: no companion here (the
     /// estimate then falls back to the finer one).
     #[test]
@@ -389,6 +426,6 @@ mod tests {
             elems,
             edge_sets: BTreeMap::new(),
         };
-        assert!(coarsened(&m).is_none());
+        assert!(coarsened(&m, &[]).is_none());
     }
 }
