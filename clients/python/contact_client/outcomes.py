@@ -57,6 +57,7 @@ class WarningCode(str, enum.Enum):
     LARGE_CONTACT_ZONE = "large_contact_zone"
     GAP_LINEARIZATION = "gap_linearization"
     TOLERANCE_NOT_REACHED = "tolerance_not_reached"
+    PRESCRIBED_SLIP = "prescribed_slip"
 
 
 class Status(str, enum.Enum):

@@ -150,6 +150,10 @@ named! {
         GapLinearization = "gap_linearization",
         /// Refinement stopped short of `settings.accuracy`'s targets.
         ToleranceNotReached = "tolerance_not_reached",
+        /// A frictional contact point whose slip relative to the other
+        /// surface the supports prescribe (`solution::prescribed_slip`): its
+        /// friction force is μ λ, with no bounded limit as μ grows.
+        PrescribedSlip = "prescribed_slip",
     }
 }
 

@@ -178,6 +178,11 @@ pub struct Warning {
     /// contact turning under its loads: its rotation times its surface's
     /// radius of curvature at a contact zone, over the zone's half-width):
     /// each fires when value > limit;
+    /// `prescribed_slip` (frictional contact points of a pair whose slip
+    /// relative to the other surface the supports prescribe, so that their
+    /// friction force is μ λ, unbounded as μ grows; checked before the solve;
+    /// the message lists their positions and the supports) fires when value >
+    /// limit 0;
     /// `coarse_contact_zone` (element edges across a contact zone) fires when
     /// value < limit.
     pub code: WarningCode,
@@ -307,6 +312,7 @@ pub enum WarningCode {
     LargeContactZone,
     GapLinearization,
     ToleranceNotReached,
+    PrescribedSlip,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]

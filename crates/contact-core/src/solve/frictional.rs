@@ -15,6 +15,7 @@ use crate::model::Model;
 use crate::observer::{Observer, Stage};
 use crate::scene::{Control, Limits, Scene};
 use crate::solution::compose::{self, Solved};
+use crate::solution::prescribed_slip;
 use crate::solution::report::{with_steps, CacheState, LoadStep, Report, Status, Timings};
 use std::sync::Arc;
 
@@ -58,6 +59,8 @@ pub(super) fn solve_frictional(
         };
         obs.leave(Stage::Assembly)?;
         let f = assemble_loads(&model.external, &model.dofs, &stiffness);
+        // Before the solve: points whose slip the supports prescribe.
+        let prescribed = prescribed_slip::find(&s, model, tangents);
         let (mut sol, mut friction, factor) = match route {
             Route::Condensed => {
                 let prepared = match &op {
@@ -122,7 +125,9 @@ pub(super) fn solve_frictional(
             compliance: None,
             friction: &shares,
         };
-        let r = report(&s, &composed, &sm, sol, &friction, obs);
+        let mut r = report(&s, &composed, &sm, sol, &friction, obs);
+        r.warnings
+            .extend(prescribed_slip::warnings(&s, &prescribed, &friction.lambda));
         history = friction.history;
         obs = Observer::new();
         steps.push(LoadStep::of(k, loads, &r));

@@ -136,6 +136,7 @@ fn warning_code(c: WarningCode) -> p::WarningCode {
         WarningCode::LargeContactZone => p::WarningCode::LargeContactZone,
         WarningCode::GapLinearization => p::WarningCode::GapLinearization,
         WarningCode::ToleranceNotReached => p::WarningCode::ToleranceNotReached,
+        WarningCode::PrescribedSlip => p::WarningCode::PrescribedSlip,
     }
 }
 
