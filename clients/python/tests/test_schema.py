@@ -143,8 +143,8 @@ def test_the_packaged_schemas_are_the_checked_in_ones(proto_schemas, kind):
 
 
 def test_the_outcome_enums_are_the_schemas():
-    """Every method, stop reason, estimate basis, warning code and status the reply's schema
-    lists is a member of the client's enum of that name, and nothing else is."""
+    """Every method, stop reason, estimate basis, warning code, note kind and status the
+    reply's schema lists is a member of the client's enum of that name, and nothing else is."""
     import json
     from importlib import resources
 
@@ -164,5 +164,6 @@ def test_the_outcome_enums_are_the_schemas():
 
     for wire, cls in [("MethodRan", outcomes.Method), ("StopReason", outcomes.StopReason),
                       ("EstimateBasis", outcomes.EstimateBasis), ("WarningCode", outcomes.WarningCode),
+                      ("NoteKind", outcomes.NoteKind),
                       ("SolveStatus", outcomes.Status)]:
         assert values(wire) == {m.value for m in cls}, wire

@@ -373,8 +373,10 @@ fn nothing_in_contact_stops_the_refinement_at_once() {
         ("no_contact", false, 1)
     );
     assert!(r.warnings.is_empty(), "{:?}", r.warnings);
-    assert!(
-        r.notes.iter().any(|n| n.contains("nothing is in contact")),
+    let note = r.notes.iter().find(|n| n.text.contains("nothing is in contact"));
+    assert_eq!(
+        note.map(|n| n.kind),
+        Some(contact_core::outcome::NoteKind::NotRefined),
         "{:?}",
         r.notes
     );
@@ -401,8 +403,10 @@ fn refinement_predicts_its_rounds_within_the_time_limit() {
     let f = r.refinement.as_ref().unwrap();
     assert_eq!((f.stopped.as_str(), f.rounds.len()), ("time_limit", 1), "{f:?}");
     assert!(took <= limit, "answered after {took:.3} s, limit {limit:.3} s");
-    assert!(
-        r.notes.iter().any(|n| n.contains("left of the time limit")),
+    let note = r.notes.iter().find(|n| n.text.contains("left of the time limit"));
+    assert_eq!(
+        note.map(|n| n.kind),
+        Some(contact_core::outcome::NoteKind::EstimateLimited),
         "{:?}",
         r.notes
     );

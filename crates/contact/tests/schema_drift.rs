@@ -34,11 +34,11 @@ fn every_example_solves() {
 }
 
 /// The reply's schema lists, as enums, every status, method, stop reason,
-/// estimate basis and warning code the core can report, and nothing else: a client
-/// generated from it can match on them exhaustively.
+/// estimate basis, warning code and note kind the core can report, and nothing
+/// else: a client generated from it can match on them exhaustively.
 #[test]
 fn the_reply_schema_lists_every_outcome_the_core_reports() {
-    use contact_core::outcome::{EstimateBasis, MethodRan, Status, StopReason, WarningCode};
+    use contact_core::outcome::{EstimateBasis, MethodRan, NoteKind, Status, StopReason, WarningCode};
     let (_, text) = contact::proto::schema::schemas()
         .into_iter()
         .find(|(name, _)| *name == "reply.schema.json")
@@ -87,6 +87,10 @@ fn the_reply_schema_lists_every_outcome_the_core_reports() {
     assert_eq!(
         values("WarningCode"),
         sorted(WarningCode::ALL.iter().map(|m| m.as_str()).collect())
+    );
+    assert_eq!(
+        values("NoteKind"),
+        sorted(NoteKind::ALL.iter().map(|m| m.as_str()).collect())
     );
     assert_eq!(
         values("SolveStatus"),
