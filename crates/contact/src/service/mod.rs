@@ -124,7 +124,7 @@ pub async fn run(cfg: ServiceConfig) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// `{"request": …, "reply": …, "error": …}` from the generated schemas.
+/// `{"request": …, "reply": …, "error": …, "progress": …}` from the generated schemas.
 fn schema_payload() -> Vec<u8> {
     let mut map = serde_json::Map::new();
     for (file, text) in crate::proto::schema::schemas() {
