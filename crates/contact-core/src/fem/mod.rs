@@ -7,4 +7,5 @@ pub mod loads;
 pub mod material;
 pub mod rigid_modes;
 
-pub use assembly::{assemble, Assembled, DofMap};
+pub use assembly::DofMap;
+pub use loads::{assemble, Assembled};

@@ -41,7 +41,7 @@ pub async fn run(cfg: ServiceConfig) -> anyhow::Result<()> {
     let zconf = cfg.zenoh_config()?;
     // This machine's factorization speed, before the first deadline needs it
     // (measured again by every factorization; `linalg::rate`).
-    let scale = tokio::task::spawn_blocking(contact_core::linalg::rate::calibrate).await?;
+    let scale = tokio::task::spawn_blocking(contact_core::linalg::calibrate::calibrate).await?;
     tracing::info!(factorization_scale = scale, "factorization speed calibrated");
     let session = zenoh::open(zconf)
         .await
