@@ -154,8 +154,9 @@ fn prescribed_slip(r: &SolveReply) -> Vec<&Warning> {
 /// and the reply says so before a large μ is read as sticking, naming the
 /// node, the pair and both supports. At μ = 0.2 the answer is Coulomb's and
 /// solved (the warning beside it); at μ = 100 the step ends at
-/// `max_iterations` with the same warning. Pulled by the shaft's top, and
-/// frictionless, no such warning.
+/// `max_iterations` with the same warning. Pulled by the shaft's top,
+/// frictionless, or with both bottoms held still (a slip prescribed to 0), no
+/// such warning.
 #[test]
 fn a_press_fit_pushed_by_its_bottom_warns_of_its_prescribed_slip() {
     for mu in [0.2, 100.0] {
@@ -184,7 +185,11 @@ fn a_press_fit_pushed_by_its_bottom_warns_of_its_prescribed_slip() {
     top["bodies"][0]["supports"][0]["edges"] = json!("top");
     let mut frictionless = press_fit(0.2);
     frictionless["contacts"][0].as_object_mut().unwrap().remove("friction");
-    for req in [top, frictionless] {
+    // Both bottoms held still: the slip is prescribed, to 0, and the node
+    // sticks with a bounded force.
+    let mut still = press_fit(100.0);
+    still["bodies"][0]["supports"][0]["uy"] = json!(0.0);
+    for req in [top, frictionless, still] {
         let r = solved(&req);
         assert!(prescribed_slip(&r).is_empty(), "{:?}", r.warnings);
     }

@@ -23,7 +23,9 @@
 //! (`Tangents::new` leaves the row out), and the solve carries no μ λ there.
 //! The points are found from the scene and its rows before the solve
 //! (`find`); the step's answer reports those in contact (`warnings`): a point
-//! that stays open carries no friction force.
+//! that stays open carries no friction force. A slip prescribed to 0 (both
+//! sides held still: the press fit's closing step, a symmetry plane held on
+//! both bodies) is not reported: the point may stick, with a bounded force.
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
@@ -38,6 +40,9 @@ use crate::solution::report::Warning;
 /// A tangent component below this (of a unit tangent) does not move the
 /// node along t: its DOF need not be held.
 const ALONG: f64 = 1e-9;
+/// A prescribed slip within this share of the motions it is the difference
+/// of is 0 (round-off).
+const SAME: f64 = 1e-12;
 /// Positions listed in a warning's message, at most.
 const LISTED: usize = 4;
 
@@ -68,6 +73,8 @@ pub fn find(scene: &Scene, model: &Model, tangents: &Tangents) -> Vec<Held> {
         };
         let mut held: BTreeSet<String> = own.into_iter().collect();
         let mut slip = prescribed_along(model, c.body, c.node, t);
+        // What the slip is a difference of, for its round-off.
+        let mut scale = slip.abs();
         match &scene.pairs[c.pair].target {
             Target::Obstacle(o) => match (&scene.obstacles[*o].punch, c.punch_tangent()) {
                 (None, _) => {
@@ -87,6 +94,7 @@ pub fn find(scene: &Scene, model: &Model, tangents: &Tangents) -> Vec<Held> {
                     }
                     held.insert(format!("punch '{}''s prescribed motion", scene.obstacles[*o].name));
                     slip -= moved;
+                    scale += moved.abs();
                 }
                 (Some(_), None) => continue,
             },
@@ -100,13 +108,20 @@ pub fn find(scene: &Scene, model: &Model, tangents: &Tangents) -> Vec<Held> {
                         Some(h) => held.extend(h),
                         None => all = false,
                     }
-                    slip -= w * prescribed_along(model, *body, n, t);
+                    let other = w * prescribed_along(model, *body, n, t);
+                    slip -= other;
+                    scale += other.abs();
                 }
                 if !all {
                     continue;
                 }
             }
             Target::Foundation(_) => continue,
+        }
+        // A slip prescribed to 0 (both sides held still, a symmetry plane
+        // held on both bodies) lets the point stick with a bounded force.
+        if slip.abs() <= SAME * scale {
+            continue;
         }
         found.push(Held {
             candidate: i,
