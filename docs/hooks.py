@@ -1,7 +1,8 @@
 """MkDocs hook: the reference pages generated at build time, never committed.
 
-- reference/request.md, reply.md, error.md from proto/*.schema.json (every field, its type, default,
-  description, and every enum's values);
+- reference/request.md, reply.md, error.md and progress-message.md from proto/*.schema.json (every
+  field, its type, default, description, and every enum's values); every schema file there has a page
+  (`SCHEMAS`): one without fails the build;
 - reference/cli.md from the `--help` of the built `contact` binary and of each of its subcommands.
 
 The binary is $CONTACT_BIN, else target/release/contact (or $CARGO_TARGET_DIR/release/contact).
@@ -27,7 +28,23 @@ SCHEMAS = {
         "The error reply",
         "What a refused request answers (`reply_err` on zenoh; exit code 1 of `contact solve`).",
     ),
+    "progress": (
+        "The progress message",
+        "What a solve publishes on `contact/progress/<key>` while it runs, and what the Python progress callback"
+        " receives (without `request_id`, `round`); see [Progress and errors](progress.md).",
+    ),
 }
+#: The page of each schema (reference/progress.md is the hand-written guide to progress and errors).
+PAGES = {"progress": "progress-message"}
+
+
+def schema_pages() -> dict[str, str]:
+    """{page URI: kind} of every proto/*.schema.json; a schema without a title in `SCHEMAS` fails the build."""
+    kinds = sorted(p.name.removesuffix(".schema.json") for p in PROTO.glob("*.schema.json"))
+    missing = [k for k in kinds if k not in SCHEMAS]
+    if missing:
+        raise RuntimeError(f"docs/hooks.py: proto/{missing[0]}.schema.json has no page: add it to SCHEMAS")
+    return {f"reference/{PAGES.get(k, k)}.md": k for k in kinds}
 
 
 def _text(text: str) -> str:
@@ -225,7 +242,7 @@ def render_cli() -> str:
 
 
 def on_files(files, config):
-    pages = {f"reference/{kind}.md": render_schema(kind) for kind in SCHEMAS}
+    pages = {uri: render_schema(kind) for uri, kind in schema_pages().items()}
     pages["reference/cli.md"] = render_cli()
     for uri, text in pages.items():
         files.append(File.generated(config, uri, content=text))

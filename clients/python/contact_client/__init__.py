@@ -24,7 +24,7 @@ from .client import (
     solve_local,
     work_fraction,
 )
-from .outcomes import EstimateBasis, Method, Status, StopReason, WarningCode
+from .outcomes import EstimateBasis, Method, NoteKind, Status, StopReason, WarningCode
 from .results import described_pressure, plot_pressure, save_vtu, to_numpy
 
 __version__ = "0.2.0"
@@ -53,5 +53,6 @@ __all__ = [
     "StopReason",
     "EstimateBasis",
     "WarningCode",
+    "NoteKind",
     "Status",
 ]

@@ -439,7 +439,7 @@ class Client:
         return _query(self.session, KEY_HEALTH, None, float(timeout))
 
     def schema(self, timeout: float = SMALL_QUERY_TIMEOUT) -> dict:
-        """The JSON Schemas the service speaks: ``{"request", "reply", "error"}``."""
+        """The JSON Schemas the service speaks: ``{"request", "reply", "error", "progress"}``."""
         return _query(self.session, KEY_SCHEMA, None, float(timeout))
 
     def close(self) -> None:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import enum
 
-__all__ = ["Method", "StopReason", "EstimateBasis", "WarningCode", "Status"]
+__all__ = ["Method", "StopReason", "EstimateBasis", "WarningCode", "NoteKind", "Status"]
 
 
 class Method(str, enum.Enum):
@@ -57,6 +57,25 @@ class WarningCode(str, enum.Enum):
     LARGE_CONTACT_ZONE = "large_contact_zone"
     GAP_LINEARIZATION = "gap_linearization"
     TOLERANCE_NOT_REACHED = "tolerance_not_reached"
+    PRESCRIBED_SLIP = "prescribed_slip"
+
+
+class NoteKind(str, enum.Enum):
+    """What a note is about: ``reply["note_kinds"][i]`` is the kind of ``reply["notes"][i]``
+    (the two lists are as long; ``Reply.notes_of(kind)`` gives one kind's texts). A note
+    explains the answer; a warning questions it."""
+
+    PAIR_SWAPPED = "pair_swapped"
+    NEARLY_INCOMPRESSIBLE = "nearly_incompressible"
+    P2_P0_ELEMENT = "p2_p0_element"
+    UNDETERMINED_MOTION = "undetermined_motion"
+    METHOD_FALLBACK = "method_fallback"
+    FULL_SYSTEM = "full_system"
+    NON_FINITE = "non_finite"
+    ESTIMATE_LIMITED = "estimate_limited"
+    NOT_REFINED = "not_refined"
+    SLIDING_PUNCH = "sliding_punch"
+    UNSETTLED_BODY = "unsettled_body"
 
 
 class Status(str, enum.Enum):

@@ -127,6 +127,13 @@ class Reply(dict):
             raise NotSolved(self)
         return self
 
+    def notes_of(self, kind: str) -> list[str]:
+        """The texts of this reply's notes of ``kind`` (a :class:`~contact_client.NoteKind`
+        or its string), in order: ``reply.notes_of(NoteKind.UNDETERMINED_MOTION)``. A
+        reply from a service older than ``note_kinds`` has none of any kind."""
+        kinds = self.get("note_kinds", [])
+        return [text for k, text in zip(kinds, self.get("notes", [])) if k == kind]
+
     def points(self) -> dict[str, list]:
         """Every pair's candidate points as columns (plain lists, no dependency):
         ``{"pair": [...], "body": [...], "target": [...], "x": [...], ...}``, one

@@ -716,27 +716,39 @@ def press_fit(
     *,
     friction: float | None = None,
     push: float | None = None,
+    shaft_end: str = "top",
 ) -> dict:
     """A shaft of radius ``shaft_radius`` fitted into a ring of outer radius
     ``outer_radius`` with the radial ``interference`` (a negative initial gap), both of
-    ``height``, the same material, their bottoms held axially (axisymmetric; the
-    ring's bore carries the pressure, mortar rows). Frictionless, the pressure is
-    ``lame_press_fit_pressure`` over the whole bore (free ends: plane stress).
+    ``height``, the same material, the ring's bottom and the shaft's ``shaft_end`` held
+    axially (axisymmetric; the ring's bore carries the pressure, mortar rows).
+    Frictionless, the pressure is ``lame_press_fit_pressure`` over the whole bore (free
+    ends: plane stress).
 
     ``friction``: Coulomb μ on the bore. ``push``: after the fit closes (first load
-    path step), the shaft's bottom is moved along the axis by ``push``; pushed beyond
+    path step), the shaft's held end is moved along the axis by ``push``; pushed beyond
     the elastic slip (about interference / radius × height), the whole bore slides and
     the push-out force, the friction resultant's axial part, is μ times the normal
     ring force Σ force, about μ p 2π b L (Lamé's p, b the bore radius, L the height).
+
+    ``shaft_end``: ``"top"`` (the default), the shaft held and moved by its far end
+    from the ring's held bottom, has a bounded answer at any μ (a large μ is the stick
+    limit); ``"bottom"``, both bottoms held, puts the bore's bottom node on two held
+    faces, so that moving the shaft prescribes its slip: it slides with the friction
+    force μ λ, without bound as μ grows (``max_iterations`` from μ = 100), and the reply
+    warns ``prescribed_slip``. At a real μ both answer alike (the push-out force is μ
+    times the normal ring force either way). Up to 0.2.0 the shaft was held by its bottom.
     Unlike the other frictional builders it has no ``steps``: the fit is pressed by its
     interference, an initial gap, which load path factors do not scale (they scale loads
     and prescribed displacements, gaps unchanged), so it closes in the first step.
     """
     bore = shaft_radius - interference
+    if shaft_end not in ("top", "bottom"):
+        raise ValueError(f"shaft_end must be 'top' or 'bottom', not {shaft_end!r}")
 
-    def body(name: str, corner: float, width: float, uy: float) -> dict:
+    def body(name: str, corner: float, width: float, uy: float, held: str) -> dict:
         mesh = rq.rectangle([corner, 0.0], width, height, size, element)
-        return rq.body(name, rq.material(youngs_modulus, poisson_ratio), mesh, [rq.support("bottom", uy=uy)])
+        return rq.body(name, rq.material(youngs_modulus, poisson_ratio), mesh, [rq.support(held, uy=uy)])
 
     path = None
     if push is not None:
@@ -745,13 +757,13 @@ def press_fit(
         path = [rq.load_step({"/bodies/0/supports/0": 0.0}), rq.load_step({"/bodies/0/supports/0": 1.0})]
     return rq.request(
         bodies=[
-            body("shaft", 0.0, shaft_radius, push if push is not None else 0.0),
-            body("ring", bore, outer_radius - bore, 0.0),
+            body("shaft", 0.0, shaft_radius, push if push is not None else 0.0, shaft_end),
+            body("ring", bore, outer_radius - bore, 0.0, "bottom"),
         ],
         contacts=[rq.contact("ring", "left", against=("shaft", "right"), friction=friction)],
         analysis="axisymmetric",
         load_path=path,
         description=f"press fit, shaft radius {shaft_radius} in a ring to {outer_radius}, interference {interference}"
         + ("" if friction is None else f", friction mu = {friction}")
-        + ("" if push is None else f", pushed {push} along the axis"),
+        + ("" if push is None else f", pushed {push} along the axis by the shaft's {shaft_end}"),
     )

@@ -44,9 +44,9 @@ def contact_bin() -> Path:
 
 @pytest.fixture(scope="session")
 def proto_schemas() -> dict:
-    """The checked-in schemas: {"request": ..., "reply": ..., "error": ...}."""
+    """The checked-in schemas: {"request": ..., "reply": ..., "error": ..., "progress": ...}."""
     out = {}
-    for kind in ("request", "reply", "error"):
+    for kind in ("request", "reply", "error", "progress"):
         p = PROTO / f"{kind}.schema.json"
         if not p.is_file():
             _missing(f"{p} not found")

@@ -148,7 +148,7 @@ def test_module_functions_open_their_own_session(service):
     reply = contact_client.solve(json.dumps(square_block()), connect=service, timeout=30.0)
     assert reply["resultant"]["fy"] == pytest.approx(-expected_pressure(), rel=1e-9)
     assert "uptime_s" in contact_client.health(connect=service)
-    assert set(contact_client.schema(connect=service)) == {"request", "reply", "error"}
+    assert set(contact_client.schema(connect=service)) == {"request", "reply", "error", "progress"}
     with pytest.raises(ContactError) as ei:
         contact_client.solve("{", connect=service)
     assert ei.value.code == "malformed_json"

@@ -5,7 +5,13 @@ from __future__ import annotations
 import pytest
 
 from contact_client import scenes
-from contact_client.client import STAGES, work_fraction
+from contact_client.client import STAGES, _validator, work_fraction
+
+
+def _all_valid(messages: list[dict]) -> None:
+    """Every message is a progress message of the packaged schema (proto/progress.schema.json)."""
+    for m in messages:
+        _validator("progress").validate(m)
 
 
 def test_a_large_solve_reports_its_stages_in_order(client):
@@ -20,6 +26,7 @@ def test_a_large_solve_reports_its_stages_in_order(client):
     # A first solve of this mesh misses the cache, so every stage runs.
     assert order == list(STAGES), order
     assert all(m["request_id"] == r["request_id"] for m in seen)
+    _all_valid(seen)
     assert [m["elapsed"] for m in seen] == sorted(m["elapsed"] for m in seen)
     iterations = [m for m in seen if "iteration" in m]
     assert iterations and all(m["stage"] == "contact_solve" and m["residual"] >= 0.0 for m in iterations)
@@ -54,6 +61,7 @@ def test_an_in_process_solve_reports_the_stages_as_the_service_does():
     req = scenes.hertz_cylinder(h_min=0.0105, client_id="in-process")
     seen: list[dict] = []
     r = solve_local(req, progress=seen.append)
+    _all_valid(seen)
     stages = [m["stage"] for m in seen]
     order = [s for i, s in enumerate(stages) if i == 0 or stages[i - 1] != s]
     assert order == list(STAGES), order

@@ -92,3 +92,18 @@ def test_to_dataframe_or_a_clear_import_error(monkeypatch):
     monkeypatch.setitem(sys.modules, "pandas", None)  # as if pandas were not installed
     with pytest.raises(ImportError, match=r"pip install pandas.*points\(\)"):
         reply.to_dataframe()
+
+
+def test_notes_carry_their_kinds():
+    """Each note has its kind at the same index of ``note_kinds`` (issue 38.2): the
+    Winkler footing example's one note is its undetermined horizontal translation,
+    and ``notes_of`` picks it by kind; a kind it does not hold gives none."""
+    from contact_client import NoteKind
+    from support import EXAMPLES
+
+    reply = solve_local(json.loads((EXAMPLES / "foundation_winkler_footing.json").read_text()))
+    assert len(reply["note_kinds"]) == len(reply["notes"]) == 1
+    assert NoteKind(reply["note_kinds"][0]) is NoteKind.UNDETERMINED_MOTION
+    assert reply.notes_of(NoteKind.UNDETERMINED_MOTION) == reply["notes"]
+    assert "not determined" in reply["notes"][0]
+    assert reply.notes_of(NoteKind.METHOD_FALLBACK) == []

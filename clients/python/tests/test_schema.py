@@ -127,12 +127,12 @@ def test_error_replies_validate(client, validators):
 
 def test_service_schema_matches_checked_in_files(client, proto_schemas):
     served = client.schema()
-    assert set(served) == {"request", "reply", "error"}
-    for kind in ("request", "reply", "error"):
+    assert set(served) == {"request", "reply", "error", "progress"}
+    for kind in ("request", "reply", "error", "progress"):
         assert served[kind] == proto_schemas[kind], f"contact/schema {kind} differs from proto/{kind}.schema.json"
 
 
-@pytest.mark.parametrize("kind", ["reply", "error"])
+@pytest.mark.parametrize("kind", ["reply", "error", "progress"])
 def test_the_packaged_schemas_are_the_checked_in_ones(proto_schemas, kind):
     """The client checks answers against its own copies (contact_client/schemas/): they must not drift."""
     import json
@@ -143,8 +143,8 @@ def test_the_packaged_schemas_are_the_checked_in_ones(proto_schemas, kind):
 
 
 def test_the_outcome_enums_are_the_schemas():
-    """Every method, stop reason, estimate basis, warning code and status the reply's schema
-    lists is a member of the client's enum of that name, and nothing else is."""
+    """Every method, stop reason, estimate basis, warning code, note kind and status the
+    reply's schema lists is a member of the client's enum of that name, and nothing else is."""
     import json
     from importlib import resources
 
@@ -164,5 +164,20 @@ def test_the_outcome_enums_are_the_schemas():
 
     for wire, cls in [("MethodRan", outcomes.Method), ("StopReason", outcomes.StopReason),
                       ("EstimateBasis", outcomes.EstimateBasis), ("WarningCode", outcomes.WarningCode),
+                      ("NoteKind", outcomes.NoteKind),
                       ("SolveStatus", outcomes.Status)]:
         assert values(wire) == {m.value for m in cls}, wire
+
+
+def test_the_progress_stages_are_the_schemas():
+    """``client.STAGES``, the stages the progress bar knows, are the progress schema's
+    ``ProgressStage`` values, in the order a solve runs them (issue 38.2)."""
+    import json
+    from importlib import resources
+
+    from contact_client.client import STAGES
+
+    schema = json.loads(resources.files("contact_client").joinpath("schemas/progress.schema.json").read_text())
+    node = schema["$defs"]["ProgressStage"]
+    values = node["enum"] if "enum" in node else [o["const"] for o in node["oneOf"]]
+    assert list(STAGES) == values

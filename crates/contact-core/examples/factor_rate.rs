@@ -80,7 +80,7 @@ fn main() {
         return;
     }
     let t = Instant::now();
-    let s = rate::calibrate();
+    let s = contact_core::linalg::calibrate::calibrate();
     println!("calibration: scale {s:.3} ({:.2} s)", t.elapsed().as_secs_f64());
     println!("     DOF   nnz(L)    flops  predicted_s  real_s  error  uncalibrated  scale_after  faer_one_call_s");
     for (nx, ny) in [(500, 250), (707, 354), (1000, 500), (1225, 612), (1414, 707)] {

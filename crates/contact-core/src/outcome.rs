@@ -1,5 +1,6 @@
 //! The words a report answers in: which method ran, why refinement stopped,
-//! what an estimate is based on and what a warning is about. Each is a closed
+//! what an estimate is based on, what a warning or a note is about and which
+//! stage a solve is in. Each is a closed
 //! set, so a client can match on it and the reply's schema can list it; the
 //! wire layer maps each variant to its own enum by an exhaustive match, so a
 //! variant added here and not on the wire does not compile, and
@@ -153,6 +154,69 @@ named! {
         GapLinearization = "gap_linearization",
         /// Refinement stopped short of `settings.accuracy`'s targets.
         ToleranceNotReached = "tolerance_not_reached",
+        /// A frictional contact point whose slip relative to the other
+        /// surface the supports prescribe (`solution::prescribed_slip`): its
+        /// friction force is μ λ, with no bounded limit as μ grows.
+        PrescribedSlip = "prescribed_slip",
+    }
+}
+
+named! {
+    /// What a note is about. A note explains the answer (what ran, what it
+    /// holds at 0, why a step fell short); a warning questions it.
+    NoteKind {
+        /// A two-body pair turned round: the much stiffer body is the other
+        /// side, and the pair is reported that way (`scene::validate`).
+        PairSwapped = "pair_swapped",
+        /// A nearly incompressible body on linear triangles, which lock.
+        NearlyIncompressible = "nearly_incompressible",
+        /// A nearly incompressible body on T6 ran the locking-free P2–P0
+        /// element.
+        P2P0Element = "p2_p0_element",
+        /// A rigid motion (or a combination) that nothing determines,
+        /// reported at 0.
+        UndeterminedMotion = "undetermined_motion",
+        /// `auto`'s active set did not converge; the interior point ran.
+        MethodFallback = "method_fallback",
+        /// Too many frictional rows for the condensed formulation: solved on
+        /// the full system.
+        FullSystem = "full_system",
+        /// The answer holds a number that is not finite.
+        NonFinite = "non_finite",
+        /// The error estimate's companion was not solved (too large, too
+        /// slow, failed): only the zone ends are estimated.
+        EstimateLimited = "estimate_limited",
+        /// Nothing is in contact: `settings.accuracy` did not refine.
+        NotRefined = "not_refined",
+        /// A frictional step with a load-controlled punch ran out of
+        /// iterations: the punch most likely slides.
+        SlidingPunch = "sliding_punch",
+        /// A frictional step with a body held only by contact ran out of
+        /// iterations: whether it slides or the iteration fell short.
+        UnsettledBody = "unsettled_body",
+    }
+}
+
+/// A note on an answer: its kind and its text (numbers in the request's
+/// units).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Note {
+    pub kind: NoteKind,
+    pub text: String,
+}
+
+impl Note {
+    pub fn new(kind: NoteKind, text: impl Into<String>) -> Self {
+        Note {
+            kind,
+            text: text.into(),
+        }
+    }
+}
+
+impl std::fmt::Display for Note {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.text)
     }
 }
 
@@ -164,11 +228,14 @@ mod tests {
     /// enum values and Python identifiers' sources.
     #[test]
     fn names_are_distinct_snake_case() {
-        let sets: [Vec<&str>; 4] = [
+        let sets: [Vec<&str>; 7] = [
             MethodRan::ALL.iter().map(|v| v.as_str()).collect(),
             StopReason::ALL.iter().map(|v| v.as_str()).collect(),
             EstimateBasis::ALL.iter().map(|v| v.as_str()).collect(),
             WarningCode::ALL.iter().map(|v| v.as_str()).collect(),
+            NoteKind::ALL.iter().map(|v| v.as_str()).collect(),
+            ProgressStage::ALL.iter().map(|v| v.as_str()).collect(),
+            Status::ALL.iter().map(|v| v.as_str()).collect(),
         ];
         for names in sets {
             let mut sorted = names.clone();
@@ -176,7 +243,11 @@ mod tests {
             sorted.dedup();
             assert_eq!(sorted.len(), names.len(), "{names:?}");
             for n in names {
-                assert!(n.chars().all(|c| c.is_ascii_lowercase() || c == '_'), "{n}");
+                assert!(
+                    n.chars()
+                        .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_'),
+                    "{n}"
+                );
             }
         }
     }

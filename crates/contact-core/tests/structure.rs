@@ -1,18 +1,23 @@
-//! The layout rules of the core, checked on its sources:
+//! The layout rules of the workspace, checked on its sources:
 //!
-//! - the top-level modules depend on each other without a cycle, and so do
-//!   the files of `contact` (whose target kinds once imported each other in a
-//!   circle) and of `methods` (whose frictional Newton iteration and its
-//!   Gauss–Seidel fallback did);
+//! - in every crate's library (`contact-core`, `contact-proto`, `contact`,
+//!   `contact-verify`, `contact-py`) the top-level modules depend on each other
+//!   without a cycle, and so do the files under every folder (issue 38.4; the
+//!   core's `contact`, whose target kinds once imported each other in a circle,
+//!   and `methods`, whose frictional Newton iteration and its Gauss–Seidel
+//!   fallback did, are checked by name as well);
 //! - only the scene boundary (`scene::validate` and its modules,
 //!   `scene::size_limit`) reads wire types;
-//! - a source file over 500 lines says why in its module doc (a line
-//!   starting `//! Length:`).
+//! - a source file of any crate over 500 lines says why in its module doc (a
+//!   line starting `//! Length:`).
 //!
 //! Dependencies are read from `crate::a::b` paths and `super::` imports
-//! (test modules excluded); a `mod.rs` is not a node within `contact` and
-//! `methods` (it declares the files and re-exports; `methods/mod.rs` also
-//! holds the types the methods share and the dispatch to them).
+//! (test modules excluded); a file that declares a folder of modules
+//! (`mod.rs`, or `a.rs` beside `a/`) is not a node of its folder's graph (it
+//! declares the files and re-exports; `methods/mod.rs` also holds the types
+//! the methods share and the dispatch to them). A binary's sources (`main.rs`,
+//! `bin/`) are crates of their own and read the library by name, so they are
+//! left out.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -32,14 +37,35 @@ fn src() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
 }
 
-/// Module path of a source file: `contact/targets/body.rs` → ["contact", "targets", "body"].
-fn module_of(file: &Path) -> Vec<String> {
-    let rel = file.strip_prefix(src()).unwrap().with_extension("");
+/// The library sources of every crate of the workspace: (crate, its src/).
+fn crate_srcs() -> Vec<(&'static str, PathBuf)> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    [
+        "contact-core",
+        "contact-proto",
+        "contact",
+        "contact-verify",
+        "contact-py",
+    ]
+    .into_iter()
+    .map(|k| (k, root.join(k).join("src")))
+    .collect()
+}
+
+/// Module path of a source file under `src`: `contact/targets/body.rs` →
+/// ["contact", "targets", "body"].
+fn module_in(src: &Path, file: &Path) -> Vec<String> {
+    let rel = file.strip_prefix(src).unwrap().with_extension("");
     let mut parts: Vec<String> = rel.iter().map(|s| s.to_string_lossy().into_owned()).collect();
     if parts.last().is_some_and(|l| l == "mod" || l == "lib") {
         parts.pop();
     }
     parts
+}
+
+/// Module path of a source file of the core.
+fn module_of(file: &Path) -> Vec<String> {
+    module_in(&src(), file)
 }
 
 /// The code of a file without its test module and comments.
@@ -131,44 +157,77 @@ fn has_cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>> 
 }
 
 fn files() -> Vec<PathBuf> {
+    lib_files(&src())
+}
+
+/// The library's source files under `src`: not a binary's (`main.rs`, `bin/`).
+fn lib_files(src: &Path) -> Vec<PathBuf> {
     let mut files = Vec::new();
-    sources(&src(), &mut files);
+    sources(src, &mut files);
+    files.retain(|f| {
+        let rel = f.strip_prefix(src).unwrap();
+        rel != Path::new("main.rs") && !rel.starts_with("bin")
+    });
     files.sort();
     files
 }
 
-#[test]
-fn top_level_modules_form_no_cycle() {
-    let files = files();
-    let tops: BTreeSet<String> = files.iter().filter_map(|f| module_of(f).first().cloned()).collect();
+/// The graph of `src`'s top-level modules (the first segment of every
+/// `crate::` path of a file outside the module).
+fn top_graph(src: &Path) -> BTreeMap<String, BTreeSet<String>> {
+    let files = lib_files(src);
+    let tops: BTreeSet<String> = files
+        .iter()
+        .filter_map(|f| module_in(src, f).first().cloned())
+        .collect();
     let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
     for f in &files {
-        let Some(me) = module_of(f).first().cloned() else {
+        let Some(me) = module_in(src, f).first().cloned() else {
             continue;
         };
+        graph.entry(me.clone()).or_default();
         for p in paths_after(&code(f), "crate::") {
             if let Some(t) = p.first().filter(|t| tops.contains(*t) && **t != me) {
                 graph.entry(me.clone()).or_default().insert(t.clone());
             }
         }
     }
+    graph
+}
+
+#[test]
+fn top_level_modules_form_no_cycle() {
+    let graph = top_graph(&src());
     assert!(graph.len() > 5, "the scan found the modules: {graph:?}");
     assert_eq!(has_cycle(&graph), None, "{graph:#?}");
 }
 
-/// The dependencies between the files under the top-level module `top`
-/// (its `mod.rs` files only declare and re-export, so they are not nodes).
+/// Whether `file` declares a folder of modules: `mod.rs`, `lib.rs`, or
+/// `a.rs` beside a folder `a/`.
+fn declares_folder(file: &Path) -> bool {
+    file.file_name().is_some_and(|n| n == "mod.rs" || n == "lib.rs") || file.with_extension("").is_dir()
+}
+
+/// The dependencies between the files under the top-level module `top` of
+/// the core (see `folder_graph`).
 fn file_graph(top: &str) -> BTreeMap<String, BTreeSet<String>> {
+    folder_graph(&src(), &[top.to_string()])
+}
+
+/// The dependencies between the files under the module folder `folder` of
+/// `src` (the files that declare folders only declare and re-export, so
+/// they are not nodes).
+fn folder_graph(src: &Path, folder: &[String]) -> BTreeMap<String, BTreeSet<String>> {
     let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
-    let nodes: BTreeSet<Vec<String>> = files()
-        .iter()
-        .filter(|f| f.file_name().is_some_and(|n| n != "mod.rs"))
-        .map(|f| module_of(f))
-        .filter(|m| m.first().is_some_and(|t| t == top))
+    let files: BTreeMap<Vec<String>, PathBuf> = lib_files(src)
+        .into_iter()
+        .filter(|f| !declares_folder(f))
+        .map(|f| (module_in(src, &f), f))
+        .filter(|(m, _)| m.len() > folder.len() && m.starts_with(folder))
         .collect();
-    for me in &nodes {
-        let file = src().join(me.join("/")).with_extension("rs");
-        let text = code(&file);
+    let nodes: BTreeSet<Vec<String>> = files.keys().cloned().collect();
+    for (me, file) in &files {
+        let text = code(file);
         let parent = &me[..me.len() - 1];
         let mut targets: Vec<Vec<String>> = paths_after(&text, "crate::");
         for p in paths_after(&text, "super::") {
@@ -212,6 +271,51 @@ fn methods_files_form_no_cycle() {
     assert_eq!(has_cycle(&graph), None, "{graph:#?}");
 }
 
+/// Every crate's top-level modules form no cycle, and neither do the files
+/// under any of its folders (issue 38.4).
+#[test]
+fn every_crate_and_folder_forms_no_cycle() {
+    fn folders(dir: &Path, out: &mut Vec<PathBuf>) {
+        for e in std::fs::read_dir(dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                out.push(p.clone());
+                folders(&p, out);
+            }
+        }
+    }
+    let (mut checked, mut cycles) = (Vec::new(), Vec::new());
+    for (krate, src) in crate_srcs() {
+        let graph = top_graph(&src);
+        cycles.extend(has_cycle(&graph).map(|c| format!("{krate}: {}", c.join(" → "))));
+        checked.push(krate.to_string());
+        let mut dirs = Vec::new();
+        folders(&src, &mut dirs);
+        for d in dirs {
+            let folder: Vec<String> = d
+                .strip_prefix(&src)
+                .unwrap()
+                .iter()
+                .map(|s| s.to_string_lossy().into_owned())
+                .collect();
+            if folder[0] == "bin" {
+                continue;
+            }
+            let graph = folder_graph(&src, &folder);
+            cycles.extend(has_cycle(&graph).map(|c| format!("{krate} {}: {}", folder.join("::"), c.join(" → "))));
+            checked.push(format!("{krate} {}", folder.join("::")));
+        }
+    }
+    assert!(cycles.is_empty(), "cycles:\n{}", cycles.join("\n"));
+    // The scan reads the shell's imports too.
+    let shell = top_graph(&crate_srcs()[2].1);
+    assert!(
+        shell.get("service").is_some_and(|d| d.contains("wire")),
+        "the scan sees contact's service using its wire layer: {shell:#?}"
+    );
+    assert!(checked.len() >= 20, "every crate and folder: {checked:?}");
+}
+
 #[test]
 fn only_the_scene_boundary_reads_wire_types() {
     let boundary = [["scene", "validate"], ["scene", "size_limit"]];
@@ -231,10 +335,9 @@ fn only_the_scene_boundary_reads_wire_types() {
 
 #[test]
 fn long_files_say_why() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let mut all = Vec::new();
-    for krate in ["contact-proto", "contact-core", "contact-verify", "contact"] {
-        sources(&root.join(krate).join("src"), &mut all);
+    for (_, src) in crate_srcs() {
+        sources(&src, &mut all);
     }
     assert!(all.len() > 40);
     for f in all {

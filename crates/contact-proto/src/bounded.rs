@@ -61,8 +61,9 @@ pub fn load_factors<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Erro
 
 /// `load_path`, bounded by the same limit (each step is a load step): a
 /// payload of empty steps, 13 bytes each, would otherwise hold a step map
-/// per 13 bytes before validation counts them.
-pub fn load_path<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<crate::request::LoadPathStep>, D::Error> {
+/// per 13 bytes before validation counts them. Generic over the step (the
+/// field's type names it), so that this module reads no request type.
+pub fn load_path<'de, D: Deserializer<'de>, T: serde::Deserialize<'de>>(d: D) -> Result<Vec<T>, D::Error> {
     bounded(d, "/load_path")
 }
 

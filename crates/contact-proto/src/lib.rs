@@ -7,6 +7,7 @@
 pub mod bounded;
 pub mod elements;
 pub mod error;
+pub mod progress;
 pub mod reply;
 pub mod request;
 pub mod schema;

@@ -55,6 +55,11 @@ pub struct SolveReply {
     /// body held only by contact that nothing determines).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub notes: Vec<String>,
+    /// What each note is about: `note_kinds[i]` is the kind of `notes[i]`, the
+    /// two lists as long (a parallel list, so that a client reading `notes` as
+    /// strings reads them as before).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub note_kinds: Vec<NoteKind>,
     /// Assumptions of the model (small strain, small rotation, linearized
     /// gaps) that this solution violates: its numbers answer the linear model,
     /// which is then not a model of the physical scene. Limits: strain 5e-2,
@@ -181,6 +186,11 @@ pub struct Warning {
     /// contact turning under its loads: its rotation times its surface's
     /// radius of curvature at a contact zone, over the zone's half-width):
     /// each fires when value > limit;
+    /// `prescribed_slip` (frictional contact points of a pair whose slip
+    /// relative to the other surface the supports prescribe, so that their
+    /// friction force is μ λ, unbounded as μ grows; checked before the solve;
+    /// the message lists their positions and the supports) fires when value >
+    /// limit 0;
     /// `coarse_contact_zone` (element edges across a contact zone) fires when
     /// value < limit.
     pub code: WarningCode,
@@ -313,6 +323,36 @@ pub enum WarningCode {
     LargeContactZone,
     GapLinearization,
     ToleranceNotReached,
+    PrescribedSlip,
+}
+
+/// What a note is about (see `notes`, `note_kinds`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum NoteKind {
+    /// A two-body pair turned round: the much stiffer body is the other side.
+    PairSwapped,
+    /// A nearly incompressible body on linear triangles, which lock.
+    NearlyIncompressible,
+    /// A nearly incompressible body on T6 ran the locking-free P2–P0 element.
+    #[serde(rename = "p2_p0_element")]
+    P2P0Element,
+    /// A rigid motion that nothing determines, reported at 0.
+    UndeterminedMotion,
+    /// `auto`'s active set did not converge; the interior point ran.
+    MethodFallback,
+    /// Too many frictional rows for the condensed formulation: solved on the full system.
+    FullSystem,
+    /// The answer holds a number that is not finite: it must not be used.
+    NonFinite,
+    /// The error estimate's companion was not solved: only the zone ends are estimated.
+    EstimateLimited,
+    /// Nothing is in contact: `settings.accuracy` did not refine.
+    NotRefined,
+    /// A frictional step with a load-controlled punch ran out of iterations: it most likely slides.
+    SlidingPunch,
+    /// A frictional step with a body held only by contact ran out of iterations.
+    UnsettledBody,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
@@ -667,4 +707,4 @@ macro_rules! display_as_wire {
         })+
     };
 }
-display_as_wire!(MethodRan, StopReason, EstimateBasis, WarningCode, SolveStatus);
+display_as_wire!(MethodRan, StopReason, EstimateBasis, WarningCode, NoteKind, SolveStatus);

@@ -2,6 +2,7 @@
 
 use schemars::schema_for;
 
+use crate::progress::ProgressMessage;
 use crate::{ErrorReply, SolveReply, SolveRequest};
 
 /// (file name, pretty JSON) of every schema, in a stable order.
@@ -11,5 +12,6 @@ pub fn schemas() -> Vec<(&'static str, String)> {
         ("request.schema.json", pretty(schema_for!(SolveRequest))),
         ("reply.schema.json", pretty(schema_for!(SolveReply))),
         ("error.schema.json", pretty(schema_for!(ErrorReply))),
+        ("progress.schema.json", pretty(schema_for!(ProgressMessage))),
     ]
 }

@@ -1,7 +1,7 @@
 //! Shared helpers of the integration tests.
 #![allow(dead_code)]
 
-use contact::proto::{ErrorReply, SolveReply};
+use contact::proto::{ErrorReply, NoteKind, SolveReply};
 use contact::scene::Limits;
 use serde_json::Value;
 
@@ -17,9 +17,20 @@ pub fn solve(req: &Value) -> Result<SolveReply, ErrorReply> {
     solve_with(req, &Limits::default())
 }
 
-/// `solve` under the deployment limits `limits`.
+/// `solve` under the deployment limits `limits`; every reply's notes carry
+/// their kinds, one each.
 pub fn solve_with(req: &Value, limits: &Limits) -> Result<SolveReply, ErrorReply> {
-    contact::solve_bytes(serde_json::to_string(req).unwrap().as_bytes(), limits)
+    let r = contact::solve_bytes(serde_json::to_string(req).unwrap().as_bytes(), limits);
+    if let Ok(r) = &r {
+        assert_eq!(r.note_kinds.len(), r.notes.len(), "{:?} {:?}", r.note_kinds, r.notes);
+    }
+    r
+}
+
+/// The kind of the reply's first note containing `text`.
+pub fn note_kind(r: &SolveReply, text: &str) -> Option<NoteKind> {
+    let i = r.notes.iter().position(|n| n.contains(text))?;
+    r.note_kinds.get(i).copied()
 }
 
 pub fn solved(req: &Value) -> SolveReply {

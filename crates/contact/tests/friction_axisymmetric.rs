@@ -12,7 +12,7 @@
 
 mod common;
 use common::*;
-use contact::proto::{FrictionState, PairResult, Resultant, SolveReply, SolveStatus};
+use contact::proto::{FrictionState, PairResult, Resultant, SolveReply, SolveStatus, Warning, WarningCode};
 use serde_json::{json, Value};
 
 /// `friction_press_fit_pushed_out.json` with friction `mu`.
@@ -139,4 +139,58 @@ fn a_press_fit_pulled_by_its_far_end_sticks_as_mu_grows() {
         push[0] > 0.0 && (push[1] / push[0] - 1.0).abs() < 0.02,
         "push-out forces {push:?}"
     );
+}
+
+/// The reply's `prescribed_slip` warnings.
+fn prescribed_slip(r: &SolveReply) -> Vec<&Warning> {
+    r.warnings
+        .iter()
+        .filter(|w| w.code == WarningCode::PrescribedSlip)
+        .collect()
+}
+
+/// Pushed by the shaft's bottom with the ring's bottom held, the bore's
+/// bottom node (0.999, 0) lies on both held faces: its slip is prescribed,
+/// and the reply says so before a large μ is read as sticking, naming the
+/// node, the pair and both supports. At μ = 0.2 the answer is Coulomb's and
+/// solved (the warning beside it); at μ = 100 the step ends at
+/// `max_iterations` with the same warning. Pulled by the shaft's top,
+/// frictionless, or with both bottoms held still (a slip prescribed to 0), no
+/// such warning.
+#[test]
+fn a_press_fit_pushed_by_its_bottom_warns_of_its_prescribed_slip() {
+    for mu in [0.2, 100.0] {
+        let r = solve(&press_fit(mu)).expect("a reply");
+        let w = prescribed_slip(&r);
+        assert_eq!(w.len(), 1, "μ {mu}: {:?}", r.warnings);
+        let w = w[0];
+        assert_eq!(
+            (w.value, w.limit, w.location.as_str()),
+            (1.0, 0.0, "/contacts/0"),
+            "μ {mu}"
+        );
+        for part in [
+            "body 'ring' at (0.999, 0)",
+            "/bodies/0/supports/0 of 'shaft'",
+            "/bodies/1/supports/0 of 'ring'",
+            "by up to 0.01",
+            "Release one of the supports",
+        ] {
+            assert!(w.message.contains(part), "μ {mu}: {part:?} not in {}", w.message);
+        }
+        let solved = r.status == SolveStatus::Solved;
+        assert_eq!(solved, mu < 1.0, "μ {mu}: {:?}", r.status);
+    }
+    let mut top = press_fit(100.0);
+    top["bodies"][0]["supports"][0]["edges"] = json!("top");
+    let mut frictionless = press_fit(0.2);
+    frictionless["contacts"][0].as_object_mut().unwrap().remove("friction");
+    // Both bottoms held still: the slip is prescribed, to 0, and the node
+    // sticks with a bounded force.
+    let mut still = press_fit(100.0);
+    still["bodies"][0]["supports"][0]["uy"] = json!(0.0);
+    for req in [top, frictionless, still] {
+        let r = solved(&req);
+        assert!(prescribed_slip(&r).is_empty(), "{:?}", r.warnings);
+    }
 }

@@ -281,6 +281,10 @@ fn a_free_body_step_out_of_iterations_says_why() {
         "{:?}",
         r.notes
     );
+    assert_eq!(
+        note_kind(&r, "friction enough"),
+        Some(contact::proto::NoteKind::UnsettledBody)
+    );
     req["settings"] = json!({});
     solved(&req);
 }

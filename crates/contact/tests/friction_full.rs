@@ -145,6 +145,10 @@ fn rows_past_the_condensed_limit_are_solved_on_the_full_system() {
         "{:?}",
         full.notes
     );
+    assert_eq!(
+        note_kind(&full, "full system"),
+        Some(contact::proto::NoteKind::FullSystem)
+    );
     for r in [&condensed, &full] {
         let pts = &r.pairs[0].points;
         let stick = run_ends(pts, |q| q.state == Some(FrictionState::Stick));

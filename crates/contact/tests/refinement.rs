@@ -383,8 +383,10 @@ fn nothing_in_contact_stops_the_refinement_at_once() {
         ("no_contact", false, 1)
     );
     assert!(r.warnings.is_empty(), "{:?}", r.warnings);
-    assert!(
-        r.notes.iter().any(|n| n.contains("nothing is in contact")),
+    let note = r.notes.iter().find(|n| n.text.contains("nothing is in contact"));
+    assert_eq!(
+        note.map(|n| n.kind),
+        Some(contact_core::outcome::NoteKind::NotRefined),
         "{:?}",
         r.notes
     );

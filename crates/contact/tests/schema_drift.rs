@@ -34,11 +34,11 @@ fn every_example_solves() {
 }
 
 /// The reply's schema lists, as enums, every status, method, stop reason,
-/// estimate basis and warning code the core can report, and nothing else: a client
-/// generated from it can match on them exhaustively.
+/// estimate basis, warning code and note kind the core can report, and nothing
+/// else: a client generated from it can match on them exhaustively.
 #[test]
 fn the_reply_schema_lists_every_outcome_the_core_reports() {
-    use contact_core::outcome::{EstimateBasis, MethodRan, Status, StopReason, WarningCode};
+    use contact_core::outcome::{EstimateBasis, MethodRan, NoteKind, Status, StopReason, WarningCode};
     let (_, text) = contact::proto::schema::schemas()
         .into_iter()
         .find(|(name, _)| *name == "reply.schema.json")
@@ -89,7 +89,54 @@ fn the_reply_schema_lists_every_outcome_the_core_reports() {
         sorted(WarningCode::ALL.iter().map(|m| m.as_str()).collect())
     );
     assert_eq!(
+        values("NoteKind"),
+        sorted(NoteKind::ALL.iter().map(|m| m.as_str()).collect())
+    );
+    assert_eq!(
         values("SolveStatus"),
         sorted(Status::ALL.iter().map(|m| m.as_str()).collect())
     );
+}
+
+/// The progress schema lists every stage the core reports progress in
+/// (`ProgressStage`), in the order a solve runs them, and nothing else; and a
+/// message of each stage validates against its fields as the service writes
+/// them (`wire::progress::message`).
+#[test]
+fn the_progress_schema_lists_every_stage_of_the_core() {
+    use contact_core::outcome::ProgressStage;
+    let (_, text) = contact::proto::schema::schemas()
+        .into_iter()
+        .find(|(name, _)| *name == "progress.schema.json")
+        .expect("a progress schema");
+    let schema: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let node = &schema["$defs"]["ProgressStage"];
+    let listed: Vec<&str> = match node["enum"].as_array() {
+        Some(e) => e.iter().map(|v| v.as_str().unwrap()).collect(),
+        None => node["oneOf"]
+            .as_array()
+            .unwrap_or_else(|| panic!("ProgressStage is not an enum in the schema: {node}"))
+            .iter()
+            .map(|o| o["const"].as_str().unwrap())
+            .collect(),
+    };
+    let core: Vec<&str> = ProgressStage::ALL.iter().map(|s| s.as_str()).collect();
+    assert_eq!(listed, core);
+    let fields: Vec<&String> = schema["properties"].as_object().unwrap().keys().collect();
+    for &stage in ProgressStage::ALL {
+        let report = contact_core::progress::Progress {
+            stage,
+            iteration: Some(3),
+            residual: Some(1e-9),
+            elapsed: 0.5,
+            done: 1.0,
+            total: 2.0,
+            round: Some(1),
+        };
+        let v = serde_json::to_value(contact::wire::progress::message(&report, Some("z-1"))).unwrap();
+        assert_eq!(v["stage"], stage.as_str());
+        for k in v.as_object().unwrap().keys() {
+            assert!(fields.contains(&k), "{k} is not in the progress schema: {fields:?}");
+        }
+    }
 }

@@ -200,8 +200,9 @@ fn contact_patch_test() {
             );
         }
         assert_eq!(pair.zones, vec![[-1.0, 1.0]]);
-        assert!(
-            r.notes.iter().any(|n| n.contains("translation in x of body 'upper'")),
+        assert_eq!(
+            note_kind(&r, "translation in x of body 'upper'"),
+            Some(contact::proto::NoteKind::UndeterminedMotion),
             "{:?}",
             r.notes
         );

@@ -48,7 +48,7 @@ mod cost;
 pub mod estimator;
 mod sizing;
 
-use crate::outcome::{EstimateBasis, StopReason, WarningCode};
+use crate::outcome::{EstimateBasis, Note, NoteKind, StopReason, WarningCode};
 use std::time::Instant;
 
 use crate::error::CoreError;
@@ -158,7 +158,9 @@ pub fn estimate_by(
         }
     })();
     if let Err(why) = outcome {
-        report.notes.extend(why);
+        report
+            .notes
+            .extend(why.map(|t| Note::new(NoteKind::EstimateLimited, t)));
         for p in report.pairs.iter_mut() {
             p.accuracy = Some(accuracy::zone_edges_only(p));
         }
@@ -289,11 +291,11 @@ pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver, max_dofs: u
     report.timings.total = total;
     let reached = stopped == StopReason::Reached;
     if stopped == StopReason::NoContact {
-        report.notes.push(
+        report.notes.push(Note::new(
+            NoteKind::NotRefined,
             "nothing is in contact: there is no contact error to reduce, so the mesh was not refined \
-             (settings.accuracy)"
-                .into(),
-        );
+             (settings.accuracy)",
+        ));
     } else if !reached {
         report
             .warnings

@@ -49,13 +49,6 @@ pub struct Stiffness {
     pub k_fd: Vec<(usize, usize, f64)>,
 }
 
-pub struct Assembled {
-    pub dofs: DofMap,
-    pub stiffness: std::sync::Arc<Stiffness>,
-    /// f_f − K_fd u_d.
-    pub f: Vec<f64>,
-}
-
 /// Builds the DOF map from the supports. Rigid motions the supports leave free
 /// are allowed for bodies that take part in a contact pair (contact may hold
 /// them): they get virtual supports (`rigid_modes`) and become free rigid
@@ -396,20 +389,4 @@ pub fn assemble_loads(external: &[f64], dofs: &DofMap, stiffness: &Stiffness) ->
         f[row] -= v * dofs.prescribed[d];
     }
     f
-}
-
-/// Stiffness and loads together (no cache).
-pub fn assemble(scene: &Scene, meshes: &[Mesh2d], dofs: DofMap) -> Result<Assembled, CoreError> {
-    let stiffness = assemble_stiffness(scene, meshes, &dofs)?;
-    let points = super::loads::locate_all(scene, meshes)?;
-    let f = assemble_loads(
-        &super::loads::external(scene, meshes, &dofs, &points),
-        &dofs,
-        &stiffness,
-    );
-    Ok(Assembled {
-        dofs,
-        stiffness: std::sync::Arc::new(stiffness),
-        f,
-    })
 }

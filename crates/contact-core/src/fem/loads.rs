@@ -9,7 +9,7 @@
 //! shared by the edge's nodes as N_i(s) (the consistent nodal load), so a force
 //! at a node stays at that node.
 
-use super::assembly::DofMap;
+use super::assembly::{assemble_loads, assemble_stiffness, DofMap, Stiffness};
 use super::element;
 use crate::error::{CoreError, InvalidKind};
 use crate::mesh::{boundary::edge_normal, Edge, Mesh2d};
@@ -281,4 +281,25 @@ fn each_load(
             }
         }
     }
+}
+
+/// Stiffness and loads together (no cache): `assembly`'s two halves and the
+/// loads of this module, here so that `assembly` does not read the loads.
+pub struct Assembled {
+    pub dofs: DofMap,
+    pub stiffness: std::sync::Arc<Stiffness>,
+    /// f_f − K_fd u_d.
+    pub f: Vec<f64>,
+}
+
+/// Stiffness and loads together (no cache).
+pub fn assemble(scene: &Scene, meshes: &[Mesh2d], dofs: DofMap) -> Result<Assembled, CoreError> {
+    let stiffness = assemble_stiffness(scene, meshes, &dofs)?;
+    let points = locate_all(scene, meshes)?;
+    let f = assemble_loads(&external(scene, meshes, &dofs, &points), &dofs, &stiffness);
+    Ok(Assembled {
+        dofs,
+        stiffness: std::sync::Arc::new(stiffness),
+        f,
+    })
 }

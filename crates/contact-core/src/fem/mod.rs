@@ -11,4 +11,5 @@ pub mod loads;
 pub mod reference;
 pub mod rigid_modes;
 
-pub use assembly::{assemble, Assembled, DofMap};
+pub use assembly::DofMap;
+pub use loads::{assemble, Assembled};

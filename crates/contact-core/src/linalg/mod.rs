@@ -1,7 +1,9 @@
 //! Linear algebra kernels: sparse Cholesky, the condensed contact operator on its
 //! factor, small dense kernels.
 
+pub mod calibrate;
 pub mod cholesky;
+pub mod cost;
 pub mod dense;
 pub mod gmres;
 mod numeric;

@@ -1,7 +1,7 @@
 //! This machine's speed at the numeric factorization, against the reference
 //! machine `FactorCost::predicted_secs` was fitted on: the prediction times
 //! `scale()`, learned from the factorizations completed here and, in the
-//! service, measured once at start-up (`calibrate`).
+//! service, measured once at start-up (`linalg::calibrate`).
 //!
 //! Uncalibrated, the prediction was 1.7–1.9× too low on a loaded 2-core
 //! machine (8.5 s predicted, 16.1 s real at 2M DOF), so a time limit the
@@ -12,8 +12,6 @@
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use faer::sparse::{SparseColMat, Triplet};
-
-use super::cholesky::{Cholesky, FactorCost};
 
 /// f64 bits of the current scale (1.0 before anything is measured).
 static SCALE: AtomicU64 = AtomicU64::new(0x3FF0_0000_0000_0000);
@@ -38,9 +36,9 @@ pub fn set_scale(s: f64) {
     }
 }
 
-/// One completed numeric factorization of `cost` that took `secs`.
-pub(crate) fn learn(cost: FactorCost, secs: f64) {
-    let reference = cost.reference_secs();
+/// One completed numeric factorization predicted at `reference` seconds on
+/// the reference machine (`FactorCost::reference_secs`) that took `secs`.
+pub(crate) fn learn(reference: f64, secs: f64) {
     if reference < SHORTEST_LEARNED_S || !secs.is_finite() || secs <= 0.0 {
         return;
     }
@@ -96,30 +94,10 @@ pub fn grid_stiffness(nx: usize, ny: usize) -> SparseColMat<usize, f64> {
     SparseColMat::try_new_from_triplets(n, n, &t).expect("valid triplets")
 }
 
-/// Measures the scale on a 100k-DOF grid (about 0.1 s of factorization on
-/// the reference machine), twice, keeping the second (the first pays the
-/// page faults of fresh memory), and sets it. Returns the scale.
-pub fn calibrate() -> f64 {
-    let k = grid_stiffness(250, 200);
-    for _ in 0..2 {
-        let analysis = std::sync::Arc::new(super::cholesky::SymbolicFactor::try_new(&k).expect("SPD grid"));
-        let started = std::time::Instant::now();
-        let before = scale();
-        // Without learning: the measurement replaces what was known.
-        set_scale(1.0);
-        let ran = Cholesky::with_symbolic(analysis.clone(), &k);
-        let secs = started.elapsed().as_secs_f64();
-        set_scale(before);
-        if ran.is_ok() {
-            set_scale(secs / analysis.cost().reference_secs());
-        }
-    }
-    scale()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::linalg::cholesky::Cholesky;
 
     /// Halfway in log: from 2 toward 8 is 4 (the geometric mean), toward
     /// 1/2 is 1, and a factorization as fast as predicted leaves it.

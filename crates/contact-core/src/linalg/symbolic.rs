@@ -11,7 +11,7 @@ use faer::sparse::linalg::{amd, SupernodalThreshold};
 use faer::sparse::SparseColMat;
 use faer::Side;
 
-use super::cholesky::LinalgError;
+use super::cost::LinalgError;
 
 /// Seconds per unknown of the AMD ordering and of faer's symbolic
 /// factorization after it, on the machine the factorization's cost was

@@ -143,7 +143,7 @@ pub struct Solution {
     /// Iterative-refinement steps the solves with K needed.
     pub refinements: usize,
     /// Why another method ran instead of the first choice of `auto`.
-    pub fallback: Option<String>,
+    pub fallback: Option<crate::outcome::Note>,
 }
 
 /// Runs the requested method (`auto` → condensed active set, the fastest exact
@@ -161,9 +161,12 @@ pub fn solve(problem: &Problem, method: Method) -> Result<Solution, CoreError> {
     if !second.converged {
         return Ok(first);
     }
-    second.fallback = Some(format!(
-        "auto: the active set did not converge ({} iterations); the interior point method ran instead",
-        first.iterations
+    second.fallback = Some(crate::outcome::Note::new(
+        crate::outcome::NoteKind::MethodFallback,
+        format!(
+            "auto: the active set did not converge ({} iterations); the interior point method ran instead",
+            first.iterations
+        ),
     ));
     second.iterations += first.iterations;
     second.t_contact += first.t_contact;

@@ -36,7 +36,7 @@ pub struct Scene {
     /// Nodes of all meshes as estimated before meshing (progress plans with it).
     pub estimated_nodes: f64,
     /// What validation decided that the user should know (echoed in the reply's notes).
-    pub notes: Vec<String>,
+    pub notes: Vec<crate::outcome::Note>,
     /// Load multipliers to solve for (empty: the loads as given).
     pub load_factors: Vec<f64>,
     /// Load path steps (empty: none): each scales named loads separately.

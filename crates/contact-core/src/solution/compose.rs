@@ -17,6 +17,7 @@ use crate::mesh::Mesh2d;
 use crate::methods;
 use crate::model::Model;
 use crate::observer::{Observer, Stage};
+use crate::outcome::{Note, NoteKind};
 use crate::scene::{Analysis, Scene};
 use crate::solution::report::{
     BodyFields, CacheState, Diagnostics, FoundationReport, ProblemSize, PunchReport, Report, Status,
@@ -65,22 +66,28 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
             continue;
         }
         if mesh.order == crate::mesh::Order::T3 {
-            notes.push(format!(
-                "body '{}' is nearly incompressible (ν = {}) on linear triangles, which lock in plane strain and \
+            notes.push(Note::new(
+                NoteKind::NearlyIncompressible,
+                format!(
+                    "body '{}' is nearly incompressible (ν = {}) on linear triangles, which lock in plane strain and \
                     axisymmetry: its pressures may be too stiff and oscillate (measured 31 % L2 error on Hertz at ν = \
                     0.4999 in plane strain, 19 % on a sphere into a block at ν = 0.499 in axisymmetry); use T6 \
                     elements, which switch to selective reduced integration from ν = {}",
-                body.name,
-                body.poisson_ratio,
-                fem::assembly::NEARLY_INCOMPRESSIBLE
+                    body.name,
+                    body.poisson_ratio,
+                    fem::assembly::NEARLY_INCOMPRESSIBLE
+                ),
             ));
         } else {
-            notes.push(format!(
+            notes.push(Note::new(
+                NoteKind::P2P0Element,
+                format!(
                 "body '{}' ran the P2–P0 element (T6, the volume change constrained by its mean over each element: \
                     locking-free) since ν = {} ≥ {}",
                 body.name,
                 body.poisson_ratio,
                 fem::assembly::NEARLY_INCOMPRESSIBLE
+            ),
             ));
         }
     }
@@ -143,9 +150,12 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
     };
     if let Some(at) = report.first_non_finite() {
         report.status = Status::NumericalError;
-        report.notes.push(format!(
-            "the answer holds a value that is not a finite number (first at {at}; JSON writes it as null): it must not \
-                be used"
+        report.notes.push(Note::new(
+            NoteKind::NonFinite,
+            format!(
+                "the answer holds a value that is not a finite number (first at {at}; JSON writes it as null): it must \
+                    not be used"
+            ),
         ));
     }
     report

@@ -6,6 +6,7 @@ pub mod compose;
 pub mod corners;
 pub mod friction;
 pub mod post;
+pub mod prescribed_slip;
 pub mod report;
 pub mod two_level;
 pub mod validity;

@@ -3,7 +3,7 @@
 //! field by field; benches and tests read it directly.
 
 pub use crate::observer::Timings;
-use crate::outcome::{EstimateBasis, MethodRan, StopReason, WarningCode};
+use crate::outcome::{EstimateBasis, MethodRan, Note, StopReason, WarningCode};
 use crate::scene::{Discretization, Outputs};
 
 /// The answer to a scene that could be attempted.
@@ -32,7 +32,7 @@ pub struct Report {
     /// Per-body fields, when the outputs ask for them.
     pub bodies: Option<Vec<BodyFields>>,
     pub foundations: Vec<FoundationReport>,
-    pub notes: Vec<String>,
+    pub notes: Vec<Note>,
     /// Violated assumptions of the model (`solution::validity`).
     pub warnings: Vec<Warning>,
     /// What the request asked to be returned (the reply layer writes the VTU file).

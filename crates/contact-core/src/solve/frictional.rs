@@ -13,8 +13,10 @@ use crate::mesh::Mesh2d;
 use crate::methods::{self, friction::History, Solution};
 use crate::model::Model;
 use crate::observer::{Observer, Stage};
+use crate::outcome::{Note, NoteKind};
 use crate::scene::{Control, Limits, Scene};
 use crate::solution::compose::{self, Solved};
+use crate::solution::prescribed_slip;
 use crate::solution::report::{with_steps, CacheState, LoadStep, Report, Status, Timings};
 use std::sync::Arc;
 
@@ -58,6 +60,8 @@ pub(super) fn solve_frictional(
         };
         obs.leave(Stage::Assembly)?;
         let f = assemble_loads(&model.external, &model.dofs, &stiffness);
+        // Before the solve: points whose slip the supports prescribe.
+        let prescribed = prescribed_slip::find(&s, model, tangents);
         let (mut sol, mut friction, factor) = match route {
             Route::Condensed => {
                 let prepared = match &op {
@@ -97,7 +101,7 @@ pub(super) fn solve_frictional(
                     settings: &s.settings,
                 };
                 let (mut sol, friction) = methods::friction::full::solve_step(&step, &history)?;
-                sol.fallback = why_full;
+                sol.fallback = why_full.map(|t| Note::new(NoteKind::FullSystem, t));
                 (sol, friction, None)
             }
         };
@@ -122,7 +126,9 @@ pub(super) fn solve_frictional(
             compliance: None,
             friction: &shares,
         };
-        let r = report(&s, &composed, &sm, sol, &friction, obs);
+        let mut r = report(&s, &composed, &sm, sol, &friction, obs);
+        r.warnings
+            .extend(prescribed_slip::warnings(&s, &prescribed, &friction.lambda));
         history = friction.history;
         obs = Observer::new();
         steps.push(LoadStep::of(k, loads, &r));
@@ -217,13 +223,19 @@ fn report(
     let mut r = compose::report(s, composed, sol, obs, CacheState::Off);
     crate::solution::friction::attach(&mut r, s, &sm.model, &sm.tangents, friction);
     if r.status == Status::MaxIterations {
-        r.notes.extend(sliding_punches(s));
+        r.notes.extend(
+            sliding_punches(s)
+                .into_iter()
+                .map(|t| Note::new(NoteKind::SlidingPunch, t)),
+        );
         let short = sm
             .block
             .as_ref()
             .map(|b| friction_shortfall(s, &sm.model, (b, &sm.keep), &sm.tangents, &friction.lambda))
             .unwrap_or_default();
-        r.notes.extend(unsettled_bodies(s, &sm.model, sol_iterations, &short));
+        let unsettled = unsettled_bodies(s, &sm.model, sol_iterations, &short);
+        r.notes
+            .extend(unsettled.into_iter().map(|t| Note::new(NoteKind::UnsettledBody, t)));
     }
     r
 }

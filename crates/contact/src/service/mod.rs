@@ -41,7 +41,7 @@ pub async fn run(cfg: ServiceConfig) -> anyhow::Result<()> {
     let zconf = cfg.zenoh_config()?;
     // This machine's factorization speed, before the first deadline needs it
     // (measured again by every factorization; `linalg::rate`).
-    let scale = tokio::task::spawn_blocking(contact_core::linalg::rate::calibrate).await?;
+    let scale = tokio::task::spawn_blocking(contact_core::linalg::calibrate::calibrate).await?;
     tracing::info!(factorization_scale = scale, "factorization speed calibrated");
     let session = zenoh::open(zconf)
         .await
@@ -124,7 +124,7 @@ pub async fn run(cfg: ServiceConfig) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// `{"request": …, "reply": …, "error": …}` from the generated schemas.
+/// `{"request": …, "reply": …, "error": …, "progress": …}` from the generated schemas.
 fn schema_payload() -> Vec<u8> {
     let mut map = serde_json::Map::new();
     for (file, text) in crate::proto::schema::schemas() {

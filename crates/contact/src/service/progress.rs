@@ -1,6 +1,8 @@
 //! Progress of a solve on `contact/progress/<key>`: one JSON message per stage
-//! entered and per contact iteration, `{stage, iteration?, residual?, elapsed,
-//! request_id}` (see `crate::progress` for the stages and the residual).
+//! entered and per contact iteration, `{stage, iteration?, residual?, round?,
+//! elapsed, done, total, request_id}` (`contact_proto::progress::ProgressMessage`,
+//! whose schema is `proto/progress.schema.json`; `crate::progress` for the stages
+//! and the residual).
 //!
 //! `<key>` is the request's `client_id` when it is one plain key chunk (no `/`,
 //! `*`, `$`, `?`, `#`, at most 128 bytes), so a client that picks its id can
@@ -42,18 +44,7 @@ pub fn install(session: zenoh::Session, key: String, request_id: String) -> crat
             }
             last_iteration = Instant::now();
         }
-        let mut v =
-            serde_json::json!({"stage": p.stage.as_str(), "elapsed": p.elapsed, "done": p.done, "total": p.total});
-        if let Some(k) = p.iteration {
-            v["iteration"] = k.into();
-        }
-        if let Some(r) = p.residual {
-            v["residual"] = r.into();
-        }
-        if let Some(k) = p.round {
-            v["round"] = k.into();
-        }
-        v["request_id"] = serde_json::Value::String(request_id.clone());
+        let v = crate::wire::progress::message(p, Some(&request_id));
         if let Err(e) = session.put(&key, serde_json::to_vec(&v).unwrap_or_default()).wait() {
             tracing::warn!(request_id = %request_id, "progress not published on {key}: {e}");
         }

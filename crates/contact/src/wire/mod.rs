@@ -8,6 +8,7 @@ use contact_proto::{ErrorCode, ErrorDetails, ErrorReply, LoadBound, SolveReply, 
 
 use crate::parse::parse_request;
 
+pub mod progress;
 pub mod reply;
 
 /// Bytes in, reply or structured error out: what the service and the CLI call.

@@ -1,7 +1,7 @@
 //! Report → reply: the domain result written as the wire message, field by
 //! field (the reply's documentation is the schema, `contact_proto::reply`).
 
-use contact_core::outcome::{EstimateBasis, MethodRan, StopReason, WarningCode};
+use contact_core::outcome::{EstimateBasis, MethodRan, NoteKind, StopReason, WarningCode};
 use contact_core::scene::Discretization;
 use contact_core::solution::report::{
     self as r, CacheState, LoadStep, PairReport, PairTarget, Report, Resultant, Status,
@@ -56,7 +56,8 @@ pub fn reply(mut report: Report) -> p::SolveReply {
             .bodies
             .map(|b| b.into_iter().zip(hoop).map(|(b, h)| body(b, h)).collect()),
         foundations: report.foundations.into_iter().map(foundation).collect(),
-        notes: report.notes,
+        note_kinds: report.notes.iter().map(|n| note_kind(n.kind)).collect(),
+        notes: report.notes.into_iter().map(|n| n.text).collect(),
         warnings: report
             .warnings
             .into_iter()
@@ -126,6 +127,22 @@ fn basis(b: EstimateBasis) -> p::EstimateBasis {
     }
 }
 
+fn note_kind(k: NoteKind) -> p::NoteKind {
+    match k {
+        NoteKind::PairSwapped => p::NoteKind::PairSwapped,
+        NoteKind::NearlyIncompressible => p::NoteKind::NearlyIncompressible,
+        NoteKind::P2P0Element => p::NoteKind::P2P0Element,
+        NoteKind::UndeterminedMotion => p::NoteKind::UndeterminedMotion,
+        NoteKind::MethodFallback => p::NoteKind::MethodFallback,
+        NoteKind::FullSystem => p::NoteKind::FullSystem,
+        NoteKind::NonFinite => p::NoteKind::NonFinite,
+        NoteKind::EstimateLimited => p::NoteKind::EstimateLimited,
+        NoteKind::NotRefined => p::NoteKind::NotRefined,
+        NoteKind::SlidingPunch => p::NoteKind::SlidingPunch,
+        NoteKind::UnsettledBody => p::NoteKind::UnsettledBody,
+    }
+}
+
 fn warning_code(c: WarningCode) -> p::WarningCode {
     match c {
         WarningCode::LargeStrain => p::WarningCode::LargeStrain,
@@ -136,6 +153,7 @@ fn warning_code(c: WarningCode) -> p::WarningCode {
         WarningCode::LargeContactZone => p::WarningCode::LargeContactZone,
         WarningCode::GapLinearization => p::WarningCode::GapLinearization,
         WarningCode::ToleranceNotReached => p::WarningCode::ToleranceNotReached,
+        WarningCode::PrescribedSlip => p::WarningCode::PrescribedSlip,
     }
 }
 

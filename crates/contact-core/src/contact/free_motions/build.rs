@@ -17,6 +17,7 @@ use crate::fem::rigid_modes::RigidModes;
 use crate::fem::DofMap;
 use crate::linalg::dense::sym_eigen_small;
 use crate::mesh::Mesh2d;
+use crate::outcome::{Note, NoteKind};
 use crate::scene::Scene;
 
 /// Relative Gram eigenvalue below which a combination of free motions moves no
@@ -198,10 +199,13 @@ impl FreeMotions {
                 .any(|(v, (mo, _))| v.abs() > 1e-12 && matches!(mo, Motion::Body { .. }))
             {
                 let parts: Vec<String> = (0..n).filter(|&i| dir[i].abs() > 1e-12).map(describe).collect();
-                notes.push(format!(
-                    "the {} is not determined: no contact normal resists it and no load works on it; the displacements \
-                        are reported with it at 0, any amount of it is also a solution",
-                    parts.join(" combined with the ")
+                notes.push(Note::new(
+                    NoteKind::UndeterminedMotion,
+                    format!(
+                        "the {} is not determined: no contact normal resists it and no load works on it; the \
+                            displacements are reported with it at 0, any amount of it is also a solution",
+                        parts.join(" combined with the ")
+                    ),
                 ));
             }
         }
@@ -325,7 +329,7 @@ enum Direction {
     Free {
         col: Vec<f64>,
         reach: Vec<f64>,
-        note: String,
+        note: Note,
     },
 }
 
@@ -429,10 +433,13 @@ fn body_directions(
         out.push(Direction::Free {
             col,
             reach,
-            note: format!(
-                "the {words} of body '{}' is not determined: contact does not resist it and no load works on it; the \
-                    displacements are reported with it at 0, any amount of it is also a solution",
-                body.name
+            note: Note::new(
+                NoteKind::UndeterminedMotion,
+                format!(
+                    "the {words} of body '{}' is not determined: contact does not resist it and no load works on it; \
+                        the displacements are reported with it at 0, any amount of it is also a solution",
+                    body.name
+                ),
             ),
         });
     }

@@ -62,7 +62,7 @@ pub struct FreeMotions {
     /// Motions (or combinations) nothing resists and nothing loads: fixed at 0.
     pub undetermined: Vec<Vec<f64>>,
     /// The same, said in words, for rigid motions of bodies.
-    pub notes: Vec<String>,
+    pub notes: Vec<crate::outcome::Note>,
     /// Rigid motions of bodies treated as unresisted (held at 0 by the virtual
     /// supports): their columns of C and each candidate's motion with them. A
     /// solution must put no net generalized force on them (`unbalanced`).

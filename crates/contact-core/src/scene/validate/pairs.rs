@@ -6,6 +6,7 @@ use contact_proto::{self as proto, BodyRef, SolveRequest};
 use super::bodies::{edge_names, Survey};
 use super::invalid;
 use crate::error::{CoreError, InvalidKind as K};
+use crate::outcome::{Note, NoteKind};
 use crate::scene::{Discretization, Pair, Target};
 
 /// The names pairs refer to.
@@ -16,7 +17,7 @@ pub struct Names<'a> {
 }
 
 /// The pairs, and the notes on pairs turned round.
-pub fn pairs(req: &SolveRequest, survey: &Survey, n: &Names) -> Result<(Vec<Pair>, Vec<String>), CoreError> {
+pub fn pairs(req: &SolveRequest, survey: &Survey, n: &Names) -> Result<(Vec<Pair>, Vec<Note>), CoreError> {
     let (names, obstacle_names, foundation_names) = (n.bodies, n.obstacles, n.foundations);
     let parsed = &survey.parsed;
     if req.contacts.is_empty() {
@@ -95,7 +96,9 @@ pub fn pairs(req: &SolveRequest, survey: &Survey, n: &Names) -> Result<(Vec<Pair
                 edges: other_edges,
                 discretization,
             } if stiffness(body) > SWAP_STIFFNESS_RATIO * stiffness(other) => {
-                notes.push(format!(
+                notes.push(Note::new(
+                    NoteKind::PairSwapped,
+                    format!(
                     "contact pair {k}: body '{}' is {:.1e} times stiffer than '{}', so '{}' carries the pressure (its \
                         edge set '{}' is the slave side) and the pair is reported that way round",
                     names[body],
@@ -103,6 +106,7 @@ pub fn pairs(req: &SolveRequest, survey: &Survey, n: &Names) -> Result<(Vec<Pair
                     names[other],
                     names[other],
                     other_edges
+                ),
                 ));
                 (
                     other,

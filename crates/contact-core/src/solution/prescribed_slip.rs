@@ -1,0 +1,292 @@
+//! Frictional contact points whose slip the supports prescribe, found before
+//! the solve.
+//!
+//! A frictional row's slip is the tangential displacement of its node
+//! relative to the other surface, t · u(x) − t · u^b(y) (`contact::friction`).
+//! Where the node's motion along t is held by a support and so is the facing
+//! point's (the other body's nodes whose shape functions do not vanish at the
+//! node's projection; a fixed obstacle; a punch whose motion along t is
+//! prescribed), that slip is a datum of the scene, not an unknown: the node
+//! slides by it whatever μ, and Coulomb's law gives it the friction force
+//! μ λ. At a real μ that is the answer; but it grows with μ without bound,
+//! and reaches the free nodes through the row's weights (a mortar row also
+//! tests the next nodes), so such a scene has no stick limit as μ grows. The
+//! press fit pushed by the shaft's bottom with the ring's bottom held
+//! (`scene::validate::pairs::MAX_FRICTION`): push-out force ∝ μ, 40.9 and 354
+//! at μ = 1e2 and 1e3, and `max_iterations` from 1e4.
+//!
+//! A warning, not a refusal: at the μ of real surfaces (0.05 to 0.4 on that
+//! press fit, every step solved with the push-out force μ N to 1e-12) the
+//! answer is Coulomb's and is used; what is wrong is reading a large μ as
+//! "the surfaces stick". Only nodes with a tangential row are judged: where
+//! no free DOF moves along t the support takes the friction force itself
+//! (`Tangents::new` leaves the row out), and the solve carries no μ λ there.
+//! The points are found from the scene and its rows before the solve
+//! (`find`); the step's answer reports those in contact (`warnings`): a point
+//! that stays open carries no friction force. A slip prescribed to 0 (both
+//! sides held still: the press fit's closing step, a symmetry plane held on
+//! both bodies) is not reported: the point may stick, with a bounded force.
+
+use std::collections::{BTreeMap, BTreeSet, HashMap};
+
+use crate::contact::friction::Tangents;
+use crate::mesh::Mesh2d;
+use crate::model::Model;
+use crate::outcome::WarningCode;
+use crate::scene::scaling::shown;
+use crate::scene::{Analysis, Control, Scene, Target};
+use crate::solution::report::Warning;
+
+/// A tangent component below this (of a unit tangent) does not move the
+/// node along t: its DOF need not be held.
+const ALONG: f64 = 1e-9;
+/// A prescribed slip within this share of the motions it is the difference
+/// of is 0 (round-off).
+const SAME: f64 = 1e-12;
+/// Positions listed in a warning's message, at most.
+const LISTED: usize = 4;
+
+/// A frictional contact candidate whose slip the supports prescribe.
+#[derive(Debug, Clone)]
+pub struct Held {
+    /// Its candidate (normal row).
+    candidate: usize,
+    pair: usize,
+    x: [f64; 2],
+    /// What holds it: supports (JSON pointer and body), a fixed obstacle, a
+    /// punch's prescribed motion, the axis.
+    by: BTreeSet<String>,
+    /// The slip they prescribe (nondimensional).
+    slip: f64,
+}
+
+/// The frictional candidates whose slip the supports prescribe, from the
+/// scene and its rows alone (before the solve).
+pub fn find(scene: &Scene, model: &Model, tangents: &Tangents) -> Vec<Held> {
+    let holders = Holders::new(scene, &model.meshes);
+    let mut found = Vec::new();
+    for (k, &i) in tangents.of.iter().enumerate() {
+        let c = &model.cons.candidates[i];
+        let t = tangents.tangent[k];
+        let Some(own) = holders.along(c.body, c.node, t) else {
+            continue;
+        };
+        let mut held: BTreeSet<String> = own.into_iter().collect();
+        let mut slip = prescribed_along(model, c.body, c.node, t);
+        // What the slip is a difference of, for its round-off.
+        let mut scale = slip.abs();
+        match &scene.pairs[c.pair].target {
+            Target::Obstacle(o) => match (&scene.obstacles[*o].punch, c.punch_tangent()) {
+                (None, _) => {
+                    held.insert(format!("the fixed obstacle '{}'", scene.obstacles[*o].name));
+                }
+                (Some(p), Some((_, ct))) => {
+                    let mut moved = 0.0;
+                    for (q, control) in p.controls.iter().enumerate() {
+                        match control {
+                            _ if ct[q].abs() <= ALONG => {}
+                            Control::Displacement(v) => moved += ct[q] * v,
+                            Control::Load(_) => moved = f64::NAN,
+                        }
+                    }
+                    if moved.is_nan() {
+                        continue;
+                    }
+                    held.insert(format!("punch '{}''s prescribed motion", scene.obstacles[*o].name));
+                    slip -= moved;
+                    scale += moved.abs();
+                }
+                (Some(_), None) => continue,
+            },
+            Target::Body { body, edges, .. } => {
+                let Some(facing) = facing_nodes(&model.meshes[*body], edges, c.x) else {
+                    continue;
+                };
+                let mut all = true;
+                for &(n, w) in &facing {
+                    match holders.along(*body, n, t) {
+                        Some(h) => held.extend(h),
+                        None => all = false,
+                    }
+                    let other = w * prescribed_along(model, *body, n, t);
+                    slip -= other;
+                    scale += other.abs();
+                }
+                if !all {
+                    continue;
+                }
+            }
+            Target::Foundation(_) => continue,
+        }
+        // A slip prescribed to 0 (both sides held still, a symmetry plane
+        // held on both bodies) lets the point stick with a bounded force.
+        if slip.abs() <= SAME * scale {
+            continue;
+        }
+        found.push(Held {
+            candidate: i,
+            pair: c.pair,
+            x: c.x,
+            by: held,
+            slip,
+        });
+    }
+    found
+}
+
+/// One warning per pair with points of `held` in contact (λ > 0; a point
+/// that stays open carries no friction force, as the ends of the
+/// Cattaneo–Mindlin roller's arc, held by its flat's supports, 8 above the
+/// floor): value the number of such points, limit 0.
+pub fn warnings(scene: &Scene, held: &[Held], lambda: &[f64]) -> Vec<Warning> {
+    let mut found: BTreeMap<usize, Group> = BTreeMap::new();
+    for h in held
+        .iter()
+        .filter(|h| lambda.get(h.candidate).is_some_and(|l| *l > 0.0))
+    {
+        let group = found.entry(h.pair).or_default();
+        group.at.push(h.x);
+        group.by.extend(h.by.iter().cloned());
+        group.slip = group.slip.max(h.slip.abs());
+    }
+    found
+        .into_iter()
+        .map(|(p, mut g)| {
+            g.at.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+            warning(scene, p, &g)
+        })
+        .collect()
+}
+
+/// A pair's points in contact whose slip is prescribed.
+#[derive(Default)]
+struct Group {
+    /// Their positions (nondimensional).
+    at: Vec<[f64; 2]>,
+    /// What holds them.
+    by: BTreeSet<String>,
+    /// The largest slip prescribed (nondimensional).
+    slip: f64,
+}
+
+fn warning(scene: &Scene, p: usize, g: &Group) -> Warning {
+    let (at, held, slip) = (&g.at, &g.by, g.slip);
+    let pair = &scene.pairs[p];
+    let length = scene.scales.length;
+    let mut places: Vec<String> = at
+        .iter()
+        .take(LISTED)
+        .map(|x| format!("({}, {})", shown(x[0] * length), shown(x[1] * length)))
+        .collect();
+    if at.len() > LISTED {
+        places.push(format!("and {} more", at.len() - LISTED));
+    }
+    let (one, held_by) = (at.len() == 1, held.iter().cloned().collect::<Vec<_>>().join(", "));
+    Warning {
+        code: WarningCode::PrescribedSlip,
+        value: at.len() as f64,
+        limit: 0.0,
+        location: pair.path.clone(),
+        message: format!(
+            "the frictional contact {} of body '{}' at {} {} its slip along the other surface prescribed by the \
+                supports ({held_by}), by up to {}: {} by it whatever μ (here {}), with the friction \
+                force μ λ. At a real μ that is Coulomb's answer, but it grows with μ without bound, so a large μ is \
+                not the stick limit here (the press fit pushed by the shaft's bottom with the ring's bottom held ends \
+                at max_iterations from μ = 1e2 with the default cap). Release one of the supports at {} (hold that \
+                body at its other end), or move the body by its far end",
+            if one { "node" } else { "nodes" },
+            scene.bodies[pair.body].name,
+            places.join(", "),
+            if one { "has" } else { "have" },
+            shown(slip * length),
+            if one { "it slides" } else { "they slide" },
+            pair.friction,
+            if one { "that node" } else { "those nodes" },
+        ),
+    }
+}
+
+/// The prescribed displacement of a node along t (nondimensional).
+fn prescribed_along(model: &Model, body: usize, node: usize, t: [f64; 2]) -> f64 {
+    let d = |c: usize| model.dofs.prescribed[model.dofs.dof(body, node, c)];
+    t[0] * d(0) + t[1] * d(1)
+}
+
+/// The other body's nodes whose shape functions do not vanish at the
+/// projection of `x` onto its edge set, with their values there.
+fn facing_nodes(mesh: &Mesh2d, edges: &str, x: [f64; 2]) -> Option<Vec<(usize, f64)>> {
+    let set = mesh.edge_sets.get(edges)?;
+    let mut best: Option<(f64, f64, &crate::mesh::Edge)> = None;
+    for e in set {
+        let (a, b) = (mesh.nodes[e.a], mesh.nodes[e.b]);
+        let d = [b[0] - a[0], b[1] - a[1]];
+        let len2 = d[0] * d[0] + d[1] * d[1];
+        if len2 <= 0.0 {
+            continue;
+        }
+        let s = (((x[0] - a[0]) * d[0] + (x[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0);
+        let dist = (a[0] + s * d[0] - x[0]).hypot(a[1] + s * d[1] - x[1]);
+        if best.is_none_or(|(bd, _, _)| dist < bd) {
+            best = Some((dist, s, e));
+        }
+    }
+    let (_, s, e) = best?;
+    // A projection within round-off of an end is at that node.
+    let s = if s < 1e-9 {
+        0.0
+    } else if s > 1.0 - 1e-9 {
+        1.0
+    } else {
+        s
+    };
+    let values = match e.mid {
+        None => vec![(e.a, 1.0 - s), (e.b, s)],
+        Some(m) => vec![
+            (e.a, (1.0 - s) * (1.0 - 2.0 * s)),
+            (m, 4.0 * s * (1.0 - s)),
+            (e.b, s * (2.0 * s - 1.0)),
+        ],
+    };
+    Some(values.into_iter().filter(|(_, w)| *w != 0.0).collect())
+}
+
+/// Which support holds each node's components: the request's supports (by
+/// JSON pointer) and, in axisymmetry, the axis (u_r = 0); the virtual
+/// supports that fix a free body's rigid motions are not supports.
+struct Holders(HashMap<(usize, usize, usize), String>);
+
+impl Holders {
+    fn new(scene: &Scene, meshes: &[Mesh2d]) -> Self {
+        let mut held = HashMap::new();
+        for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
+            for (k, s) in body.supports.iter().enumerate() {
+                for node in mesh.edge_set_nodes(&s.edges) {
+                    for (c, v) in [(0, s.ux), (1, s.uy)] {
+                        if v.is_some() {
+                            held.entry((b, node, c))
+                                .or_insert_with(|| format!("{}/supports/{k} of '{}'", body.path, body.name));
+                        }
+                    }
+                }
+            }
+            if scene.analysis == Analysis::Axisymmetric {
+                let tol = 1e-9 * mesh.size();
+                for (node, p) in mesh.nodes.iter().enumerate() {
+                    if p[0] <= tol {
+                        held.entry((b, node, 0)).or_insert_with(|| "the axis".to_string());
+                    }
+                }
+            }
+        }
+        Holders(held)
+    }
+
+    /// The supports holding the node's motion along t, or None if some
+    /// component moving it along t is free.
+    fn along(&self, body: usize, node: usize, t: [f64; 2]) -> Option<Vec<String>> {
+        (0..2)
+            .filter(|&c| t[c].abs() > ALONG)
+            .map(|c| self.0.get(&(body, node, c)).cloned())
+            .collect()
+    }
+}
