@@ -15,7 +15,6 @@ use common::*;
 use contact::proto::{FrictionState, PairResult, Resultant, SolveReply, SolveStatus, Warning, WarningCode};
 use serde_json::{json, Value};
 
-/// `friction_press_fit_pushed_out.json` with friction `mu`.
 /// The steps of a frictional reply, after checking that each one solved
 /// with the friction residuals at round-off (1e-10; measured ≤ 9e-16).
 fn every_step_solved(r: &SolveReply, mu: f64) -> Vec<(Vec<PairResult>, Resultant, SolveStatus)> {
@@ -28,6 +27,7 @@ fn every_step_solved(r: &SolveReply, mu: f64) -> Vec<(Vec<PairResult>, Resultant
     all
 }
 
+/// `friction_press_fit_pushed_out.json` with friction `mu`.
 fn press_fit(mu: f64) -> Value {
     let mut r = example("friction_press_fit_pushed_out.json");
     r["contacts"][0]["friction"]["coefficient"] = json!(mu);

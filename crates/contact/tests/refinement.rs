@@ -232,7 +232,7 @@ fn the_estimate_is_optional_and_the_targets_are_checked() {
 /// on the T3 meshes given inline, within [0.5, 10]: their companion, the
 /// region meshed again, has nodal pressures a few % apart near the peak
 /// where the given mesh's are smooth (measured 6.96 on the disk and 2.56 on
-/// the block here, 2.3–3.3 with the finer companion that cost 2.5–7.5 solves). The
+/// the block here; docs/verification/accuracy.md has all levels). The
 /// T6 resultant, 0.002–0.24 % off, is estimated 0.02–42× and not tested. At
 /// a flat punch's corners the pressure is unbounded: both the estimate and
 /// the true error leave out the band the reply names there (`singular_ends`,

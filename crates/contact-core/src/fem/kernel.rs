@@ -19,9 +19,7 @@
 //!
 //! Everything is generic over the element (dimension D, N nodes), the strains
 //! (S) and the law, so each combination compiles to fixed-size loops with no
-//! allocation per element: the K_ff assembly of a 1.2M-DOF T3 mesh measured
-//! 0.77 s (median) against 0.82 s with the former runtime-order kernel. DOF
-//! order in `ke` (row-major, (D N)², only its leading block is written): u0x,
+//! allocation per element. DOF order in `ke` (row-major, (D N)², only its leading block is written): u0x,
 //! u0y, (u0z,) u1x, ...
 
 use super::constitutive::Constitutive;
@@ -183,9 +181,9 @@ pub fn deviatoric<const S: usize>(d: &[[f64; S]; S], lambda: f64, m: [f64; S]) -
 /// On a ring m·ε r = r ∂N/∂r + N (or r ∂N/∂z) is quadratic on an affine T6,
 /// which the 3-point rule integrates exactly. div u at the centroid is not
 /// θ̄ there: on an element touching the axis r varies by O(1) of itself, so
-/// the error does not shrink under refinement (measured on a ball on a flat
-/// at ν = 0.49: pressure +5.5 % at r = 0 and −9.0 % at the next node at
-/// a/h = 11, +5.3 % and −10.2 % at a/h = 85; with θ̄ within 0.14 % at both).
+/// the error does not shrink under refinement (the ball on a flat of the
+/// test `axisymmetric::nearly_incompressible_ball_matches_hertz_on_the_axis`,
+/// whose doc gives both readings).
 pub fn mean_dilatation<E, K, const D: usize, const N: usize, const S: usize>(x: &[[f64; D]; N]) -> ([[f64; D]; N], f64)
 where
     E: ReferenceElement<D, N>,

@@ -23,7 +23,7 @@
 //! midpoints, bit for bit as before.
 //!
 //! A straight boundary edge is a chord of the surface the mesh stands for:
-//! a polygon whose turns between edges stay below `CORNER` is taken as points
+//! a polygon whose turns between edges stay below `SMOOTH_TURN` is taken as points
 //! of a smooth curve, and the new node of a split boundary edge is put on the
 //! cubic through the edge's ends and their neighbours along the boundary
 //! (chord-length parameter; Lagrange), not on the chord. Bisection on the
@@ -75,11 +75,6 @@ struct Bisector {
     /// two boundary edges; others are left out and split on the chord).
     along: HashMap<usize, [usize; 2]>,
 }
-
-/// Largest turn between two boundary edges (radians) that is read as a
-/// sampled smooth curve rather than a corner: a quarter disk given with 89
-/// arc edges turns by 1° per edge, a graded far field of R/8 by 7°.
-const CORNER: f64 = 0.35;
 
 /// An undirected side: its corners in order.
 pub(super) fn key(a: usize, b: usize) -> (usize, usize) {
@@ -339,7 +334,7 @@ pub(super) fn boundary_links(tris: &[[usize; 3]]) -> HashMap<usize, [usize; 2]> 
 
 /// The new node of the straight side a–b: its midpoint inside the mesh; on
 /// the boundary, on the cubic through a, b and their other neighbours along
-/// it (`along`) where the boundary turns by less than `CORNER` at a and at b
+/// it (`along`) where the boundary turns by less than `SMOOTH_TURN` at a and at b
 /// (module doc), at half the chord a–b in chord-length parameter.
 pub(super) fn boundary_mid(nodes: &[[f64; 2]], along: &HashMap<usize, [usize; 2]>, a: usize, b: usize) -> [f64; 2] {
     let x = |n: usize| nodes[n];
@@ -356,9 +351,7 @@ pub(super) fn boundary_mid(nodes: &[[f64; 2]], along: &HashMap<usize, [usize; 2]
     let beyond = |end: usize, v: &[usize; 2], not: usize| -> Option<[f64; 2]> {
         let o = if v[0] == not { v[1] } else { v[0] };
         let (pe, pn, po) = (x(end), x(not), x(o));
-        let (u, w) = ([pe[0] - po[0], pe[1] - po[1]], [pn[0] - pe[0], pn[1] - pe[1]]);
-        let turn = (u[0] * w[1] - u[1] * w[0]).atan2(u[0] * w[0] + u[1] * w[1]).abs();
-        (turn < CORNER).then_some(po)
+        (super::turn(po, pe, pn) < super::SMOOTH_TURN).then_some(po)
     };
     let (before, after) = (beyond(a, va, b), beyond(b, vb, a));
     let dist = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);

@@ -7,7 +7,7 @@
 //! 2.5–7.5 solves. Here the region is triangulated again (`refine::triangulate`,
 //! the generators' constrained Delaunay refinement) from:
 //! - the boundary loop with every other node kept, and every node where the
-//!   edge set changes or the boundary turns by more than `CORNER_DEG` (so the
+//!   edge set changes or the boundary turns by more than `SMOOTH_TURN` (so the
 //!   supports, loads and contact candidates keep their extents exactly);
 //! - the interior corner nodes of a maximal independent set of the mesh's
 //!   node graph (no two of them share an element edge), chosen greedily: one
@@ -23,15 +23,10 @@
 
 use std::collections::{BTreeMap, HashMap};
 
-use super::generate::to_t6;
+use super::generate::finish;
 use super::quality::{self, Conn, Item};
 use super::refine::{self, Outline};
-use super::{signed_area, Mesh2d, Order};
-
-/// A boundary node where the boundary turns by more than this is kept (a
-/// corner of the region): measured between the two boundary edges at the
-/// node, T6 midsides left out.
-const CORNER_DEG: f64 = 20.0;
+use super::{segment_param, turn, Mesh2d, Order, SMOOTH_TURN};
 
 /// The coarser companion of `mesh`, or None where its boundary is not a
 /// single loop or the new mesh fails the inline checks. `keep`: points of the
@@ -79,16 +74,9 @@ pub fn coarsened(mesh: &Mesh2d, keep: &[[f64; 2]]) -> Option<Mesh2d> {
     let n = loop_nodes.len();
     let seg_set = |i: usize| *set_of.get(&(loop_nodes[i], loop_nodes[(i + 1) % n])).unwrap_or(&"");
     let p = |i: usize| mesh.nodes[loop_nodes[i % n]];
-    let turn = |i: usize| {
-        let (a, b, c) = (p(i + n - 1), p(i), p(i + 1));
-        let (u, v) = ([b[0] - a[0], b[1] - a[1]], [c[0] - b[0], c[1] - b[1]]);
-        (u[0] * v[1] - u[1] * v[0])
-            .atan2(u[0] * v[0] + u[1] * v[1])
-            .abs()
-            .to_degrees()
-    };
+    // A corner (T6 midsides left out) is kept as a change of set is.
     let mut feature: Vec<bool> = (0..n)
-        .map(|i| seg_set((i + n - 1) % n) != seg_set(i) || turn(i) > CORNER_DEG)
+        .map(|i| seg_set((i + n - 1) % n) != seg_set(i) || turn(p(i + n - 1), p(i), p(i + 1)) > SMOOTH_TURN)
         .collect();
     for &q in keep {
         let nearest = (0..n).min_by(|&i, &j| {
@@ -152,32 +140,10 @@ pub fn coarsened(mesh: &Mesh2d, keep: &[[f64; 2]]) -> Option<Mesh2d> {
         .flat_map(|e| (0..3).map(move |i| (e[i], e[(i + 1) % 3])))
         .map(|(a, b)| dist2(mesh.nodes[a], mesh.nodes[b]).sqrt())
         .fold(0.0, f64::max);
-    let t = refine::triangulate(&outline, &seeds, 2.0 * largest, &snap).ok()?;
-    let mut elems = t.elems;
-    for e in elems.chunks_mut(3) {
-        if signed_area(t.nodes[e[0]], t.nodes[e[1]], t.nodes[e[2]]) < 0.0 {
-            e.swap(1, 2);
-        }
-    }
-    let edge_sets: BTreeMap<String, Vec<super::Edge>> = t
-        .sets
-        .into_iter()
-        .filter(|(name, _)| !name.is_empty())
-        .map(|(name, v)| {
-            (
-                name,
-                v.into_iter().map(|(a, b)| super::Edge { a, b, mid: None }).collect(),
-            )
-        })
-        .collect();
-    let mut out = Mesh2d {
-        order: Order::T3,
-        nodes: t.nodes,
-        elems,
-        edge_sets,
-    };
+    let mut t = refine::triangulate(&outline, &seeds, 2.0 * largest, &snap).ok()?;
+    t.sets.remove("");
+    let mut out = finish(t.nodes, t.elems, t.sets, mesh.order);
     if mesh.order == Order::T6 {
-        out = to_t6(out);
         let sets = set_of_coarse(&out);
         snap_boundary_midsides(&mut out, &snap, &sets);
     }
@@ -223,26 +189,21 @@ fn interior_seeds(mesh: &Mesh2d, loop_nodes: &[usize]) -> Vec<[f64; 2]> {
             neighbours[b].push(a);
         }
     }
-    #[derive(Clone, Copy, PartialEq)]
-    enum State {
-        Free,
-        Blocked,
-    }
-    let mut state = vec![State::Free; mesh.nodes.len()];
+    let mut blocked = vec![false; mesh.nodes.len()];
     for &v in loop_nodes {
-        state[v] = State::Blocked;
+        blocked[v] = true;
         for &w in &neighbours[v] {
-            state[w] = State::Blocked;
+            blocked[w] = true;
         }
     }
     let mut seeds = Vec::new();
     for v in 0..mesh.nodes.len() {
         // Midsides have no corner neighbours and are never seeds.
-        if state[v] == State::Free && !neighbours[v].is_empty() {
+        if !blocked[v] && !neighbours[v].is_empty() {
             seeds.push(mesh.nodes[v]);
-            state[v] = State::Blocked;
+            blocked[v] = true;
             for &w in &neighbours[v] {
-                state[w] = State::Blocked;
+                blocked[w] = true;
             }
         }
     }
@@ -273,20 +234,15 @@ fn dist2(a: [f64; 2], b: [f64; 2]) -> f64 {
 }
 
 fn nearest_on_segment(q: [f64; 2], a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
-    let d = [b[0] - a[0], b[1] - a[1]];
-    let len2 = d[0] * d[0] + d[1] * d[1];
-    let t = if len2 > 0.0 {
-        (((q[0] - a[0]) * d[0] + (q[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    [a[0] + t * d[0], a[1] + t * d[1]]
+    let t = segment_param(q, a, b);
+    [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::mesh::generate::{disk, rectangle, DiskPart, Grading};
+    use crate::mesh::signed_area;
 
     fn area(m: &Mesh2d) -> f64 {
         let k = m.order.nodes_per_element();

@@ -401,7 +401,7 @@ fn rectangle_graded(
 }
 
 /// Orients triangles, upgrades to T6 if asked, and attaches the edge sets.
-fn finish(
+pub(super) fn finish(
     nodes: Vec<[f64; 2]>,
     mut elems: Vec<usize>,
     sets: BTreeMap<String, Vec<(usize, usize)>>,

@@ -94,6 +94,29 @@ pub fn each_once(nodes: impl Iterator<Item = usize>) -> Vec<usize> {
     nodes.filter(|&n| seen.insert(n)).collect()
 }
 
+/// Largest turn between two boundary edges (radians) that is read as a
+/// sampled smooth curve rather than a corner: a quarter disk given with 89
+/// arc edges turns by 1° per edge, a graded far field of R/8 by 7°.
+pub(crate) const SMOOTH_TURN: f64 = 0.35;
+
+/// The angle (radians, 0 to π) by which the polyline a → b → c turns at b.
+pub(crate) fn turn(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    let (u, w) = ([b[0] - a[0], b[1] - a[1]], [c[0] - b[0], c[1] - b[1]]);
+    (u[0] * w[1] - u[1] * w[0]).atan2(u[0] * w[0] + u[1] * w[1]).abs()
+}
+
+/// The parameter s in [0, 1] of the point of segment a–b nearest to q (0 on
+/// a degenerate segment).
+pub(crate) fn segment_param(q: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let len2 = d[0] * d[0] + d[1] * d[1];
+    if len2 > 0.0 {
+        (((q[0] - a[0]) * d[0] + (q[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    }
+}
+
 /// Largest side of the bounding box of `nodes` (2D or 3D).
 pub fn extent<const D: usize>(nodes: &[[f64; D]]) -> f64 {
     let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);

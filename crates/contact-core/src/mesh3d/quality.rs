@@ -89,8 +89,11 @@ pub fn try_build(
         if let Err((k, why)) = index_fault(el, npe, nodes.len()) {
             return Err(bad(k.map_or(Item::Element(e), |k| Item::ElementNode(e, k)), why));
         }
-        let x: Vec<[f64; 3]> = el.iter().map(|&n| nodes[n]).collect();
-        check_shape(&x).map_err(|r| bad(Item::Element(e), r))?;
+        let mut x = [[0.0; 3]; 10];
+        for (k, &n) in el.iter().enumerate() {
+            x[k] = nodes[n];
+        }
+        check_shape(&x[..npe]).map_err(|r| bad(Item::Element(e), r))?;
         elems.extend_from_slice(el);
     }
     check_used_and_connected(nodes.len(), elements, &bad)?;

@@ -367,18 +367,19 @@ pub(crate) fn inward(z: &ZoneAlong, k: usize) -> bool {
 /// `end`: that node's multiplier is a weighted mean reaching past the edge,
 /// so the pressure falls to 0 at the edge on the facet from the node before,
 /// and the end's node reads 0.
+/// The indices next to `i` along the sorted points of a field (`field`).
+pub(crate) fn beside(i: usize, len: usize) -> impl Iterator<Item = usize> {
+    [i.checked_sub(1), (i + 1 < len).then_some(i + 1)].into_iter().flatten()
+}
+
 fn end_inside(pts: &mut [(f64, f64, f64)], reach: &mut [f64], end: [f64; 2], edge: [f64; 2]) {
     let Some(i) = pts.iter().position(|p| p.0 == end[0] && p.1 == end[1]) else {
         return;
     };
-    let before = [i.checked_sub(1), (i + 1 < pts.len()).then_some(i + 1)]
-        .into_iter()
-        .flatten()
-        .filter(|&j| pts[j].2 > 0.0)
-        .min_by(|&a, &b| {
-            let d = |j: usize| (pts[j].0 - edge[0]).hypot(pts[j].1 - edge[1]);
-            d(a).total_cmp(&d(b))
-        });
+    let before = beside(i, pts.len()).filter(|&j| pts[j].2 > 0.0).min_by(|&a, &b| {
+        let d = |j: usize| (pts[j].0 - edge[0]).hypot(pts[j].1 - edge[1]);
+        d(a).total_cmp(&d(b))
+    });
     if let Some(j) = before {
         pts[i].2 = 0.0;
         reach[i] = 0.0;

@@ -10,10 +10,9 @@
 //! slides by it whatever μ, and Coulomb's law gives it the friction force
 //! μ λ. At a real μ that is the answer; but it grows with μ without bound,
 //! and reaches the free nodes through the row's weights (a mortar row also
-//! tests the next nodes), so such a scene has no stick limit as μ grows. The
-//! press fit pushed by the shaft's bottom with the ring's bottom held
-//! (`scene::validate::pairs::MAX_FRICTION`): push-out force ∝ μ, 40.9 and 354
-//! at μ = 1e2 and 1e3, and `max_iterations` from 1e4.
+//! tests the next nodes), so such a scene has no stick limit as μ grows: the
+//! press fit pushed by the shaft's bottom with the ring's bottom held, whose
+//! push-out forces the doc of `scene::validate::pairs::MAX_FRICTION` gives.
 //!
 //! A warning, not a refusal: at the μ of real surfaces (0.05 to 0.4 on that
 //! press fit, every step solved with the push-out force μ N to 1e-12) the
@@ -43,6 +42,9 @@ const ALONG: f64 = 1e-9;
 /// A prescribed slip within this share of the motions it is the difference
 /// of is 0 (round-off).
 const SAME: f64 = 1e-12;
+/// A projection this close (in the edge's parameter) to an end is at that
+/// node: round-off of the nondimensional coordinates, not a position.
+const AT_END: f64 = 1e-9;
 /// Positions listed in a warning's message, at most.
 const LISTED: usize = 4;
 
@@ -81,17 +83,19 @@ pub fn find(scene: &Scene, model: &Model, tangents: &Tangents) -> Vec<Held> {
                     held.insert(format!("the fixed obstacle '{}'", scene.obstacles[*o].name));
                 }
                 (Some(p), Some((_, ct))) => {
-                    let mut moved = 0.0;
-                    for (q, control) in p.controls.iter().enumerate() {
-                        match control {
-                            _ if ct[q].abs() <= ALONG => {}
-                            Control::Displacement(v) => moved += ct[q] * v,
-                            Control::Load(_) => moved = f64::NAN,
-                        }
-                    }
-                    if moved.is_nan() {
+                    // A load-controlled motion along the tangent leaves the slip free.
+                    let Some(moved) =
+                        p.controls
+                            .iter()
+                            .zip(ct.iter())
+                            .try_fold(0.0, |m, (control, &w)| match control {
+                                _ if w.abs() <= ALONG => Some(m),
+                                Control::Displacement(v) => Some(m + w * v),
+                                Control::Load(_) => None,
+                            })
+                    else {
                         continue;
-                    }
+                    };
                     held.insert(format!("punch '{}''s prescribed motion", scene.obstacles[*o].name));
                     slip -= moved;
                     scale += moved.abs();
@@ -191,8 +195,7 @@ fn warning(scene: &Scene, p: usize, g: &Group) -> Warning {
             "the frictional contact {} of body '{}' at {} {} its slip along the other surface prescribed by the \
                 supports ({held_by}), by up to {}: {} by it whatever μ (here {}), with the friction \
                 force μ λ. At a real μ that is Coulomb's answer, but it grows with μ without bound, so a large μ is \
-                not the stick limit here (the press fit pushed by the shaft's bottom with the ring's bottom held ends \
-                at max_iterations from μ = 1e2 with the default cap). Release one of the supports at {} (hold that \
+                not the stick limit here. Release one of the supports at {} (hold that \
                 body at its other end), or move the body by its far end",
             if one { "node" } else { "nodes" },
             scene.bodies[pair.body].name,
@@ -219,22 +222,16 @@ fn facing_nodes(mesh: &Mesh2d, edges: &str, x: [f64; 2]) -> Option<Vec<(usize, f
     let mut best: Option<(f64, f64, &crate::mesh::Edge)> = None;
     for e in set {
         let (a, b) = (mesh.nodes[e.a], mesh.nodes[e.b]);
-        let d = [b[0] - a[0], b[1] - a[1]];
-        let len2 = d[0] * d[0] + d[1] * d[1];
-        if len2 <= 0.0 {
-            continue;
-        }
-        let s = (((x[0] - a[0]) * d[0] + (x[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0);
-        let dist = (a[0] + s * d[0] - x[0]).hypot(a[1] + s * d[1] - x[1]);
+        let s = crate::mesh::segment_param(x, a, b);
+        let dist = (a[0] + s * (b[0] - a[0]) - x[0]).hypot(a[1] + s * (b[1] - a[1]) - x[1]);
         if best.is_none_or(|(bd, _, _)| dist < bd) {
             best = Some((dist, s, e));
         }
     }
     let (_, s, e) = best?;
-    // A projection within round-off of an end is at that node.
-    let s = if s < 1e-9 {
+    let s = if s < AT_END {
         0.0
-    } else if s > 1.0 - 1e-9 {
+    } else if s > 1.0 - AT_END {
         1.0
     } else {
         s

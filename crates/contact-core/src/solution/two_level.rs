@@ -271,9 +271,7 @@ fn edge_placement(pts: &[(f64, f64, f64)], reach: &[f64]) -> f64 {
             continue;
         }
         // The facet the edge lies on: to the open neighbour.
-        let Some(facet) = [i.checked_sub(1), (i + 1 < pts.len()).then_some(i + 1)]
-            .into_iter()
-            .flatten()
+        let Some(facet) = accuracy::beside(i, pts.len())
             .filter(|&n| pts[n].2 <= 0.0)
             .map(|n| (pts[n].0 - pts[i].0).hypot(pts[n].1 - pts[i].1))
             .min_by(f64::total_cmp)

@@ -39,10 +39,10 @@ impl Estimator for TwoLevel {
                 next_round: false,
             }));
         }
-        let fine = given(scene);
+        // Only a given mesh whose region cannot be meshed again is left.
         let predicted = report.size.dofs as f64 * (RATIO * RATIO);
         let most = FINER_MAX_DOFS.min(max_dofs as f64);
-        if fine && predicted > most {
+        if predicted > most {
             return Err(format!(
                 "the error estimate needs a finer solve of about {predicted:.0} DOFs (every triangle split in four), \
                  more than the {most:.0} it may take (its own bound, or the service's size or memory limit); only \
@@ -50,23 +50,18 @@ impl Estimator for TwoLevel {
             ));
         }
         let seconds = solve_seconds(report) * (RATIO * RATIO).powf(TIME_GROWTH);
-        if fine && seconds > crate::cancel::remaining_secs() {
+        if seconds > crate::cancel::remaining_secs() {
             return Err(format!(
                 "the error estimate needs a finer solve (every triangle split in four) of about {seconds:.2} s, \
                  more than the {:.2} s left of the time limit; only the zone ends' uncertainty is estimated",
                 crate::cancel::remaining_secs()
             ));
         }
-        let ratio = if fine { 1.0 / RATIO } else { RATIO };
         Ok(Some(Companion {
-            scene: resized(scene, [ratio; 3], None).expect("a companion of its kind"),
-            ratio,
-            what: if fine {
-                "finer solve (every triangle split in four)"
-            } else {
-                "coarser solve (elements twice as large)"
-            },
-            next_round: fine,
+            scene: resized(scene, [1.0 / RATIO; 3], None).expect("a given mesh is split in four"),
+            ratio: 1.0 / RATIO,
+            what: "finer solve (every triangle split in four)",
+            next_round: true,
         }))
     }
 

@@ -34,10 +34,6 @@ pub const fn point<const D: usize>(xi: [f64; D], weight: f64) -> Point<D> {
 
 /// A reference element of dimension D with N nodes.
 pub trait ReferenceElement<const D: usize, const N: usize> {
-    /// The dimension of the cell (and of the space it maps into).
-    const DIM: usize = D;
-    /// The number of nodes, each with D displacement components.
-    const NODES: usize = N;
     /// The rule of the stiffness: exact for Bᵀ D B on an affine element.
     const RULE: &'static [Point<D>];
     /// Local nodes of each face (edges in 2D), as in the module doc.
@@ -124,11 +120,6 @@ pub fn boundary_faces<E: ReferenceElement<D, N>, const D: usize, const N: usize>
         }
     }
     out
-}
-
-/// The point x(ξ) = Σ N_i x_i of the element with nodes `x`.
-pub fn map<const D: usize, const N: usize>(x: &[[f64; D]; N], n: &[f64; N]) -> [f64; D] {
-    std::array::from_fn(|c| (0..N).map(|i| n[i] * x[i][c]).sum())
 }
 
 #[cfg(test)]
