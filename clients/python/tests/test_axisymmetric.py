@@ -91,9 +91,10 @@ def test_press_fit_by_default_sticks_as_mu_grows():
     and the push-out at mu = 100 solves in both steps with no prescribed_slip warning,
     its push-out force that of the Rust test a_press_fit_pulled_by_its_far_end_sticks_as_mu_grows
     (3.2774): the builder makes the same scene for the same core, so 1e-3 pins the builder
-    to that scene (a different support or load would move the force by far more). Moved by its bottom (both bottoms held), the bore's bottom
-    node at (0.999, 0) has its slip prescribed: the reply warns so, naming it, and the
-    step ends at max_iterations (push-out force 40.9, growing with mu)."""
+    to that scene (a different support or load would move the force by far more).
+    Moved by its bottom (both bottoms held), the bore's bottom node at (0.999, 0) has
+    its slip prescribed: the reply warns so, naming it, and the step ends at
+    max_iterations (push-out force 40.9, growing with mu)."""
     from contact_client import Status, WarningCode
 
     reply = solve_local(press_fit(friction=100.0, push=0.01))
