@@ -186,6 +186,7 @@ fn solve_condensed(
         predicted: Some(op.chol.cost().predicted_secs()),
         compliance: compliance.as_ref(),
         friction: &[],
+        factor: Some(&op.chol),
     };
     Ok(compose::report(scene, &solved, sol, obs, cache_state))
 }
@@ -219,6 +220,7 @@ fn solve_full(scene: &Scene, model: &Model, mut obs: Observer) -> Result<Report,
         predicted: None,
         compliance: None,
         friction: &[],
+        factor: None,
     };
     Ok(compose::report(scene, &solved, sol, obs, CacheState::Off))
 }

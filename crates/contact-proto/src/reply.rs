@@ -158,6 +158,23 @@ pub struct PairAccuracy {
     /// zone's length). Read the resultant and the zone there.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub singular_ends: Vec<SingularEnd>,
+    /// Guaranteed upper bound of the relative energy-norm error of the whole
+    /// answer, ‖u − u_h‖_E / ‖u‖_E (all bodies): from an equilibrated stress
+    /// (Prager–Synge), so the true error is never above it, whatever the
+    /// mesh (against a curved obstacle, up to the part of the contact
+    /// traction left along the obstacle by its normal's turn within an element
+    /// side, of relative order h/R). It bounds the energy of the error (stress and strain in the
+    /// mean square), not the pressure, the peak or a zone end, which
+    /// `pressure_l2`, `peak` and `zone_edges` estimate. Absent where the scene
+    /// is outside its reach: it covers frictionless contact of linear
+    /// triangles (T3) in plane strain or plane stress against rigid obstacles
+    /// and punches whose motion is prescribed, under supports, uniform
+    /// tractions and pressures, and body forces; not T6, axisymmetry,
+    /// friction, two bodies, foundations, point loads (whose energy is
+    /// infinite), tractions over part of a side, or punches and bodies moved
+    /// by the contact.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub energy: Option<f64>,
 }
 
 /// A zone end where the pressure is unbounded.

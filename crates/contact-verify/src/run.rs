@@ -23,9 +23,14 @@ pub fn inlined(req: &Value) -> Value {
     let parsed: SolveRequest = serde_json::from_value(req.clone()).expect("a valid request");
     let scene = Scene::try_new(&parsed, &Limits::default()).expect("a valid scene");
     let meshes = contact_core::meshing::meshes(&scene).expect("generated meshes");
+    with_meshes(req, &meshes, scene.scales.length)
+}
+
+/// `req` with its bodies' meshes given inline as `meshes` (nondimensional,
+/// as the core holds them; `length` the scene's length scale).
+pub fn with_meshes(req: &Value, meshes: &[contact_core::mesh::Mesh2d], length: f64) -> Value {
     let mut out = req.clone();
     for (b, m) in meshes.iter().enumerate() {
-        let length = scene.scales.length;
         let nodes: Vec<[f64; 2]> = m.nodes.iter().map(|p| [p[0] * length, p[1] * length]).collect();
         let k = m.order.nodes_per_element();
         let elements: Vec<&[usize]> = m.elems.chunks(k).collect();

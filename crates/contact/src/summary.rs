@@ -161,6 +161,13 @@ pub fn reply(r: &SolveReply) -> String {
                 pct(a.resultant),
                 a.basis.to_string().replace('_', "-")
             );
+            if let Some(e) = a.energy {
+                let _ = writeln!(
+                    o,
+                    "  energy     error ≤ {} of the answer's energy norm (guaranteed bound)",
+                    pct(Some(e))
+                );
+            }
             if !a.singular_ends.is_empty() {
                 let at: Vec<String> = a
                     .singular_ends

@@ -127,7 +127,7 @@ pub fn estimate_by(
         if report.status != Status::Solved {
             return Err(None);
         }
-        let Some(companion) = est.companion(scene, report, max_dofs).map_err(Some)? else {
+        let Some(mut companion) = est.companion(scene, report, max_dofs).map_err(Some)? else {
             for p in report.pairs.iter_mut() {
                 p.accuracy = Some(est.pair(p, None));
             }
@@ -138,6 +138,12 @@ pub fn estimate_by(
         crate::progress::stage(crate::progress::ESTIMATE);
         let _nested = crate::progress::Sink::nested();
         let what = companion.what;
+        // A companion that is not the next round needs no energy bound of
+        // its own (`compose` makes one only for an estimated answer).
+        if !companion.next_round {
+            companion.scene.settings.estimate = false;
+            companion.scene.settings.accuracy = None;
+        }
         match solve(&companion.scene) {
             Ok(c) if c.status == Status::Solved && c.pairs.len() == report.pairs.len() => {
                 for (f, cp) in report.pairs.iter_mut().zip(&c.pairs) {
@@ -165,10 +171,19 @@ pub fn estimate_by(
             p.accuracy = Some(accuracy::zone_edges_only(p));
         }
     }
+    with_energy(report);
     let dt = t.elapsed().as_secs_f64();
     report.timings.estimate += dt;
     report.timings.total += dt;
     finer
+}
+
+/// Every pair's accuracy carries the answer's energy bound (`solution::energy`).
+fn with_energy(report: &mut Report) {
+    let bound = report.energy.map(|e| e.relative());
+    for a in report.pairs.iter_mut().filter_map(|p| p.accuracy.as_mut()) {
+        a.energy = bound;
+    }
 }
 
 /// Solves, estimates and refines until `target` is met or a limit stops the
@@ -259,6 +274,7 @@ pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver, max_dofs: u
                     p.accuracy = Some(accuracy::zone_edges_only(p));
                 }
             }
+            with_energy(&mut fine);
         } else {
             estimate_by(est, &next, &mut fine, solve, max_dofs);
         }

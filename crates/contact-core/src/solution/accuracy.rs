@@ -178,6 +178,7 @@ fn edge_root(points: &[(f64, f64)], dir: f64) -> Option<f64> {
 /// A pair's estimate from its zone ends alone (no second solve).
 pub fn zone_edges_only(pair: &PairReport) -> PairAccuracy {
     PairAccuracy {
+        energy: None,
         basis: EstimateBasis::ZoneEdges,
         pressure_l2: None,
         peak: None,

@@ -22,7 +22,7 @@ use crate::scene::{Analysis, Scene};
 use crate::solution::report::{
     BodyFields, CacheState, Diagnostics, FoundationReport, ProblemSize, PunchReport, Report, Status,
 };
-use crate::solution::{certificate::certify, post, validity};
+use crate::solution::{certificate::certify, energy, post, validity};
 
 /// What the report needs of a solve besides its solution.
 pub struct Solved<'a> {
@@ -38,6 +38,9 @@ pub struct Solved<'a> {
     /// With friction, its share of the free motions' equilibrium
     /// (`FreeMotions::equilibrium`).
     pub friction: &'a [(f64, f64)],
+    /// The stiffness factor (condensed path), which the energy bound's
+    /// pressure correction solves with.
+    pub factor: Option<&'a crate::linalg::Cholesky>,
 }
 
 /// Certificate, status, contact zones, optional fields: the report.
@@ -116,6 +119,18 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
     let turns = body_turns(&m.dofs, free.map(|p| (p, beta.as_slice())));
     let warnings = validity::check(scene, &m.meshes, &disp, &m.cons, &punch_motions, &turns, &pairs);
     let bodies = body_outputs(scene, &m.meshes, &disp);
+    // The energy bound goes with the error estimate; it costs a solve with
+    // the factor at hand and a pass over the elements.
+    let mut t_energy = 0.0;
+    let energy = (status == Status::Solved && (scene.settings.estimate || scene.settings.accuracy.is_some()))
+        .then(|| {
+            let t = std::time::Instant::now();
+            let factor = st.factor.filter(|f| energy::unsupported(scene, m, Some(f)).is_none())?;
+            let bound = energy::bound(scene, m, st.k, factor, &sol.u, &sol.lambda).ok();
+            t_energy = t.elapsed().as_secs_f64();
+            bound
+        })
+        .flatten();
     // The post stage has no deadline check: its answer is ready.
     let _ = obs.leave(Stage::Post);
     let mut report = Report {
@@ -147,7 +162,11 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
         warnings,
         outputs: scene.outputs,
         axisymmetric: scene.analysis == Analysis::Axisymmetric,
+        energy,
     };
+    // Timed inside the post stage; it is the estimate's.
+    report.timings.estimate += t_energy;
+    report.timings.post = (report.timings.post - t_energy).max(0.0);
     if let Some(at) = report.first_non_finite() {
         report.status = Status::NumericalError;
         report.notes.push(Note::new(

@@ -42,6 +42,9 @@ pub struct Report {
     pub axisymmetric: bool,
     /// The rounds of tolerance-driven refinement, when the scene asked for them.
     pub refinement: Option<Refinement>,
+    /// The guaranteed bound of the energy-norm error (`solution::energy`),
+    /// when the error is estimated and the scene is one the bound covers.
+    pub energy: Option<crate::solution::energy::EnergyBound>,
 }
 
 /// Tolerance-driven refinement (`crate::adapt`).
@@ -332,6 +335,9 @@ pub struct PairAccuracy {
     /// Zone ends where the pressure is unbounded (`solution::corners`):
     /// `pressure_l2` and `peak` leave out the band around each.
     pub singular_ends: Vec<SingularEnd>,
+    /// Guaranteed upper bound of the relative energy-norm error of the whole
+    /// answer (`solution::energy`), None where the scene is outside its reach.
+    pub energy: Option<f64>,
 }
 
 /// A zone end where the pressure is unbounded, and the radius of the band

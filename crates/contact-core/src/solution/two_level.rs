@@ -100,6 +100,7 @@ pub fn two_level(answer: &PairReport, other: &PairReport, ratio: f64) -> PairAcc
         0.0
     };
     PairAccuracy {
+        energy: None,
         basis: if ratio < 1.0 {
             EstimateBasis::TwoLevelFiner
         } else {

@@ -234,6 +234,7 @@ fn pair(pr: PairReport) -> p::PairResult {
             resultant: a.resultant,
             zone_edges: a.zone_edges,
             fitted_edges: a.fitted_edges,
+            energy: a.energy,
             singular_ends: a
                 .singular_ends
                 .iter()

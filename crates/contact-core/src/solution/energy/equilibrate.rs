@@ -1,0 +1,505 @@
+//! Equilibrated tractions on the sides of a linear-triangle mesh (the element
+//! equilibration technique of Ladevèze & Leguillon, SIAM J. Numer. Anal. 20,
+//! 1983), and the statically admissible stress they make (`airy`).
+//!
+//! On every side Γ a traction t̂_Γ, linear, is sought whose moments against
+//! the hat functions φ_i of its two corners satisfy, on every element K and
+//! corner i of K,
+//!
+//! ```text
+//! Σ_{Γ ⊂ ∂K, i ∈ Γ} η_KΓ ∫_Γ t̂_Γ φ_i ds = ∫_K σ_h : ε(φ_i) − ∫_K f φ_i
+//! ```
+//!
+//! (η_KΓ = ±1: Γ's normal is K's outward one or not). Summed over a corner's
+//! elements this is the finite element equation of node i, so the system of
+//! each node is solvable when the answer is in equilibrium there; its
+//! freedom (a node inside has one) is spent on staying closest to the mean of
+//! the two elements' own tractions. Each element is then in equilibrium under
+//! its sides' tractions (the hats sum to 1 and reproduce x), which is what
+//! `airy` needs. On sides where the traction is given (loads, the contact
+//! pressure, a free surface) t̂ is that traction; on sides with a prescribed
+//! displacement component that component is sought like an inner side's.
+//!
+//! Length: about 500 lines, a third of them the patch test; the node
+//! systems, the sides' tractions and the elements' energies share the side
+//! numbering and belong together.
+
+use super::airy;
+use std::collections::HashMap;
+
+/// A boundary side's data, per component: the traction at its two ends (in
+/// the order of `ends`), or None where that component's displacement is
+/// prescribed (the traction is then sought).
+#[derive(Debug, Clone, Copy)]
+pub struct Given {
+    pub ends: [usize; 2],
+    pub traction: [Option<[f64; 2]>; 2],
+}
+
+/// One body's linear triangles and what is known on them.
+pub struct Input<'a> {
+    pub nodes: &'a [[f64; 2]],
+    /// Three corners per element, either orientation.
+    pub elems: &'a [[usize; 3]],
+    /// The answer to equilibrate (in equilibrium with the loads below at
+    /// every node whose displacement is not prescribed).
+    pub u_eq: &'a [[f64; 2]],
+    /// The displacement whose stress is compared with the admissible one.
+    pub u_cmp: &'a [[f64; 2]],
+    /// Plane D (Voigt xx, yy, xy with engineering shear).
+    pub d: [[f64; 3]; 3],
+    pub body_force: [f64; 2],
+    /// Boundary sides with data, by their corners (sorted). A boundary side
+    /// absent here is free of traction.
+    pub given: &'a HashMap<[usize; 2], Given>,
+}
+
+/// ∫ (σ* − σ(u_cmp)) : C⁻¹ (σ* − σ(u_cmp)) per element, and how far the
+/// elements' tractions failed to balance (relative; round-off when the
+/// answer is in equilibrium).
+pub struct Bound {
+    pub indicators: Vec<f64>,
+    pub closure: f64,
+}
+
+struct Side {
+    ends: [usize; 2],
+    /// Elements on each side of it (the first one's outward normal is the
+    /// side's).
+    elems: [usize; 2],
+    normal: [f64; 2],
+    len: f64,
+}
+
+const NONE: usize = usize::MAX;
+
+fn inverse3(d: [[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    let det = d[0][0] * (d[1][1] * d[2][2] - d[1][2] * d[2][1]) - d[0][1] * (d[1][0] * d[2][2] - d[1][2] * d[2][0])
+        + d[0][2] * (d[1][0] * d[2][1] - d[1][1] * d[2][0]);
+    // The adjugate's (i, j) entry is the cofactor of (j, i).
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            let (r0, r1) = ((j + 1) % 3, (j + 2) % 3);
+            let (c0, c1) = ((i + 1) % 3, (i + 2) % 3);
+            (d[r0][c0] * d[r1][c1] - d[r0][c1] * d[r1][c0]) / det
+        })
+    })
+}
+
+/// Counter-clockwise corners, hat gradients and area of an element.
+fn geometry(nodes: &[[f64; 2]], e: [usize; 3]) -> ([usize; 3], [[f64; 2]; 3], f64) {
+    let [a, b, c] = e;
+    let (pa, pb, pc) = (nodes[a], nodes[b], nodes[c]);
+    let det = (pb[0] - pa[0]) * (pc[1] - pa[1]) - (pc[0] - pa[0]) * (pb[1] - pa[1]);
+    let e = if det >= 0.0 { [a, b, c] } else { [a, c, b] };
+    let p = [nodes[e[0]], nodes[e[1]], nodes[e[2]]];
+    let two_a = det.abs();
+    let grads = std::array::from_fn(|i| {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        [(p[j][1] - p[k][1]) / two_a, (p[k][0] - p[j][0]) / two_a]
+    });
+    (e, grads, two_a / 2.0)
+}
+
+fn stress(d: &[[f64; 3]; 3], grads: &[[f64; 2]; 3], e: [usize; 3], u: &[[f64; 2]]) -> [f64; 3] {
+    let mut eps = [0.0; 3];
+    for (i, g) in grads.iter().enumerate() {
+        let ui = u[e[i]];
+        eps[0] += g[0] * ui[0];
+        eps[1] += g[1] * ui[1];
+        eps[2] += g[1] * ui[0] + g[0] * ui[1];
+    }
+    std::array::from_fn(|r| (0..3).map(|c| d[r][c] * eps[c]).sum())
+}
+
+/// Cholesky of the symmetric positive semi-definite `m` (n × n, row-major,
+/// lower triangle) that marks null pivots in `skip` instead of failing: for
+/// a consistent right-hand side `solve_factored` then gives a solution y
+/// whose Aᵀ y (the traction sought) is the unique one.
+fn factor_psd(m: &mut [f64], n: usize, skip: &mut Vec<bool>) {
+    let scale = (0..n).map(|i| m[i * n + i]).fold(0.0, f64::max);
+    skip.clear();
+    skip.resize(n, false);
+    for k in 0..n {
+        let piv = m[k * n + k];
+        if piv <= 1e-10 * scale {
+            skip[k] = true;
+            continue;
+        }
+        let r = piv.sqrt();
+        for i in k..n {
+            m[i * n + k] /= r;
+        }
+        for j in k + 1..n {
+            for i in j..n {
+                m[i * n + j] -= m[i * n + k] * m[j * n + k];
+            }
+        }
+    }
+}
+
+fn solve_factored(m: &[f64], skip: &[bool], rhs: &mut [f64], n: usize) {
+    for k in 0..n {
+        if skip[k] {
+            rhs[k] = 0.0;
+            continue;
+        }
+        let s: f64 = (0..k).filter(|&j| !skip[j]).map(|j| m[k * n + j] * rhs[j]).sum();
+        rhs[k] = (rhs[k] - s) / m[k * n + k];
+    }
+    for k in (0..n).rev() {
+        if skip[k] {
+            continue;
+        }
+        let s: f64 = (k + 1..n).filter(|&j| !skip[j]).map(|j| m[j * n + k] * rhs[j]).sum();
+        rhs[k] = (rhs[k] - s) / m[k * n + k];
+    }
+}
+
+/// The admissible stress's distance to σ(u_cmp), element by element; None
+/// for a degenerate element.
+pub fn bound(inp: &Input) -> Option<Bound> {
+    let ne = inp.elems.len();
+    let mut geo = Vec::with_capacity(ne);
+    let mut s_eq = Vec::with_capacity(ne);
+    for &e in inp.elems {
+        let g = geometry(inp.nodes, e);
+        if g.2 <= 0.0 {
+            return None;
+        }
+        s_eq.push(stress(&inp.d, &g.1, g.0, inp.u_eq));
+        geo.push(g);
+    }
+    // Sides, oriented by their first element's counter-clockwise walk: the
+    // (element, corner) half-sides sorted by their corners' pair.
+    let mut half: Vec<([usize; 2], u32, u8)> = Vec::with_capacity(3 * ne);
+    for (k, (e, _, _)) in geo.iter().enumerate() {
+        for j in 0..3 {
+            let (a, b) = (e[j], e[(j + 1) % 3]);
+            half.push(([a.min(b), a.max(b)], k as u32, j as u8));
+        }
+    }
+    half.sort_unstable();
+    let mut sides: Vec<Side> = Vec::with_capacity(2 * ne);
+    let mut elem_sides = vec![[0usize; 3]; ne];
+    let mut i = 0;
+    while i < half.len() {
+        let (key, k, j) = half[i];
+        let (k, j) = (k as usize, j as usize);
+        let e = geo[k].0;
+        let (a, b) = (e[j], e[(j + 1) % 3]);
+        let (pa, pb) = (inp.nodes[a], inp.nodes[b]);
+        let len = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+        let id = sides.len();
+        let mut side = Side {
+            ends: [a, b],
+            elems: [k, NONE],
+            normal: [(pb[1] - pa[1]) / len, -(pb[0] - pa[0]) / len],
+            len,
+        };
+        elem_sides[k][j] = id;
+        i += 1;
+        // A side has at most two elements (a third would make the mesh
+        // non-manifold, which the mesh checks refuse).
+        while i < half.len() && half[i].0 == key {
+            let (k2, j2) = (half[i].1 as usize, half[i].2 as usize);
+            side.elems[1] = k2;
+            elem_sides[k2][j2] = id;
+            i += 1;
+        }
+        sides.push(side);
+    }
+    let sign = |side: &Side, k: usize| if side.elems[0] == k { 1.0 } else { -1.0 };
+    // The given traction of a side at its ends, in the side's own order.
+    let given_at = |s: &Side, c: usize| -> Option<[f64; 2]> {
+        let key = [s.ends[0].min(s.ends[1]), s.ends[0].max(s.ends[1])];
+        match inp.given.get(&key) {
+            Some(g) => g.traction[c].map(|t| if g.ends == s.ends { t } else { [t[1], t[0]] }),
+            None => Some([0.0, 0.0]),
+        }
+    };
+    // Projections b[side][end][component] = ∫ t̂ φ_end ds.
+    let mut proj = vec![[[0.0; 2]; 2]; sides.len()];
+    let mut sought = vec![[false; 2]; sides.len()];
+    for (id, s) in sides.iter().enumerate() {
+        for c in 0..2 {
+            if s.elems[1] != NONE {
+                sought[id][c] = true;
+                continue;
+            }
+            match given_at(s, c) {
+                Some([ta, tb]) => {
+                    proj[id][0][c] = s.len * (2.0 * ta + tb) / 6.0;
+                    proj[id][1][c] = s.len * (ta + 2.0 * tb) / 6.0;
+                }
+                None => sought[id][c] = true,
+            }
+        }
+    }
+    // Elements and sides around each node.
+    let mut node_elems: Vec<Vec<usize>> = vec![Vec::new(); inp.nodes.len()];
+    for (k, (e, _, _)) in geo.iter().enumerate() {
+        for &n in e {
+            node_elems[n].push(k);
+        }
+    }
+    // Nodal stresses averaged over each node's elements (by area): the
+    // tractions sought stay closest to theirs, which are nearer the exact
+    // traction than either element's own (Zienkiewicz–Zhu recovery).
+    let mut smooth = vec![[0.0; 3]; inp.nodes.len()];
+    let mut weight = vec![0.0; inp.nodes.len()];
+    for (k, (e, _, area)) in geo.iter().enumerate() {
+        for &n in e {
+            for r in 0..3 {
+                smooth[n][r] += area * s_eq[k][r];
+            }
+            weight[n] += area;
+        }
+    }
+    for (s, w) in smooth.iter_mut().zip(&weight) {
+        if *w > 0.0 {
+            s.iter_mut().for_each(|v| *v /= w);
+        }
+    }
+    let f = inp.body_force;
+    let (mut cols, mut last): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
+    let (mut a, mut m, mut y, mut bbar, mut wt, mut skip) = (vec![], vec![], vec![], vec![], vec![], vec![]);
+    for (node, elems) in node_elems.iter().enumerate() {
+        if elems.is_empty() {
+            continue;
+        }
+        last.clear();
+        for c in 0..2 {
+            // Unknown sides at this node, and each element's row.
+            cols.clear();
+            for &k in elems {
+                for &id in &elem_sides[k] {
+                    if sides[id].ends.contains(&node) && sought[id][c] && !cols.contains(&id) {
+                        cols.push(id);
+                    }
+                }
+            }
+            let (nr, nc) = (elems.len(), cols.len());
+            // The second component reuses the first's factor when the same
+            // sides are sought (every node but those of a partial support).
+            let same = c == 1 && cols == last;
+            a.clear();
+            a.resize(nr * nc, 0.0);
+            y.clear();
+            y.resize(nr, 0.0);
+            for (r, &k) in elems.iter().enumerate() {
+                let (e, grads, area) = &geo[k];
+                let i = e.iter().position(|&n| n == node).unwrap_or(0);
+                let s = s_eq[k];
+                let g = grads[i];
+                let q = if c == 0 {
+                    s[0] * g[0] + s[2] * g[1]
+                } else {
+                    s[2] * g[0] + s[1] * g[1]
+                };
+                let mut rhs = area * q - f[c] * area / 3.0;
+                for &id in &elem_sides[k] {
+                    let sd = &sides[id];
+                    let Some(end) = sd.ends.iter().position(|&n| n == node) else {
+                        continue;
+                    };
+                    let eta = sign(sd, k);
+                    match cols.iter().position(|&x| x == id) {
+                        Some(col) => a[r * nc + col] = eta,
+                        None => rhs -= eta * proj[id][end][c],
+                    }
+                }
+                y[r] = rhs;
+            }
+            if nc == 0 {
+                continue;
+            }
+            // Closest to the mean of the two elements' own tractions:
+            // b = b̄ + W⁻¹ Aᵀ z with A W⁻¹ Aᵀ z = y − A b̄; the deviations
+            // weighed by W = 1 / |Γ|, the traction's mean square along the
+            // side (b scales with |Γ|).
+            bbar.clear();
+            bbar.extend(cols.iter().map(|&id| {
+                let sd = &sides[id];
+                let n = sd.normal;
+                let t = |s: [f64; 3]| {
+                    if c == 0 {
+                        s[0] * n[0] + s[2] * n[1]
+                    } else {
+                        s[2] * n[0] + s[1] * n[1]
+                    }
+                };
+                let other = sd.ends[0] + sd.ends[1] - node;
+                sd.len * (2.0 * t(smooth[node]) + t(smooth[other])) / 6.0
+            }));
+            for r in 0..nr {
+                y[r] -= (0..nc).map(|j| a[r * nc + j] * bbar[j]).sum::<f64>();
+            }
+            if !same {
+                wt.clear();
+                wt.extend(cols.iter().map(|&id| sides[id].len));
+                m.clear();
+                m.resize(nr * nr, 0.0);
+                for r in 0..nr {
+                    for q in 0..=r {
+                        let v: f64 = (0..nc).map(|j| a[r * nc + j] * wt[j] * a[q * nc + j]).sum();
+                        m[r * nr + q] = v;
+                        m[q * nr + r] = v;
+                    }
+                }
+                factor_psd(&mut m, nr, &mut skip);
+            }
+            solve_factored(&m, &skip, &mut y, nr);
+            for (j, &id) in cols.iter().enumerate() {
+                let end = sides[id].ends.iter().position(|&n| n == node).unwrap_or(0);
+                proj[id][end][c] = bbar[j] + wt[j] * (0..nr).map(|r| a[r * nc + j] * y[r]).sum::<f64>();
+            }
+            std::mem::swap(&mut last, &mut cols);
+        }
+    }
+    // Each element's admissible stress against σ(u_cmp).
+    let compliance = inverse3(inp.d);
+    let mut indicators = vec![0.0; ne];
+    let mut closure = 0.0_f64;
+    for (k, (e, grads, _)) in geo.iter().enumerate() {
+        let p = [inp.nodes[e[0]], inp.nodes[e[1]], inp.nodes[e[2]]];
+        let centroid = [(p[0][0] + p[1][0] + p[2][0]) / 3.0, (p[0][1] + p[1][1] + p[2][1]) / 3.0];
+        // The body force's particular stress, div σ_p = −f.
+        let particular = |x: [f64; 2]| [-f[0] * (x[0] - centroid[0]), -f[1] * (x[1] - centroid[1]), 0.0];
+        let mut t = [[[0.0; 2]; 2]; 3];
+        for j in 0..3 {
+            let sd = &sides[elem_sides[k][j]];
+            let eta = sign(sd, k);
+            let (a, b) = (e[j], e[(j + 1) % 3]);
+            let l = sd.len;
+            // Linear traction from its two end moments, at the side's ends.
+            let pr = &proj[elem_sides[k][j]];
+            let at_end =
+                |end: usize| -> [f64; 2] { std::array::from_fn(|c| 2.0 / l * (2.0 * pr[end][c] - pr[1 - end][c])) };
+            let (t0, t1) = (at_end(0), at_end(1));
+            let (ta, tb) = if sd.ends[0] == a { (t0, t1) } else { (t1, t0) };
+            debug_assert!(sd.ends.contains(&b));
+            let n = [(p[(j + 1) % 3][1] - p[j][1]) / l, -(p[(j + 1) % 3][0] - p[j][0]) / l];
+            let sp = |x: [f64; 2]| {
+                let s = particular(x);
+                [s[0] * n[0] + s[2] * n[1], s[2] * n[0] + s[1] * n[1]]
+            };
+            let (pa, pb) = (sp(p[j]), sp(p[(j + 1) % 3]));
+            t[j] = [
+                [eta * ta[0] - pa[0], eta * ta[1] - pa[1]],
+                [eta * tb[0] - pb[0], eta * tb[1] - pb[1]],
+            ];
+        }
+        let sub = airy::stress(&p, &t)?;
+        closure = closure.max(sub.closure);
+        let sh = stress(&inp.d, grads, *e, inp.u_cmp);
+        let mut sum = 0.0;
+        for j in 0..3 {
+            for q in 0..3 {
+                let x = sub.points[j][q];
+                let sp = particular(x);
+                let diff: [f64; 3] = std::array::from_fn(|r| sub.at[j][q][r] + sp[r] - sh[r]);
+                let w: f64 = (0..3)
+                    .map(|r| diff[r] * (0..3).map(|c| compliance[r][c] * diff[c]).sum::<f64>())
+                    .sum();
+                sum += sub.area[j] / 3.0 * w;
+            }
+        }
+        indicators[k] = sum;
+    }
+    Some(Bound { indicators, closure })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A square of eight triangles around a middle node, in both orientations.
+    fn square() -> (Vec<[f64; 2]>, Vec<[usize; 3]>) {
+        let nodes = vec![
+            [0.0, 0.0],
+            [0.5, 0.0],
+            [1.0, 0.0],
+            [0.0, 0.5],
+            [0.45, 0.55],
+            [1.0, 0.5],
+            [0.0, 1.0],
+            [0.5, 1.0],
+            [1.0, 1.0],
+        ];
+        let elems = vec![
+            [0, 1, 4],
+            [0, 3, 4],
+            [1, 2, 5],
+            [1, 4, 5],
+            [3, 4, 7],
+            [3, 7, 6],
+            [4, 5, 8],
+            [4, 8, 7],
+        ];
+        (nodes, elems)
+    }
+
+    fn plane_strain(e: f64, nu: f64) -> [[f64; 3]; 3] {
+        let c = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
+        [
+            [c * (1.0 - nu), c * nu, 0.0],
+            [c * nu, c * (1.0 - nu), 0.0],
+            [0.0, 0.0, c * (1.0 - 2.0 * nu) / 2.0],
+        ]
+    }
+
+    /// The patch test: a linear displacement is the exact answer under the
+    /// uniform tractions it makes, so the admissible stress is its own and
+    /// the bound vanishes (to round-off), whether a side's displacement is
+    /// prescribed or its traction given.
+    #[test]
+    fn a_uniform_state_has_a_zero_bound() {
+        let (nodes, elems) = square();
+        let d = plane_strain(2.0, 0.3);
+        let grad = [[1e-3, 4e-4], [-2e-4, -7e-4]];
+        let u: Vec<[f64; 2]> = nodes
+            .iter()
+            .map(|x| {
+                [
+                    grad[0][0] * x[0] + grad[0][1] * x[1],
+                    grad[1][0] * x[0] + grad[1][1] * x[1],
+                ]
+            })
+            .collect();
+        let eps = [grad[0][0], grad[1][1], grad[0][1] + grad[1][0]];
+        let s: [f64; 3] = std::array::from_fn(|r| (0..3).map(|c| d[r][c] * eps[c]).sum());
+        let boundary = [[0, 1], [1, 2], [2, 5], [5, 8], [8, 7], [7, 6], [6, 3], [3, 0]];
+        for held in [false, true] {
+            let mut given = HashMap::new();
+            for [a, b] in boundary {
+                let (pa, pb) = (nodes[a], nodes[b]);
+                let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+                // Outward normal of the counter-clockwise boundary walk above.
+                let n = [(pb[1] - pa[1]) / l, -(pb[0] - pa[0]) / l];
+                let t = [s[0] * n[0] + s[2] * n[1], s[2] * n[0] + s[1] * n[1]];
+                let on_left = pa[0] == 0.0 && pb[0] == 0.0;
+                let traction = if held && on_left {
+                    [None, None]
+                } else {
+                    [Some([t[0], t[0]]), Some([t[1], t[1]])]
+                };
+                given.insert([a.min(b), a.max(b)], Given { ends: [a, b], traction });
+            }
+            let inp = Input {
+                nodes: &nodes,
+                elems: &elems,
+                u_eq: &u,
+                u_cmp: &u,
+                d,
+                body_force: [0.0, 0.0],
+                given: &given,
+            };
+            let b = bound(&inp).expect("mesh");
+            let energy: f64 = 0.5 * (s[0] * eps[0] + s[1] * eps[1] + s[2] * eps[2]);
+            let total: f64 = b.indicators.iter().sum();
+            assert!(total < 1e-24 * energy.max(1.0), "held {held}: {total:e}");
+            assert!(b.closure < 1e-10, "closure {}", b.closure);
+        }
+    }
+}

@@ -1,0 +1,496 @@
+//! A guaranteed upper bound of the energy-norm error (Prager–Synge).
+//!
+//! For linear elasticity with frictionless contact against rigid obstacles,
+//! any admissible displacement v (supports kept, no penetration anywhere on
+//! the contact candidates) and any statically admissible stress τ (symmetric,
+//! div τ + f = 0, τ n equal to the loads where they are given, and on the
+//! candidates τ n = −p* ν with p* ≥ 0 along the row direction ν) bound the
+//! error of the exact u by
+//!
+//! ```text
+//! ‖u − v‖²_E ≤ ‖C ε(v) − τ‖²_C⁻¹ + 2 ∫_Γc p* (g − v · ν) ds,
+//! ```
+//!
+//! from the duality of the potential and the complementary energy (the
+//! Prager–Synge hypercircle, with the contact term of the Signorini problem;
+//! Weiss & Wohlmuth, SIAM J. Numer. Anal. 47, 2009 use the same split). It
+//! needs no constant: its effectivity is ≥ 1 by construction.
+//!
+//! The answer u_h is made admissible by a correction w where a candidate side
+//! penetrates between its nodes (v = u_h + w; the bound of u − u_h adds
+//! ‖w‖_E). τ is the equilibrated stress of `equilibrate` for the answer with
+//! its nodal contact forces replaced by a pressure p* ≥ 0, linear on each
+//! side through the nodal pressures λ_i / w_i; the answer's change under
+//! that replacement is one solve with the factor at hand.
+
+pub mod airy;
+pub mod equilibrate;
+
+use std::collections::HashMap;
+
+use faer::sparse::SparseColMat;
+use faer::Mat;
+
+use crate::contact::gap::closest;
+use crate::contact::rows::punch_coefficients;
+use crate::fem::assembly::{DofMap, FIXED};
+use crate::fem::constitutive::Constitutive;
+use crate::fem::loads::clip;
+use crate::linalg::Cholesky;
+use crate::mesh::{boundary::edge_normal, Mesh2d, Order};
+use crate::model::Model;
+use crate::scene::{Analysis, Control, GapMeasure, Scene, Target};
+use equilibrate::Given;
+
+/// The bound of one answer, nondimensional.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EnergyBound {
+    /// Upper bound of ‖u − u_h‖_E.
+    pub absolute: f64,
+    /// ‖u_h‖_E.
+    pub norm: f64,
+    /// The admissibility correction's share ‖w‖_E (0 when u_h penetrates
+    /// nowhere).
+    pub correction: f64,
+    /// 2 ∫ p* (g − v · ν): the contact term.
+    pub contact: f64,
+    /// ‖u_eq − u_h‖_E: how far the answer moves when its nodal contact
+    /// forces become p*'s loads.
+    pub shift: f64,
+    /// The potential energy J(u_h) = ½ a(u_h, u_h) − ℓ(u_h), for checks:
+    /// 2 (J(u_h) − J(u)) ≥ ‖u − u_h‖²_E when u_h is admissible.
+    pub potential: f64,
+}
+
+impl EnergyBound {
+    /// Relative to a lower bound of the exact answer's energy norm,
+    /// ‖u‖_E ≥ ‖u_h‖_E − bound, so that it bounds ‖u − u_h‖_E / ‖u‖_E too.
+    pub fn relative(&self) -> f64 {
+        let below = self.norm - self.absolute;
+        if below > 0.0 {
+            self.absolute / below
+        } else {
+            f64::INFINITY
+        }
+    }
+}
+
+/// Sample points per candidate side where the admissibility of u_h is
+/// checked (the gap is a smooth function of the point on each side).
+const SAMPLES: usize = 9;
+
+/// Why a scene has no bound (yet), or None when it is one the bound covers.
+pub fn unsupported(scene: &Scene, model: &Model, factor: Option<&Cholesky>) -> Option<&'static str> {
+    if scene.analysis == Analysis::Axisymmetric {
+        return Some("the equilibrated stress is built for plane sections, not axisymmetry");
+    }
+    if model.meshes.iter().any(|m| m.order != Order::T3) {
+        return Some("the equilibrated stress is built for linear triangles (T3) only");
+    }
+    if scene.has_friction() {
+        return Some("friction is not in the bound's complementary energy");
+    }
+    if scene.pairs.iter().any(|p| !matches!(p.target, Target::Obstacle(_))) {
+        return Some("only contact with rigid obstacles is in the bound (not two bodies or foundations)");
+    }
+    if scene.bodies.iter().any(|b| !b.point_loads.is_empty()) {
+        return Some("a point load has an unbounded energy, so its error's energy is too");
+    }
+    if scene.settings.gap != GapMeasure::SignedDistance {
+        return Some("the bound is written for the signed-distance gap");
+    }
+    if !model.free.motions.is_empty() || !model.dofs.rigid.is_empty() {
+        return Some("a punch or body moved by the contact alone is not in the bound yet");
+    }
+    if factor.is_none() {
+        return Some("the bound needs the stiffness factor of the condensed route");
+    }
+    None
+}
+
+/// Nodal displacements of every body from the free DOFs and the prescribed
+/// values.
+fn displacements(meshes: &[Mesh2d], dofs: &DofMap, u: &[f64]) -> Vec<Vec<[f64; 2]>> {
+    let value = |d: usize| match dofs.free[d] {
+        FIXED => dofs.prescribed[d],
+        k => u[k],
+    };
+    meshes
+        .iter()
+        .enumerate()
+        .map(|(b, m)| {
+            (0..m.nodes.len())
+                .map(|n| [value(dofs.dof(b, n, 0)), value(dofs.dof(b, n, 1))])
+                .collect()
+        })
+        .collect()
+}
+
+/// y = K x for the lower triangle of a symmetric K.
+fn sym_matvec(k: &SparseColMat<usize, f64>, x: &[f64]) -> Vec<f64> {
+    let mut y = vec![0.0; x.len()];
+    let (cp, ri, v) = (k.symbolic().col_ptr(), k.symbolic().row_idx(), k.val());
+    for j in 0..k.ncols() {
+        for p in cp[j]..cp[j + 1] {
+            let i = ri[p];
+            y[i] += v[p] * x[j];
+            if i != j {
+                y[j] += v[p] * x[i];
+            }
+        }
+    }
+    y
+}
+
+/// A pair's candidate side: its ends and their contact traction −p ν.
+struct ContactSide {
+    body: usize,
+    obstacle: usize,
+    ends: [usize; 2],
+    pressure: [f64; 2],
+    dir: [[f64; 2]; 2],
+}
+
+/// The bound of a solved frictionless scene on rigid obstacles (see
+/// `unsupported` for what it does not cover): `u` on the free DOFs,
+/// `lambda` the candidates' forces.
+pub fn bound(
+    scene: &Scene,
+    model: &Model,
+    k: &SparseColMat<usize, f64>,
+    factor: &Cholesky,
+    u: &[f64],
+    lambda: &[f64],
+) -> Result<EnergyBound, &'static str> {
+    let (meshes, dofs) = (&model.meshes, &model.dofs);
+    let u_h = displacements(meshes, dofs, u);
+    let mut given: Vec<HashMap<[usize; 2], Given>> = vec![HashMap::new(); meshes.len()];
+    let key = |a: usize, b: usize| [a.min(b), a.max(b)];
+    // Loads first, supports last (a held component's traction is sought
+    // whatever else acts on the side).
+    for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
+        for t in &body.tractions {
+            let (edges, vector, pressure, range) = match t {
+                crate::scene::Traction::Vector { edges, t, x_range } => (edges, Some(*t), 0.0, *x_range),
+                crate::scene::Traction::Pressure { edges, p, x_range } => (edges, None, *p, *x_range),
+            };
+            for e in mesh.edge_sets.get(edges).map(|v| v.as_slice()).unwrap_or(&[]) {
+                match clip(mesh, e, range) {
+                    None => continue,
+                    Some((s0, s1)) if s0 > -1.0 || s1 < 1.0 => {
+                        return Err("a traction ends inside an element side, where the bound's traction is linear")
+                    }
+                    Some(_) => {}
+                }
+                let (n, _) = edge_normal(mesh, e);
+                let tr = vector.unwrap_or([-pressure * n[0], -pressure * n[1]]);
+                let g = given[b].entry(key(e.a, e.b)).or_insert(Given {
+                    ends: [e.a, e.b],
+                    traction: [Some([0.0; 2]); 2],
+                });
+                for (c, tc) in tr.iter().enumerate() {
+                    if let Some(v) = g.traction[c].as_mut() {
+                        v[0] += tc;
+                        v[1] += tc;
+                    }
+                }
+            }
+        }
+    }
+    // The contact pressure p* ≥ 0: nodal pressures λ_i / w_i along each
+    // row's direction, linear on each side of the pair's edge set.
+    let mut nodal: HashMap<(usize, usize, usize), (f64, [f64; 2])> = HashMap::new();
+    for (c, l) in model.cons.candidates.iter().zip(lambda) {
+        let p = if c.weight > 0.0 { l.max(0.0) / c.weight } else { 0.0 };
+        nodal.insert((c.pair, c.body, c.node), (p, c.normal));
+    }
+    let mut sides = Vec::new();
+    for (p, pair) in scene.pairs.iter().enumerate() {
+        let Target::Obstacle(o) = pair.target else {
+            return Err("only contact with rigid obstacles is in the bound (not two bodies or foundations)");
+        };
+        let mesh = &meshes[pair.body];
+        for e in mesh.edge_sets.get(&pair.edges).map(|v| v.as_slice()).unwrap_or(&[]) {
+            let at = |n: usize| nodal.get(&(p, pair.body, n)).copied();
+            let dir_of = |n: usize| {
+                at(n)
+                    .map(|x| x.1)
+                    .or_else(|| closest(&scene.obstacles[o].shape, mesh.nodes[n]).map(|c| [-c.normal[0], -c.normal[1]]))
+            };
+            let (Some(da), Some(db)) = (dir_of(e.a), dir_of(e.b)) else {
+                continue;
+            };
+            let side = ContactSide {
+                body: pair.body,
+                obstacle: o,
+                ends: [e.a, e.b],
+                pressure: [at(e.a).map_or(0.0, |x| x.0), at(e.b).map_or(0.0, |x| x.0)],
+                dir: [da, db],
+            };
+            let g = given[pair.body].entry(key(e.a, e.b)).or_insert(Given {
+                ends: [e.a, e.b],
+                traction: [Some([0.0; 2]); 2],
+            });
+            let flip = g.ends != side.ends;
+            for c in 0..2 {
+                if let Some(v) = g.traction[c].as_mut() {
+                    let (ta, tb) = (-side.pressure[0] * da[c], -side.pressure[1] * db[c]);
+                    let (x, y) = if flip { (tb, ta) } else { (ta, tb) };
+                    v[0] += x;
+                    v[1] += y;
+                }
+            }
+            sides.push(side);
+        }
+    }
+    for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
+        for s in &body.supports {
+            for e in mesh.edge_sets.get(&s.edges).map(|v| v.as_slice()).unwrap_or(&[]) {
+                let g = given[b].entry(key(e.a, e.b)).or_insert(Given {
+                    ends: [e.a, e.b],
+                    traction: [Some([0.0; 2]); 2],
+                });
+                if s.ux.is_some() {
+                    g.traction[0] = None;
+                }
+                if s.uy.is_some() {
+                    g.traction[1] = None;
+                }
+            }
+        }
+    }
+    // u_eq: the answer with its nodal contact forces replaced by p*'s
+    // consistent loads, K w = f(p*) − f_c (one solve with the factor).
+    let mut d = vec![0.0; dofs.n_free];
+    let mut add = |b: usize, n: usize, c: usize, v: f64| {
+        let i = dofs.free[dofs.dof(b, n, c)];
+        if i != FIXED {
+            d[i] += v;
+        }
+    };
+    for s in &sides {
+        let mesh = &meshes[s.body];
+        let (pa, pb) = (mesh.nodes[s.ends[0]], mesh.nodes[s.ends[1]]);
+        let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+        for c in 0..2 {
+            let (ta, tb) = (-s.pressure[0] * s.dir[0][c], -s.pressure[1] * s.dir[1][c]);
+            add(s.body, s.ends[0], c, l * (2.0 * ta + tb) / 6.0);
+            add(s.body, s.ends[1], c, l * (ta + 2.0 * tb) / 6.0);
+        }
+    }
+    for (cand, l) in model.cons.candidates.iter().zip(lambda) {
+        for t in &cand.terms {
+            for c in 0..2 {
+                // The row's force on the node is −λ coef.
+                add(t.body, t.node, c, l * t.coef[c]);
+            }
+        }
+    }
+    let mut rhs = Mat::<f64>::from_fn(dofs.n_free, 1, |i, _| d[i]);
+    factor.solve_in_place(rhs.as_mut());
+    let w2: Vec<f64> = (0..dofs.n_free).map(|i| rhs[(i, 0)]).collect();
+    let shift = sym_matvec(k, &w2)
+        .iter()
+        .zip(&w2)
+        .map(|(a, b)| a * b)
+        .sum::<f64>()
+        .max(0.0)
+        .sqrt();
+    let moved = |b: usize, n: usize, c: usize, w: &Mat<f64>| match dofs.free[dofs.dof(b, n, c)] {
+        FIXED => 0.0,
+        i => w[(i, 0)],
+    };
+    let u_eq: Vec<Vec<[f64; 2]>> = u_h
+        .iter()
+        .enumerate()
+        .map(|(b, nodes)| {
+            (0..nodes.len())
+                .map(|n| [nodes[n][0] + moved(b, n, 0, &rhs), nodes[n][1] + moved(b, n, 1, &rhs)])
+                .collect()
+        })
+        .collect();
+    // Admissibility: v · ν ≤ g along every candidate side, not only at its
+    // nodes; where u_h passes the obstacle, v = u_h + w moves the side's
+    // nodes back along their rows.
+    let gap_at = |s: &ContactSide, x: [f64; 2]| -> Option<(f64, [f64; 2])> {
+        let obstacle = &scene.obstacles[s.obstacle];
+        let c = closest(&obstacle.shape, x)?;
+        let dir = [-c.normal[0], -c.normal[1]];
+        let mut g = c.distance;
+        if let Some(pu) = &obstacle.punch {
+            let co = punch_coefficients(c.point, pu.reference, dir);
+            for (k, ctl) in pu.controls.iter().enumerate() {
+                if let Control::Displacement(v) = ctl {
+                    g += co[k] * v;
+                }
+            }
+        }
+        Some((g, dir))
+    };
+    let along = |s: &ContactSide, field: &[[f64; 2]], t: f64| -> ([f64; 2], [f64; 2]) {
+        let mesh = &meshes[s.body];
+        let (a, b) = (s.ends[0], s.ends[1]);
+        let x = [
+            (1.0 - t) * mesh.nodes[a][0] + t * mesh.nodes[b][0],
+            (1.0 - t) * mesh.nodes[a][1] + t * mesh.nodes[b][1],
+        ];
+        let v = [
+            (1.0 - t) * field[a][0] + t * field[b][0],
+            (1.0 - t) * field[a][1] + t * field[b][1],
+        ];
+        (x, v)
+    };
+    let mut push: HashMap<(usize, usize), f64> = HashMap::new();
+    for s in &sides {
+        let mut worst = 0.0_f64;
+        let mut cos = 1.0_f64;
+        for q in 0..SAMPLES {
+            let t = q as f64 / (SAMPLES - 1) as f64;
+            let (x, v) = along(s, &u_h[s.body], t);
+            let Some((g, dir)) = gap_at(s, x) else {
+                continue;
+            };
+            worst = worst.max(v[0] * dir[0] + v[1] * dir[1] - g);
+            for dn in &s.dir {
+                cos = cos.min(dn[0] * dir[0] + dn[1] * dir[1]);
+            }
+        }
+        if worst > 0.0 {
+            if cos < 0.5 {
+                return Err("a candidate side turns too far from its rows' direction to be made admissible");
+            }
+            for &n in &s.ends {
+                let e = push.entry((s.body, n)).or_insert(0.0);
+                *e = e.max(worst / cos);
+            }
+        }
+    }
+    let mut v = u_h.clone();
+    let mut w = vec![0.0; dofs.n_free];
+    let dir_at: HashMap<(usize, usize), [f64; 2]> = sides
+        .iter()
+        .flat_map(|s| [((s.body, s.ends[0]), s.dir[0]), ((s.body, s.ends[1]), s.dir[1])])
+        .collect();
+    for (&(b, n), &delta) in &push {
+        let dn = dir_at[&(b, n)];
+        for c in 0..2 {
+            let step = -delta * dn[c];
+            match dofs.free[dofs.dof(b, n, c)] {
+                FIXED if step.abs() > 1e-12 * delta.max(f64::MIN_POSITIVE) && dn[c].abs() > 1e-9 => {
+                    return Err("a node whose displacement is prescribed passes the obstacle between its rows")
+                }
+                FIXED => {}
+                i => {
+                    w[i] = step;
+                    v[b][n][c] += step;
+                }
+            }
+        }
+    }
+    let correction = if push.is_empty() {
+        0.0
+    } else {
+        let kw = sym_matvec(k, &w);
+        w.iter().zip(&kw).map(|(a, b)| a * b).sum::<f64>().max(0.0).sqrt()
+    };
+    // 2 ∫ p* (g − v · ν), Gauss–Legendre with 4 points on each side.
+    const GAUSS4: [(f64, f64); 4] = [
+        (0.069_431_844_202_973_7, 0.173_927_422_568_726_9),
+        (0.330_009_478_207_571_9, 0.326_072_577_431_273_1),
+        (0.669_990_521_792_428_1, 0.326_072_577_431_273_1),
+        (0.930_568_155_797_026_3, 0.173_927_422_568_726_9),
+    ];
+    let mut contact = 0.0;
+    for s in &sides {
+        if s.pressure == [0.0, 0.0] {
+            continue;
+        }
+        let mesh = &meshes[s.body];
+        let (pa, pb) = (mesh.nodes[s.ends[0]], mesh.nodes[s.ends[1]]);
+        let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+        for (t, wq) in GAUSS4 {
+            let (x, vv) = along(s, &v[s.body], t);
+            let Some((g, dir)) = gap_at(s, x) else {
+                continue;
+            };
+            let p = (1.0 - t) * s.pressure[0] + t * s.pressure[1];
+            contact += 2.0 * wq * l * p * (g - vv[0] * dir[0] - vv[1] * dir[1]).max(0.0);
+        }
+    }
+    // The equilibrated stress, body by body.
+    let mut squared = 0.0;
+    let mut norm2 = 0.0;
+    for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
+        let law = crate::fem::assembly::law(body, scene.analysis);
+        let dm: [[f64; 3]; 3] = std::array::from_fn(|r| {
+            std::array::from_fn(|c| {
+                let mut e = [0.0; 3];
+                e[c] = 1.0;
+                <crate::fem::constitutive::LinearIsotropic as Constitutive<3>>::stress(&law, &e)[r]
+            })
+        });
+        let elems: Vec<[usize; 3]> = (0..mesh.n_elems())
+            .map(|e| {
+                let c = mesh.elem(e);
+                [c[0], c[1], c[2]]
+            })
+            .collect();
+        let inp = equilibrate::Input {
+            nodes: &mesh.nodes,
+            elems: &elems,
+            u_eq: &u_eq[b],
+            u_cmp: &v[b],
+            d: dm,
+            body_force: body.body_force,
+            given: &given[b],
+        };
+        let out = equilibrate::bound(&inp).ok_or("a degenerate element")?;
+        squared += out.indicators.iter().sum::<f64>();
+        norm2 += energy_norm2(&mesh.nodes, &elems, &u_h[b], &dm);
+    }
+    let work: f64 = (0..dofs.free.len())
+        .map(|g| {
+            let (b, rest) = body_of(dofs, g);
+            model.external[g] * u_h[b][rest / 2][rest % 2]
+        })
+        .sum();
+    Ok(EnergyBound {
+        absolute: (squared + contact).sqrt() + correction,
+        norm: norm2.sqrt(),
+        correction,
+        contact,
+        potential: 0.5 * norm2 - work,
+        shift,
+    })
+}
+
+/// The body of global DOF `g` and the DOF's index within the body.
+fn body_of(dofs: &DofMap, g: usize) -> (usize, usize) {
+    let node = g / 2;
+    let b = dofs.node_offset.iter().rposition(|&o| o <= node).unwrap_or(0);
+    (b, g - 2 * dofs.node_offset[b])
+}
+
+/// ‖u‖²_E = Σ_K |K| ε_Kᵀ D ε_K.
+fn energy_norm2(nodes: &[[f64; 2]], elems: &[[usize; 3]], u: &[[f64; 2]], d: &[[f64; 3]; 3]) -> f64 {
+    elems
+        .iter()
+        .map(|&[a, b, c]| {
+            let (pa, pb, pc) = (nodes[a], nodes[b], nodes[c]);
+            let det = (pb[0] - pa[0]) * (pc[1] - pa[1]) - (pc[0] - pa[0]) * (pb[1] - pa[1]);
+            let g = [
+                [(pb[1] - pc[1]) / det, (pc[0] - pb[0]) / det],
+                [(pc[1] - pa[1]) / det, (pa[0] - pc[0]) / det],
+                [(pa[1] - pb[1]) / det, (pb[0] - pa[0]) / det],
+            ];
+            let mut eps = [0.0; 3];
+            for (i, &n) in [a, b, c].iter().enumerate() {
+                eps[0] += g[i][0] * u[n][0];
+                eps[1] += g[i][1] * u[n][1];
+                eps[2] += g[i][1] * u[n][0] + g[i][0] * u[n][1];
+            }
+            let s: [f64; 3] = std::array::from_fn(|r| (0..3).map(|c| d[r][c] * eps[c]).sum());
+            0.5 * det.abs() * (s[0] * eps[0] + s[1] * eps[1] + s[2] * eps[2])
+        })
+        .sum()
+}

@@ -1,0 +1,71 @@
+//! The energy bound against the truth: each scene on a mesh and on that
+//! mesh split in four once and twice (nested, so the potential energy falls
+//! monotonically), the exact potential extrapolated from the three, and
+//! ‖u − u_h‖_E ≤ √(2 (J(u_h) − J(u))) compared with the bound.
+//!
+//! `cargo run --release -p contact-verify --example energy_bound`
+
+use contact_core::mesh::uniform::refine_uniform;
+use contact_core::{Limits, Scene};
+use contact_proto::SolveRequest;
+use serde_json::Value;
+
+fn main() {
+    let scenes: Vec<(&str, Value)> = vec![
+        (
+            "hertz_block",
+            serde_json::from_str(include_str!("../../../proto/examples/signorini_hertz_cylinder.json")).unwrap(),
+        ),
+        ("disk_on_flat", contact_verify::convergence::disk_request(0.01, "t3")),
+        (
+            "gmsh_hertz",
+            serde_json::from_str(include_str!(
+                "../../../proto/examples/signorini_hertz_cylinder_gmsh.json"
+            ))
+            .unwrap(),
+        ),
+    ];
+    let scale: Vec<f64> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();
+    let factor = scale.first().copied().unwrap_or(1.0);
+    println!("scene          level    dofs   bound_rel  true_rel(J)  effectivity  correction  contact  t_solve");
+    for (name, base) in scenes {
+        let base = if factor != 1.0 {
+            contact_verify::effectivity::scaled(&base, factor, "t3")
+        } else {
+            base
+        };
+        let parsed: SolveRequest = serde_json::from_value(base.clone()).expect("request");
+        let scene = Scene::try_new(&parsed, &Limits::default()).expect("scene");
+        let mut meshes = contact_core::meshing::meshes(&scene).expect("meshes");
+        let mut levels = Vec::new();
+        for _ in 0..3 {
+            let req = contact_verify::run::with_meshes(&base, &meshes, scene.scales.length);
+            let t = std::time::Instant::now();
+            let r = contact_verify::run::solve(&req, &Limits::default()).expect("solve");
+            let dt = t.elapsed().as_secs_f64();
+            levels.push((r.size.dofs, r.energy, dt));
+            meshes = meshes.iter().map(refine_uniform).collect();
+        }
+        let j: Vec<f64> = levels.iter().map(|l| l.1.map_or(f64::NAN, |e| e.potential)).collect();
+        let ratio = (j[0] - j[1]) / (j[1] - j[2]);
+        let j_inf = j[2] - (j[1] - j[2]) / (ratio - 1.0);
+        for (lv, (dofs, e, dt)) in levels.iter().enumerate().take(2) {
+            let Some(e) = e else {
+                println!("{name:14} {lv:5} {dofs:7}   no bound");
+                continue;
+            };
+            let truth = (2.0 * (j[lv] - j_inf)).max(0.0).sqrt();
+            let true_rel = truth / e.norm;
+            println!(
+                "{name:14} {lv:5} {dofs:7}   {:9.4e}  {:9.4e}    {:8.3}     {:8.2e}  {:8.2e}  {dt:.3}  (J rate {:.2})",
+                e.absolute / e.norm,
+                true_rel,
+                e.absolute / truth,
+                e.correction / e.norm,
+                e.contact.sqrt() / e.norm,
+                ratio
+            );
+            println!("               shift {:8.2e}", e.shift / e.norm);
+        }
+    }
+}
