@@ -1,0 +1,252 @@
+//! Frictionless Signorini contact of a body of tetrahedra with a rigid plane
+//! (`contact_core::solid::signorini`), against truths that need no reference:
+//!
+//! - the contact patch test: a box resting on the plane, uniform pressure p
+//!   on its top, rollers on its four sides (the box is held along the plane's
+//!   normal by contact alone, a free motion of the mixed LCP): the exact
+//!   solution is oedometric, in T4's space, so every node's contact pressure
+//!   λ_i / a_i is p and Σ λ_i is p A;
+//! - complementarity and no penetration, node by node and in the KKT
+//!   certificate;
+//! - an off-centre load on a block that may tilt: part of the base lifts
+//!   off, and the contact forces balance the load's force and its moment
+//!   about the base line the supports cannot load.
+//!
+//! Tolerances: where the discrete solution is exact (the patch test), 1e-10
+//! is the round-off of the factorization and of the dense W, ε · cond, with
+//! cond(K) ~ 1e4 on these graded meshes; equilibrium of the contact forces
+//! is an equation the mixed LCP solves (Dᵀλ = Rᵀf) and holds to 1e-12 of
+//! the load, the round-off of its saddle-point solve; the certificate's
+//! entries are relative round-off residuals, 1e-10 leaving two decades of
+//! slack over the measured 1e-13 to 1e-12 (printed).
+
+use contact_core::error::{CoreError, InvalidKind};
+use contact_core::mesh::generate::Grading;
+use contact_core::mesh3d::generate::box_mesh;
+use contact_core::mesh3d::{Mesh3d, Order};
+use contact_core::scene::Settings;
+use contact_core::solid::obstacle::{rows, Plane};
+use contact_core::solid::signorini::{self, Contact};
+use contact_core::solid::{FaceLoad, SolidBody, Support};
+
+const E: f64 = 2.0;
+const NU: f64 = 0.3;
+const P: f64 = 0.01;
+
+fn roller(faces: &str, c: usize) -> Support {
+    let mut fix = [None; 3];
+    fix[c] = Some(0.0);
+    Support {
+        faces: faces.into(),
+        fix,
+    }
+}
+
+fn graded(order: Order) -> Mesh3d {
+    let g = Grading {
+        h_min: 0.04,
+        ratio: 1.5,
+        extent: 0.05,
+    };
+    // Graded toward an inner point, so spacings change on both sides of it.
+    box_mesh([0.0; 3], [1.0; 3], 0.25, Some(([0.3, 0.6, 0.0], g)), order)
+}
+
+fn on_plane_body(mesh: &Mesh3d) -> SolidBody<'_> {
+    SolidBody {
+        mesh,
+        youngs_modulus: E,
+        poisson_ratio: NU,
+        supports: vec![
+            roller("x_min", 0),
+            roller("x_max", 0),
+            roller("y_min", 1),
+            roller("y_max", 1),
+        ],
+        loads: vec![FaceLoad::Pressure {
+            faces: "z_max".into(),
+            p: P,
+        }],
+        body_force: [0.0; 3],
+    }
+}
+
+/// Node by node: λ ≥ 0, gap ≥ 0 and λ gap = 0 to round-off of the
+/// displacement (`tol` of the largest |u|), and the certificate below 1e-10.
+fn assert_kkt(c: &Contact, tol: f64) {
+    let umax = c.u.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let lmax = c.lambda.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    for (i, (&l, &g)) in c.lambda.iter().zip(&c.gap).enumerate() {
+        assert!(l >= 0.0, "row {i}: λ = {l}");
+        assert!(g >= -tol * umax, "row {i}: penetration {g}");
+        assert!((l * g).abs() <= tol * lmax * umax, "row {i}: λ g = {}", l * g);
+    }
+    println!("certificate {:?}", c.certificate);
+    assert!(c.converged);
+    assert!(c.certificate.worst() < 1e-10, "{:?}", c.certificate);
+}
+
+#[test]
+fn a_box_on_a_plane_under_uniform_pressure_presses_it_uniformly() {
+    let mesh = graded(Order::T4);
+    let body = on_plane_body(&mesh);
+    // The plane touching the base, then 1e-3 below it: the box must first
+    // move down by the gap (its free motion), then press as before.
+    for drop in [0.0, 1e-3] {
+        let plane = Plane::try_new([0.0, 0.0, -drop], [0.0, 0.0, 1.0]).unwrap();
+        let r = rows(&body, "z_min", plane).unwrap();
+        let c = signorini::solve(&body, &r, &Settings::default()).unwrap();
+        let worst = c.pressure.iter().fold(0.0f64, |a, p| a.max((p - P).abs())) / P;
+        let total: f64 = c.lambda.iter().sum();
+        println!(
+            "drop {drop}: {} rows, {} DOFs, pressure error {worst:.1e}, Σλ error {:.1e}, {} iterations, {} refinements",
+            r.len(),
+            c.dofs.n_free,
+            (total - P).abs() / P,
+            c.iterations,
+            c.refinements
+        );
+        assert!(worst < 1e-10, "pressure off p by {worst:e}");
+        assert!((total - P).abs() < 1e-12 * P, "Σλ = {total}");
+        // The oedometric field, moved down by the gap.
+        let m = E * (1.0 - NU) / ((1.0 + NU) * (1.0 - 2.0 * NU));
+        let umax = P / m;
+        for (n, x) in mesh.nodes.iter().enumerate() {
+            let want = [0.0, 0.0, -drop - P * x[2] / m];
+            for k in 0..3 {
+                assert!(
+                    (c.u[3 * n + k] - want[k]).abs() < 1e-10 * umax,
+                    "node {n}: {:?}",
+                    &c.u[3 * n..3 * n + 3]
+                );
+            }
+        }
+        assert_kkt(&c, 1e-10);
+    }
+}
+
+/// A block [0, 1] × [0, ½] × [0, ½] (half of a block symmetric about y = 0),
+/// pressed on the part x > ¾ of its top. The symmetry plane y = 0 holds u_y;
+/// a peg at the middle of the base's edge (the base faces around
+/// (½, 0, 0)) holds u_x; nothing else: the block may sink and tilt about the
+/// base line x = ½, z = 0, held by the plane alone. With the load's
+/// resultant at x = 7/8, far outside the base's middle third, the part of the
+/// base near x = 0 lifts off.
+#[test]
+fn an_off_centre_load_lifts_part_of_the_base() {
+    let mesh = box_mesh([0.0; 3], [1.0, 0.5, 0.5], 1.0 / 16.0, None, Order::T4);
+    let mut mesh = mesh;
+    let peg_node = mesh
+        .nodes
+        .iter()
+        .position(|x| (x[0] - 0.5).abs() < 1e-12 && x[1] == 0.0 && x[2] == 0.0)
+        .unwrap();
+    let peg: Vec<_> = mesh.face_sets["z_min"]
+        .iter()
+        .filter(|f| f.corners.contains(&peg_node))
+        .copied()
+        .collect();
+    let load: Vec<_> = mesh.face_sets["z_max"]
+        .iter()
+        .filter(|f| f.corners.iter().all(|&n| mesh.nodes[n][0] >= 0.75 - 1e-12))
+        .copied()
+        .collect();
+    mesh.face_sets.insert("peg".into(), peg);
+    mesh.face_sets.insert("load".into(), load);
+    let body = SolidBody {
+        mesh: &mesh,
+        youngs_modulus: E,
+        poisson_ratio: NU,
+        supports: vec![roller("y_min", 1), roller("peg", 0)],
+        loads: vec![FaceLoad::Pressure {
+            faces: "load".into(),
+            p: P,
+        }],
+        body_force: [0.0; 3],
+    };
+    let plane = Plane::try_new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
+    let r = rows(&body, "z_min", plane).unwrap();
+    let c = signorini::solve(&body, &r, &Settings::default()).unwrap();
+    assert_eq!(c.dofs.modes.len(), 2, "free: sinking and tilting");
+    assert_kkt(&c, 1e-10);
+    // Vertical forces and their moment about the base line x = ½, z = 0
+    // (the peg's and the symmetry plane's reactions have neither: they act
+    // along x at z = 0 and along y).
+    let force = P * 0.25 * 0.5;
+    let load_moment = -force * (0.875 - 0.5);
+    let total: f64 = c.lambda.iter().sum();
+    let moment: f64 = r
+        .nodes
+        .iter()
+        .zip(&c.lambda)
+        .map(|(&n, l)| l * (mesh.nodes[n][0] - 0.5))
+        .sum();
+    println!(
+        "Σλ − P = {:.1e} P, moment residual {:.1e} P L, {} iterations",
+        (total - force) / force,
+        (moment + load_moment) / force,
+        c.iterations
+    );
+    assert!((total - force).abs() < 1e-12 * force, "Σλ = {total}, load {force}");
+    assert!(
+        (moment + load_moment).abs() < 1e-12 * force,
+        "moments {moment} and {load_moment}"
+    );
+    // Lifted where the load is not: the rows near x = 0 carry nothing and
+    // open by far more than round-off; those under the load are pressed.
+    let umax = c.u.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let (mut lifted, mut pressed) = (0, 0);
+    for (i, &n) in r.nodes.iter().enumerate() {
+        let x = mesh.nodes[n][0];
+        if x < 0.2 {
+            assert!(
+                c.lambda[i] == 0.0 && c.gap[i] > 1e-3 * umax,
+                "x = {x}: λ {} gap {}",
+                c.lambda[i],
+                c.gap[i]
+            );
+            lifted += 1;
+        }
+        if x > 0.8 {
+            assert!(c.lambda[i] > 0.0, "x = {x}: λ {}", c.lambda[i]);
+            pressed += 1;
+        }
+    }
+    let open = c.lambda.iter().filter(|&&l| l == 0.0).count();
+    println!("{open} of {} rows open", r.len());
+    assert!(lifted > 0 && pressed > 0);
+}
+
+#[test]
+fn t10_contact_is_refused_until_mortar_rows_exist() {
+    let mesh = graded(Order::T10);
+    let body = on_plane_body(&mesh);
+    let plane = Plane::try_new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
+    match rows(&body, "z_min", plane) {
+        Err(CoreError::Invalid {
+            kind: InvalidKind::Request,
+            reason,
+            ..
+        }) => assert!(reason.contains("mortar"), "{reason}"),
+        other => panic!("expected a refusal, got {:?}", other.map(|r| r.len())),
+    }
+}
+
+#[test]
+fn a_motion_the_plane_cannot_resist_is_refused() {
+    // Without the side rollers the box may slide along the plane, which a
+    // frictionless plane cannot stop.
+    let mesh = graded(Order::T4);
+    let mut body = on_plane_body(&mesh);
+    body.supports.truncate(2);
+    let plane = Plane::try_new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
+    let r = rows(&body, "z_min", plane).unwrap();
+    assert!(matches!(
+        signorini::solve(&body, &r, &Settings::default()),
+        Err(CoreError::Invalid {
+            kind: InvalidKind::NoSupport,
+            ..
+        })
+    ));
+    assert!(Plane::try_new([0.0; 3], [0.0; 3]).is_err());
+}
