@@ -76,7 +76,8 @@ fn main() {
         );
         let [a, f, so] = s.seconds;
         println!(
-            "  linear:  assembly {a:.3} s, factorization {f:.3} s, solve {so:.3} s, total {:.3} s, backward error {:.1e}",
+            "  linear:  assembly {a:.3} s, factorization {f:.3} s, solve {so:.3} s, total {:.3} s, backward error \
+             {:.1e}",
             a + f + so,
             s.residual
         );

@@ -113,9 +113,9 @@ fn a_box_on_a_plane_under_uniform_pressure_presses_it_uniformly() {
         let umax = P / m;
         for (n, x) in mesh.nodes.iter().enumerate() {
             let want = [0.0, 0.0, -drop - P * x[2] / m];
-            for k in 0..3 {
+            for (k, w) in want.iter().enumerate() {
                 assert!(
-                    (c.u[3 * n + k] - want[k]).abs() < 1e-10 * umax,
+                    (c.u[3 * n + k] - w).abs() < 1e-10 * umax,
                     "node {n}: {:?}",
                     &c.u[3 * n..3 * n + 3]
                 );

@@ -208,8 +208,8 @@ fn a_traction_is_carried_by_the_supports() {
         }];
         let b = body(&mesh, 0.3, vec![fixed], loads, [0.0; 3]);
         let s = linear::solve(&b).unwrap();
-        for c in 0..3 {
-            let want = -t[c] * 0.5;
+        for (c, tc) in t.iter().enumerate() {
+            let want = -tc * 0.5;
             assert!((reaction(&s.reactions, c) - want).abs() < 1e-12 * 0.01, "{order:?} {c}");
         }
     }

@@ -121,7 +121,7 @@ pub fn dof_map(body: &SolidBody, contact: Option<&[usize]>) -> Result<SolidDofs,
     };
     if !modes.is_empty() {
         let Some(contact) = contact else {
-            let list: Vec<String> = modes.basis.iter().map(|b| describe(b)).collect();
+            let list: Vec<String> = modes.basis.iter().map(describe).collect();
             return Err(CoreError::invalid(
                 InvalidKind::NoSupport,
                 "supports",

@@ -101,8 +101,8 @@ fn free_rows(body: &SolidBody, rows: &PlaneRows, dofs: &SolidDofs) -> FreeRows {
     for (i, &node) in rows.nodes.iter().enumerate() {
         let mut row = Vec::with_capacity(3);
         let mut g = rows.gap[i];
-        for c in 0..3 {
-            let (dof, coef) = (3 * node + c, -n[c]);
+        for (c, nc) in n.iter().enumerate() {
+            let (dof, coef) = (3 * node + c, -nc);
             if coef == 0.0 {
                 continue;
             }
