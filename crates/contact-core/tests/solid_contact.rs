@@ -325,3 +325,25 @@ fn a_paraboloid_on_a_flat_matches_hertz_to_its_mesh_size() {
         c.pressure[axis]
     );
 }
+
+/// Fichera's condition: a box on the plane pulled up by its top (p < 0) has
+/// no non-negative contact force to balance it, and one with no load at all
+/// may rise freely (nothing decides where it rests): both refused, not
+/// solved.
+#[test]
+fn loads_no_contact_force_can_balance_are_refused() {
+    let mesh = graded(Order::T4);
+    let plane = Plane::try_new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
+    for (p, kind) in [(-P, InvalidKind::IncompatibleLoads), (0.0, InvalidKind::NoSupport)] {
+        let mut body = on_plane_body(&mesh);
+        body.loads = vec![FaceLoad::Pressure {
+            faces: "z_max".into(),
+            p,
+        }];
+        let r = rows(&body, "z_min", plane).unwrap();
+        match signorini::solve(&body, &r, &Settings::default()) {
+            Err(CoreError::Invalid { kind: k, reason, .. }) => assert_eq!(k, kind, "p = {p}: {reason}"),
+            other => panic!("p = {p}: expected a refusal, got {:?}", other.map(|c| c.converged)),
+        }
+    }
+}

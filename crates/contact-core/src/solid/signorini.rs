@@ -31,6 +31,7 @@ use super::dofs::{dof_map, SolidDofs};
 use super::linear::inf_norm;
 use super::obstacle::PlaneRows;
 use super::{loads, stiffness, SolidBody};
+use crate::contact::fichera;
 use crate::error::{CoreError, InvalidKind};
 use crate::fem::pattern::FIXED;
 use crate::linalg::dense;
@@ -146,14 +147,15 @@ pub fn solve(body: &SolidBody, rows: &PlaneRows, settings: &Settings) -> Result<
             ));
         }
     }
+    let c = -&fr.d;
+    let r: Vec<f64> = rf.iter().map(|v| -v).collect();
+    compatible(&c, &r)?;
     let t1 = std::time::Instant::now();
     let refs: Vec<&[(usize, f64)]> = fr.rows.iter().map(|r| r.as_slice()).collect();
     let op = condensed::prepare_rows(k.clone(), &refs, None)?;
     let t2 = std::time::Instant::now();
     let y = op.chol.forward(&f);
     let q: Vec<f64> = fr.g.iter().zip(op.condensed.rows_of(&y)).map(|(g, b)| g - b).collect();
-    let c = -&fr.d;
-    let r: Vec<f64> = rf.iter().map(|v| -v).collect();
     let (res, mut beta) = if nm == 0 {
         (active_set::solve_lcp(&op.condensed.w, &q, settings), Vec::new())
     } else {
@@ -250,6 +252,33 @@ pub fn solve(body: &SolidBody, rows: &PlaneRows, settings: &Settings) -> Result<
         dofs,
         seconds: [t1 - t0, t2 - t1, t3 - t2].map(|d| d.as_secs_f64()),
     })
+}
+
+/// Fichera's condition on the free motions (rows B u − C β ≤ g, equilibrium
+/// Cᵀλ = r): some λ ≥ 0 must balance the loads (`contact::fichera::check`,
+/// an LP), and no motion may open every row while the loads do no work on it
+/// (`fichera::escape`: nothing would decide where the body rests).
+fn compatible(c: &Mat<f64>, r: &[f64]) -> Result<(), CoreError> {
+    if c.ncols() == 0 {
+        return Ok(());
+    }
+    if fichera::check(c, r).is_err() {
+        return Err(CoreError::invalid(
+            InvalidKind::IncompatibleLoads,
+            "loads",
+            "no contact pressure on the plane (λ ≥ 0) balances the loads along the rigid motions the supports leave \
+                free: the loads pull the body off the plane or push it along it",
+        ));
+    }
+    if fichera::escape(c, r).is_some() {
+        return Err(CoreError::invalid(
+            InvalidKind::NoSupport,
+            "supports",
+            "a rigid motion the supports leave free lifts the body off the plane without work against the loads: \
+                nothing decides where it rests (a support is missing, or the loads do not press it on the plane)",
+        ));
+    }
+    Ok(())
 }
 
 /// Refinement steps of the contact forces at most (each one dense solve on
