@@ -66,7 +66,7 @@ pub struct Contact {
     pub lambda: Vec<f64>,
     /// λ_i / a_i.
     pub pressure: Vec<f64>,
-    /// d(x_i + u_i): the gap after deformation.
+    /// The rows' gaps after deformation (`PlaneRows::gaps_after`).
     pub gap: Vec<f64>,
     /// Support reactions on every DOF (0 off the supports).
     pub reactions: Vec<f64>,
@@ -99,20 +99,22 @@ fn free_rows(body: &SolidBody, rows: &PlaneRows, dofs: &SolidDofs) -> FreeRows {
         g: Vec::with_capacity(rows.len()),
         d: Mat::zeros(rows.len(), k),
     };
-    for (i, &node) in rows.nodes.iter().enumerate() {
-        let mut row = Vec::with_capacity(3);
+    for (i, terms) in rows.terms.iter().enumerate() {
+        let mut row = Vec::with_capacity(3 * terms.len());
         let mut g = rows.gap[i];
-        for (c, nc) in n.iter().enumerate() {
-            let (dof, coef) = (3 * node + c, -nc);
-            if coef == 0.0 {
-                continue;
-            }
-            match dofs.free[dof] {
-                FIXED => g -= coef * dofs.prescribed[dof],
-                f => row.push((f, coef)),
-            }
-            for j in 0..k {
-                out.d[(i, j)] += coef * dofs.modes.at(j, body.mesh.nodes[node], c);
+        for &(node, cn) in terms {
+            for (c, nc) in n.iter().enumerate() {
+                let (dof, coef) = (3 * node + c, -nc * cn);
+                if coef == 0.0 {
+                    continue;
+                }
+                match dofs.free[dof] {
+                    FIXED => g -= coef * dofs.prescribed[dof],
+                    f => row.push((f, coef)),
+                }
+                for j in 0..k {
+                    out.d[(i, j)] += coef * dofs.modes.at(j, body.mesh.nodes[node], c);
+                }
             }
         }
         out.rows.push(row);
@@ -124,7 +126,8 @@ fn free_rows(body: &SolidBody, rows: &PlaneRows, dofs: &SolidDofs) -> FreeRows {
 /// Solves the contact of `body` with the plane of `rows`.
 pub fn solve(body: &SolidBody, rows: &PlaneRows, settings: &Settings) -> Result<Contact, CoreError> {
     let t0 = std::time::Instant::now();
-    let dofs = dof_map(body, Some(&rows.nodes))?;
+    let touching: Vec<usize> = rows.terms.iter().flatten().map(|t| t.0).collect();
+    let dofs = dof_map(body, Some(&touching))?;
     let k = Arc::new(stiffness::assemble(body, &dofs));
     let f_ext = loads::external(body)?;
     let f = loads::free_rhs(&f_ext, &dofs, &k);
@@ -171,12 +174,7 @@ pub fn solve(body: &SolidBody, rows: &PlaneRows, settings: &Settings) -> Result<
         }
         u
     };
-    let gaps = |u: &[f64]| -> Vec<f64> {
-        let n = rows.plane.normal;
-        (0..rows.len())
-            .map(|i| rows.gap[i] + (0..3).map(|c| n[c] * u[3 * rows.nodes[i] + c]).sum::<f64>())
-            .collect()
-    };
+    let gaps = |u: &[f64]| rows.gaps_after(u);
     let mut u = displacements(&lambda, &beta);
     let mut gap = gaps(&u);
     // Refinement on the final active set: the dense W carries the round-off
@@ -213,9 +211,11 @@ pub fn solve(body: &SolidBody, rows: &PlaneRows, settings: &Settings) -> Result<
     let (ku, abs) = stiffness::internal_forces(body, &u);
     let mut residual = ku;
     residual.iter_mut().zip(&f_ext).for_each(|(r, f)| *r -= f);
-    for (i, &node) in rows.nodes.iter().enumerate() {
-        for cc in 0..3 {
-            residual[3 * node + cc] -= lambda[i] * rows.plane.normal[cc];
+    for (terms, l) in rows.terms.iter().zip(&lambda) {
+        for &(node, cn) in terms {
+            for cc in 0..3 {
+                residual[3 * node + cc] -= l * cn * rows.plane.normal[cc];
+            }
         }
     }
     let mut reactions = vec![0.0; u.len()];
