@@ -8,15 +8,21 @@
 //! iterations and the certificate's worst entry. Timings only, nothing is
 //! asserted; one thread (`linalg::threads`' default, the service's).
 //!
-//! `cargo run --release -p contact-core --example solid3d_timing`
+//! Each factor's cost (from the symbolic analysis alone) in the AMD order
+//! the 2D solve uses and in the nested-dissection order of
+//! `solid::ordering`, which the 3D solves use.
+//!
+//! `cargo run --release -p contact-core --example solid3d_timing [-- --cost]` (`--cost`: the factors' costs
+//! alone, no numeric factorization).
 
-use contact_core::linalg::cholesky::FactorCost;
+use contact_core::linalg::cholesky::{FactorCost, SymbolicFactor};
 use contact_core::mesh::generate::{graded_points, Grading};
 use contact_core::mesh3d::generate::{grid, uniform};
 use contact_core::mesh3d::{Mesh3d, Order};
 use contact_core::scene::Settings;
+use contact_core::solid::dofs::dof_map;
 use contact_core::solid::obstacle::{rows, Plane};
-use contact_core::solid::{linear, signorini, stiffness, FaceLoad, SolidBody, Support};
+use contact_core::solid::{linear, ordering, signorini, stiffness, FaceLoad, SolidBody, Support};
 
 fn roller(faces: &str, c: usize) -> Support {
     let mut fix = [None; 3];
@@ -39,6 +45,7 @@ fn mesh(n: usize, order: Order) -> Mesh3d {
 }
 
 fn main() {
+    let cost_only = std::env::args().any(|a| a == "--cost");
     for (n, order) in [(23, Order::T4), (44, Order::T4), (11, Order::T10)] {
         let t = std::time::Instant::now();
         let mesh = mesh(n, order);
@@ -61,19 +68,32 @@ fn main() {
             body_force: [0.0; 3],
         };
         body.supports.push(roller("z_min", 2));
-        let s = linear::solve(&body).unwrap();
+        let dofs = dof_map(&body, None).unwrap();
         println!(
             "{order:?} n = {n}: {} nodes, {} elements, {} free DOFs (mesh {t_mesh:.2} s)",
             mesh.nodes.len(),
             mesh.n_elems(),
-            s.dofs.n_free
+            dofs.n_free
         );
-        let k = stiffness::assemble(&body, &s.dofs);
+        let k = stiffness::assemble(&body, &dofs);
         let cost = FactorCost::predict(&k.k).unwrap();
         println!(
-            "  factor: nnz(L) {:.3e}, {:.3e} multiply-adds",
+            "  factor (AMD): nnz(L) {:.3e}, {:.3e} multiply-adds",
             cost.nnz as f64, cost.flops
         );
+        let t = std::time::Instant::now();
+        let (fwd, inv) = ordering::nested_dissection(&mesh, &dofs);
+        let nd = SymbolicFactor::try_new_ordered(&k.k, &fwd, &inv).unwrap().cost();
+        println!(
+            "  factor (nested dissection): nnz(L) {:.3e}, {:.3e} multiply-adds (ordering and analysis {:.2} s)",
+            nd.nnz as f64,
+            nd.flops,
+            t.elapsed().as_secs_f64()
+        );
+        if cost_only {
+            continue;
+        }
+        let s = linear::solve(&body).unwrap();
         let [a, f, so] = s.seconds;
         println!(
             "  linear:  assembly {a:.3} s, factorization {f:.3} s, solve {so:.3} s, total {:.3} s, backward error \

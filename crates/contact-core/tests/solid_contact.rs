@@ -119,7 +119,8 @@ fn a_box_on_a_plane_under_uniform_pressure_presses_it_uniformly() {
         let worst = c.pressure.iter().fold(0.0f64, |a, p| a.max((p - P).abs())) / P;
         let total: f64 = c.lambda.iter().sum();
         println!(
-            "{order:?}, drop {drop}: {} rows, {} DOFs, pressure error {worst:.1e}, Σλ error {:.1e}, {} iterations, {} refinements",
+            "{order:?}, drop {drop}: {} rows, {} DOFs, pressure error {worst:.1e}, Σλ error {:.1e}, {} iterations, \
+             {} refinements",
             r.len(),
             c.dofs.n_free,
             (total - P).abs() / P,

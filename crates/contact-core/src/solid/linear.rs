@@ -1,11 +1,14 @@
 //! The linear solve of a supported body: K_ff u_f = f_f − K_fd u_d with the
-//! sparse Cholesky of `linalg::cholesky` (AMD order, supernodal), and the
+//! sparse Cholesky of `linalg::cholesky` (supernodal, in the nested-dissection
+//! order of `ordering`), and the
 //! reactions r = K u − f on the supported DOFs.
 
 use super::dofs::{dof_map, SolidDofs};
-use super::{loads, stiffness, SolidBody};
+use super::{loads, ordering, stiffness, SolidBody};
 use crate::error::CoreError;
+use crate::linalg::cholesky::SymbolicFactor;
 use crate::linalg::Cholesky;
+use std::sync::Arc;
 
 /// Displacements and reactions of a body its supports hold.
 #[derive(Debug, Clone)]
@@ -31,7 +34,8 @@ pub fn solve(body: &SolidBody) -> Result<Static, CoreError> {
     let f_ext = loads::external(body)?;
     let f = loads::free_rhs(&f_ext, &dofs, &k);
     let t1 = std::time::Instant::now();
-    let chol = Cholesky::try_new(&k.k)?;
+    let (fwd, inv) = ordering::nested_dissection(body.mesh, &dofs);
+    let chol = Cholesky::with_symbolic(Arc::new(SymbolicFactor::try_new_ordered(&k.k, &fwd, &inv)?), &k.k)?;
     let t2 = std::time::Instant::now();
     let u = loads::full_field(&dofs, &chol.solve(&f));
     let t3 = std::time::Instant::now();

@@ -5,7 +5,8 @@
 //! minimize ½ uᵀK u − fᵀu   subject to   B u ≤ g     (rows: `obstacle`)
 //! ```
 //!
-//! K is factored once (`methods::condensed::prepare_rows`: AMD, supernodal),
+//! K is factored once (`methods::condensed::prepare_on`: supernodal, in the
+//! nested-dissection order of `ordering`),
 //! W = B K⁻¹ Bᵀ is formed on the reach of the rows (`linalg::schur`), and the
 //! LCP λ ≥ 0, w = Wλ + q ≥ 0, λᵀw = 0 with q = g − B K⁻¹ f is solved by the
 //! primal-dual active set (`methods::active_set`); u = K⁻¹ (f − Bᵀλ) costs
@@ -30,10 +31,11 @@ use faer::Mat;
 use super::dofs::{dof_map, SolidDofs};
 use super::linear::inf_norm;
 use super::obstacle::PlaneRows;
-use super::{loads, stiffness, SolidBody};
+use super::{loads, ordering, stiffness, SolidBody};
 use crate::contact::fichera;
 use crate::error::{CoreError, InvalidKind};
 use crate::fem::pattern::FIXED;
+use crate::linalg::cholesky::SymbolicFactor;
 use crate::linalg::dense;
 use crate::methods::{active_set, condensed};
 use crate::scene::Settings;
@@ -155,7 +157,9 @@ pub fn solve(body: &SolidBody, rows: &PlaneRows, settings: &Settings) -> Result<
     compatible(&c, &r)?;
     let t1 = std::time::Instant::now();
     let refs: Vec<&[(usize, f64)]> = fr.rows.iter().map(|r| r.as_slice()).collect();
-    let op = condensed::prepare_rows(k.clone(), &refs, None)?;
+    let (fwd, inv) = ordering::nested_dissection(body.mesh, &dofs);
+    let symbolic = Arc::new(SymbolicFactor::try_new_ordered(&k.k, &fwd, &inv)?);
+    let op = condensed::prepare_on(k.clone(), &refs, symbolic, t1)?;
     let t2 = std::time::Instant::now();
     let y = op.chol.forward(&f);
     let q: Vec<f64> = fr.g.iter().zip(op.condensed.rows_of(&y)).map(|(g, b)| g - b).collect();
