@@ -198,11 +198,21 @@ fn free_modes(nodes: &[[f64; 3]], center: [f64; 3], length: f64, supported: &[bo
         .collect()
 }
 
-/// "translation along z", "rotation about y" or the combination's coordinates.
-fn describe(b: &[f64; 6]) -> String {
+/// "translation along z", "rotation about y" or the combination's coordinates
+/// (for a canonical `b`: a unit vector's other entries exactly 0).
+pub fn describe(b: &[f64; 6]) -> String {
     let names = ["translation along x", "translation along y", "translation along z"];
     let turns = ["rotation about x", "rotation about y", "rotation about z"];
-    match b.iter().position(|v| (v.abs() - 1.0).abs() < 1e-12) {
+    let unit = |k: usize| {
+        (0..6).all(|j| {
+            if j == k {
+                (b[j].abs() - 1.0).abs() < 1e-12
+            } else {
+                b[j] == 0.0
+            }
+        })
+    };
+    match (0..6).find(|&k| unit(k)) {
         Some(k) if k < 3 => names[k].to_string(),
         Some(k) => turns[k - 3].to_string(),
         None => format!("(t, Lω) ∝ {b:.3?}"),

@@ -88,10 +88,11 @@ impl SolidBody<'_> {
                 format!("Poisson's ratio must lie in (-1, 0.5), got {nu}"),
             ));
         }
-        let named = self.supports.iter().map(|s| ("supports", s.faces.as_str()));
-        for (k, (what, faces)) in named.chain(self.loads.iter().map(|l| ("loads", l.faces()))).enumerate() {
-            let k = if what == "loads" { k - self.supports.len() } else { k };
-            self.face_set(faces, &format!("{what}/{k}/faces"))?;
+        for (k, s) in self.supports.iter().enumerate() {
+            self.face_set(&s.faces, &format!("supports/{k}/faces"))?;
+        }
+        for (k, l) in self.loads.iter().enumerate() {
+            self.face_set(l.faces(), &format!("loads/{k}/faces"))?;
         }
         Ok(())
     }

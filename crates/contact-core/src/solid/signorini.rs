@@ -138,19 +138,16 @@ pub fn solve(body: &SolidBody, rows: &PlaneRows, settings: &Settings) -> Result<
     // The motions' loads Rᵀ f (on every DOF: a virtual support's share too).
     let fields: Vec<Vec<f64>> = (0..nm).map(|j| dofs.modes.field(j, &body.mesh.nodes)).collect();
     let rf: Vec<f64> = fields.iter().map(|r| dense::dot(r, &f_ext)).collect();
-    for (j, r) in fields.iter().enumerate() {
-        let held = (0..rows.len()).any(|i| fr.d[(i, j)] != 0.0);
-        if !held {
-            return Err(CoreError::invalid(
-                InvalidKind::NoSupport,
-                "supports",
-                format!(
-                    "the supports leave a rigid motion free that the plane's rows do not resist (mode {j}: {:.3?} \
-                        on the first node)",
-                    &r[..3]
-                ),
-            ));
-        }
+    if let Some(b) = unresisted(&fr.d, &dofs.modes.basis) {
+        return Err(CoreError::invalid(
+            InvalidKind::NoSupport,
+            "supports",
+            format!(
+                "the supports leave the {} free, which the plane cannot resist (a frictionless plane pushes only \
+                    along its normal)",
+                super::dofs::describe(&b)
+            ),
+        ));
     }
     let c = -&fr.d;
     let r: Vec<f64> = rf.iter().map(|v| -v).collect();
@@ -256,6 +253,26 @@ pub fn solve(body: &SolidBody, rows: &PlaneRows, settings: &Settings) -> Result<
         dofs,
         seconds: [t1 - t0, t2 - t1, t3 - t2].map(|d| d.as_secs_f64()),
     })
+}
+
+/// A free motion (in (t, Lω) coordinates) that moves no row: D γ = 0 for
+/// some γ ≠ 0 (DᵀD's eigenvalues at 1e-12 of its largest, or D = 0), which
+/// would leave the mixed LCP's saddle point singular.
+fn unresisted(d: &Mat<f64>, basis: &[[f64; 6]]) -> Option<[f64; 6]> {
+    let k = d.ncols();
+    if k == 0 {
+        return None;
+    }
+    let dtd = Mat::<f64>::from_fn(k, k, |a, b| (0..d.nrows()).map(|i| d[(i, a)] * d[(i, b)]).sum());
+    let (vals, vecs) = dense::sym_eigen_small(&dtd);
+    let scale = vals[k - 1];
+    let j = (0..k).find(|&j| scale == 0.0 || vals[j] <= 1e-12 * scale)?;
+    let b: [f64; 6] = std::array::from_fn(|c| (0..k).map(|m| vecs[(m, j)] * basis[m][c]).sum());
+    let lead = b
+        .iter()
+        .copied()
+        .fold(0.0f64, |a, v| if v.abs() > a.abs() { v } else { a });
+    Some(b.map(|v| if (v / lead).abs() < 1e-12 { 0.0 } else { v / lead }))
 }
 
 /// Fichera's condition on the free motions (rows B u − C β ≤ g, equilibrium
