@@ -36,6 +36,7 @@ pub mod observer;
 pub mod outcome;
 pub mod progress;
 pub mod scene;
+pub mod solid;
 pub mod solution;
 pub mod solve;
 

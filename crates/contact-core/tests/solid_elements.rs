@@ -21,7 +21,8 @@ use std::collections::HashMap;
 use contact_core::fem::constitutive::{Constitutive, LinearIsotropic, Section};
 use contact_core::fem::kernel::{self, Integration, Solid};
 use contact_core::fem::reference::tetrahedron::T10_EDGES;
-use contact_core::fem::reference::{boundary_faces, ReferenceElement, T10, T4};
+use contact_core::fem::reference::{ReferenceElement, T10, T4};
+use contact_core::mesh3d::{Mesh3d, Order};
 
 const LAW: (f64, f64) = (200.0, 0.3);
 
@@ -406,19 +407,27 @@ fn uniaxial_block_has_hookes_reaction_and_contraction() {
     );
 }
 
-/// The boundary faces of the box's T4 and T10 meshes tile its surface: 2 · 3²
-/// triangles a side, areas summing to 2(ab + bc + ca) to 1e-14, each normal
-/// (the right-hand rule on the face's corners) pointing out of the box, and a
-/// T10 face's midsides at its edges' midpoints (straight edges).
+/// The boundary faces of the box's T4 and T10 meshes (`Mesh3d::boundary_faces`
+/// over the elements' local faces) tile its surface: 2 · 3² triangles a side,
+/// areas summing to 2(ab + bc + ca) to 1e-14, each normal (the right-hand rule
+/// on the face's corners) pointing out of the box, and a T10 face's midsides
+/// at its edges' midpoints (straight edges).
 #[test]
 fn boundary_faces_tile_the_surface_and_point_out() {
-    fn check<E: ReferenceElement<3, N>, const N: usize>(m: &Mesh<N>, size: [f64; 3]) {
-        let faces = boundary_faces::<E, 3, N>(&m.elems);
+    fn check<const N: usize>(m: &Mesh<N>, order: Order, size: [f64; 3]) {
+        let mesh = Mesh3d {
+            order,
+            nodes: m.nodes.clone(),
+            elems: m.elems.iter().flatten().copied().collect(),
+            face_sets: Default::default(),
+        };
+        let faces = mesh.boundary_faces();
         assert_eq!(faces.len(), 6 * 2 * 9);
         let centre = size.map(|s| 0.5 * s);
         let mut area = 0.0;
-        for (e, f) in faces {
-            let nodes = E::FACES[f].iter().map(|&l| m.nodes[m.elems[e][l]]).collect::<Vec<_>>();
+        for (f, face) in faces.iter().enumerate() {
+            let nodes = face.nodes().map(|n| m.nodes[n]).collect::<Vec<_>>();
+            assert_eq!(nodes.len(), if order == Order::T4 { 3 } else { 6 });
             let d = |a: usize| -> [f64; 3] { std::array::from_fn(|c| nodes[a][c] - nodes[0][c]) };
             let (u, v) = (d(1), d(2));
             let n = [
@@ -427,7 +436,7 @@ fn boundary_faces_tile_the_surface_and_point_out() {
                 u[0] * v[1] - u[1] * v[0],
             ];
             let out: f64 = (0..3).map(|c| n[c] * (nodes[0][c] - centre[c])).sum();
-            assert!(out > 0.0, "element {e}, face {f} points in");
+            assert!(out > 0.0, "face {f} points in");
             area += 0.5 * n.iter().map(|x| x * x).sum::<f64>().sqrt();
             for (k, mid) in nodes.iter().enumerate().skip(3) {
                 let (p, q) = (nodes[k - 3], nodes[(k - 2) % 3]);
@@ -440,6 +449,6 @@ fn boundary_faces_tile_the_surface_and_point_out() {
     }
     let size = [1.0, 1.5, 2.0];
     let t4 = box_t4(3, size, 0.3);
-    check::<T4, 4>(&t4, size);
-    check::<T10, 10>(&quadratic(&t4), size);
+    check::<4>(&t4, Order::T4, size);
+    check::<10>(&quadratic(&t4), Order::T10, size);
 }

@@ -14,7 +14,8 @@ use crate::mesh::Mesh2d;
 use crate::scene::scaling::shown;
 use crate::scene::{Analysis, Scene};
 
-pub const FIXED: usize = usize::MAX;
+pub use super::pattern::FIXED;
+use super::pattern::{self, Global};
 
 /// Poisson's ratio from which T6 in plane strain switches to selective reduced
 /// integration (the volumetric stiffness is then over ten times the shear one).
@@ -175,49 +176,20 @@ fn centroid(m: &Mesh2d) -> [f64; 2] {
     [s[0] / n, s[1] / n]
 }
 
-/// CSC pattern of the lower triangle of K_ff from the node graph: column of
-/// free DOF j holds the free DOFs i ≥ j of the nodes sharing an element with j's
-/// node. Free indices grow with the global DOF number, so rows come out sorted.
+/// CSC pattern of the lower triangle of K_ff from the node graph of all bodies.
 fn pattern(meshes: &[Mesh2d], dofs: &DofMap) -> (Vec<usize>, Vec<usize>) {
     let total: usize = meshes.iter().map(|m| m.nodes.len()).sum();
-    // Neighbours b ≥ a of each global node a (small, so linear insertion).
-    let mut adj: Vec<Vec<u32>> = vec![Vec::new(); total];
-    for (b, mesh) in meshes.iter().enumerate() {
-        let off = dofs.node_offset[b];
-        for e in 0..mesh.n_elems() {
-            let conn = mesh.elem(e);
-            for &p in conn {
-                for &q in conn {
-                    let (a, c) = (off + p, off + q);
-                    if c >= a && !adj[a].contains(&(c as u32)) {
-                        adj[a].push(c as u32);
-                    }
-                }
+    pattern::lower::<2>(total, &dofs.free, dofs.n_free, |add| {
+        let mut global = Vec::with_capacity(6);
+        for (b, mesh) in meshes.iter().enumerate() {
+            let off = dofs.node_offset[b];
+            for e in 0..mesh.n_elems() {
+                global.clear();
+                global.extend(mesh.elem(e).iter().map(|&p| off + p));
+                add(&global);
             }
         }
-    }
-    let mut col_ptr = Vec::with_capacity(dofs.n_free + 1);
-    let mut row_idx = Vec::new();
-    col_ptr.push(0);
-    for (a, nb) in adj.iter_mut().enumerate() {
-        nb.sort_unstable();
-        for ca in 0..2 {
-            if dofs.free[2 * a + ca] == FIXED {
-                continue;
-            }
-            for &bn in nb.iter() {
-                let bn = bn as usize;
-                for cb in 0..2 {
-                    let i = dofs.free[2 * bn + cb];
-                    if i != FIXED && (bn > a || cb >= ca) {
-                        row_idx.push(i);
-                    }
-                }
-            }
-            col_ptr.push(row_idx.len());
-        }
-    }
-    (col_ptr, row_idx)
+    })
 }
 
 /// Axisymmetry: no node may lie at r < 0, and a node on the axis (r = 0 to
@@ -289,12 +261,7 @@ pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Re
     use crate::mesh::Order;
     let n = dofs.n_free;
     let (col_ptr, row_idx) = pattern(meshes, dofs);
-    let mut global = Global {
-        col_ptr: &col_ptr,
-        row_idx: &row_idx,
-        vals: vec![0.0; row_idx.len()],
-        k_fd: Vec::new(),
-    };
+    let mut global = Global::new(&col_ptr, &row_idx);
     for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
         let law = law(body, scene.analysis);
         let axi = scene.analysis == Analysis::Axisymmetric;
@@ -324,14 +291,6 @@ pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Re
     })
 }
 
-/// The global matrices being assembled: K_ff's values on its pattern and K_fd.
-struct Global<'a> {
-    col_ptr: &'a [usize],
-    row_idx: &'a [usize],
-    vals: Vec<f64>,
-    k_fd: Vec<(usize, usize, f64)>,
-}
-
 /// Adds the K elements of body `b` (K nodes each), whose stiffness
 /// `element` writes into a (2K)² row-major buffer.
 fn add_body<const K: usize>(
@@ -353,25 +312,7 @@ fn add_body<const K: usize>(
             gd[2 * i + 1] = dofs.dof(b, node, 1);
         }
         element(&x, &mut ke);
-        for a in 0..nd {
-            let fa = dofs.free[gd[a]];
-            if fa == FIXED {
-                continue;
-            }
-            for c in 0..nd {
-                let fc = dofs.free[gd[c]];
-                let v = ke[a * nd + c];
-                if fc == FIXED {
-                    if v != 0.0 {
-                        g.k_fd.push((fa, gd[c], v));
-                    }
-                } else if fc <= fa {
-                    let col = &g.row_idx[g.col_ptr[fc]..g.col_ptr[fc + 1]];
-                    let pos = col.binary_search(&fa).expect("pattern covers every element coupling");
-                    g.vals[g.col_ptr[fc] + pos] += v;
-                }
-            }
-        }
+        g.add(&gd[..nd], &dofs.free, &ke[..nd * nd]);
     }
 }
 

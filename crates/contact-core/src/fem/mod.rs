@@ -8,6 +8,7 @@ pub mod constitutive;
 pub mod element;
 pub mod kernel;
 pub mod loads;
+pub mod pattern;
 pub mod reference;
 pub mod rigid_modes;
 

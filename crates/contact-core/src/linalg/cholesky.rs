@@ -42,7 +42,18 @@ pub struct SymbolicFactor {
 impl SymbolicFactor {
     /// Orders `a` (lower triangle) and analyzes the factor's structure.
     pub fn try_new(a: &SparseColMat<usize, f64>) -> Result<Self, LinalgError> {
-        let symbolic = super::symbolic::symbolic(a)?;
+        Self::of(a, super::symbolic::symbolic(a)?)
+    }
+
+    /// Analyzes `a` (lower triangle) in the caller's fill-reducing order
+    /// (`fwd[i]`: the unknown at position i; `inv` its inverse), for
+    /// matrices whose geometry knows a better order than AMD (a 3D mesh's
+    /// nested dissection, `solid::ordering`).
+    pub fn try_new_ordered(a: &SparseColMat<usize, f64>, fwd: &[usize], inv: &[usize]) -> Result<Self, LinalgError> {
+        Self::of(a, super::symbolic::in_order(a, fwd, inv)?)
+    }
+
+    fn of(a: &SparseColMat<usize, f64>, symbolic: SymbolicCholesky<usize>) -> Result<Self, LinalgError> {
         let SymbolicCholeskyRaw::Supernodal(sym) = symbolic.raw() else {
             unreachable!("factorization is forced supernodal")
         };

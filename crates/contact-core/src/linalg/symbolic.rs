@@ -37,7 +37,17 @@ pub(super) fn symbolic(a: &SparseColMat<usize, f64>) -> Result<SymbolicCholesky<
     let took = started.elapsed().as_secs_f64();
     crate::cancel::check(crate::outcome::ProgressStage::Factorization).map_err(LinalgError::Deadline)?;
     crate::cancel::check_room(crate::outcome::ProgressStage::Factorization, took).map_err(LinalgError::Deadline)?;
-    let perm = PermRef::new_checked(&fwd, &inv, a.nrows());
+    in_order(a, &fwd, &inv)
+}
+
+/// Supernodal symbolic factorization of `a` in a given fill-reducing order
+/// (`fwd[i]`: the unknown at position i, `inv` its inverse).
+pub(super) fn in_order(
+    a: &SparseColMat<usize, f64>,
+    fwd: &[usize],
+    inv: &[usize],
+) -> Result<SymbolicCholesky<usize>, LinalgError> {
+    let perm = PermRef::new_checked(fwd, inv, a.nrows());
     let params = CholeskySymbolicParams {
         supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
         ..Default::default()

@@ -43,8 +43,8 @@ impl Order {
 }
 
 /// The edges of a tetrahedron in Gmsh's order: the midside node of edge k is
-/// local node 4 + k of a T10.
-pub const EDGES: [[usize; 2]; 6] = [[0, 1], [1, 2], [2, 0], [3, 0], [3, 2], [3, 1]];
+/// local node 4 + k of a T10 (the element's own table).
+pub use crate::fem::reference::tetrahedron::T10_EDGES as EDGES;
 
 /// The faces of a positively oriented tetrahedron, face i opposite corner i,
 /// each ordered so that its normal (q − p) × (r − p) points out of the element.

@@ -22,6 +22,7 @@ use std::collections::{BTreeMap, HashMap};
 
 use super::{signed_volume, sub, Face, Mesh3d, Order, EDGES, FACES};
 use crate::error::{CoreError, InvalidKind};
+use crate::fem::reference::{physical_gradients, ReferenceElement, T10};
 pub use crate::mesh::quality::Item;
 use crate::mesh::quality::{check_used_and_connected, index_fault, inline_locate, Conn};
 
@@ -30,11 +31,6 @@ use crate::mesh::quality::{check_used_and_connected, index_fault, inline_locate,
 /// tetrahedron has 0.118. The 2D check uses the same 1e-8 for area over
 /// longest edge squared: below it the element stiffness loses all accuracy.
 const MIN_SHAPE_RATIO: f64 = 1e-8;
-
-/// The degree-2 rule's points in barycentric coordinates: (a, b, b, b) and
-/// its permutations, a = (5 + 3√5)/20, b = (5 − √5)/20.
-const RULE_A: f64 = 0.585_410_196_624_968_5;
-const RULE_B: f64 = 0.138_196_601_125_010_5;
 
 /// Builds a mesh from inline data; `path` is the JSON pointer of the inline mesh.
 pub fn try_inline(
@@ -138,18 +134,18 @@ fn check_shape(x: &[[f64; 3]]) -> Result<(), String> {
         );
     }
     if x.len() == 10 {
-        let corners = (0..4).map(|i| {
-            let mut l = [0.0; 4];
-            l[i] = 1.0;
-            (format!("corner {i}"), l)
-        });
-        let rule = (0..4).map(|i| {
-            let mut l = [RULE_B; 4];
-            l[i] = RULE_A;
-            (format!("quadrature point {i}"), l)
-        });
-        for (at, l) in corners.chain(rule) {
-            let det = t10_det(x, l) / 6.0;
+        let x: [[f64; 3]; 10] = std::array::from_fn(|i| x[i]);
+        let corners = [[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let corners = corners
+            .into_iter()
+            .enumerate()
+            .map(|(i, xi)| (format!("corner {i}"), xi));
+        let rule = T10::RULE
+            .iter()
+            .enumerate()
+            .map(|(i, q)| (format!("quadrature point {i}"), q.xi));
+        for (at, xi) in corners.chain(rule) {
+            let det = t10_det(&x, &xi) / 6.0;
             if det.is_nan() || det <= floor {
                 return Err(format!(
                     "the element map folds: det J / 6 at its {at} is {:.3e} of its longest edge cubed (at least \
@@ -162,24 +158,11 @@ fn check_shape(x: &[[f64; 3]]) -> Result<(), String> {
     Ok(())
 }
 
-/// det ∂x/∂(L1, L2, L3) of a T10 at barycentric coordinates `l` (L0 = 1 − L1 − L2 − L3).
-/// With g_m = Σₙ xₙ ∂Nₙ/∂L_m (corner i: Nᵢ = Lᵢ(2Lᵢ − 1); midside of edge
-/// i-j: 4LᵢLⱼ), the columns are g_k − g_0.
-fn t10_det(x: &[[f64; 3]], l: [f64; 4]) -> f64 {
-    let mut g = [[0.0; 3]; 4];
-    for m in 0..4 {
-        for c in 0..3 {
-            g[m][c] = x[m][c] * (4.0 * l[m] - 1.0);
-        }
-    }
-    for (k, &[i, j]) in EDGES.iter().enumerate() {
-        for c in 0..3 {
-            g[i][c] += 4.0 * l[j] * x[4 + k][c];
-            g[j][c] += 4.0 * l[i] * x[4 + k][c];
-        }
-    }
-    let zero = [0.0; 3];
-    6.0 * signed_volume(zero, sub(g[1], g[0]), sub(g[2], g[0]), sub(g[3], g[0]))
+/// det ∂x/∂ξ of a T10 at reference point `xi`: the element's own map
+/// (`T10::evaluate`, `physical_gradients`).
+fn t10_det(x: &[[f64; 3]; 10], xi: &[f64; 3]) -> f64 {
+    let (_, g) = T10::evaluate(xi);
+    physical_gradients(x, &g).0
 }
 
 /// Each edge has one midside node: two elements that share an edge but not
@@ -268,10 +251,18 @@ fn match_faces(
 mod tests {
     use super::*;
 
-    fn unit_t10(mid: [f64; 3]) -> Vec<[f64; 3]> {
+    fn unit_t10(mid: [f64; 3]) -> [[f64; 3]; 10] {
         let c = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-        let mut x = c.to_vec();
-        x.extend(EDGES.iter().map(|&[i, j]| [0, 1, 2].map(|k| 0.5 * (c[i][k] + c[j][k]))));
+        let mut x: [[f64; 3]; 10] = std::array::from_fn(|i| {
+            if i < 4 {
+                c[i]
+            } else {
+                EDGES[i - 4]
+                    .map(|j| c[j])
+                    .into_iter()
+                    .fold([0.0; 3], |a, p| [0, 1, 2].map(|k| a[k] + 0.5 * p[k]))
+            }
+        });
         x[4] = mid;
         x
     }
@@ -284,13 +275,13 @@ mod tests {
     fn a_midside_past_the_quarter_point_folds_the_element() {
         assert!(check_shape(&unit_t10([0.5, 0.0, 0.0])).is_ok());
         assert!(check_shape(&unit_t10([0.3, 0.0, 0.0])).is_ok());
-        assert!((t10_det(&unit_t10([0.3, 0.0, 0.0]), [1.0, 0.0, 0.0, 0.0]) - 0.2).abs() < 1e-15);
+        assert!((t10_det(&unit_t10([0.3, 0.0, 0.0]), &[0.0; 3]) - 0.2).abs() < 1e-15);
         let msg = check_shape(&unit_t10([0.2, 0.0, 0.0])).unwrap_err();
         assert!(msg.contains("corner 0") && msg.contains("folds"), "{msg}");
         // Affine T10: det J = 6 V everywhere, so det J / 6 = 1/6.
         let x = unit_t10([0.5, 0.0, 0.0]);
-        for l in [[1.0, 0.0, 0.0, 0.0], [RULE_A, RULE_B, RULE_B, RULE_B], [0.25; 4]] {
-            assert!((t10_det(&x, l) - 1.0).abs() < 1e-15, "{l:?}");
+        for xi in [[0.0; 3], T10::RULE[1].xi, [0.25; 3]] {
+            assert!((t10_det(&x, &xi) - 1.0).abs() < 1e-15, "{xi:?}");
         }
     }
 }

@@ -49,6 +49,17 @@ pub fn prepare_rows(
             s
         }
     };
+    prepare_on(stiffness, rows, symbolic, t0)
+}
+
+/// `prepare_rows` on a given analysis of K's pattern (its ordering the
+/// caller's), `t0` when the preparation started.
+pub fn prepare_on(
+    stiffness: Arc<Stiffness>,
+    rows: &[&[(usize, f64)]],
+    symbolic: Arc<SymbolicFactor>,
+    t0: Instant,
+) -> Result<Prepared, CoreError> {
     let reach = Reach::new(&symbolic, rows);
     crate::observer::revise_factorization(
         t0.elapsed().as_secs_f64(),

@@ -93,34 +93,5 @@ pub fn physical_gradients<const D: usize, const N: usize>(
     }
 }
 
-/// The boundary of a mesh of elements E: (element, local face) of every face
-/// no other element shares (faces matched by their corner nodes), in element
-/// order. Each face's local node list (`E::FACES`) orders it outward, so this
-/// is what a face set (a support, a load, a contact surface) is built from.
-pub fn boundary_faces<E: ReferenceElement<D, N>, const D: usize, const N: usize>(
-    elems: &[[usize; N]],
-) -> Vec<(usize, usize)> {
-    let key = |e: &[usize; N], f: &[usize]| {
-        let mut k: Vec<usize> = f[..D].iter().map(|&l| e[l]).collect();
-        k.sort_unstable();
-        k
-    };
-    let mut count: std::collections::HashMap<Vec<usize>, u32> = std::collections::HashMap::new();
-    for e in elems {
-        for f in E::FACES {
-            *count.entry(key(e, f)).or_default() += 1;
-        }
-    }
-    let mut out = Vec::new();
-    for (i, e) in elems.iter().enumerate() {
-        for (j, f) in E::FACES.iter().enumerate() {
-            if count[&key(e, f)] == 1 {
-                out.push((i, j));
-            }
-        }
-    }
-    out
-}
-
 #[cfg(test)]
 pub(crate) mod checks;

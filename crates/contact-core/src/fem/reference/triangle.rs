@@ -17,6 +17,23 @@ pub const RULE3: [Point<2>; 3] = [
     point([1.0 / 6.0, 2.0 / 3.0], 1.0 / 6.0),
 ];
 
+const DA: f64 = 0.445_948_490_915_965;
+const DB: f64 = 0.091_576_213_509_771;
+const WA: f64 = 0.223_381_589_678_011 / 2.0;
+const WB: f64 = 0.109_951_743_655_322 / 2.0;
+
+/// Dunavant's 6-point rule (degree 4): for products of a quadratic shape
+/// function with a linear one and a linear field (dual mortar rows on T6
+/// faces, degree 3 or 4).
+pub const RULE6: [Point<2>; 6] = [
+    point([DA, DA], WA),
+    point([1.0 - 2.0 * DA, DA], WA),
+    point([DA, 1.0 - 2.0 * DA], WA),
+    point([DB, DB], WB),
+    point([1.0 - 2.0 * DB, DB], WB),
+    point([DB, 1.0 - 2.0 * DB], WB),
+];
+
 /// The 3-node linear triangle.
 #[derive(Debug, Clone, Copy)]
 pub struct T3;
@@ -88,6 +105,7 @@ mod tests {
     fn rules_are_exact_to_their_degree() {
         checks::exact::<2>(T3::RULE, 1);
         checks::exact::<2>(T6::RULE, 2);
+        checks::exact::<2>(&RULE6, 4);
     }
 
     #[test]

@@ -1,0 +1,307 @@
+//! Frictionless Signorini contact of a body of tetrahedra with a rigid plane,
+//! on the condensed path the 2D solve takes:
+//!
+//! ```text
+//! minimize ½ uᵀK u − fᵀu   subject to   B u ≤ g     (rows: `obstacle`)
+//! ```
+//!
+//! K is factored once (`methods::condensed::prepare_on`: supernodal, in the
+//! nested-dissection order of `ordering`),
+//! W = B K⁻¹ Bᵀ is formed on the reach of the rows (`linalg::schur`), and the
+//! LCP λ ≥ 0, w = Wλ + q ≥ 0, λᵀw = 0 with q = g − B K⁻¹ f is solved by the
+//! primal-dual active set (`methods::active_set`); u = K⁻¹ (f − Bᵀλ) costs
+//! one forward and one backward sweep. Rigid motions the supports leave free
+//! (a box on the plane held sideways by rollers is free to move along the
+//! plane's normal) are the free motions β of `dofs`: u = ũ + Rβ, the rows
+//! gain D β with D = B R, and the motions' equilibrium Dᵀλ = Rᵀ f closes
+//! the mixed LCP (`active_set::solve_mlcp`, with C = −D).
+//!
+//! The answer carries the KKT certificate of the full system, each entry
+//! relative and dimensionless: primal (penetration max(0, −gap) over
+//! ‖u‖∞), dual (max(0, −λ) over ‖λ‖∞), complementarity (max |λ_i gap_i|
+//! over ‖λ‖∞ ‖u‖∞) and equilibrium (‖K u − f + Bᵀλ‖∞ off the supports over
+//! the size of its terms, max(‖f‖∞, ‖|K||u|‖∞, ‖λ‖∞): the normwise
+//! backward error). Not converging is an answer (`converged = false` with
+//! the certificate), not an error.
+
+use std::sync::Arc;
+
+use faer::Mat;
+
+use super::dofs::{dof_map, SolidDofs};
+use super::linear::inf_norm;
+use super::obstacle::PlaneRows;
+use super::{loads, ordering, stiffness, SolidBody};
+use crate::contact::fichera;
+use crate::error::{CoreError, InvalidKind};
+use crate::fem::pattern::FIXED;
+use crate::linalg::cholesky::SymbolicFactor;
+use crate::linalg::dense;
+use crate::methods::{active_set, condensed};
+use crate::scene::Settings;
+
+/// The relative KKT residuals of a contact solution (module doc).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Certificate {
+    pub primal: f64,
+    pub dual: f64,
+    pub complementarity: f64,
+    pub equilibrium: f64,
+}
+
+impl Certificate {
+    /// The largest entry.
+    pub fn worst(&self) -> f64 {
+        self.primal
+            .max(self.dual)
+            .max(self.complementarity)
+            .max(self.equilibrium)
+    }
+}
+
+/// A contact solution.
+#[derive(Debug, Clone)]
+pub struct Contact {
+    /// u on every DOF (3·node + c).
+    pub u: Vec<f64>,
+    /// Contact force of each row (+λ n on the body).
+    pub lambda: Vec<f64>,
+    /// λ_i / a_i.
+    pub pressure: Vec<f64>,
+    /// The rows' gaps after deformation (`PlaneRows::gaps_after`).
+    pub gap: Vec<f64>,
+    /// Support reactions on every DOF (0 off the supports).
+    pub reactions: Vec<f64>,
+    /// Amplitudes of the free rigid motions (`dofs.modes`).
+    pub beta: Vec<f64>,
+    pub certificate: Certificate,
+    pub iterations: usize,
+    pub converged: bool,
+    /// Contact-force refinement steps taken on the final active set.
+    pub refinements: usize,
+    pub dofs: SolidDofs,
+    /// Seconds of assembly, factorization with condensation, and the
+    /// contact solve with the displacements.
+    pub seconds: [f64; 3],
+}
+
+/// The rows on the free DOFs, the gaps less the prescribed motion, and
+/// D = B R (rows × free motions).
+struct FreeRows {
+    rows: Vec<Vec<(usize, f64)>>,
+    g: Vec<f64>,
+    d: Mat<f64>,
+}
+
+fn free_rows(body: &SolidBody, rows: &PlaneRows, dofs: &SolidDofs) -> FreeRows {
+    let n = rows.plane.normal;
+    let k = dofs.modes.len();
+    let mut out = FreeRows {
+        rows: Vec::with_capacity(rows.len()),
+        g: Vec::with_capacity(rows.len()),
+        d: Mat::zeros(rows.len(), k),
+    };
+    for (i, terms) in rows.terms.iter().enumerate() {
+        let mut row = Vec::with_capacity(3 * terms.len());
+        let mut g = rows.gap[i];
+        for &(node, cn) in terms {
+            for (c, nc) in n.iter().enumerate() {
+                let (dof, coef) = (3 * node + c, -nc * cn);
+                if coef == 0.0 {
+                    continue;
+                }
+                match dofs.free[dof] {
+                    FIXED => g -= coef * dofs.prescribed[dof],
+                    f => row.push((f, coef)),
+                }
+                for j in 0..k {
+                    out.d[(i, j)] += coef * dofs.modes.at(j, body.mesh.nodes[node], c);
+                }
+            }
+        }
+        out.rows.push(row);
+        out.g.push(g);
+    }
+    out
+}
+
+/// Solves the contact of `body` with the plane of `rows`.
+pub fn solve(body: &SolidBody, rows: &PlaneRows, settings: &Settings) -> Result<Contact, CoreError> {
+    let t0 = std::time::Instant::now();
+    let touching: Vec<usize> = rows.terms.iter().flatten().map(|t| t.0).collect();
+    let dofs = dof_map(body, Some(&touching))?;
+    let k = Arc::new(stiffness::assemble(body, &dofs));
+    let f_ext = loads::external(body)?;
+    let f = loads::free_rhs(&f_ext, &dofs, &k);
+    let fr = free_rows(body, rows, &dofs);
+    let nm = dofs.modes.len();
+    // The motions' loads Rᵀ f (on every DOF: a virtual support's share too).
+    let fields: Vec<Vec<f64>> = (0..nm).map(|j| dofs.modes.field(j, &body.mesh.nodes)).collect();
+    let rf: Vec<f64> = fields.iter().map(|r| dense::dot(r, &f_ext)).collect();
+    if let Some(b) = unresisted(&fr.d, &dofs.modes.basis) {
+        return Err(CoreError::invalid(
+            InvalidKind::NoSupport,
+            "supports",
+            format!(
+                "the supports leave the {} free, which the plane cannot resist (a frictionless plane pushes only \
+                    along its normal)",
+                super::dofs::describe(&b)
+            ),
+        ));
+    }
+    let c = -&fr.d;
+    let r: Vec<f64> = rf.iter().map(|v| -v).collect();
+    compatible(&c, &r)?;
+    let t1 = std::time::Instant::now();
+    let refs: Vec<&[(usize, f64)]> = fr.rows.iter().map(|r| r.as_slice()).collect();
+    let (fwd, inv) = ordering::nested_dissection(body.mesh, &dofs);
+    let symbolic = Arc::new(SymbolicFactor::try_new_ordered(&k.k, &fwd, &inv)?);
+    let op = condensed::prepare_on(k.clone(), &refs, symbolic, t1)?;
+    let t2 = std::time::Instant::now();
+    let y = op.chol.forward(&f);
+    let q: Vec<f64> = fr.g.iter().zip(op.condensed.rows_of(&y)).map(|(g, b)| g - b).collect();
+    let (res, mut beta) = if nm == 0 {
+        (active_set::solve_lcp(&op.condensed.w, &q, settings), Vec::new())
+    } else {
+        active_set::solve_mlcp(&op.condensed.w, &q, &c, &r, settings)
+    };
+    let mut lambda = res.lambda;
+    let displacements = |lambda: &[f64], beta: &[f64]| {
+        let mut yz = y.clone();
+        op.condensed.subtract(lambda, &mut yz);
+        let mut u = loads::full_field(&dofs, &op.chol.backward(&yz));
+        for (field, b) in fields.iter().zip(beta) {
+            u.iter_mut().zip(field).for_each(|(u, r)| *u += b * r);
+        }
+        u
+    };
+    let gaps = |u: &[f64]| rows.gaps_after(u);
+    let mut u = displacements(&lambda, &beta);
+    let mut gap = gaps(&u);
+    // Refinement on the final active set: the dense W carries the round-off
+    // of the compliance it was formed from, the sparse u does not; solving
+    // [W_AA C_A; C_Aᵀ 0] δ = −(gap_A, Dᵀλ − Rᵀf) moves the active gaps to 0.
+    let mut refinements = 0;
+    if res.converged {
+        let idx: Vec<usize> = (0..lambda.len()).filter(|&i| lambda[i] > 0.0).collect();
+        let worst = |g: &[f64]| idx.iter().fold(0.0f64, |a, &i| a.max(g[i].abs()));
+        for _ in 0..REFINE_STEPS {
+            let now = worst(&gap);
+            if idx.is_empty() || now <= 1e-3 * settings.tolerance * inf_norm(&u) {
+                break;
+            }
+            let eq: Vec<f64> = (0..nm)
+                .map(|j| r[j] - idx.iter().map(|&i| c[(i, j)] * lambda[i]).sum::<f64>())
+                .collect();
+            let Some((dl, db)) = active_set::saddle(&op.condensed.w, &gap, &c, &eq, &idx) else {
+                break;
+            };
+            let mut l2 = lambda.clone();
+            idx.iter().zip(&dl).for_each(|(&i, d)| l2[i] += d);
+            let b2: Vec<f64> = beta.iter().zip(&db).map(|(b, d)| b + d).collect();
+            let u2 = displacements(&l2, &b2);
+            let g2 = gaps(&u2);
+            if idx.iter().any(|&i| l2[i] < 0.0) || worst(&g2) > 0.5 * now {
+                break;
+            }
+            (lambda, beta, u, gap) = (l2, b2, u2, g2);
+            refinements += 1;
+        }
+    }
+    let t3 = std::time::Instant::now();
+    let (ku, abs) = stiffness::internal_forces(body, &u);
+    let mut residual = ku;
+    residual.iter_mut().zip(&f_ext).for_each(|(r, f)| *r -= f);
+    for (terms, l) in rows.terms.iter().zip(&lambda) {
+        for &(node, cn) in terms {
+            for cc in 0..3 {
+                residual[3 * node + cc] -= l * cn * rows.plane.normal[cc];
+            }
+        }
+    }
+    let mut reactions = vec![0.0; u.len()];
+    let mut off_supports: f64 = 0.0;
+    for (d, &rd) in residual.iter().enumerate() {
+        if dofs.supported[d] {
+            reactions[d] = rd;
+        } else {
+            off_supports = off_supports.max(rd.abs());
+        }
+    }
+    let (lmax, umax) = (
+        inf_norm(&lambda).max(f64::MIN_POSITIVE),
+        inf_norm(&u).max(f64::MIN_POSITIVE),
+    );
+    let certificate = Certificate {
+        primal: gap.iter().fold(0.0f64, |a, g| a.max(-g)) / umax,
+        dual: lambda.iter().fold(0.0f64, |a, l| a.max(-l)) / lmax,
+        complementarity: lambda.iter().zip(&gap).fold(0.0f64, |a, (l, g)| a.max((l * g).abs())) / (lmax * umax),
+        equilibrium: off_supports / inf_norm(&f_ext).max(inf_norm(&abs)).max(lmax),
+    };
+    let pressure = lambda.iter().zip(&rows.area).map(|(l, a)| l / a).collect();
+    Ok(Contact {
+        u,
+        lambda,
+        pressure,
+        gap,
+        reactions,
+        beta,
+        certificate,
+        iterations: res.iterations,
+        converged: res.converged,
+        refinements,
+        dofs,
+        seconds: [t1 - t0, t2 - t1, t3 - t2].map(|d| d.as_secs_f64()),
+    })
+}
+
+/// A free motion (in (t, Lω) coordinates) that moves no row: D γ = 0 for
+/// some γ ≠ 0 (DᵀD's eigenvalues at 1e-12 of its largest, or D = 0), which
+/// would leave the mixed LCP's saddle point singular.
+fn unresisted(d: &Mat<f64>, basis: &[[f64; 6]]) -> Option<[f64; 6]> {
+    let k = d.ncols();
+    if k == 0 {
+        return None;
+    }
+    let dtd = Mat::<f64>::from_fn(k, k, |a, b| (0..d.nrows()).map(|i| d[(i, a)] * d[(i, b)]).sum());
+    let (vals, vecs) = dense::sym_eigen_small(&dtd);
+    let scale = vals[k - 1];
+    let j = (0..k).find(|&j| scale == 0.0 || vals[j] <= 1e-12 * scale)?;
+    let b: [f64; 6] = std::array::from_fn(|c| (0..k).map(|m| vecs[(m, j)] * basis[m][c]).sum());
+    let lead = b
+        .iter()
+        .copied()
+        .fold(0.0f64, |a, v| if v.abs() > a.abs() { v } else { a });
+    Some(b.map(|v| if (v / lead).abs() < 1e-12 { 0.0 } else { v / lead }))
+}
+
+/// Fichera's condition on the free motions (rows B u − C β ≤ g, equilibrium
+/// Cᵀλ = r): some λ ≥ 0 must balance the loads (`contact::fichera::check`,
+/// an LP), and no motion may open every row while the loads do no work on it
+/// (`fichera::escape`: nothing would decide where the body rests).
+fn compatible(c: &Mat<f64>, r: &[f64]) -> Result<(), CoreError> {
+    if c.ncols() == 0 {
+        return Ok(());
+    }
+    if fichera::check(c, r).is_err() {
+        return Err(CoreError::invalid(
+            InvalidKind::IncompatibleLoads,
+            "loads",
+            "no contact pressure on the plane (λ ≥ 0) balances the loads along the rigid motions the supports leave \
+                free: the loads pull the body off the plane or push it along it",
+        ));
+    }
+    if fichera::escape(c, r).is_some() {
+        return Err(CoreError::invalid(
+            InvalidKind::NoSupport,
+            "supports",
+            "a rigid motion the supports leave free lifts the body off the plane without work against the loads: \
+                nothing decides where it rests (a support is missing, or the loads do not press it on the plane)",
+        ));
+    }
+    Ok(())
+}
+
+/// Refinement steps of the contact forces at most (each one dense solve on
+/// the active set and one forward and backward sweep).
+const REFINE_STEPS: usize = 2;
