@@ -116,6 +116,7 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
     let turns = body_turns(&m.dofs, free.map(|p| (p, beta.as_slice())));
     let warnings = validity::check(scene, &m.meshes, &disp, &m.cons, &punch_motions, &turns, &pairs);
     let bodies = body_outputs(scene, &m.meshes, &disp);
+    let couplings = crate::solution::couplings::couplings(scene, &m.meshes, &m.dofs, &disp, &m.external);
     // The post stage has no deadline check: its answer is ready.
     let _ = obs.leave(Stage::Post);
     let mut report = Report {
@@ -141,6 +142,7 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
         steps: None,
         refinement: None,
         punches,
+        couplings,
         bodies,
         foundations,
         notes,

@@ -4,6 +4,7 @@ pub mod accuracy;
 pub mod certificate;
 pub mod compose;
 pub mod corners;
+pub mod couplings;
 pub mod friction;
 pub mod post;
 pub mod prescribed_slip;
