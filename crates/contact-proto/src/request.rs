@@ -160,7 +160,8 @@ pub struct BodySpec {
 #[serde(deny_unknown_fields)]
 pub struct CouplingSpec {
     /// Name of the edge set tied to the reference point; not also a contact
-    /// surface.
+    /// surface: its nodes are no contact candidates, even at the ends it
+    /// shares with one (a half-disk's flat and arc share two nodes).
     pub edges: String,
     /// The reference point [x, y] [length]: the axle's centre.
     pub reference: [f64; 2],

@@ -16,8 +16,13 @@ use crate::scene::{Control, Coupling};
 /// DOFs in favour of the reference point's, with K̃ (the coupled nodes held)
 /// positive definite: the loaded components are free motions like a body's
 /// held only by contact, their loads the coupling's (carried by the coupled
-/// nodes' nodal forces, `fem::loads`), and the coupled nodes count as moved
-/// by the modes (`virtual_dofs`). `None` when every component is prescribed.
+/// nodes' nodal forces, `fem::loads`). The coupled nodes are no contact
+/// candidates: like a supported node's, a row with no free DOF is dropped
+/// (`contact::constraints::moves_rigidly` sees no virtual support), since its
+/// tangential row would have no compliance at all and a sticking point there
+/// made the frictional Newton system singular (measured: the roller's arc
+/// ends, which the axle shares, failed every step). `None` when every
+/// component is prescribed.
 pub fn held(
     cp: &Coupling,
     mesh: &Mesh2d,
@@ -25,7 +30,6 @@ pub fn held(
     fixed: &mut [bool],
     prescribed: &mut [f64],
 ) -> Result<Option<RigidModes>, CoreError> {
-    let mut held = Vec::new();
     for node in mesh.edge_set_nodes(&cp.edges) {
         let v = cp.prescribed_at(mesh.nodes[node]);
         for c in 0..2 {
@@ -43,7 +47,6 @@ pub fn held(
             }
             fixed[d] = true;
             prescribed[d] = v[c];
-            held.push(d);
         }
     }
     let basis: Vec<[f64; 3]> = (0..3)
@@ -58,6 +61,6 @@ pub fn held(
         body: 0,
         center: cp.reference,
         basis,
-        virtual_dofs: held,
+        virtual_dofs: Vec::new(),
     }))
 }
