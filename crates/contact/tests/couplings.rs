@@ -9,7 +9,7 @@
 
 mod common;
 use common::*;
-use contact::proto::{CouplingResult, FrictionState, SolveReply, SolveStatus};
+use contact::proto::{CouplingResult, ErrorCode, FrictionState, SolveReply, SolveStatus};
 use serde_json::{json, Value};
 
 const R: f64 = 8.0;
@@ -271,6 +271,40 @@ fn an_axisymmetric_coupling_moves_along_the_axis() {
     let c = coupling(&loaded);
     assert!((c.uy + 0.04).abs() <= 1e-8 * 0.04, "{c:?}");
     assert!((c.fy - f).abs() <= 1e-9 * f.abs() && c.fx == 0.0 && c.m == 0.0, "{c:?}");
+}
+
+/// Loads contact cannot carry, refused at the coupling's load: a sideways
+/// push on a frictionless floor (no contact normal resists the axle's
+/// slide), and with friction a push Q = 1.2 μP, whose admissible range is
+/// ±μP (the pressed roller's P = 5 on a flat floor: every point's cone
+/// gives μ λ along x; to the LP's tolerance, 1e-7 relative, measured
+/// 1.1e-8).
+#[test]
+fn a_push_contact_cannot_carry_is_refused_at_the_coupling() {
+    let pushed = |q: f64, mu: Option<f64>| {
+        let mut r = roller_on_axle(json!({"vertical": {"load": -5.0}, "horizontal": {"load": q}}));
+        r["bodies"][0]["mesh"]["half_disk"]["grading"] = json!({"h_min": 0.03, "ratio": 1.2, "extent": 0.6});
+        if let Some(mu) = mu {
+            r["contacts"][0]["friction"] = json!({"coefficient": mu});
+            r["load_path"] = json!([
+                {"loads": {"/bodies/0/couplings/0/horizontal": 0.0}},
+                {"loads": {"/bodies/0/couplings/0/horizontal": 1.0}}
+            ]);
+        }
+        common::solve(&r).expect_err("refused")
+    };
+    let path = "/bodies/0/couplings/0/horizontal/load";
+    let e = pushed(1.0, None);
+    assert_eq!((e.code, e.path.as_str()), (ErrorCode::IncompatibleLoads, path), "{e:?}");
+    assert!(e.message.contains("coupling displacement"), "{}", e.message);
+    let e = pushed(1.2 * MU * 5.0, Some(MU));
+    assert_eq!((e.code, e.path.as_str()), (ErrorCode::IncompatibleLoads, path), "{e:?}");
+    let (value, min, max) = refused_range(&e, path);
+    assert!((value - 1.2 * MU * 5.0).abs() <= 1e-9 * value, "{value}");
+    assert!(
+        (min + MU * 5.0).abs() <= 1e-7 * MU * 5.0 && (max - MU * 5.0).abs() <= 1e-7 * MU * 5.0,
+        "{min} {max}"
+    );
 }
 
 /// What a coupling may not be, each refused at its JSON pointer.

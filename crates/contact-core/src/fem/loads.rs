@@ -13,7 +13,7 @@ use super::assembly::{assemble_loads, assemble_stiffness, DofMap, Stiffness};
 use super::element;
 use crate::error::{CoreError, InvalidKind};
 use crate::mesh::{boundary::edge_normal, Edge, Mesh2d};
-use crate::scene::{Body, Scene, Traction};
+use crate::scene::{Body, Scene, Traction, COMPONENTS};
 
 /// Where a point load falls: its edge's nodes and their shares N_i(s).
 pub type Located = Vec<(usize, f64)>;
@@ -145,7 +145,8 @@ pub enum Source {
     BodyForce,
     Traction(usize),
     PointLoad(usize),
-    Coupling(usize),
+    /// Component k (0 horizontal, 1 vertical, 2 rotation) of coupling j.
+    Coupling(usize, usize),
 }
 
 impl Source {
@@ -155,7 +156,7 @@ impl Source {
             Source::BodyForce => format!("{}/body_force", body.path),
             Source::Traction(k) => format!("{}/tractions/{k}", body.path),
             Source::PointLoad(k) => body.point_loads[k].path.clone(),
-            Source::Coupling(k) => body.couplings[k].path.clone(),
+            Source::Coupling(j, k) => format!("{}/{}/load", body.couplings[j].path, COMPONENTS[k]),
         }
     }
 }
@@ -284,22 +285,25 @@ fn each_load(
         }
     }
     for (j, cp) in body.couplings.iter().enumerate() {
-        for (node, f) in coupling_forces(cp, mesh) {
-            for (c, v) in f.into_iter().enumerate() {
-                add(Source::Coupling(j), node, c, v);
+        for k in 0..3 {
+            for (node, f) in coupling_forces(cp, mesh, k) {
+                for (c, v) in f.into_iter().enumerate() {
+                    add(Source::Coupling(j, k), node, c, v);
+                }
             }
         }
     }
 }
 
-/// Nodal forces on the coupled nodes statically equivalent to the
-/// coupling's loads (Fx, Fy and M about the reference point; 0 where a
-/// component is a displacement): F/n each, plus the moment about the nodes'
+/// Nodal forces on the coupled nodes statically equivalent to the load of
+/// the coupling's component k (Fx, Fy or M about the reference point; none
+/// where it is a displacement): F/n each, plus the moment about the nodes'
 /// centroid c as forces M_c e3 × (x − c) / Σ|x − c|². The coupled nodes are
 /// held in K̃, so these forces act only through the body's rigid modes, on
 /// which their work is F·U + M θ whatever the split.
-pub fn coupling_forces(cp: &crate::scene::Coupling, mesh: &Mesh2d) -> Vec<(usize, [f64; 2])> {
-    let (fx, fy, m) = (cp.load(0), cp.load(1), cp.load(2));
+pub fn coupling_forces(cp: &crate::scene::Coupling, mesh: &Mesh2d, k: usize) -> Vec<(usize, [f64; 2])> {
+    let load = |c: usize| if c == k { cp.load(c) } else { 0.0 };
+    let (fx, fy, m) = (load(0), load(1), load(2));
     if fx == 0.0 && fy == 0.0 && m == 0.0 {
         return Vec::new();
     }

@@ -193,6 +193,10 @@ pub struct Body {
     pub path: String,
 }
 
+/// The names of a punch's or coupling's three motions, in the order of
+/// their controls, as the request spells them.
+pub const COMPONENTS: [&str; 3] = ["horizontal", "vertical", "rotation"];
+
 /// An edge set tied rigidly to a reference point (nondimensional): its nodes
 /// move as (ux, uy) + θ e3 × (x − reference), each of (ux, Fx), (uy, Fy),
 /// (θ, M) prescribed on one side as for a punch.

@@ -42,7 +42,7 @@ pub fn couplings(
                 .iter()
                 .map(|&n| (n, [-external[dofs.dof(b, n, 0)], -external[dofs.dof(b, n, 1)]]))
                 .collect();
-            for (n, f) in coupling_forces(cp, mesh) {
+            for (n, f) in (0..3).flat_map(|k| coupling_forces(cp, mesh, k)) {
                 if let Some(r) = loads.get_mut(&n) {
                     r[0] += f[0];
                     r[1] += f[1];

@@ -8,9 +8,7 @@ use contact_proto::{self as proto, BodySpec};
 
 use super::{finite, invalid};
 use crate::error::{CoreError, InvalidKind as K};
-use crate::scene::{Body, Control, Coupling, Pair, Scales, Target};
-
-const COMPONENT: [&str; 3] = ["horizontal", "vertical", "rotation"];
+use crate::scene::{Body, Control, Coupling, Pair, Scales, Target, COMPONENTS as COMPONENT};
 
 /// One motion of a punch or a coupling, nondimensional: component k (0
 /// horizontal, 1 vertical, 2 rotation) at `path` (its object; the value's

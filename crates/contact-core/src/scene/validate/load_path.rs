@@ -118,7 +118,7 @@ fn load_ref(name: &str, bodies: &[Body], req: &SolveRequest) -> Option<LoadRef> 
             .map(|index| LoadRef::Support { body, index }),
         ["couplings", j, c] => {
             let index = index(j).filter(|&i| i < b.couplings.len())?;
-            let component = ["horizontal", "vertical", "rotation"].iter().position(|n| *n == c)?;
+            let component = crate::scene::COMPONENTS.iter().position(|n| *n == c)?;
             Some(LoadRef::Coupling { body, index, component })
         }
         _ => None,
