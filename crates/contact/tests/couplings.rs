@@ -118,6 +118,31 @@ fn a_load_on_a_coupling_moves_it_as_far_as_its_reaction_says() {
     }
 }
 
+/// `load_factors` scale a coupling's loads and displacements with the rest:
+/// the axle pressed by 5 at factors 0.5 and 1 carries 2.5 and 5 (equilibrium,
+/// 1e-12), and its displacement pressed at 0.5 is a prescribed half.
+#[test]
+fn load_factors_scale_a_coupling() {
+    for (control, value) in [("load", -5.0), ("displacement", -0.05)] {
+        let mut req = roller_on_axle(json!({"vertical": {control: value}}));
+        req["load_factors"] = json!([0.5, 1.0]);
+        let r = solved(&req);
+        let st = r.steps.as_ref().expect("one answer per factor");
+        let c = [&st[0].couplings[0], &st[1].couplings[0]];
+        if control == "load" {
+            for (k, f) in [0.5, 1.0].into_iter().enumerate() {
+                assert!(
+                    (st[k].resultant.fy - 5.0 * f).abs() <= 1e-12 * 5.0,
+                    "{:?}",
+                    st[k].resultant
+                );
+            }
+        } else {
+            assert_eq!((c[0].uy, c[1].uy), (-0.025, -0.05));
+        }
+    }
+}
+
 /// The roller (T6, ν = 0.499 for the P2–P0 element, whose second Dundurs
 /// constant against a rigid floor is 0.001) pressed through its axle by P in
 /// ten steps (the horizontal load held at 0), then pushed through it by Q =
