@@ -97,8 +97,8 @@ pub fn dof_map(scene: &Scene, meshes: &[Mesh2d]) -> Result<DofMap, CoreError> {
             rows.push([0.0, 0.0, 1.0]);
         }
         if let Some(cp) = body.couplings.first() {
-            if let Some(modes) = super::coupling::held(cp, mesh, node_offset[b], &mut fixed, &mut prescribed)? {
-                rigid.push(RigidModes { body: b, ..modes });
+            if let Some(modes) = super::coupling::held(b, cp, mesh, node_offset[b], &mut fixed, &mut prescribed)? {
+                rigid.push(modes);
             }
             continue;
         }

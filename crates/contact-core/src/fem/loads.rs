@@ -319,12 +319,12 @@ pub fn coupling_forces(cp: &crate::scene::Coupling, mesh: &Mesh2d, k: usize) -> 
     let (rx, ry) = (cp.reference[0] - c[0], cp.reference[1] - c[1]);
     let m_c = m + rx * fy - ry * fx;
     // An edge set has two distinct corners at least, so spread > 0.
-    let k = if spread > 0.0 { m_c / spread } else { 0.0 };
+    let turn = if spread > 0.0 { m_c / spread } else { 0.0 };
     nodes
         .into_iter()
         .map(|i| {
             let (dx, dy) = (mesh.nodes[i][0] - c[0], mesh.nodes[i][1] - c[1]);
-            (i, [fx / n - k * dy, fy / n + k * dx])
+            (i, [fx / n - turn * dy, fy / n + turn * dx])
         })
         .collect()
 }
