@@ -56,6 +56,7 @@ __all__ = [
     "hertz_measure",
     "sadowsky_pressure",
     "cattaneo_mindlin_stick",
+    "stick_measure",
     "rigid_footing_pressure",
     "pasternak_deflection",
     "hertz_sphere_reference",
@@ -164,6 +165,27 @@ def cattaneo_mindlin_stick(a: float, Q: float, mu: float, P: float) -> float:
     if not abs(Q) < mu * P:
         raise ValueError(f"|Q| = {abs(Q)} must be below μP = {mu * P}: beyond, the contact slides")
     return a * math.sqrt(1.0 - abs(Q) / (mu * P))
+
+
+def stick_measure(answer: dict, pair: int = 0) -> dict:
+    """The stick zone of a frictional answer (a reply, or one of its ``steps``), measured
+    as ``cattaneo_mindlin_stick`` gives it.
+
+    Returns ``P`` (= resultant.fy) and ``Q`` (= -resultant.fx: the force the contact takes
+    from the body sideways, so a body pushed toward +x has Q > 0), ``c`` (half the length of
+    the one run of sticking points, its ends midway between the run's end points and their
+    outer neighbours, where the true transition lies to half a spacing; the reply's
+    ``stick_zones`` end at the last sticking points, half a spacing short) and ``centre``.
+    """
+    res = answer["resultant"]
+    pts = sorted(answer["pairs"][pair]["points"], key=lambda p: p["x"])
+    idx = [i for i, p in enumerate(pts) if p.get("state") == "stick"]
+    if not idx or idx != list(range(idx[0], idx[-1] + 1)):
+        raise ValueError("expected one contiguous run of sticking points")
+    lo, hi = idx[0], idx[-1]
+    left = 0.5 * (pts[lo]["x"] + pts[lo - 1]["x"]) if lo > 0 else pts[lo]["x"]
+    right = 0.5 * (pts[hi]["x"] + pts[hi + 1]["x"]) if hi + 1 < len(pts) else pts[hi]["x"]
+    return {"P": res["fy"], "Q": -res["fx"], "c": 0.5 * (right - left), "centre": 0.5 * (left + right)}
 
 
 # Footings on foundations.

@@ -47,6 +47,7 @@ __all__ = [
     "polyline",
     "profile",
     "punch",
+    "coupling",
     "load",
     "displacement",
     "foundation",
@@ -140,10 +141,11 @@ def body(
     tractions: Iterable[dict] | None = None,
     body_force: list[float] | None = None,
     point_loads: Iterable[dict] | None = None,
+    couplings: Iterable[dict] | None = None,
 ) -> dict:
-    """A deformable body; ``supports``, ``tractions`` and ``point_loads`` name
-    the mesh's edge sets (generated meshes: rectangle "bottom", "right", "top",
-    "left"; half-disk "flat", "arc"; quarter-disk "flat", "arc", "axis")."""
+    """A deformable body; ``supports``, ``tractions``, ``point_loads`` and
+    ``couplings`` name the mesh's edge sets (generated meshes: rectangle "bottom",
+    "right", "top", "left"; half-disk "flat", "arc"; quarter-disk "flat", "arc", "axis")."""
     b = {"name": name, "material": material, "mesh": mesh, "supports": list(supports)}
     if tractions is not None:
         b["tractions"] = list(tractions)
@@ -151,6 +153,8 @@ def body(
         b["point_loads"] = list(point_loads)
     if body_force is not None:
         b["body_force"] = list(body_force)
+    if couplings:
+        b["couplings"] = list(couplings)
     return b
 
 
@@ -268,12 +272,12 @@ def profile(psi: dict, reference: list[float] = (0.0, 0.0)) -> dict:
 
 
 def load(value: float) -> dict:
-    """A punch motion left free, with this load on the punch."""
+    """A punch or coupling motion left free, with this load on it."""
     return {"load": value}
 
 
 def displacement(value: float) -> dict:
-    """A prescribed punch motion."""
+    """A prescribed punch or coupling motion."""
     return {"displacement": value}
 
 
@@ -286,6 +290,22 @@ def punch(
     """Rigid-motion controls of an obstacle about ``reference``: each of
     (alpha1, P1), (alpha2, P2), (theta, M) as ``load(v)`` or ``displacement(v)``."""
     return _given(reference=list(reference), horizontal=horizontal, vertical=vertical, rotation=rotation)
+
+
+def coupling(
+    edges: str,
+    reference: list[float],
+    horizontal: dict | None = None,
+    vertical: dict | None = None,
+    rotation: dict | None = None,
+) -> dict:
+    """An edge set tied rigidly to the point ``reference`` (an axle): its nodes move as
+    (ux, uy) + theta e3 x (x - reference), each of (ux, Fx), (uy, Fy), (theta, M about
+    ``reference``) as ``load(v)`` or ``displacement(v)``, left out: held at 0. A body with
+    a loaded coupling takes no supports (contact holds it); load path pointers
+    ``/bodies/<i>/couplings/0/<horizontal|vertical|rotation>``."""
+    return _given(edges=edges, reference=list(reference), horizontal=horizontal, vertical=vertical,
+                  rotation=rotation)
 
 
 def obstacle(name: str, shape: dict, punch: dict | None = None) -> dict:

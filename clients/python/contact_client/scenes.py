@@ -35,6 +35,7 @@ from .closed_forms import (
     pasternak_deflection,
     rigid_footing_pressure,
     sadowsky_pressure,
+    stick_measure,
 )
 
 __all__ = [
@@ -63,6 +64,7 @@ __all__ = [
     "boussinesq_pressure",
     "boussinesq_settlement",
     "cattaneo_mindlin_stick",
+    "stick_measure",
     "lame_press_fit_pressure",
 ]
 
@@ -543,23 +545,73 @@ def roller_on_plate(
     discretization: str = "mortar",
     *,
     load: float | None = None,
+    tangential: float | list[float] | None = None,
+    friction: float | None = None,
+    steps: int = 10,
 ) -> dict:
     """An elastic roller on an elastic plate (two deformable bodies, any materials).
 
     A half-disk of ``radius`` (arc down, touching the plate's top face y = 0 at
     the origin) with its flat top clamped and moved down by ``approach`` (default
-    0.05), or, with ``load`` instead, pushed down by the pressure load / (2 radius)
-    on its flat and held only by the plate (ux = 0 on the flat, see
-    ``_held_by_contact``); the plate ``plate_width`` x ``plate_depth`` below it is
-    fixed at its bottom.
+    0.05), or, with ``load`` instead, pressed down by that force through its axle:
+    the flat is coupled rigidly to the centre (0, radius) (``request.coupling``),
+    which carries the vertical load, is held sideways and against rotation, and
+    the roller is held only by the plate below it. The plate
+    ``plate_width`` x ``plate_depth`` below it is fixed at its bottom.
     Both meshes are ``h_min`` within ``extent`` of the contact point (not
     matching: the plate's is 1.3 h_min), graded by 1.1 elsewhere. The softer
     body carries the pressure (the service turns the pair round when needed).
     Reference: ``hertz_two_cylinders(P, radius, math.inf, E, nu, E_plate,
     nu_plate)`` with P = |resultant.fy| of the pair (a flat is a cylinder of
     infinite radius), while a is small against the radius and the plate.
+
+    ``friction``: Coulomb μ between roller and plate. ``tangential``: a sideways
+    force Q [force per unit thickness] pushed through the axle after the press, its
+    rotation still held (or a list of forces, applied in turn); it needs ``friction``
+    and is carried by it while |Q| < μP. The axle is coupled with ``tangential``
+    whether the press is a ``load`` or an ``approach``. With friction the press is
+    ramped in ``steps`` equal load path steps (default 10; the reply's ``steps`` holds
+    those, then one per tangential force), since friction depends on the path (see
+    ``roller_on_floor``); ``steps=1`` presses in one step. With the same material on
+    both sides (plate_modulus = youngs_modulus, plate_poisson = poisson_ratio: Dundurs
+    beta = 0) the contact then sticks on |x| < a sqrt(1 - Q/(μP)),
+    ``cattaneo_mindlin_stick`` with a from ``hertz_two_cylinders``; each coupling's
+    motion and the force through it are in the reply's ``couplings`` (per step too).
+    A free axle (its rotation a load of 0, ``request.coupling``) would roll under Q:
+    the reply warns ``rolling``.
     """
-    held, how = _held_by_contact("flat", 2.0 * radius, approach, load, 0.05)
+    press = "/bodies/0/couplings/0/vertical"
+    push = "/bodies/0/couplings/0/horizontal"
+    forces = None
+    if tangential is not None:
+        forces = [float(q) for q in (tangential if isinstance(tangential, (list, tuple)) else [tangential])]
+        if not forces or not all(math.isfinite(q) for q in forces):
+            raise ValueError(f"tangential must be a finite force or a non-empty list of them, not {tangential!r}")
+        if not friction:
+            raise ValueError("a tangential load needs friction: a frictionless contact cannot carry it")
+    if load is not None:
+        _load_or_motion(load, approach, "approach")
+        vertical, how = rq.load(-load), f"pressed through its axle with P={load}"
+    elif forces is not None:
+        approach = 0.05 if approach is None else approach
+        vertical, how = rq.displacement(-approach), f"its axle pressed {approach}"
+    else:
+        vertical = None
+    if vertical is None:
+        held, how = _held_by_contact("flat", 2.0 * radius, approach, None, 0.05)
+    else:
+        # Q enters the horizontal load at factor 1, each step naming its force.
+        horizontal = rq.load(1.0) if forces is not None else None
+        held = {"couplings": [rq.coupling("flat", [0.0, radius], horizontal=horizontal, vertical=vertical)]}
+    path = None
+    if friction and "supports" in held:
+        path = [rq.load_step({"/bodies/0/supports/0": f}) for f in _press_ramp(steps)]
+    if friction and "couplings" in held:
+        if forces is None:
+            path = [rq.load_step({press: f}) for f in _press_ramp(steps)]
+        else:
+            path = _pressed_then(press, push, steps, forces)
+            how += f", then pushed sideways by {forces}"
     roller = rq.body("roller", rq.material(youngs_modulus, poisson_ratio),
                      rq.half_disk([0.0, radius], radius, "down", radius / 16.0, element,
                                   rq.grading(h_min, 1.1, extent)),
@@ -570,9 +622,11 @@ def roller_on_plate(
                     [rq.support("bottom", 0.0, 0.0)])
     return rq.request(
         bodies=[roller, plate],
-        contacts=[rq.contact("roller", "arc", against=("plate", "top"), discretization=discretization)],
+        contacts=[rq.contact("roller", "arc", against=("plate", "top"), discretization=discretization,
+                             friction=friction)],
+        load_path=path,
         description=f"elastic roller R={radius} (E={youngs_modulus}) {how} onto an elastic plate "
-                    f"(E={plate_modulus})",
+                    f"(E={plate_modulus})" + ("" if friction is None else f", friction mu = {friction}"),
     )
 
 

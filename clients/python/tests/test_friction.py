@@ -130,6 +130,39 @@ def test_two_cylinders_stick_zone_follows_cattaneo_mindlin(client):
         assert all(len(pt["tangent"]) == 2 for pt in pair["points"]), "two-body friction points carry their tangent"
 
 
+def test_roller_pushed_through_its_axle_follows_cattaneo_mindlin(client):
+    # The pushed roller as a user first writes it: roller_on_plate with its defaults (T3,
+    # h_min = 0.01 at the contact, a/R = 0.038) and the same material on both sides (Dundurs
+    # beta = 0), pressed by P = 1 through its axle in ten steps (the default), then pushed
+    # through it by Q = 0.3, 0.5, 0.7 muP, its rotation held. The stick zone is
+    # Cattaneo-Mindlin's c within 2 % (stick_measure's ends are placed to half a spacing,
+    # 0.005 to 0.0065 on the two meshes, at most 4 % of c = 0.165 at Q/muP = 0.7 and 2.5 % at
+    # 0.3; measured +0.09, -0.14, -1.06 %), P and Q are carried exactly (equilibrium,
+    # 1e-9), and the axle's reported force is the loads given with its rotation 0. Freed
+    # (its rotation a load of 0), the same axle rolls and the reply says so.
+    radius, e, nu, p = 8.0, 200.0, 0.3, 1.0
+    ratios = [0.3, 0.5, 0.7]
+    req = scenes.roller_on_plate(radius, e, nu, plate_modulus=e, plate_poisson=nu, load=p,
+                                 tangential=[r * MU * p for r in ratios], friction=MU)
+    r = client.solve(req)
+    assert r["status"] == "solved"
+    assert len(r["steps"]) == 13, "pressed in 10 steps (the default), then 3 pushes"
+    for ratio, st in zip(ratios, r["steps"][10:]):
+        m = closed_forms.stick_measure(st)
+        assert m["P"] == pytest.approx(p, rel=1e-9) and m["Q"] == pytest.approx(ratio * MU * p, rel=1e-9)
+        a, _ = closed_forms.hertz_two_cylinders(m["P"], radius, math.inf, e, nu, e, nu)
+        expect = closed_forms.cattaneo_mindlin_stick(a, m["Q"], MU, m["P"])
+        assert m["c"] == pytest.approx(expect, rel=0.02), f"Q/muP = {ratio}"
+        axle = st["couplings"][0]
+        assert axle["fy"] == pytest.approx(-p, rel=1e-9) and axle["fx"] == pytest.approx(m["Q"], rel=1e-9)
+        assert axle["theta"] == 0.0
+    assert all(w["code"] != "rolling" for w in r.get("warnings", []))
+    req["bodies"][0]["couplings"][0]["rotation"] = {"load": 0.0}
+    rolled = client.solve(req)
+    codes = {w["code"]: w["location"] for w in rolled.get("warnings", [])}
+    assert codes.get("rolling") == "/bodies/0/couplings/0/rotation", codes
+
+
 def test_shifts_need_displacement_control():
     with pytest.raises(ValueError):
         scenes.roller_on_floor(load=5.0, friction=MU, shifts=[0.01])
@@ -139,6 +172,8 @@ def test_shifts_need_displacement_control():
         with pytest.raises(ValueError, match="steps"):
             scenes.roller_on_floor(friction=MU, shifts=[0.01], steps=steps)
     assert math.isclose(closed_forms.cattaneo_mindlin_stick(1.0, 0.75, 1.0, 1.0), 0.5)
+    with pytest.raises(ValueError, match="needs friction"):
+        scenes.roller_on_plate(load=1.0, tangential=0.1)
 
 
 def test_frictional_builders_press_in_ten_steps_then_shift():
@@ -155,3 +190,13 @@ def test_frictional_builders_press_in_ten_steps_then_shift():
     assert [s["loads"].get("/obstacles/0/punch/vertical", 1.0) for s in punch] == pytest.approx(
         [k / 10 for k in range(1, 11)] + [1.0])
     assert [s["loads"]["/obstacles/0/punch/horizontal"] for s in punch] == [0.0] * 10 + [1.0]
+    # The roller on a plate pushed through its axle: the coupling's vertical load ramped, its
+    # horizontal one (load 1, scaled by each step) held at 0, then each tangential force.
+    plate = scenes.roller_on_plate(load=2.0, tangential=[0.3, 0.6], friction=MU)
+    axle = plate["bodies"][0]["couplings"][0]
+    assert axle["vertical"] == {"load": -2.0} and axle["horizontal"] == {"load": 1.0} and "rotation" not in axle
+    press, push = "/bodies/0/couplings/0/vertical", "/bodies/0/couplings/0/horizontal"
+    path = plate["load_path"]
+    assert [s["loads"].get(press, 1.0) for s in path] == pytest.approx([k / 10 for k in range(1, 11)] + [1.0] * 2)
+    assert [s["loads"][push] for s in path] == [0.0] * 10 + [0.3, 0.6]
+    assert len(scenes.roller_on_plate(load=2.0, friction=MU, steps=4)["load_path"]) == 4

@@ -41,6 +41,9 @@ pub struct SolveReply {
     /// Motion and loads of every punch (obstacle with `punch`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub punches: Vec<PunchResult>,
+    /// Motion and loads of every coupling (a body's `couplings`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub couplings: Vec<CouplingResult>,
     /// One entry per load factor when the request lists `load_factors`; the
     /// top-level fields then describe the last factor.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -171,8 +174,8 @@ pub struct PairAccuracy {
     /// and punches whose motion is prescribed, under supports, uniform
     /// tractions and pressures, and body forces; not T6, axisymmetry,
     /// friction, two bodies, foundations, point loads (whose energy is
-    /// infinite), tractions over part of a side, or punches and bodies moved
-    /// by the contact.
+    /// infinite), tractions over part of a side, couplings, or punches and
+    /// bodies moved by the contact.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub energy: Option<f64>,
 }
@@ -242,6 +245,29 @@ pub struct PunchResult {
     pub note: Option<String>,
 }
 
+/// A coupling's reference point: its motion and the loads acting on the body
+/// through it (those given, or the reactions holding the prescribed motions).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CouplingResult {
+    /// JSON pointer of the coupling in the request (`/bodies/0/couplings/0`).
+    pub path: String,
+    /// Name of the coupled body.
+    pub body: String,
+    /// Displacement of the reference point [length].
+    pub ux: f64,
+    pub uy: f64,
+    /// Rotation about the reference point [radian], counter-clockwise.
+    pub theta: f64,
+    /// Force on the body through the coupling [force] and its moment about
+    /// the reference point [force × length]: a load component as given (to the
+    /// solve's round-off), a displacement component's reaction. In axisymmetry
+    /// fx and m are 0 (ring forces cancel).
+    pub fx: f64,
+    pub fy: f64,
+    pub m: f64,
+}
+
 /// The answer at one load factor.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -256,6 +282,9 @@ pub struct LoadStep {
     pub pairs: Vec<PairResult>,
     pub resultant: Resultant,
     pub certificate: Certificate,
+    /// Every coupling at this step (as the reply's `couplings`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub couplings: Vec<CouplingResult>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]

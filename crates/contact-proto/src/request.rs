@@ -79,7 +79,8 @@ pub struct LoadPathStep {
     /// Factor of each named load or prescribed displacement at this step, by
     /// its JSON pointer in the request: `/bodies/0/tractions/1`,
     /// `/bodies/0/point_loads/0`, `/bodies/0/supports/2` (its prescribed
-    /// values), `/bodies/0/body_force`, and a punch's motion
+    /// values), `/bodies/0/body_force`, a coupling's component
+    /// `/bodies/0/couplings/0/vertical` (`horizontal`, `rotation`), and a punch's motion
     /// `/obstacles/0/punch/horizontal` (`vertical`, `rotation`: its load or
     /// displacement). Those not named keep factor 1 (as
     /// given). To move one component of a support separately, give it its own
@@ -139,6 +140,42 @@ pub struct BodySpec {
     /// Body force per unit volume [force/length³], e.g. weight density.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body_force: Option<[f64; 2]>,
+    /// Rigid couplings of edge sets to a reference point (at most one per
+    /// body; a body with one takes no `supports`): an axle pushed or held.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub couplings: Vec<CouplingSpec>,
+}
+
+/// An edge set tied rigidly to a reference point: every node of it moves as
+/// u = (ux, uy) + θ e3 × (x − reference), with the reference point's three
+/// motions each prescribed as a displacement or as a load, as for a punch
+/// (the edge set is a rigid axle or hub; the body may still deform
+/// elsewhere). Loads act on the reference point: forces in the global axes,
+/// the moment about `reference`, counter-clockwise positive. A body pressed
+/// down through its axle onto something below has a negative vertical load.
+/// The body must take part in a contact pair when a component is a load
+/// (contact holds it). In axisymmetry only `vertical` may be given: the
+/// edge set moves along the axis.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CouplingSpec {
+    /// Name of the edge set tied to the reference point; not also a contact
+    /// surface: its nodes are no contact candidates, even at the ends it
+    /// shares with one (a half-disk's flat and arc share two nodes).
+    pub edges: String,
+    /// The reference point [x, y] [length]: the axle's centre.
+    pub reference: [f64; 2],
+    /// ux [length] or Fx [force]; default: displacement 0.
+    #[serde(default)]
+    pub horizontal: Control,
+    /// uy [length] or Fy [force]; default: displacement 0.
+    #[serde(default)]
+    pub vertical: Control,
+    /// θ [radian, small] or M [force × length] about `reference`; default:
+    /// displacement 0 (rotation held). A load of 0 leaves the axle free to
+    /// turn.
+    #[serde(default)]
+    pub rotation: Control,
 }
 
 /// A concentrated force [force per unit thickness] at a point of an edge set
@@ -358,11 +395,46 @@ pub struct PunchSpec {
 }
 
 /// One side of a (motion, load) pair.
-#[derive(Debug, Clone, Copy, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, Serialize, JsonSchema)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum Control {
     Displacement(f64),
     Load(f64),
+}
+
+/// Read by hand only to name the mistake of giving both sides: serde's
+/// derived reader stops at the second key with a syntax error ("expected
+/// value"), which the parser must call malformed JSON, without a path.
+impl<'de> Deserialize<'de> for Control {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Sides;
+        impl<'de> serde::de::Visitor<'de> for Sides {
+            type Value = Control;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("an object with one of `displacement` and `load`")
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<Control, A::Error> {
+                use serde::de::Error;
+                let mut out = None;
+                while let Some(key) = map.next_key::<String>()? {
+                    let side: fn(f64) -> Control = match key.as_str() {
+                        "displacement" => Control::Displacement,
+                        "load" => Control::Load,
+                        other => return Err(A::Error::unknown_variant(other, &["displacement", "load"])),
+                    };
+                    let v: f64 = map.next_value()?;
+                    if out.is_some() {
+                        return Err(A::Error::custom(
+                            "give one of `displacement` and `load`, not both: a motion is prescribed, or its load is",
+                        ));
+                    }
+                    out = Some(side(v));
+                }
+                out.ok_or_else(|| A::Error::custom("give one of `displacement` and `load`"))
+            }
+        }
+        d.deserialize_map(Sides)
+    }
 }
 
 impl Default for Control {

@@ -99,6 +99,7 @@ pub fn body(name: &str, youngs_modulus: f64, poisson_ratio: f64, mesh: MeshSpec)
         tractions: Vec::new(),
         point_loads: Vec::new(),
         body_force: None,
+        couplings: Vec::new(),
     }
 }
 

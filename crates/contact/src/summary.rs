@@ -268,6 +268,21 @@ pub fn reply(r: &SolveReply) -> String {
             num(pu.m)
         );
     }
+    for c in &r.couplings {
+        let _ = writeln!(
+            o,
+            "coupling     {} of '{}': ux {}{length}, uy {}{length}, theta {} rad; on the body fx {}{force}, fy {}{force}, \
+                m {}{moment}",
+            c.path,
+            c.body,
+            num(c.ux),
+            num(c.uy),
+            num(c.theta),
+            num(c.fx),
+            num(c.fy),
+            num(c.m)
+        );
+    }
     for f in &r.foundations {
         let w = f.w.iter().fold(0.0f64, |a, v| a.max(*v));
         let _ = writeln!(

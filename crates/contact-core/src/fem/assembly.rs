@@ -97,6 +97,12 @@ pub fn dof_map(scene: &Scene, meshes: &[Mesh2d]) -> Result<DofMap, CoreError> {
             rows.push([1.0, 0.0, 0.0]);
             rows.push([0.0, 0.0, 1.0]);
         }
+        if let Some(cp) = body.couplings.first() {
+            if let Some(modes) = super::coupling::held(b, cp, mesh, node_offset[b], &mut fixed, &mut prescribed)? {
+                rigid.push(modes);
+            }
+            continue;
+        }
         let basis = free_modes(&rows);
         if basis.is_empty() {
             continue;

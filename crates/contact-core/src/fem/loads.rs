@@ -1,6 +1,6 @@
 //! Nodal external loads: body forces, tractions and pressures on edge sets
-//! (or on the part of one inside an x range), and concentrated forces at
-//! points of edge sets.
+//! (or on the part of one inside an x range), concentrated forces at
+//! points of edge sets, and the loads of couplings on their coupled nodes.
 //!
 //! Surface loads are integrated with the edge's own shape functions (3-point
 //! Gauss, exact for a uniform load on T3 and T6 edges); an edge crossing an
@@ -13,7 +13,7 @@ use super::assembly::{assemble_loads, assemble_stiffness, DofMap, Stiffness};
 use super::element;
 use crate::error::{CoreError, InvalidKind};
 use crate::mesh::{boundary::edge_normal, Edge, Mesh2d};
-use crate::scene::{Body, Scene, Traction};
+use crate::scene::{Body, Scene, Traction, COMPONENTS};
 
 /// Where a point load falls: its edge's nodes and their shares N_i(s).
 pub type Located = Vec<(usize, f64)>;
@@ -145,6 +145,8 @@ pub enum Source {
     BodyForce,
     Traction(usize),
     PointLoad(usize),
+    /// Component k (0 horizontal, 1 vertical, 2 rotation) of coupling j.
+    Coupling(usize, usize),
 }
 
 impl Source {
@@ -154,6 +156,7 @@ impl Source {
             Source::BodyForce => format!("{}/body_force", body.path),
             Source::Traction(k) => format!("{}/tractions/{k}", body.path),
             Source::PointLoad(k) => body.point_loads[k].path.clone(),
+            Source::Coupling(j, k) => format!("{}/{}/load", body.couplings[j].path, COMPONENTS[k]),
         }
     }
 }
@@ -281,6 +284,49 @@ fn each_load(
             }
         }
     }
+    for (j, cp) in body.couplings.iter().enumerate() {
+        for k in 0..3 {
+            for (node, f) in coupling_forces(cp, mesh, k) {
+                for (c, v) in f.into_iter().enumerate() {
+                    add(Source::Coupling(j, k), node, c, v);
+                }
+            }
+        }
+    }
+}
+
+/// Nodal forces on the coupled nodes statically equivalent to the load of
+/// the coupling's component k (Fx, Fy or M about the reference point; none
+/// where it is a displacement): F/n each, plus the moment about the nodes'
+/// centroid c as forces M_c e3 × (x − c) / Σ|x − c|². The coupled nodes are
+/// held in K̃, so these forces act only through the body's rigid modes, on
+/// which their work is F·U + M θ whatever the split.
+pub fn coupling_forces(cp: &crate::scene::Coupling, mesh: &Mesh2d, k: usize) -> Vec<(usize, [f64; 2])> {
+    let load = |c: usize| if c == k { cp.load(c) } else { 0.0 };
+    let (fx, fy, m) = (load(0), load(1), load(2));
+    if fx == 0.0 && fy == 0.0 && m == 0.0 {
+        return Vec::new();
+    }
+    let nodes = mesh.edge_set_nodes(&cp.edges);
+    let n = nodes.len() as f64;
+    let c = nodes.iter().fold([0.0; 2], |a, &i| {
+        [a[0] + mesh.nodes[i][0] / n, a[1] + mesh.nodes[i][1] / n]
+    });
+    let spread: f64 = nodes
+        .iter()
+        .map(|&i| (mesh.nodes[i][0] - c[0]).powi(2) + (mesh.nodes[i][1] - c[1]).powi(2))
+        .sum();
+    let (rx, ry) = (cp.reference[0] - c[0], cp.reference[1] - c[1]);
+    let m_c = m + rx * fy - ry * fx;
+    // An edge set has two distinct corners at least, so spread > 0.
+    let turn = if spread > 0.0 { m_c / spread } else { 0.0 };
+    nodes
+        .into_iter()
+        .map(|i| {
+            let (dx, dy) = (mesh.nodes[i][0] - c[0], mesh.nodes[i][1] - c[1]);
+            (i, [fx / n - turn * dy, fy / n + turn * dx])
+        })
+        .collect()
 }
 
 /// Stiffness and loads together (no cache): `assembly`'s two halves and the

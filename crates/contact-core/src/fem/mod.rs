@@ -5,6 +5,7 @@
 pub mod assembly;
 pub mod axisymmetric;
 pub mod constitutive;
+pub mod coupling;
 pub mod element;
 pub mod kernel;
 pub mod loads;

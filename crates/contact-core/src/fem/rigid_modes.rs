@@ -21,7 +21,8 @@ pub struct RigidModes {
     pub body: usize,
     pub center: [f64; 2],
     pub basis: Vec<[f64; 3]>,
-    /// Global DOFs fixed to zero in K̃ (one per mode).
+    /// Global DOFs fixed to zero in K̃ (one per mode; none for a coupling's
+    /// modes, whose coupled nodes are real supports, `fem::coupling`).
     pub virtual_dofs: Vec<usize>,
 }
 

@@ -75,6 +75,12 @@ pub enum LoadRef {
         obstacle: usize,
         component: usize,
     },
+    /// Component of a body's coupling, as for a punch.
+    Coupling {
+        body: usize,
+        index: usize,
+        component: usize,
+    },
 }
 
 impl Scene {
@@ -97,6 +103,11 @@ impl Scene {
             }
             for pl in &mut b.point_loads {
                 pl.force = [k * pl.force[0], k * pl.force[1]];
+            }
+            for cp in &mut b.couplings {
+                for c in &mut cp.controls {
+                    c.scale(k);
+                }
             }
         }
         s
@@ -130,10 +141,11 @@ impl Scene {
                 }
                 LoadRef::Punch { obstacle, component } => {
                     if let Some(pu) = &mut s.obstacles[obstacle].punch {
-                        match &mut pu.controls[component] {
-                            Control::Displacement(v) | Control::Load(v) => *v *= k,
-                        }
+                        pu.controls[component].scale(k);
                     }
+                }
+                LoadRef::Coupling { body, index, component } => {
+                    s.bodies[body].couplings[index].controls[component].scale(k);
                 }
             }
         }
@@ -175,8 +187,53 @@ pub struct Body {
     pub tractions: Vec<Traction>,
     pub point_loads: Vec<PointLoad>,
     pub body_force: [f64; 2],
+    /// Edge sets tied rigidly to a reference point (at most one; then no supports).
+    pub couplings: Vec<Coupling>,
     /// JSON pointer of the body in the request.
     pub path: String,
+}
+
+/// The names of a punch's or coupling's three motions, in the order of
+/// their controls, as the request spells them.
+pub const COMPONENTS: [&str; 3] = ["horizontal", "vertical", "rotation"];
+
+/// An edge set tied rigidly to a reference point (nondimensional): its nodes
+/// move as (ux, uy) + θ e3 × (x − reference), each of (ux, Fx), (uy, Fy),
+/// (θ, M) prescribed on one side as for a punch.
+#[derive(Debug, Clone)]
+pub struct Coupling {
+    pub edges: String,
+    pub reference: [f64; 2],
+    pub controls: [Control; 3],
+    /// JSON pointer of the coupling.
+    pub path: String,
+}
+
+impl Coupling {
+    /// The prescribed part of the coupling's motion at point x: the
+    /// displacement-controlled components only (the loaded ones are solved
+    /// for as the body's free motions).
+    pub fn prescribed_at(&self, x: [f64; 2]) -> [f64; 2] {
+        let v = |k: usize| match self.controls[k] {
+            Control::Displacement(v) => v,
+            Control::Load(_) => 0.0,
+        };
+        let (dx, dy) = (x[0] - self.reference[0], x[1] - self.reference[1]);
+        [v(0) - v(2) * dy, v(1) + v(2) * dx]
+    }
+
+    /// The load of component k (0 where it is a displacement).
+    pub fn load(&self, k: usize) -> f64 {
+        match self.controls[k] {
+            Control::Load(v) => v,
+            Control::Displacement(_) => 0.0,
+        }
+    }
+
+    /// Whether some component is load-controlled (solved for by contact).
+    pub fn has_load(&self) -> bool {
+        self.controls.iter().any(|c| matches!(c, Control::Load(_)))
+    }
 }
 
 impl Body {

@@ -76,6 +76,15 @@ pub enum Control {
     Load(f64),
 }
 
+impl Control {
+    /// Multiplies the value, load or displacement, by `k` (a load step).
+    pub fn scale(&mut self, k: f64) {
+        match self {
+            Control::Displacement(v) | Control::Load(v) => *v *= k,
+        }
+    }
+}
+
 /// Tolerances and parameters of the contact solve (nondimensional).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Settings {

@@ -131,6 +131,7 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
             bound
         })
         .flatten();
+    let couplings = crate::solution::couplings::couplings(scene, &m.meshes, &m.dofs, &disp, &m.external);
     // The post stage has no deadline check: its answer is ready.
     let _ = obs.leave(Stage::Post);
     let mut report = Report {
@@ -156,6 +157,7 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
         steps: None,
         refinement: None,
         punches,
+        couplings,
         bodies,
         foundations,
         notes,

@@ -4,6 +4,7 @@ pub mod accuracy;
 pub mod certificate;
 pub mod compose;
 pub mod corners;
+pub mod couplings;
 pub mod energy;
 pub mod friction;
 pub mod post;

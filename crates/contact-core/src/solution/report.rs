@@ -27,6 +27,8 @@ pub struct Report {
     pub cache: CacheState,
     /// Motion and loads of every punch.
     pub punches: Vec<PunchReport>,
+    /// Motion and loads of every coupling (`solution::couplings`).
+    pub couplings: Vec<CouplingReport>,
     /// One entry per load factor when the scene lists load factors.
     pub steps: Option<Vec<LoadStep>>,
     /// Per-body fields, when the outputs ask for them.
@@ -146,6 +148,9 @@ impl Report {
             let v = [p.alpha1, p.alpha2, p.theta, p.p1, p.p2, p.m];
             check(&|| format!("punches/{i}"), &v);
         }
+        for (i, c) in self.couplings.iter().enumerate() {
+            check(&|| format!("couplings/{i}"), &[c.ux, c.uy, c.theta, c.fx, c.fy, c.m]);
+        }
         for (i, f) in self.foundations.iter().enumerate() {
             check(&|| format!("foundations/{i}/w"), &f.w);
             check(&|| format!("foundations/{i}/load"), &[f.load]);
@@ -250,6 +255,21 @@ pub struct PunchReport {
     pub note: Option<String>,
 }
 
+/// A coupling's reference point: its motion and the loads that act on the
+/// body through it (given, or the reactions that hold it).
+#[derive(Debug, Clone)]
+pub struct CouplingReport {
+    /// JSON pointer of the coupling in the request.
+    pub path: String,
+    pub body: String,
+    pub ux: f64,
+    pub uy: f64,
+    pub theta: f64,
+    pub fx: f64,
+    pub fy: f64,
+    pub m: f64,
+}
+
 /// The answer at one load factor.
 #[derive(Debug, Clone)]
 pub struct LoadStep {
@@ -261,6 +281,7 @@ pub struct LoadStep {
     pub pairs: Vec<PairReport>,
     pub resultant: Resultant,
     pub certificate: Certificate,
+    pub couplings: Vec<CouplingReport>,
 }
 
 impl LoadStep {
@@ -274,6 +295,7 @@ impl LoadStep {
             pairs: r.pairs.clone(),
             resultant: r.resultant,
             certificate: r.certificate,
+            couplings: r.couplings.clone(),
         }
     }
 }

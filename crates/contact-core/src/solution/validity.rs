@@ -183,11 +183,22 @@ pub fn check(
             };
             let length = scene.scales.length;
             let name = &scene.bodies[b].name;
+            // A body turned by a free coupling rotation: the place to hold it.
+            let (location, hold) = match scene.bodies[b].couplings.first() {
+                Some(cp) if matches!(cp.controls[2], crate::scene::Control::Load(_)) => (
+                    format!("{}/rotation", cp.path),
+                    "Hold the axle's rotation (the coupling's rotation as a displacement, e.g. 0)",
+                ),
+                _ => (
+                    scene.bodies[b].path.clone(),
+                    "Hold the body's rotation (a support on it)",
+                ),
+            };
             warn(
                 WarningCode::Rolling,
                 roll / half,
                 MAX_ROLL,
-                scene.bodies[b].path.clone(),
+                location,
                 format!(
                     "body '{name}', held only by contact, turns by {:.3e} rad under its loads: its curved surface has \
                         rolled its contact by {} along itself, {:.2}× the zone's half-width {}, beyond the {MAX_ROLL} \
@@ -195,8 +206,7 @@ pub fn check(
                         shape, misplaces their moment by under 5 % of what the zone can carry. The loads' moment about \
                         the contact exceeds what a zone this wide can carry (its normal force times its half-width): \
                         the body rolls, and the zone, pressure and friction of this answer are those of the linearized \
-                        roll, not of the scene. Hold the body's rotation (a support on it) or apply the load through \
-                        the contact's line of action",
+                        roll, not of the scene. {hold} or apply the load through the contact's line of action",
                     theta.abs(),
                     shown(roll * length),
                     roll / half,

@@ -52,6 +52,7 @@ pub fn reply(mut report: Report) -> p::SolveReply {
         },
         steps: report.steps.map(|s| s.into_iter().map(step).collect()),
         punches: report.punches.into_iter().map(punch).collect(),
+        couplings: report.couplings.into_iter().map(coupling).collect(),
         bodies: report
             .bodies
             .map(|b| b.into_iter().zip(hoop).map(|(b, h)| body(b, h)).collect()),
@@ -209,6 +210,7 @@ fn step(s: LoadStep) -> p::LoadStep {
         pairs: s.pairs.into_iter().map(pair).collect(),
         resultant: resultant(s.resultant),
         certificate: certificate(s.certificate),
+        couplings: s.couplings.into_iter().map(coupling).collect(),
     }
 }
 
@@ -329,6 +331,19 @@ fn punch(pu: r::PunchReport) -> p::PunchResult {
         m: pu.m,
         unique: pu.unique,
         note: pu.note,
+    }
+}
+
+fn coupling(c: r::CouplingReport) -> p::CouplingResult {
+    p::CouplingResult {
+        path: c.path,
+        body: c.body,
+        ux: c.ux,
+        uy: c.uy,
+        theta: c.theta,
+        fx: c.fx,
+        fy: c.fy,
+        m: c.m,
     }
 }
 

@@ -416,13 +416,19 @@ fn body_directions(
         }
         let words = rm.describe(dir, scene.scales.length(1.0));
         if load.abs() > 1e-12 * scale && load != 0.0 {
+            // A coupled body takes no supports: its motions are held by the coupling.
+            let hold = if body.couplings.is_empty() {
+                "support it"
+            } else {
+                "hold that motion with a coupling displacement"
+            };
             return Err(CoreError::invalid(
                 InvalidKind::IncompatibleLoads,
                 heaviest(loads, dir).unwrap_or_else(|| body.path.clone()),
                 format!(
                     "contact does not resist the {words} of body '{}' (held only by contact): no contact normal moves \
                         with it (beyond the discretization's {:.0e} of its motion), so contact cannot carry the loads' \
-                        work on it; balance the loads on the body or support it",
+                        work on it; balance the loads on the body or {hold}",
                     body.name, WEAK_LEVER
                 ),
             ));

@@ -32,7 +32,7 @@ mod words;
 pub use columns::{rigid_column, RigidColumn};
 pub use words::describe_motion;
 
-pub const COMPONENT: [&str; 3] = ["horizontal", "vertical", "rotation"];
+pub const COMPONENT: [&str; 3] = crate::scene::COMPONENTS;
 
 /// Fraction of the largest free motion's terms below which a motion's
 /// equilibrium residual is judged against this much of the largest instead

@@ -230,6 +230,13 @@ pub fn bodies(req: &SolveRequest, survey: &Survey) -> Result<(Vec<String>, Vec<B
         let bf = b.body_force.unwrap_or([0.0, 0.0]);
         finite(bf[0], &format!("{bp}/body_force/0"), K::Request)?;
         finite(bf[1], &format!("{bp}/body_force/1"), K::Request)?;
+        let couplings = super::couplings::couplings(
+            b,
+            &bp,
+            &edges,
+            survey.scales,
+            req.analysis == proto::Analysis::Axisymmetric,
+        )?;
         bodies.push(Body {
             name,
             youngs_modulus: b.material.youngs_modulus / modulus,
@@ -239,6 +246,7 @@ pub fn bodies(req: &SolveRequest, survey: &Survey) -> Result<(Vec<String>, Vec<B
             tractions,
             point_loads,
             body_force: [bf[0] * length / modulus, bf[1] * length / modulus],
+            couplings,
             path: bp,
         });
     }

@@ -50,8 +50,8 @@ pub fn load_path(req: &SolveRequest, bodies: &[Body], limits: &Limits) -> Result
                             &path,
                             format!(
                                 "'{name}' names no load: expected the JSON pointer of a traction, point load, support, \
-                                    body force or punch motion, e.g. /bodies/0/tractions/1 or \
-                                    /obstacles/0/punch/horizontal"
+                                    body force, coupling motion or punch motion, e.g. /bodies/0/tractions/1, \
+                                    /bodies/0/couplings/0/vertical or /obstacles/0/punch/horizontal"
                             ),
                         )
                     })?;
@@ -80,7 +80,8 @@ fn escape(key: &str) -> String {
 }
 
 /// The load a pointer names: `/bodies/<i>/<tractions|point_loads|supports>/<j>`
-/// or `/bodies/<i>/body_force`, with the body by index, or
+/// or `/bodies/<i>/body_force`, or `/bodies/<i>/couplings/<j>/<horizontal|vertical|rotation>`,
+/// with the body by index, or
 /// `/obstacles/<i>/punch/<horizontal|vertical|rotation>` of a punch.
 fn load_ref(name: &str, bodies: &[Body], req: &SolveRequest) -> Option<LoadRef> {
     let index = |s: &str| -> Option<usize> {
@@ -115,6 +116,11 @@ fn load_ref(name: &str, bodies: &[Body], req: &SolveRequest) -> Option<LoadRef> 
         ["supports", j] => index(j)
             .filter(|&i| i < b.supports.len())
             .map(|index| LoadRef::Support { body, index }),
+        ["couplings", j, c] => {
+            let index = index(j).filter(|&i| i < b.couplings.len())?;
+            let component = crate::scene::COMPONENTS.iter().position(|n| *n == c)?;
+            Some(LoadRef::Coupling { body, index, component })
+        }
         _ => None,
     }
 }

@@ -1,9 +1,10 @@
 //! Request → Scene: the one door every request passes. Each part of the
-//! request has its module (`bodies`, `obstacles`, `foundations`, `pairs`,
+//! request has its module (`bodies`, `couplings`, `obstacles`, `foundations`, `pairs`,
 //! `settings`); every failure names the JSON pointer of the offending field.
 //! What can only be judged after meshing is `admit`'s.
 
 mod bodies;
+mod couplings;
 mod foundations;
 mod load_path;
 mod obstacles;
@@ -114,6 +115,7 @@ impl Scene {
             foundations: &foundation_names,
         };
         let (pairs, notes) = pairs::pairs(req, &survey, &names)?;
+        couplings::against_pairs(&bodies, &pairs)?;
         let settings = settings::settings(req, scales, &bodies, survey.nodes.iter().sum(), limits)?;
         settings::units(req)?;
         let load_path = load_path::load_path(req, &bodies, limits)?;

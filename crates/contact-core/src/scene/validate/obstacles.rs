@@ -9,7 +9,7 @@ use crate::scene::{Control, Obstacle, Psi, Punch, Scales, Shape};
 
 /// The obstacles and their names (for the pairs).
 pub fn obstacles(req: &SolveRequest, scales: Scales) -> Result<(Vec<String>, Vec<Obstacle>), CoreError> {
-    let Scales { length, modulus, .. } = scales;
+    let Scales { length, .. } = scales;
     let l = |x: f64| x / length;
     let lp = |p: [f64; 2]| [p[0] / length, p[1] / length];
     let mut obstacle_names = Vec::new();
@@ -133,19 +133,8 @@ pub fn obstacles(req: &SolveRequest, scales: Scales) -> Result<(Vec<String>, Vec
                 let pth = format!("/obstacles/{i}/punch");
                 finite(pp.reference[0], &format!("{pth}/reference/0"), K::Geometry)?;
                 finite(pp.reference[1], &format!("{pth}/reference/1"), K::Geometry)?;
-                let scale = |c: proto::Control, k: usize, name: &str| -> Result<Control, CoreError> {
-                    let (v, is_load) = match c {
-                        proto::Control::Displacement(v) => (v, false),
-                        proto::Control::Load(v) => (v, true),
-                    };
-                    let kind = if is_load { "load" } else { "displacement" };
-                    finite(v, &format!("{pth}/{name}/{kind}"), K::Request)?;
-                    Ok(match (is_load, k) {
-                        (false, 2) => Control::Displacement(v),
-                        (false, _) => Control::Displacement(v / length),
-                        (true, 2) => Control::Load(v / (modulus * length * length)),
-                        (true, _) => Control::Load(v / scales.force_unit()),
-                    })
+                let scale = |c: proto::Control, k: usize, name: &str| {
+                    super::couplings::control(c, k, &format!("{pth}/{name}"), scales)
                 };
                 let mut controls = [
                     scale(pp.horizontal, 0, "horizontal")?,

@@ -93,6 +93,9 @@ pub fn unsupported(scene: &Scene, model: &Model, factor: Option<&Cholesky>) -> O
     if scene.pairs.iter().any(|p| !matches!(p.target, Target::Obstacle(_))) {
         return Some("only contact with rigid obstacles is in the bound (not two bodies or foundations)");
     }
+    if scene.bodies.iter().any(|b| !b.couplings.is_empty()) {
+        return Some("a coupling's rigid side is not in the bound yet");
+    }
     if scene.bodies.iter().any(|b| !b.point_loads.is_empty()) {
         return Some("a point load has an unbounded energy, so its error's energy is too");
     }
