@@ -171,11 +171,11 @@ pub struct PairAccuracy {
     /// `pressure_l2`, `peak` and `zone_edges` estimate. Absent where the scene
     /// is outside its reach: it covers frictionless contact of linear
     /// triangles (T3) in plane strain or plane stress against rigid obstacles
-    /// and punches whose motion is prescribed, under supports, uniform
+    /// and punches (under load or motion control), under supports, uniform
     /// tractions and pressures, and body forces; not T6, axisymmetry,
     /// friction, two bodies, foundations, point loads (whose energy is
-    /// infinite), tractions over part of a side, couplings, or punches and
-    /// bodies moved by the contact.
+    /// infinite), tractions over part of a side, couplings, or bodies moved
+    /// by the contact alone.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub energy: Option<f64>,
 }

@@ -18,6 +18,14 @@ fn main() {
         ),
         ("disk_on_flat", contact_verify::convergence::disk_request(0.01, "t3")),
         (
+            "flat_punch",
+            serde_json::from_str(include_str!("../../../proto/examples/indentation_flat_punch.json")).unwrap(),
+        ),
+        (
+            "circular_punch",
+            serde_json::from_str(include_str!("../../../proto/examples/indentation_circular_punch.json")).unwrap(),
+        ),
+        (
             "gmsh_hertz",
             serde_json::from_str(include_str!(
                 "../../../proto/examples/signorini_hertz_cylinder_gmsh.json"

@@ -97,6 +97,24 @@ fn the_bound_is_above_the_error_of_hertz_contact() {
     assert!(l[0].correction > 0.0 && l[0].contact > 0.0);
 }
 
+/// A flat punch under a force (its motion solved for): p* is scaled so that
+/// it carries the punch's force and moment exactly, which the complementary
+/// energy asks. The corners' singular pressure keeps the error's energy
+/// finite (σ ~ r^(−1/2)); effectivity against the extrapolated truth, whose
+/// potential includes the load's work on the punch's motion: measured 2.22.
+#[test]
+fn the_bound_is_above_the_error_of_a_loaded_flat_punch() {
+    let base: Value =
+        serde_json::from_str(include_str!("../../../proto/examples/indentation_flat_punch.json")).expect("json");
+    let req = contact_verify::effectivity::scaled(&base, 4.0, "t3");
+    let l = levels(&req);
+    let j = [l[0].potential, l[1].potential, l[2].potential];
+    assert!(j[0] > j[1] && j[1] > j[2], "nested meshes lower the potential: {j:?}");
+    let truth = (2.0 * (j[0] - extrapolated(j))).sqrt();
+    let eff = l[0].absolute / truth;
+    assert!((1.0..=3.0).contains(&eff), "effectivity {eff}");
+}
+
 /// The relative bound is a property of the shape of the answer, not of its
 /// units: E × 1000 (and the load with it) changes nothing but round-off.
 #[test]

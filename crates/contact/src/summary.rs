@@ -271,8 +271,8 @@ pub fn reply(r: &SolveReply) -> String {
     for c in &r.couplings {
         let _ = writeln!(
             o,
-            "coupling     {} of '{}': ux {}{length}, uy {}{length}, theta {} rad; on the body fx {}{force}, fy {}{force}, \
-                m {}{moment}",
+            "coupling     {} of '{}': ux {}{length}, uy {}{length}, theta {} rad; on the body fx {}{force}, \
+                fy {}{force}, m {}{moment}",
             c.path,
             c.body,
             num(c.ux),

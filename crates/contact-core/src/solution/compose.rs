@@ -126,7 +126,7 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
         .then(|| {
             let t = std::time::Instant::now();
             let factor = st.factor.filter(|f| energy::unsupported(scene, m, Some(f)).is_none())?;
-            let bound = energy::bound(scene, m, st.k, factor, &sol.u, &sol.lambda).ok();
+            let bound = energy::bound(scene, m, st.k, factor, &sol.u, &sol.lambda, &punch_motions).ok();
             t_energy = t.elapsed().as_secs_f64();
             bound
         })

@@ -116,7 +116,7 @@ fn stress(d: &[[f64; 3]; 3], grads: &[[f64; 2]; 3], e: [usize; 3], u: &[[f64; 2]
 /// lower triangle) that marks null pivots in `skip` instead of failing: for
 /// a consistent right-hand side `solve_factored` then gives a solution y
 /// whose Aᵀ y (the traction sought) is the unique one.
-fn factor_psd(m: &mut [f64], n: usize, skip: &mut Vec<bool>) {
+pub(super) fn factor_psd(m: &mut [f64], n: usize, skip: &mut Vec<bool>) {
     let scale = (0..n).map(|i| m[i * n + i]).fold(0.0, f64::max);
     skip.clear();
     skip.resize(n, false);
@@ -138,7 +138,7 @@ fn factor_psd(m: &mut [f64], n: usize, skip: &mut Vec<bool>) {
     }
 }
 
-fn solve_factored(m: &[f64], skip: &[bool], rhs: &mut [f64], n: usize) {
+pub(super) fn solve_factored(m: &[f64], skip: &[bool], rhs: &mut [f64], n: usize) {
     for k in 0..n {
         if skip[k] {
             rhs[k] = 0.0;

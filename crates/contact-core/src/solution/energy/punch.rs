@@ -1,0 +1,131 @@
+//! A punch's loads carried exactly by the bound's contact pressure p*.
+
+use super::{equilibrate, ContactSide};
+use crate::contact::gap::closest;
+use crate::contact::rows::punch_coefficients;
+use crate::contact::Candidate;
+use crate::mesh::Mesh2d;
+use crate::scene::{Control, Scene};
+
+/// Gauss–Legendre with 4 points on [0, 1].
+pub(super) const GAUSS4: [(f64, f64); 4] = [
+    (0.069_431_844_202_973_7, 0.173_927_422_568_726_9),
+    (0.330_009_478_207_571_9, 0.326_072_577_431_273_1),
+    (0.669_990_521_792_428_1, 0.326_072_577_431_273_1),
+    (0.930_568_155_797_026_3, 0.173_927_422_568_726_9),
+];
+
+/// Scales p* on the sides facing punch `o` so that it carries exactly the
+/// loads the punch's rows carry in each component the request loads
+/// (the complementary energy's admissible set asks the punch's equilibrium
+/// of p*, and p* = λ_i / w_i linear on each side matches its force but not
+/// its moment): nodal pressures × (1 + a₀ + a₁ t + a₂ t²), t the node's
+/// distance along x from the punch's reference, one term per loaded
+/// component. Err where no such scaling keeps p* ≥ 0.
+pub(super) fn balance(
+    scene: &Scene,
+    meshes: &[Mesh2d],
+    candidates: &[Candidate],
+    lambda: &[f64],
+    o: usize,
+    sides: &mut [ContactSide],
+) -> Result<(), &'static str> {
+    let Some(pu) = &scene.obstacles[o].punch else {
+        return Ok(());
+    };
+    let loaded: Vec<usize> = (0..3).filter(|&k| matches!(pu.controls[k], Control::Load(_))).collect();
+    if loaded.is_empty() {
+        return Ok(());
+    }
+    let mut target = [0.0; 3];
+    for (c, l) in candidates.iter().zip(lambda) {
+        if let Some((ob, co)) = c.punch() {
+            if ob == o {
+                (0..3).for_each(|k| target[k] += l * co[k]);
+            }
+        }
+    }
+    let n = loaded.len();
+    let basis = |x: f64, j: usize| (x - pu.reference[0]).powi(j as i32);
+    // a[k][j]: component k of p*'s force when its nodal pressures are scaled
+    // by basis j (j = n: unscaled).
+    let mut a = [[0.0; 4]; 3];
+    let mut scale = 0.0_f64;
+    for s in sides.iter().filter(|s| s.obstacle == o && s.pressure != [0.0, 0.0]) {
+        let mesh = &meshes[s.body];
+        let (pa, pb) = (mesh.nodes[s.ends[0]], mesh.nodes[s.ends[1]]);
+        let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+        for (t, w) in GAUSS4 {
+            let x = [(1.0 - t) * pa[0] + t * pb[0], (1.0 - t) * pa[1] + t * pb[1]];
+            let Some(c) = closest(&scene.obstacles[o].shape, x) else {
+                continue;
+            };
+            let co = punch_coefficients(c.point, pu.reference, [-c.normal[0], -c.normal[1]]);
+            for j in 0..=n {
+                let p = (1.0 - t) * s.pressure[0] * if j < n { basis(pa[0], j) } else { 1.0 }
+                    + t * s.pressure[1] * if j < n { basis(pb[0], j) } else { 1.0 };
+                for (row, ck) in a.iter_mut().zip(co) {
+                    row[j] += w * l * p * ck;
+                }
+            }
+        }
+        scale = scale.max(s.pressure[0].abs()).max(s.pressure[1].abs());
+    }
+    // A loaded component no pressure on these sides can push (a flat face's
+    // horizontal) holds as it is; the others are solved for, with as many
+    // basis functions as they number.
+    let big = a
+        .iter()
+        .flat_map(|r| r[..=n].iter())
+        .fold(0.0_f64, |x, y| x.max(y.abs()));
+    let (pushed, idle): (Vec<usize>, Vec<usize>) = loaded
+        .into_iter()
+        .partition(|&k| a[k][..n].iter().any(|v| v.abs() > 1e-12 * big));
+    if idle
+        .iter()
+        .any(|&k| (target[k] - a[k][n]).abs() > 1e-9 * big.max(f64::MIN_POSITIVE))
+    {
+        return Err("the contact pressure cannot balance a punch's loads with one sign");
+    }
+    let unscaled = n;
+    let n = pushed.len();
+    if n == 0 {
+        return Ok(());
+    }
+    // Σ_j a[k][j] x_j = target[k] − a[k][unscaled] over the pushed k, in
+    // the least norm: x = Aᵀ y, A Aᵀ y = r (a symmetric punch's horizontal
+    // and moment rows are both odd in x, so A may be rank-deficient; the
+    // system is then consistent, or no scaling balances the punch).
+    let rows: Vec<[f64; 4]> = pushed.iter().map(|&k| a[k]).collect();
+    let r: Vec<f64> = pushed.iter().map(|&k| target[k] - a[k][unscaled]).collect();
+    let mut m = vec![0.0; n * n];
+    for p in 0..n {
+        for q in 0..n {
+            m[p * n + q] = (0..n).map(|j| rows[p][j] * rows[q][j]).sum();
+        }
+    }
+    let mut y = r.clone();
+    let mut skip = Vec::new();
+    equilibrate::factor_psd(&mut m, n, &mut skip);
+    equilibrate::solve_factored(&m, &skip, &mut y, n);
+    let coef: Vec<f64> = (0..n).map(|j| (0..n).map(|p| rows[p][j] * y[p]).sum()).collect();
+    for (p, rp) in r.iter().enumerate() {
+        let got: f64 = (0..n).map(|j| rows[p][j] * coef[j]).sum();
+        if (got - rp).abs() > 1e-9 * big {
+            return Err("the contact pressure cannot balance a punch's loads with one sign");
+        }
+    }
+    for s in sides.iter_mut().filter(|s| s.obstacle == o) {
+        let mesh = &meshes[s.body];
+        for (end, &node) in s.ends.iter().enumerate() {
+            let x = mesh.nodes[node][0];
+            let f: f64 = (0..n).map(|j| coef[j] * basis(x, j)).sum();
+            s.pressure[end] *= 1.0 + f;
+            if s.pressure[end] < -1e-12 * scale {
+                return Err("the contact pressure cannot balance a punch's loads with one sign");
+            }
+            s.pressure[end] = s.pressure[end].max(0.0);
+        }
+    }
+    Ok(())
+}
