@@ -71,6 +71,7 @@ pub fn find(scene: &Scene, model: &Model, tangents: &Tangents) -> Vec<Held> {
         let c = &model.cons.candidates[i];
         let t = tangents.tangent[k];
         let Some(own) = holders.along(c.body, c.node, t) else {
+            found.extend(closed(scene, model, tangents, &holders, k));
             continue;
         };
         let mut held: BTreeSet<String> = own.into_iter().collect();
@@ -138,6 +139,54 @@ pub fn find(scene: &Scene, model: &Model, tangents: &Tangents) -> Vec<Held> {
     found
 }
 
+/// The candidate of tangential row k if its supports leave it one free
+/// direction, which its normal row moves (`Tangents::tied`): closed, its
+/// slip r g + the prescribed part is fixed too, whatever the tangential
+/// force (a contact edge held along x against a curved obstacle, whose
+/// normal has an x-component: its stick state's equations were one, and the
+/// frictional iteration ran to its cap with forces of 1e20). A punch moved
+/// by a load leaves the slip free.
+fn closed(scene: &Scene, model: &Model, tangents: &Tangents, holders: &Holders, k: usize) -> Option<Held> {
+    let r = tangents.tied(k)?;
+    let i = tangents.of[k];
+    let c = &model.cons.candidates[i];
+    let target = match &scene.pairs[c.pair].target {
+        Target::Obstacle(o) => {
+            let ob = &scene.obstacles[*o];
+            let loaded = ob
+                .punch
+                .as_ref()
+                .is_some_and(|p| p.controls.iter().any(|c| matches!(c, Control::Load(_))));
+            if loaded {
+                return None;
+            }
+            format!(
+                "its contact with '{}', which fixes the direction they leave free",
+                ob.name
+            )
+        }
+        Target::Body { body, .. } => format!(
+            "its contact with body '{}', which fixes the direction they leave free",
+            scene.bodies[*body].name
+        ),
+        Target::Foundation(_) => return None,
+    };
+    let (a, b) = (r * c.g, tangents.prescribed[k]);
+    let slip = a + b;
+    if slip.abs() <= SAME * (a.abs() + c.g.abs() + b.abs()) {
+        return None;
+    }
+    let mut by = holders.any(c.body, c.node);
+    by.insert(target);
+    Some(Held {
+        candidate: i,
+        pair: c.pair,
+        x: c.x,
+        by,
+        slip,
+    })
+}
+
 /// One warning per pair with points of `held` in contact (λ > 0; a point
 /// that stays open carries no friction force, as the ends of the
 /// Cattaneo–Mindlin roller's arc, held by its flat's supports, 8 above the
@@ -192,7 +241,7 @@ fn warning(scene: &Scene, p: usize, g: &Group) -> Warning {
         limit: 0.0,
         location: pair.path.clone(),
         message: format!(
-            "the frictional contact {} of body '{}' at {} {} its slip along the other surface prescribed by the \
+            "the frictional contact {} of body '{}' at {} {} slip along the other surface prescribed by the \
                 supports ({held_by}), by up to {}: {} by it whatever μ (here {}), with the friction \
                 force μ λ. At a real μ that is Coulomb's answer, but it grows with μ without bound, so a large μ is \
                 not the stick limit here. Release one of the supports at {} (hold that \
@@ -200,7 +249,7 @@ fn warning(scene: &Scene, p: usize, g: &Group) -> Warning {
             if one { "node" } else { "nodes" },
             scene.bodies[pair.body].name,
             places.join(", "),
-            if one { "has" } else { "have" },
+            if one { "has its" } else { "have their" },
             shown(slip * length),
             if one { "it slides" } else { "they slide" },
             pair.friction,
@@ -276,6 +325,11 @@ impl Holders {
             }
         }
         Holders(held)
+    }
+
+    /// The supports holding any of the node's components.
+    fn any(&self, body: usize, node: usize) -> BTreeSet<String> {
+        (0..2).filter_map(|c| self.0.get(&(body, node, c)).cloned()).collect()
     }
 
     /// The supports holding the node's motion along t, or None if some
