@@ -93,7 +93,8 @@ pub fn certify(
 /// of that order (a few times it where rows meet on a node); forces far
 /// beyond it cancel each other in a direction the body does not feel, as the
 /// normal and tangential forces of a node held along one axis when their
-/// system is singular (measured: 1e20 against loads of 10).
+/// system is singular (measured: normal forces of 1e20 where the answer's
+/// are 10, an excess of 1.3e14).
 pub fn force_excess(
     k: &SparseColMat<usize, f64>,
     loads: &[f64],
