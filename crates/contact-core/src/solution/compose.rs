@@ -188,8 +188,7 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
 /// balance (`certificate::force_excess`) are not an answer: a right one is
 /// within a few times (rows meeting on a node on opposite sides), the
 /// singular frictional system of a contact edge held along x measured
-/// 1.3e14; 1e6 is far from
-/// both.
+/// 1.3e14; 1e6 is far from both.
 const UNBOUNDED: f64 = 1e6;
 
 /// Motion and loads of every punch, in the caller's units.
