@@ -298,7 +298,9 @@ fn facing_nodes(mesh: &Mesh2d, edges: &str, x: [f64; 2]) -> Option<Vec<(usize, f
 
 /// Which support holds each node's components: the request's supports (by
 /// JSON pointer) and, in axisymmetry, the axis (u_r = 0); the virtual
-/// supports that fix a free body's rigid motions are not supports.
+/// supports that fix a free body's rigid motions are not supports. Not read
+/// from `DofMap`: it knows which DOFs are fixed, not by which support (the
+/// warning names it), and it fixes the virtual supports too.
 struct Holders(HashMap<(usize, usize, usize), String>);
 
 impl Holders {
@@ -316,7 +318,7 @@ impl Holders {
                 }
             }
             if scene.analysis == Analysis::Axisymmetric {
-                let tol = 1e-9 * mesh.size();
+                let tol = mesh.axis_tolerance();
                 for (node, p) in mesh.nodes.iter().enumerate() {
                     if p[0] <= tol {
                         held.entry((b, node, 0)).or_insert_with(|| "the axis".to_string());
