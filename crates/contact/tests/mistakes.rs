@@ -479,3 +479,36 @@ fn a_contact_edge_held_along_x_slides_by_the_slip_its_contact_prescribes() {
         assert!(w.message.contains("/bodies/0/supports/1 of 'block'"), "{}", w.message);
     }
 }
+
+/// The roller on the flat floor with its arc (the contact's own edge set)
+/// also held along x, and the whole roller moved by 0.001 along x, with
+/// μ = 0.3: on a flat floor every contact node's tangent is x, held, so no
+/// free DOF moves along it and the node slides by 0.001 with its friction
+/// force μ λ taken by the support, outside the solve. Before, the reply read
+/// "stick" with no friction and said nothing. Now the `prescribed_slip`
+/// warning counts every point in contact (the slip of each is the support's
+/// 0.001) and says the supports take their friction force, which the reply's
+/// friction leaves out.
+#[test]
+fn a_contact_edge_whose_slip_the_supports_take_is_named() {
+    let mut req = example("signorini_roller_on_flat.json");
+    req["bodies"][0]["supports"][0]["ux"] = json!(0.001);
+    req["bodies"][0]["supports"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({"edges": "arc", "ux": 0.001}));
+    req["contacts"][0]["friction"] = json!({"coefficient": 0.3});
+    let r = solved(&req);
+    let in_contact = r.pairs[0].points.iter().filter(|p| p.pressure > 0.0).count();
+    let w = r.warnings.iter().find(|w| w.code == "prescribed_slip");
+    let w = w.unwrap_or_else(|| panic!("{:?}", codes(&r)));
+    assert_eq!((w.value, w.location.as_str()), (in_contact as f64, "/contacts/0"));
+    for part in [
+        "/bodies/0/supports/1 of 'roller'",
+        "the fixed obstacle 'floor'",
+        "by up to 0.001:",
+        &format!("The supports take the friction force of {in_contact} of them"),
+    ] {
+        assert!(w.message.contains(part), "{part:?} not in {}", w.message);
+    }
+}

@@ -41,7 +41,7 @@
 //!
 //! Only rows of pairs with μ > 0 get a tangential row, and only where some
 //! free DOF moves along t (a node whose tangential motion is prescribed has
-//! its friction force taken by the support).
+//! its friction force taken by the support; `held` lists it).
 
 use std::collections::HashMap;
 
@@ -81,6 +81,10 @@ pub struct Tangents {
     /// the supports leave the node one free direction, so closing the gap
     /// fixes the slip too (empty: none).
     pub tied: Vec<Option<f64>>,
+    /// The frictional candidates left without a row (no free DOF moves
+    /// along t: the supports take their friction force), each with its
+    /// tangent and the prescribed part of its tangential displacement.
+    pub held: Vec<(usize, [f64; 2], f64)>,
 }
 
 impl Tangents {
@@ -131,9 +135,6 @@ impl Tangents {
             // free_row moves the prescribed part to the right-hand side of a
             // "≤ g" row: with g = 0 it returns −Σ coef · ū.
             let (row, minus_prescribed) = free_row(&terms, dofs, 0.0);
-            if row.is_empty() {
-                continue;
-            }
             // A prescribed punch motion moves the obstacle along t by c_t · ᾱ.
             let punch = c.punch_tangent();
             let moved: f64 = punch.map_or(0.0, |(o, ct)| {
@@ -147,6 +148,10 @@ impl Tangents {
                         .sum()
                 })
             });
+            if row.is_empty() {
+                t.held.push((i, tangent, -minus_prescribed - moved));
+                continue;
+            }
             t.row_of[i] = Some(t.of.len());
             t.of.push(i);
             t.rows.push(row);
