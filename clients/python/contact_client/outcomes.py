@@ -72,6 +72,7 @@ class NoteKind(str, enum.Enum):
     METHOD_FALLBACK = "method_fallback"
     FULL_SYSTEM = "full_system"
     NON_FINITE = "non_finite"
+    UNBOUNDED_FORCES = "unbounded_forces"
     ESTIMATE_LIMITED = "estimate_limited"
     NOT_REFINED = "not_refined"
     SLIDING_PUNCH = "sliding_punch"

@@ -91,7 +91,7 @@ pub fn point_loads(scene: &Scene, meshes: &[Mesh2d]) -> Result<Vec<Vec<Located>>
         // held, so a radial force there would vanish into it unseen.
         for (body, mesh) in scene.bodies.iter().zip(meshes) {
             for pl in &body.point_loads {
-                if pl.at[0] <= 1e-9 * mesh.size() && pl.force[0] != 0.0 {
+                if pl.at[0] <= mesh.axis_tolerance() && pl.force[0] != 0.0 {
                     return Err(CoreError::invalid(
                         InvalidKind::Request,
                         format!("{}/force/0", pl.path),

@@ -183,6 +183,10 @@ named! {
         FullSystem = "full_system",
         /// The answer holds a number that is not finite.
         NonFinite = "non_finite",
+        /// The contact forces are far beyond what the loads and the
+        /// deformation can balance (`certificate::force_excess`): they cancel
+        /// each other and must not be read.
+        UnboundedForces = "unbounded_forces",
         /// The error estimate's companion was not solved (too large, too
         /// slow, failed): only the zone ends are estimated.
         EstimateLimited = "estimate_limited",

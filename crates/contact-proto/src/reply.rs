@@ -391,6 +391,9 @@ pub enum NoteKind {
     FullSystem,
     /// The answer holds a number that is not finite: it must not be used.
     NonFinite,
+    /// The contact forces are far beyond what the loads and the deformation can balance: they cancel each other and
+    /// must not be read.
+    UnboundedForces,
     /// The error estimate's companion was not solved: only the zone ends are estimated.
     EstimateLimited,
     /// Nothing is in contact: `settings.accuracy` did not refine.

@@ -412,3 +412,103 @@ fn a_unit_slip_is_solved_and_named() {
         assert!(w.message.contains("unit slip"), "{}", w.message);
     }
 }
+
+/// The Hertz block with its contact edge also held along x (`ux` on `top`,
+/// the contact's own edge set) and friction μ = 0.3. The cylinder's normal
+/// has an x-component off centre, so the supports leave each contact node
+/// its y motion only, which the closed gap fixes (n·u = d0, d0 the node's
+/// distance to the circle, exact for these rows): the slip t·u is a datum,
+/// (d0 − n_x ū) / n_y along y with ū along x, and Coulomb's answer is
+/// sliding by it with |q| = μ p against it. Before, the point's stick
+/// equation repeated its gap's, the singular system gave forces of 1e20 and
+/// the run stopped at `max_iterations` with no cause named. Now: solved, each
+/// sliding point's slip the closed form to 1e-9 (the LU's round-off on the
+/// forces, measured 8e-14) and its traction μ p against it to 1e-9
+/// (measured 5e-14); the horizontal resultant within μ |fy|; and the
+/// `prescribed_slip` warning names the support. With ū = 0 the slip,
+/// d0 n_x / n_y, is still prescribed (smaller, and opposite on the two
+/// sides), and solves the same way.
+#[test]
+fn a_contact_edge_held_along_x_slides_by_the_slip_its_contact_prescribes() {
+    let mu = 0.3;
+    for ux in [0.001, 0.0] {
+        let mut req = hertz_coarse();
+        req["bodies"][0]["supports"]
+            .as_array_mut()
+            .unwrap()
+            .push(json!({"edges": "top", "ux": ux}));
+        req["contacts"][0]["friction"] = json!({"coefficient": mu});
+        let r = solved(&req);
+        let (centre, radius) = (
+            req["obstacles"][0]["shape"]["circle"]["center"][1].as_f64().unwrap(),
+            8.0,
+        );
+        let mut sliding = 0;
+        for p in r.pairs[0].points.iter().filter(|p| p.pressure > 0.0) {
+            if p.state != Some(contact::proto::FrictionState::Slip) {
+                continue;
+            }
+            sliding += 1;
+            let n = p.normal;
+            let d0 = p.x.hypot(p.y - centre) - radius;
+            let uy = (d0 - n[0] * ux) / n[1];
+            let expect = -n[1] * ux + n[0] * uy;
+            let (slip, q) = (p.slip.unwrap(), p.tangential_traction.unwrap());
+            assert!(
+                (slip - expect).abs() <= 1e-9 * expect.abs(),
+                "ū {ux}, x {}: slip {slip}, {expect}",
+                p.x
+            );
+            assert!(
+                (q + mu * p.pressure * expect.signum()).abs() <= 1e-9 * mu * p.pressure,
+                "ū {ux}, x {}: q {q}, μp {}",
+                p.x,
+                mu * p.pressure
+            );
+        }
+        let in_contact = r.pairs[0].points.iter().filter(|p| p.pressure > 0.0).count();
+        // Every node but the centre's (its tangent is x alone, held: no row).
+        assert!(
+            sliding + 1 >= in_contact && sliding > 20,
+            "ū {ux}: {sliding} of {in_contact} slide"
+        );
+        assert!(r.resultant.fx.abs() <= mu * r.resultant.fy.abs(), "{:?}", r.resultant);
+        let w = r.warnings.iter().find(|w| w.code == "prescribed_slip");
+        let w = w.unwrap_or_else(|| panic!("ū {ux}: {:?}", codes(&r)));
+        assert_eq!(w.location, "/contacts/0");
+        assert!(w.message.contains("/bodies/0/supports/1 of 'block'"), "{}", w.message);
+    }
+}
+
+/// The roller on the flat floor with its arc (the contact's own edge set)
+/// also held along x, and the whole roller moved by 0.001 along x, with
+/// μ = 0.3: on a flat floor every contact node's tangent is x, held, so no
+/// free DOF moves along it and the node slides by 0.001 with its friction
+/// force μ λ taken by the support, outside the solve. Before, the reply read
+/// "stick" with no friction and said nothing. Now the `prescribed_slip`
+/// warning counts every point in contact (the slip of each is the support's
+/// 0.001) and says the supports take their friction force, which the reply's
+/// friction leaves out.
+#[test]
+fn a_contact_edge_whose_slip_the_supports_take_is_named() {
+    let mut req = example("signorini_roller_on_flat.json");
+    req["bodies"][0]["supports"][0]["ux"] = json!(0.001);
+    req["bodies"][0]["supports"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({"edges": "arc", "ux": 0.001}));
+    req["contacts"][0]["friction"] = json!({"coefficient": 0.3});
+    let r = solved(&req);
+    let in_contact = r.pairs[0].points.iter().filter(|p| p.pressure > 0.0).count();
+    let w = r.warnings.iter().find(|w| w.code == "prescribed_slip");
+    let w = w.unwrap_or_else(|| panic!("{:?}", codes(&r)));
+    assert_eq!((w.value, w.location.as_str()), (in_contact as f64, "/contacts/0"));
+    for part in [
+        "/bodies/0/supports/1 of 'roller'",
+        "the fixed obstacle 'floor'",
+        "by up to 0.001:",
+        &format!("The supports take the friction force of {in_contact} of them"),
+    ] {
+        assert!(w.message.contains(part), "{part:?} not in {}", w.message);
+    }
+}

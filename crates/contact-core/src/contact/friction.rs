@@ -41,7 +41,7 @@
 //!
 //! Only rows of pairs with μ > 0 get a tangential row, and only where some
 //! free DOF moves along t (a node whose tangential motion is prescribed has
-//! its friction force taken by the support).
+//! its friction force taken by the support; `held` lists it).
 
 use std::collections::HashMap;
 
@@ -77,6 +77,14 @@ pub struct Tangents {
     /// n · t of each row: the share of the normal force λ n along the
     /// tangent (0 unless t is the bisector's).
     pub lean: Vec<f64>,
+    /// Of each row whose free part is r times its normal row's (`tied`), r:
+    /// the supports leave the node one free direction, so closing the gap
+    /// fixes the slip too (empty: none).
+    pub tied: Vec<Option<f64>>,
+    /// The frictional candidates left without a row (no free DOF moves
+    /// along t: the supports take their friction force), each with its
+    /// tangent and the prescribed part of its tangential displacement.
+    pub held: Vec<(usize, [f64; 2], f64)>,
 }
 
 impl Tangents {
@@ -127,9 +135,6 @@ impl Tangents {
             // free_row moves the prescribed part to the right-hand side of a
             // "≤ g" row: with g = 0 it returns −Σ coef · ū.
             let (row, minus_prescribed) = free_row(&terms, dofs, 0.0);
-            if row.is_empty() {
-                continue;
-            }
             // A prescribed punch motion moves the obstacle along t by c_t · ᾱ.
             let punch = c.punch_tangent();
             let moved: f64 = punch.map_or(0.0, |(o, ct)| {
@@ -143,6 +148,10 @@ impl Tangents {
                         .sum()
                 })
             });
+            if row.is_empty() {
+                t.held.push((i, tangent, -minus_prescribed - moved));
+                continue;
+            }
             t.row_of[i] = Some(t.of.len());
             t.of.push(i);
             t.rows.push(row);
@@ -152,8 +161,20 @@ impl Tangents {
             t.punch.push(punch);
             t.tangent.push(tangent);
             t.lean.push(cos);
+            // A foundation's deflection opens the gap but moves no slip.
+            let tied_row = c
+                .foundation()
+                .is_none()
+                .then(|| tied(&c.row, &t.rows[t.rows.len() - 1]));
+            t.tied.push(tied_row.flatten());
         }
         t
+    }
+
+    /// The ratio r of row k's free part to its normal row's, if the one is
+    /// r times the other (`tied`).
+    pub fn tied(&self, k: usize) -> Option<f64> {
+        self.tied.get(k).copied().flatten()
     }
 
     pub fn len(&self) -> usize {
@@ -224,6 +245,28 @@ impl Tangents {
         slip_line(self.law[k].as_ref(), sign, self.along(k, 1.0, 0.0), at)
     }
 
+    /// The slip of row k once its point is closed, if its normal row fixes
+    /// it (`tied`): with the free parts T = r N, the slip t·u − ū_t equals
+    /// r (g − w) plus the prescribed part, so at w = 0 it is r g + the
+    /// prescribed part, less `before` (the row's tangential displacement at
+    /// the start of the step). None where the free motions `moves` (C_N, C_T
+    /// rows of the point, if any) break the proportion.
+    pub fn closed_slip(&self, k: usize, g: f64, before: f64, moves: Option<(&[f64], &[f64])>) -> Option<f64> {
+        let r = self.tied(k)?;
+        if let Some((cn, ct)) = moves {
+            let scale = cn.iter().chain(ct).fold(0.0f64, |m, v| m.max(v.abs()));
+            if cn.iter().zip(ct).any(|(n, t)| (t - r * n).abs() > TIED * scale) {
+                return None;
+            }
+        }
+        let (a, b) = (r * g, self.prescribed[k]);
+        let slip = a + b - before;
+        // Zero within the round-off of the sum (both sides held still), or of
+        // a ratio r that is round-off of the turned coefficients.
+        let scale = a.abs() + g.abs() + b.abs() + before.abs();
+        Some(if slip.abs() <= SAME * scale { 0.0 } else { slip })
+    }
+
     /// Accumulates B_Tᵀ τ into y.
     pub fn apply_transpose_into(&self, tau: &[f64], y: &mut [f64]) {
         for (r, &t) in self.rows.iter().zip(tau) {
@@ -232,4 +275,41 @@ impl Tangents {
             }
         }
     }
+}
+
+/// A free-DOF coefficient this small against the row's largest is round-off
+/// of the turned coefficients, not a direction the node moves in (the
+/// tangent's components are exact to 1e-16; 1e-9 leaves room for the sums
+/// of a mortar row's terms).
+const TIED: f64 = 1e-9;
+
+/// A slip within this share of the displacements it is the difference of
+/// is 0 (round-off).
+const SAME: f64 = 1e-12;
+
+/// The ratio r if the tangential row's free part is r times the normal
+/// row's (within `TIED`): a node held along one axis whose other DOF the
+/// normal row moves, as a contact edge with u_x prescribed against a curved
+/// obstacle. Closing the gap (N u = g) then fixes the slip (T u = r g): a
+/// stick state's two equations are one, and its system is singular.
+fn tied(normal: &[(usize, f64)], tangential: &[(usize, f64)]) -> Option<f64> {
+    let dot = |a: &[(usize, f64)], d: usize| a.iter().filter(|e| e.0 == d).map(|e| e.1).sum::<f64>();
+    let nn: f64 = normal.iter().map(|e| e.1 * e.1).sum();
+    if nn == 0.0 {
+        return None;
+    }
+    let largest = |row: &[(usize, f64)]| row.iter().fold(0.0f64, |m, e| m.max(e.1.abs()));
+    let scale = largest(normal).max(largest(tangential));
+    // A row of round-off alone (the press fit's bottom node, held along the
+    // axis on both sides: 7e-17 of the normal row's 1) moves no free DOF
+    // along t; its slip is the supports' (`solution::prescribed_slip`).
+    if largest(tangential) <= TIED * scale {
+        return None;
+    }
+    let r = tangential.iter().map(|&(d, v)| v * dot(normal, d)).sum::<f64>() / nn;
+    let off = |row: &[(usize, f64)]| {
+        row.iter()
+            .any(|&(d, _)| (dot(tangential, d) - r * dot(normal, d)).abs() > TIED * scale)
+    };
+    (!off(normal) && !off(tangential)).then_some(r)
 }

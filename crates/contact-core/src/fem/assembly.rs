@@ -208,7 +208,7 @@ fn axis_conditions(
     fixed: &mut [bool],
     prescribed: &mut [f64],
 ) -> Result<(), CoreError> {
-    let tol = 1e-9 * mesh.size();
+    let tol = mesh.axis_tolerance();
     for (node, p) in mesh.nodes.iter().enumerate() {
         if p[0] < -tol {
             return Err(CoreError::invalid(

@@ -59,6 +59,12 @@ impl Edge {
     }
 }
 
+/// A radius this small against the body's size is round-off of the
+/// nondimensional coordinates (1e-16 each), not a position off the axis: the
+/// one tolerance of the axis conditions (u_r = 0), the axial point loads and
+/// the supports that hold a contact point's slip.
+const ON_AXIS: f64 = 1e-9;
+
 #[derive(Debug, Clone)]
 pub struct Mesh2d {
     pub order: Order,
@@ -80,6 +86,12 @@ impl Mesh2d {
     /// Largest side of the bounding box: the body's size.
     pub fn size(&self) -> f64 {
         extent(&self.nodes)
+    }
+
+    /// In axisymmetry, a point at r ≤ this lies on the axis: `ON_AXIS` of
+    /// the body's size.
+    pub fn axis_tolerance(&self) -> f64 {
+        ON_AXIS * self.size()
     }
 
     /// Nodes of an edge set, each once, in order of first appearance.

@@ -19,16 +19,20 @@ use crate::model::Model;
 use crate::observer::{Observer, Stage};
 use crate::outcome::{Note, NoteKind};
 use crate::scene::{Analysis, Scene};
+use crate::solution::certificate::{certify, force_excess};
 use crate::solution::report::{
     BodyFields, CacheState, Diagnostics, FoundationReport, ProblemSize, PunchReport, Report, Status,
 };
-use crate::solution::{certificate::certify, energy, post, validity};
+use crate::solution::{energy, post, validity};
 
 /// What the report needs of a solve besides its solution.
 pub struct Solved<'a> {
     pub model: &'a Model,
     pub k: &'a SparseColMat<usize, f64>,
     pub f: &'a [f64],
+    /// The external loads where `f` holds the friction forces too (the
+    /// frictional route: f − B_Tᵀ τ); None: `f` is the loads.
+    pub loads: Option<&'a [f64]>,
     /// `Cholesky::pivot_ratio` of the factor (condensed path).
     pub pivot_ratio: Option<f64>,
     /// `FactorCost::predicted_secs` of the factorization (condensed path).
@@ -57,6 +61,13 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
         s.iter_mut().zip(&opened).for_each(|(a, b)| *a += b);
     }
     let (mut certificate, gaps) = certify(st.k, st.f, &m.cons, &sol.u, &sol.lambda, shift.as_deref());
+    let excess = {
+        let loads = st.loads.unwrap_or(st.f);
+        let friction: Vec<f64> = st
+            .loads
+            .map_or(Vec::new(), |l| st.f.iter().zip(l).map(|(a, b)| a - b).collect());
+        force_excess(st.k, loads, &m.cons, &sol.u, &sol.lambda, &friction)
+    };
     certificate.equilibrium = certificate
         .equilibrium
         .max(m.free.equilibrium(&sol.lambda, st.friction));
@@ -169,6 +180,18 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
     // Timed inside the post stage; it is the estimate's.
     report.timings.estimate += t_energy;
     report.timings.post = (report.timings.post - t_energy).max(0.0);
+    if excess > UNBOUNDED {
+        if report.status == Status::Solved {
+            report.status = Status::NumericalError;
+        }
+        report.notes.push(Note::new(
+            NoteKind::UnboundedForces,
+            format!(
+                "the contact forces are {excess:.1e} times what the loads and the deformation can balance: they \
+                    cancel each other, and the pressures, friction forces and resultants must not be read"
+            ),
+        ));
+    }
     if let Some(at) = report.first_non_finite() {
         report.status = Status::NumericalError;
         report.notes.push(Note::new(
@@ -181,6 +204,13 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
     }
     report
 }
+
+/// Contact forces this many times what the loads and the deformation can
+/// balance (`certificate::force_excess`) are not an answer: a right one is
+/// within a few times (rows meeting on a node on opposite sides), the
+/// singular frictional system of a contact edge held along x measured
+/// 1.3e14; 1e6 is far from both.
+const UNBOUNDED: f64 = 1e6;
 
 /// Motion and loads of every punch, in the caller's units.
 fn punch_results(

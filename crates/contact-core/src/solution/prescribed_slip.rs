@@ -17,9 +17,13 @@
 //! A warning, not a refusal: at the μ of real surfaces (0.05 to 0.4 on that
 //! press fit, every step solved with the push-out force μ N to 1e-12) the
 //! answer is Coulomb's and is used; what is wrong is reading a large μ as
-//! "the surfaces stick". Only nodes with a tangential row are judged: where
-//! no free DOF moves along t the support takes the friction force itself
-//! (`Tangents::new` leaves the row out), and the solve carries no μ λ there.
+//! "the surfaces stick". Where no free DOF moves along t the support takes
+//! the friction force itself (`Tangents::new` leaves the row out, listing
+//! the point in `Tangents::held`), and the solve carries no μ λ there: such
+//! a point is judged too, and the warning says its friction force is left
+//! out of the reply. Where the supports leave the node one free direction
+//! that its normal row moves too (`Tangents::tied`), the closed gap fixes
+//! the slip: judged the same way (`closed`).
 //! The points are found from the scene and its rows before the solve
 //! (`find`); the step's answer reports those in contact (`warnings`): a point
 //! that stays open carries no friction force. A slip prescribed to 0 (both
@@ -60,6 +64,9 @@ pub struct Held {
     by: BTreeSet<String>,
     /// The slip they prescribe (nondimensional).
     slip: f64,
+    /// Without a tangential row: the supports take its friction force, which
+    /// the reply's friction leaves out.
+    carried: bool,
 }
 
 /// The frictional candidates whose slip the supports prescribe, from the
@@ -71,6 +78,7 @@ pub fn find(scene: &Scene, model: &Model, tangents: &Tangents) -> Vec<Held> {
         let c = &model.cons.candidates[i];
         let t = tangents.tangent[k];
         let Some(own) = holders.along(c.body, c.node, t) else {
+            found.extend(closed(scene, model, tangents, &holders, k));
             continue;
         };
         let mut held: BTreeSet<String> = own.into_iter().collect();
@@ -133,9 +141,105 @@ pub fn find(scene: &Scene, model: &Model, tangents: &Tangents) -> Vec<Held> {
             x: c.x,
             by: held,
             slip,
+            carried: false,
         });
     }
+    found.extend(
+        tangents
+            .held
+            .iter()
+            .filter_map(|&(i, _, slip)| carried(scene, model, &holders, i, slip)),
+    );
     found
+}
+
+/// A frictional candidate left without a tangential row (`Tangents::held`:
+/// every DOF its slip reads is prescribed), if that slip is not 0: it
+/// slides by it, and its friction force μ λ goes to the supports, outside
+/// the solve and the reply's friction (the roller of the Cattaneo–Mindlin
+/// example with its arc also held along x: every point slid by the
+/// prescribed 0.001 and the reply read "stick", friction 0). A punch moved by
+/// a load leaves the slip free.
+fn carried(scene: &Scene, model: &Model, holders: &Holders, i: usize, slip: f64) -> Option<Held> {
+    let c = &model.cons.candidates[i];
+    let mut by = holders.any(c.body, c.node);
+    match &scene.pairs[c.pair].target {
+        Target::Obstacle(o) => {
+            let ob = &scene.obstacles[*o];
+            match &ob.punch {
+                Some(p) if p.controls.iter().any(|c| matches!(c, Control::Load(_))) => return None,
+                Some(_) => by.insert(format!("punch '{}''s prescribed motion", ob.name)),
+                None => by.insert(format!("the fixed obstacle '{}'", ob.name)),
+            };
+        }
+        Target::Body { body, .. } => {
+            by.insert(format!("the supports of body '{}'", scene.bodies[*body].name));
+        }
+        Target::Foundation(_) => return None,
+    }
+    // The prescribed motions the slip is a difference of (the row's
+    // coefficients turned keep their length).
+    let scale = c.terms.iter().fold(0.0f64, |m, t| {
+        let d = |k: usize| model.dofs.prescribed[model.dofs.dof(t.body, t.node, k)];
+        m + t.coef[0].hypot(t.coef[1]) * d(0).hypot(d(1))
+    });
+    (slip.abs() > SAME * scale).then_some(Held {
+        candidate: i,
+        pair: c.pair,
+        x: c.x,
+        by,
+        slip,
+        carried: true,
+    })
+}
+
+/// The candidate of tangential row k if its supports leave it one free
+/// direction, which its normal row moves (`Tangents::tied`): closed, its
+/// slip r g + the prescribed part is fixed too, whatever the tangential
+/// force (a contact edge held along x against a curved obstacle, whose
+/// normal has an x-component: its stick state's equations were one, and the
+/// frictional iteration ran to its cap with forces of 1e20). A punch moved
+/// by a load leaves the slip free.
+fn closed(scene: &Scene, model: &Model, tangents: &Tangents, holders: &Holders, k: usize) -> Option<Held> {
+    let r = tangents.tied(k)?;
+    let i = tangents.of[k];
+    let c = &model.cons.candidates[i];
+    let target = match &scene.pairs[c.pair].target {
+        Target::Obstacle(o) => {
+            let ob = &scene.obstacles[*o];
+            let loaded = ob
+                .punch
+                .as_ref()
+                .is_some_and(|p| p.controls.iter().any(|c| matches!(c, Control::Load(_))));
+            if loaded {
+                return None;
+            }
+            format!(
+                "its contact with '{}', which fixes the direction they leave free",
+                ob.name
+            )
+        }
+        Target::Body { body, .. } => format!(
+            "its contact with body '{}', which fixes the direction they leave free",
+            scene.bodies[*body].name
+        ),
+        Target::Foundation(_) => return None,
+    };
+    let (a, b) = (r * c.g, tangents.prescribed[k]);
+    let slip = a + b;
+    if slip.abs() <= SAME * (a.abs() + c.g.abs() + b.abs()) {
+        return None;
+    }
+    let mut by = holders.any(c.body, c.node);
+    by.insert(target);
+    Some(Held {
+        candidate: i,
+        pair: c.pair,
+        x: c.x,
+        by,
+        slip,
+        carried: false,
+    })
 }
 
 /// One warning per pair with points of `held` in contact (λ > 0; a point
@@ -152,6 +256,7 @@ pub fn warnings(scene: &Scene, held: &[Held], lambda: &[f64]) -> Vec<Warning> {
         group.at.push(h.x);
         group.by.extend(h.by.iter().cloned());
         group.slip = group.slip.max(h.slip.abs());
+        group.carried += usize::from(h.carried);
     }
     found
         .into_iter()
@@ -171,6 +276,8 @@ struct Group {
     by: BTreeSet<String>,
     /// The largest slip prescribed (nondimensional).
     slip: f64,
+    /// How many of them have no tangential row (`Held::carried`).
+    carried: usize,
 }
 
 fn warning(scene: &Scene, p: usize, g: &Group) -> Warning {
@@ -186,21 +293,30 @@ fn warning(scene: &Scene, p: usize, g: &Group) -> Warning {
         places.push(format!("and {} more", at.len() - LISTED));
     }
     let (one, held_by) = (at.len() == 1, held.iter().cloned().collect::<Vec<_>>().join(", "));
+    // Points without a tangential row: their friction force goes to the
+    // supports, and the reply's friction reads stick and 0 there.
+    let carried = match g.carried {
+        0 => String::new(),
+        n => format!(
+            ". The supports take the friction force of {n} of them (no free motion along the surface there): the \
+                reply's friction (traction, slip, state, resultant) leaves it out"
+        ),
+    };
     Warning {
         code: WarningCode::PrescribedSlip,
         value: at.len() as f64,
         limit: 0.0,
         location: pair.path.clone(),
         message: format!(
-            "the frictional contact {} of body '{}' at {} {} its slip along the other surface prescribed by the \
+            "the frictional contact {} of body '{}' at {} {} slip along the other surface prescribed by the \
                 supports ({held_by}), by up to {}: {} by it whatever μ (here {}), with the friction \
                 force μ λ. At a real μ that is Coulomb's answer, but it grows with μ without bound, so a large μ is \
                 not the stick limit here. Release one of the supports at {} (hold that \
-                body at its other end), or move the body by its far end",
+                body at its other end), or move the body by its far end{carried}",
             if one { "node" } else { "nodes" },
             scene.bodies[pair.body].name,
             places.join(", "),
-            if one { "has" } else { "have" },
+            if one { "has its" } else { "have their" },
             shown(slip * length),
             if one { "it slides" } else { "they slide" },
             pair.friction,
@@ -249,7 +365,9 @@ fn facing_nodes(mesh: &Mesh2d, edges: &str, x: [f64; 2]) -> Option<Vec<(usize, f
 
 /// Which support holds each node's components: the request's supports (by
 /// JSON pointer) and, in axisymmetry, the axis (u_r = 0); the virtual
-/// supports that fix a free body's rigid motions are not supports.
+/// supports that fix a free body's rigid motions are not supports. Not read
+/// from `DofMap`: it knows which DOFs are fixed, not by which support (the
+/// warning names it), and it fixes the virtual supports too.
 struct Holders(HashMap<(usize, usize, usize), String>);
 
 impl Holders {
@@ -267,7 +385,7 @@ impl Holders {
                 }
             }
             if scene.analysis == Analysis::Axisymmetric {
-                let tol = 1e-9 * mesh.size();
+                let tol = mesh.axis_tolerance();
                 for (node, p) in mesh.nodes.iter().enumerate() {
                     if p[0] <= tol {
                         held.entry((b, node, 0)).or_insert_with(|| "the axis".to_string());
@@ -276,6 +394,11 @@ impl Holders {
             }
         }
         Holders(held)
+    }
+
+    /// The supports holding any of the node's components.
+    fn any(&self, body: usize, node: usize) -> BTreeSet<String> {
+        (0..2).filter_map(|c| self.0.get(&(body, node, c)).cloned()).collect()
     }
 
     /// The supports holding the node's motion along t, or None if some

@@ -121,6 +121,7 @@ pub(super) fn solve_frictional(
             model: &sm.model,
             k: &stiffness.k,
             f: &f_eff,
+            loads: Some(&f),
             pivot_ratio: factor.map(|f| f.0),
             predicted: factor.map(|f| f.1),
             compliance: None,

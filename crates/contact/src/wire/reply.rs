@@ -137,6 +137,7 @@ fn note_kind(k: NoteKind) -> p::NoteKind {
         NoteKind::MethodFallback => p::NoteKind::MethodFallback,
         NoteKind::FullSystem => p::NoteKind::FullSystem,
         NoteKind::NonFinite => p::NoteKind::NonFinite,
+        NoteKind::UnboundedForces => p::NoteKind::UnboundedForces,
         NoteKind::EstimateLimited => p::NoteKind::EstimateLimited,
         NoteKind::NotRefined => p::NoteKind::NotRefined,
         NoteKind::SlidingPunch => p::NoteKind::SlidingPunch,

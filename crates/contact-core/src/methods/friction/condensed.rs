@@ -60,7 +60,28 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
             State::Open
         }
     });
-    let run = solve_states(w, &q, &e, p.tangents, p.block, state, p.settings.max_iterations);
+    // The slip of each row whose normal row fixes it once closed.
+    let closed: Vec<Option<f64>> = (0..nt)
+        .map(|k| {
+            let i = p.tangents.of[k];
+            let moves = p.block.map(|b| {
+                let m = b.len();
+                let cn: Vec<f64> = (0..m).map(|j| b.cn[(i, j)]).collect();
+                let ct: Vec<f64> = (0..m).map(|j| b.ct[(k, j)]).collect();
+                (cn, ct)
+            });
+            let moves = moves.as_ref().map(|(a, b)| (a.as_slice(), b.as_slice()));
+            p.tangents.closed_slip(k, p.cons.candidates[i].g, ut_before[k], moves)
+        })
+        .collect();
+    let run = solve_states(
+        w,
+        (&q, &e, &closed),
+        p.tangents,
+        p.block,
+        state,
+        p.settings.max_iterations,
+    );
     // u = K⁻¹ (f − B_Nᵀ λ − B_Tᵀ τ): the condensed blocks hold both row sets.
     let multipliers: Vec<f64> = run.lambda.iter().chain(&run.tau).copied().collect();
     let mut yz = y;
@@ -77,11 +98,11 @@ pub fn solve_step(p: &Step, previous: &History) -> (Solution, Friction) {
 }
 
 /// The step's problem for (W, q, e) from the states `state`, on the
-/// condensed rows.
+/// condensed rows; `closed`: the slip of each tangential row its normal row
+/// fixes once closed (`Tangents::closed_slip`; empty: none).
 fn solve_states(
     w: &Mat<f64>,
-    q: &[f64],
-    e: &[f64],
+    (q, e, closed): (&[f64], &[f64], &[Option<f64>]),
     t: &Tangents,
     block: Option<&FreeBlock>,
     state: Vec<State>,
@@ -94,7 +115,14 @@ fn solve_states(
     };
     let (c, ct) = (1.0 / mean(0..n), 1.0 / mean(n..n + nt).max(f64::MIN_POSITIVE));
     let (c, ct) = (vec![c; n], vec![ct; nt]);
-    let mut dense = Dense { w, q, e, t, block };
+    let mut dense = Dense {
+        w,
+        q,
+        e,
+        closed,
+        t,
+        block,
+    };
     let run = restarted(&mut dense, t, state, (&c, &ct), max_iterations).expect("the dense Newton step does not fail");
     // Out of iterations is the caller's limit: no more work past it.
     if run.converged || run.iterations >= max_iterations || block.is_some() || crate::cancel::expired() {
@@ -123,13 +151,15 @@ struct Dense<'a> {
     w: &'a Mat<f64>,
     q: &'a [f64],
     e: &'a [f64],
+    closed: &'a [Option<f64>],
     t: &'a Tangents,
     block: Option<&'a FreeBlock>,
 }
 
 impl NewtonSystem for Dense<'_> {
     fn solve(&mut self, state: &[State], at: &[f64]) -> Result<Option<Iterate>, CoreError> {
-        let Some((lambda, tau, beta)) = newton_step(self.w, self.q, self.e, self.t, self.block, (state, at)) else {
+        let rhs = (self.q, self.e, self.closed);
+        let Some((lambda, tau, beta)) = newton_step(self.w, rhs, self.t, self.block, (state, at)) else {
             return Ok(None);
         };
         let (gap, slip) = gap_and_slip(self.w, self.q, self.e, self.block, &lambda, &tau, &beta);
@@ -144,6 +174,10 @@ impl NewtonSystem for Dense<'_> {
 
     fn free_motions(&self) -> usize {
         self.block.map_or(0, FreeBlock::len)
+    }
+
+    fn closed_slip(&self, k: usize) -> Option<f64> {
+        self.closed.get(k).copied().flatten()
     }
 }
 
@@ -175,11 +209,12 @@ fn gap_and_slip(
 /// closed (w_i = 0); a sticking point's slip vanishes (Δs_k = 0); a sliding
 /// point's τ_k = ± μ_k λ_i. λ and τ vanish off contact. With a block, the
 /// free motions β join the unknowns and their equilibrium the equations.
-/// None when singular.
+/// A sticking point whose slip its normal row fixes (`closed`: prescribed to
+/// 0) takes no friction force instead (its Δs = 0 repeats w = 0; any force in
+/// the cone holds it). None when singular.
 fn newton_step(
     w: &Mat<f64>,
-    q: &[f64],
-    e: &[f64],
+    (q, e, closed): (&[f64], &[f64], &[Option<f64>]),
     t: &Tangents,
     block: Option<&FreeBlock>,
     (state, at): (&[State], &[f64]),
@@ -212,7 +247,9 @@ fn newton_step(
             }
             for (s, &k) in on_t.iter().enumerate() {
                 m[(a + b + j, a + s)] = bl.ct[(k, j)];
-                if !matches!(state[t.of[k]], State::Slip(_)) {
+                // Only a stick row's equation is its slip's.
+                let stick_slip = !matches!(state[t.of[k]], State::Slip(_)) && closed.get(k).is_none_or(Option::is_none);
+                if stick_slip {
                     m[(a + s, a + b + j)] = bl.ct[(k, j)];
                 }
             }
@@ -233,6 +270,12 @@ fn newton_step(
                 if c != 0.0 {
                     rhs[(r, 0)] = c;
                 }
+            }
+            _ if closed.get(k).is_some_and(Option::is_some) => {
+                // τ + λ n·t = 0: the whole tangential force vanishes.
+                m[(r, r)] = 1.0;
+                let li = on.iter().position(|&x| x == i).expect("a sticking point is in contact");
+                m[(r, li)] = t.along(k, 1.0, 0.0);
             }
             _ => {
                 for j in 0..a + b {
@@ -303,7 +346,7 @@ mod tests {
             .iter()
             .map(|&v| if v < 0.0 { State::Stick } else { State::Open })
             .collect();
-        let r = solve_states(&w, &q, &e, &t, None, start, 200);
+        let r = solve_states(&w, (&q, &e, &[]), &t, None, start, 200);
         let (gap, slip) = gap_and_slip(&w, &q, &e, None, &r.lambda, &r.tau, &[]);
         (r, gap, slip)
     }

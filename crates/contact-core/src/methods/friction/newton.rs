@@ -131,6 +131,12 @@ pub(super) trait NewtonSystem {
     fn solve(&mut self, state: &[State], at: &[f64]) -> Result<Option<Iterate>, CoreError>;
     /// The number of free motions β among the unknowns.
     fn free_motions(&self) -> usize;
+    /// The slip of tangential row k once its point is closed, where the
+    /// normal row fixes it (`Tangents::closed_slip`; 0.0 exactly for a slip
+    /// prescribed to 0).
+    fn closed_slip(&self, _k: usize) -> Option<f64> {
+        None
+    }
 }
 
 /// One Newton iterate: λ, τ, β and the gaps w and slips Δs they give.
@@ -269,6 +275,19 @@ fn pdas(
                 }
                 match t.row_of[i] {
                     None => State::Stick,
+                    // Closed, its slip is a datum: it slides that way with
+                    // τ = ± μ λ, or, prescribed to 0, sticks with any force
+                    // in the cone. Its stick equation Δs = 0 repeats w = 0
+                    // (a singular system, whose LU gave forces of 1e20 and
+                    // a run to the cap), so the state follows the datum.
+                    Some(k) if sys.closed_slip(k).is_some() => {
+                        beyond[i] = f64::INFINITY;
+                        match sys.closed_slip(k) {
+                            Some(s) if s > 0.0 => State::Slip(1),
+                            Some(s) if s < 0.0 => State::Slip(-1),
+                            _ => State::Stick,
+                        }
+                    }
                     Some(k) => {
                         let z = t.along(k, lambda[i], tau[k]) + ct[k] * slip[k];
                         beyond[i] = z.abs() / t.bound(k, lt);
