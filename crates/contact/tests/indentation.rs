@@ -41,6 +41,32 @@ fn flat_punch_matches_sadowsky() {
     assert_kkt(&r, 1e-8);
 }
 
+/// `load_factors` multiply a punch's load as every other: the flat punch's
+/// zone is its face whatever the load, so the answer is linear in it and each
+/// step's resultant is its factor times P, to round-off (punch equilibrium is
+/// an equation of the discrete problem). Before, the punch kept its full load
+/// at every factor.
+#[test]
+fn load_factors_scale_a_punch_load() {
+    let mut req = example("indentation_flat_punch.json");
+    req["load_factors"] = json!([0.25, 0.5, 1.0]);
+    let r = solved(&req);
+    let steps = r.steps.as_ref().expect("one answer per factor");
+    assert_eq!(steps.len(), 3);
+    for (step, k) in steps.iter().zip([0.25, 0.5, 1.0]) {
+        assert!(
+            (step.resultant.fy + k * 10.0).abs() < 1e-10 * 10.0,
+            "factor {k}: fy {}",
+            step.resultant.fy
+        );
+    }
+    let p = |i: usize| steps[i].pairs[0].points.iter().map(|q| q.pressure).fold(0.0, f64::max);
+    assert!(
+        (p(0) / p(2) - 0.25).abs() < 1e-9,
+        "peak pressure proportional to the load"
+    );
+}
+
 /// Circular punch R = 8 under P = 10: Hertz half-width and peak within 2 %
 /// (zone ends on nodes spaced 0.01 = 1.5 % of a).
 #[test]

@@ -110,6 +110,12 @@ impl Scene {
                 }
             }
         }
+        // A punch's load or motion is one of the scene's loads.
+        for pu in s.obstacles.iter_mut().filter_map(|o| o.punch.as_mut()) {
+            for c in &mut pu.controls {
+                c.scale(k);
+            }
+        }
         s
     }
 }
