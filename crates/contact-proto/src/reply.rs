@@ -161,21 +161,22 @@ pub struct PairAccuracy {
     /// zone's length). Read the resultant and the zone there.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub singular_ends: Vec<SingularEnd>,
-    /// Guaranteed upper bound of the relative energy-norm error of the whole
-    /// answer, ‖u − u_h‖_E / ‖u‖_E (all bodies): from an equilibrated stress
-    /// (Prager–Synge), so the true error is never above it, whatever the
-    /// mesh (against a curved obstacle, up to the part of the contact
-    /// traction left along the obstacle by its normal's turn within an element
-    /// side, of relative order h/R). It bounds the energy of the error (stress and strain in the
-    /// mean square), not the pressure, the peak or a zone end, which
-    /// `pressure_l2`, `peak` and `zone_edges` estimate. Absent where the scene
-    /// is outside its reach: it covers frictionless contact of linear
-    /// triangles (T3) in plane strain or plane stress against rigid obstacles
-    /// and punches (under load or motion control), under supports, uniform
-    /// tractions and pressures, and body forces; not T6, axisymmetry,
-    /// friction, two bodies, foundations, point loads (whose energy is
-    /// infinite), tractions over part of a side, couplings, or bodies moved
-    /// by the contact alone.
+    /// Guaranteed upper bound of the energy-norm error of the whole answer
+    /// (all bodies), relative to the answer's own: ‖u − u_h‖_E / ‖u_h‖_E ≤
+    /// energy, from a stress in exact equilibrium (Prager–Synge), whatever
+    /// the mesh. u is the exact solution of the model solved: the meshed
+    /// bodies and the linearized signed-distance gap. It bounds the energy of
+    /// the error (stress and strain in the mean square), not the pressure,
+    /// the peak or a zone end, which `pressure_l2`, `peak` and `zone_edges`
+    /// estimate. Absent where the scene is outside its reach: it covers
+    /// frictionless contact of linear triangles (T3) in plane strain or plane
+    /// stress against rigid obstacles and punches (under load or motion
+    /// control) whose sides in contact face straight or circular pieces,
+    /// under supports, uniform tractions and pressures, and body forces; not
+    /// T6, axisymmetry, friction, two bodies, foundations, point loads (whose
+    /// energy is infinite), tractions over part of a side, couplings, bodies
+    /// moved by the contact alone, or contact at a sharp corner, a polyline's
+    /// vertex or a spline (a note then says why).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub energy: Option<f64>,
 }

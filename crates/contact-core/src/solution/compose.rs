@@ -133,15 +133,21 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
     // The energy bound goes with the error estimate; it costs a solve with
     // the factor at hand and a pass over the elements.
     let mut t_energy = 0.0;
-    let energy = (status == Status::Solved && (scene.settings.estimate || scene.settings.accuracy.is_some()))
-        .then(|| {
-            let t = std::time::Instant::now();
-            let factor = st.factor.filter(|f| energy::unsupported(scene, m, Some(f)).is_none())?;
-            let bound = energy::bound(scene, m, st.k, factor, &sol.u, &sol.lambda, &punch_motions).ok();
-            t_energy = t.elapsed().as_secs_f64();
-            bound
-        })
-        .flatten();
+    let mut energy = None;
+    if status == Status::Solved && (scene.settings.estimate || scene.settings.accuracy.is_some()) {
+        let t = std::time::Instant::now();
+        if let Some(factor) = st.factor.filter(|f| energy::unsupported(scene, m, Some(f)).is_none()) {
+            // A scene the bound covers that it still cannot bound says why.
+            match energy::bound(scene, m, st.k, factor, &sol.u, &sol.lambda, &punch_motions) {
+                Ok(b) => energy = Some(b),
+                Err(why) => notes.push(Note::new(
+                    NoteKind::EstimateLimited,
+                    format!("no guaranteed energy bound: {why}"),
+                )),
+            }
+        }
+        t_energy = t.elapsed().as_secs_f64();
+    }
     let couplings = crate::solution::couplings::couplings(scene, &m.meshes, &m.dofs, &disp, &m.external);
     // The post stage has no deadline check: its answer is ready.
     let _ = obs.leave(Stage::Post);

@@ -29,9 +29,12 @@ pub struct SubStress {
     pub at: [[[f64; 3]; 3]; 3],
     /// Mid-side points of each sub-triangle, where `at` is evaluated.
     pub points: [[[f64; 2]; 3]; 3],
-    /// How far φ and ∇φ failed to close around the triangle, relative to the
-    /// tractions' scale (0 for tractions in equilibrium).
+    /// How far φ and ∇φ failed to close around the triangle, as a traction
+    /// (|Δ∇φ| / h and |Δφ| / h², h the longest side; 0 for tractions in
+    /// equilibrium).
     pub closure: f64,
+    /// The largest traction given, the scale `closure` is read against.
+    pub scale: f64,
 }
 
 /// Cubic monomials in (ξ, η) = (x − c) / h and their derivatives.
@@ -308,12 +311,7 @@ pub fn stress(p: &[[f64; 2]; 3], t: &[[[f64; 2]; 2]; 3]) -> Option<SubStress> {
         phi[j + 1] = phi[j] + dot(&g0, &d) + l * dot(&third, &d);
         grad[j + 1] = [g0[0] + l * whole[0], g0[1] + l * whole[1]];
     }
-    let closure = if scale > 0.0 {
-        let g = (grad[3][0] - grad[0][0]).hypot(grad[3][1] - grad[0][1]) / (scale * h);
-        g.max((phi[3] - phi[0]).abs() / (scale * h * h))
-    } else {
-        0.0
-    };
+    let closure = ((grad[3][0] - grad[0][0]).hypot(grad[3][1] - grad[0][1]) / h).max((phi[3] - phi[0]).abs() / (h * h));
     // x = p0 + A ξ: reference gradients are Aᵀ ∇φ, the reference normal
     // derivative at a midpoint is Aᵀ ∇φ there along the reference normal.
     let a = [
@@ -348,6 +346,7 @@ pub fn stress(p: &[[f64; 2]; 3], t: &[[[f64; 2]; 2]; 3]) -> Option<SubStress> {
         at: [[[0.0; 3]; 3]; 3],
         points: [[[0.0; 2]; 3]; 3],
         closure,
+        scale,
     };
     for j in 0..3 {
         for q in 0..3 {
@@ -408,7 +407,7 @@ mod tests {
         let s0 = [1.3, -0.7, 0.45];
         let t = tractions(&TRIANGLE, |_| s0);
         let out = stress(&TRIANGLE, &t).expect("triangle");
-        assert!(out.closure < 1e-13, "closure {}", out.closure);
+        assert!(out.closure < 1e-13 * out.scale, "closure {}", out.closure);
         for sub in &out.at {
             for s in sub {
                 for k in 0..3 {
@@ -434,7 +433,7 @@ mod tests {
         };
         let t = tractions(&TRIANGLE, sigma);
         let out = stress(&TRIANGLE, &t).expect("triangle");
-        assert!(out.closure < 1e-12, "closure {}", out.closure);
+        assert!(out.closure < 1e-12 * out.scale, "closure {}", out.closure);
         for (sub, pts) in out.at.iter().zip(&out.points) {
             for (s, x) in sub.iter().zip(pts) {
                 let e = sigma(*x);
@@ -498,7 +497,7 @@ mod tests {
         let tax = (-m - m0) / (m1 - m0);
         t[2] = [[tax, ta_y], [sum - tax, tb_y]];
         let out = stress(&p, &t).expect("triangle");
-        assert!(out.closure < 1e-12, "closure {}", out.closure);
+        assert!(out.closure < 1e-12 * out.scale, "closure {}", out.closure);
         for j in 0..3 {
             let (xa, xb) = (p[j], p[(j + 1) % 3]);
             let l = (xb[0] - xa[0]).hypot(xb[1] - xa[1]);

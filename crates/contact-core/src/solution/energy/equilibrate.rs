@@ -55,8 +55,10 @@ pub struct Input<'a> {
 }
 
 /// ∫ (σ* − σ(u_cmp)) : C⁻¹ (σ* − σ(u_cmp)) per element, and how far the
-/// elements' tractions failed to balance (relative; round-off when the
-/// answer is in equilibrium).
+/// elements' tractions failed to balance, relative to the body's largest
+/// traction or stress (round-off when the answer is in equilibrium: an
+/// element that carries almost nothing is read against the body, not
+/// against itself).
 pub struct Bound {
     pub indicators: Vec<f64>,
     pub closure: f64,
@@ -360,7 +362,7 @@ pub fn bound(inp: &Input) -> Option<Bound> {
     // Each element's admissible stress against σ(u_cmp).
     let compliance = inverse3(inp.d);
     let mut indicators = vec![0.0; ne];
-    let mut closure = 0.0_f64;
+    let (mut closure, mut scale) = (0.0_f64, 0.0_f64);
     for (k, (e, grads, _)) in geo.iter().enumerate() {
         let p = [inp.nodes[e[0]], inp.nodes[e[1]], inp.nodes[e[2]]];
         let centroid = [(p[0][0] + p[1][0] + p[2][0]) / 3.0, (p[0][1] + p[1][1] + p[2][1]) / 3.0];
@@ -392,7 +394,9 @@ pub fn bound(inp: &Input) -> Option<Bound> {
         }
         let sub = airy::stress(&p, &t)?;
         closure = closure.max(sub.closure);
+        scale = scale.max(sub.scale);
         let sh = stress(&inp.d, grads, *e, inp.u_cmp);
+        scale = scale.max(sh.iter().fold(0.0_f64, |m, v| m.max(v.abs())));
         let mut sum = 0.0;
         for j in 0..3 {
             for q in 0..3 {
@@ -407,6 +411,7 @@ pub fn bound(inp: &Input) -> Option<Bound> {
         }
         indicators[k] = sum;
     }
+    let closure = if scale > 0.0 { closure / scale } else { closure };
     Some(Bound { indicators, closure })
 }
 

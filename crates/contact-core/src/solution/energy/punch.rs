@@ -1,9 +1,9 @@
 //! A punch's loads carried exactly by the bound's contact pressure p*.
 
-use super::{equilibrate, ContactSide};
+use super::{equilibrate, ContactSide, Form};
+use crate::contact::free_motions::Motion;
 use crate::contact::gap::closest;
 use crate::contact::rows::punch_coefficients;
-use crate::contact::Candidate;
 use crate::mesh::Mesh2d;
 use crate::scene::{Control, Scene};
 
@@ -25,8 +25,7 @@ pub(super) const GAUSS4: [(f64, f64); 4] = [
 pub(super) fn balance(
     scene: &Scene,
     meshes: &[Mesh2d],
-    candidates: &[Candidate],
-    lambda: &[f64],
+    motions: &[(Motion, f64)],
     o: usize,
     sides: &mut [ContactSide],
 ) -> Result<(), &'static str> {
@@ -37,11 +36,13 @@ pub(super) fn balance(
     if loaded.is_empty() {
         return Ok(());
     }
+    // The requested loads, not the rows' own sum (which meets them only to
+    // the solver's tolerance): the punch's equilibrium Σ λ c = −P.
     let mut target = [0.0; 3];
-    for (c, l) in candidates.iter().zip(lambda) {
-        if let Some((ob, co)) = c.punch() {
-            if ob == o {
-                (0..3).for_each(|k| target[k] += l * co[k]);
+    for (m, load) in motions {
+        if let Motion::Punch { obstacle, component } = *m {
+            if obstacle == o {
+                target[component] = -load;
             }
         }
     }
@@ -61,9 +62,16 @@ pub(super) fn balance(
                 continue;
             };
             let co = punch_coefficients(c.point, pu.reference, [-c.normal[0], -c.normal[1]]);
+            let mid = 0.5 * (pa[0] + pb[0]);
             for j in 0..=n {
-                let p = (1.0 - t) * s.pressure[0] * if j < n { basis(pa[0], j) } else { 1.0 }
-                    + t * s.pressure[1] * if j < n { basis(pb[0], j) } else { 1.0 };
+                let p = match s.form {
+                    // One q on an arc's side: scaled at its midpoint.
+                    Form::Arc { .. } => s.pressure_at(mesh, t) * if j < n { basis(mid, j) } else { 1.0 },
+                    _ => {
+                        (1.0 - t) * s.pressure[0] * if j < n { basis(pa[0], j) } else { 1.0 }
+                            + t * s.pressure[1] * if j < n { basis(pb[0], j) } else { 1.0 }
+                    }
+                };
                 for (row, ck) in a.iter_mut().zip(co) {
                     row[j] += w * l * p * ck;
                 }
@@ -117,8 +125,12 @@ pub(super) fn balance(
     }
     for s in sides.iter_mut().filter(|s| s.obstacle == o) {
         let mesh = &meshes[s.body];
+        let mid = 0.5 * (mesh.nodes[s.ends[0]][0] + mesh.nodes[s.ends[1]][0]);
         for (end, &node) in s.ends.iter().enumerate() {
-            let x = mesh.nodes[node][0];
+            let x = match s.form {
+                Form::Arc { .. } => mid,
+                _ => mesh.nodes[node][0],
+            };
             let f: f64 = (0..n).map(|j| coef[j] * basis(x, j)).sum();
             s.pressure[end] *= 1.0 + f;
             if s.pressure[end] < -1e-12 * scale {
