@@ -326,14 +326,26 @@ fn add_body<const K: usize>(
 /// (`external_loads`, computed once per solve: the rigid modes need them too)
 /// and the prescribed displacements.
 pub fn assemble_loads(external: &[f64], dofs: &DofMap, stiffness: &Stiffness) -> Vec<f64> {
-    let mut f = vec![0.0; dofs.n_free];
+    free_rhs(external, &dofs.free, &dofs.prescribed, dofs.n_free, stiffness)
+}
+
+/// f_f − K_fd u_d for any DOF map (`free`: each global DOF's free index or
+/// FIXED; `prescribed`: its value where fixed), the plane's and the solid's.
+pub fn free_rhs(
+    external: &[f64],
+    free: &[usize],
+    prescribed: &[f64],
+    n_free: usize,
+    stiffness: &Stiffness,
+) -> Vec<f64> {
+    let mut f = vec![0.0; n_free];
     for (d, &v) in external.iter().enumerate() {
-        if dofs.free[d] != FIXED {
-            f[dofs.free[d]] += v;
+        if free[d] != FIXED {
+            f[free[d]] += v;
         }
     }
     for &(row, d, v) in &stiffness.k_fd {
-        f[row] -= v * dofs.prescribed[d];
+        f[row] -= v * prescribed[d];
     }
     f
 }

@@ -88,16 +88,7 @@ fn volume_shares<E: ReferenceElement<3, N>, const N: usize>(x: [[f64; 3]; N], ad
 
 /// f_f − K_fd u_d: the right-hand side on the free DOFs.
 pub fn free_rhs(external: &[f64], dofs: &SolidDofs, stiffness: &Stiffness) -> Vec<f64> {
-    let mut f = vec![0.0; dofs.n_free];
-    for (d, &v) in external.iter().enumerate() {
-        if dofs.free[d] != FIXED {
-            f[dofs.free[d]] += v;
-        }
-    }
-    for &(row, d, v) in &stiffness.k_fd {
-        f[row] -= v * dofs.prescribed[d];
-    }
-    f
+    crate::fem::assembly::free_rhs(external, &dofs.free, &dofs.prescribed, dofs.n_free, stiffness)
 }
 
 /// The displacement of every DOF from the free ones: prescribed values
