@@ -88,8 +88,11 @@ fn inverse3(d: [[f64; 3]; 3]) -> [[f64; 3]; 3] {
     })
 }
 
+/// An element's counter-clockwise corners, hat gradients and area.
+type Geometry = ([usize; 3], [[f64; 2]; 3], f64);
+
 /// Counter-clockwise corners, hat gradients and area of an element.
-fn geometry(nodes: &[[f64; 2]], e: [usize; 3]) -> ([usize; 3], [[f64; 2]; 3], f64) {
+fn geometry(nodes: &[[f64; 2]], e: [usize; 3]) -> Geometry {
     let [a, b, c] = e;
     let (pa, pb, pc) = (nodes[a], nodes[b], nodes[c]);
     let det = (pb[0] - pa[0]) * (pc[1] - pa[1]) - (pc[0] - pa[0]) * (pb[1] - pa[1]);
@@ -155,6 +158,106 @@ pub(super) fn solve_factored(m: &[f64], skip: &[bool], rhs: &mut [f64], n: usize
         }
         let s: f64 = (k + 1..n).filter(|&j| !skip[j]).map(|j| m[j * n + k] * rhs[j]).sum();
         rhs[k] = (rhs[k] - s) / m[k * n + k];
+    }
+}
+
+/// The elements around an inner node in turn, each with the side it is
+/// entered by (the next one's is the side it is left by); false where the
+/// node is on the boundary or its elements do not close around it.
+fn fan_of(
+    node: usize,
+    elems: &[usize],
+    elem_sides: &[[usize; 3]],
+    sides: &[Side],
+    fan: &mut Vec<(usize, usize)>,
+) -> bool {
+    fan.clear();
+    let at_node = |k: usize| {
+        let mut two = [NONE; 2];
+        let mut i = 0;
+        for &id in &elem_sides[k] {
+            if sides[id].ends.contains(&node) && i < 2 {
+                two[i] = id;
+                i += 1;
+            }
+        }
+        two
+    };
+    let (first, mut side) = (elems[0], at_node(elems[0])[0]);
+    let mut k = first;
+    for _ in 0..elems.len() {
+        let sd = &sides[side];
+        if sd.elems[1] == NONE {
+            return false;
+        }
+        fan.push((k, side));
+        let two = at_node(k);
+        let out = if two[0] == side { two[1] } else { two[0] };
+        let next = &sides[out];
+        if next.elems[1] == NONE {
+            return false;
+        }
+        k = if next.elems[0] == k {
+            next.elems[1]
+        } else {
+            next.elems[0]
+        };
+        side = out;
+    }
+    k == first && side == fan[0].1
+}
+
+/// The projections b of an inner node's sides for component c: around the
+/// fan, element k's row reads c_k − c_{k+1} = y_k with c_k = η b of the side
+/// it is entered by, so c_k = t + d_k with d the running sum of −y, and t
+/// keeps Σ (b − b̄)² / |Γ| least (the general path's choice).
+#[allow(clippy::too_many_arguments)]
+fn inner_node(
+    node: usize,
+    c: usize,
+    fan: &[(usize, usize)],
+    geo: &[Geometry],
+    s_eq: &[[f64; 3]],
+    smooth: &[[f64; 3]],
+    f: [f64; 2],
+    sides: &[Side],
+    proj: &mut [[[f64; 2]; 2]],
+) {
+    let traction = |s: [f64; 3], n: [f64; 2]| {
+        if c == 0 {
+            s[0] * n[0] + s[2] * n[1]
+        } else {
+            s[2] * n[0] + s[1] * n[1]
+        }
+    };
+    let (mut d, mut num, mut den) = (0.0, 0.0, 0.0);
+    let mut ds = [0.0; 16];
+    let many = fan.len() > ds.len();
+    let mut dv = Vec::new();
+    for (i, &(k, side)) in fan.iter().enumerate() {
+        let sd = &sides[side];
+        let eta = if sd.elems[0] == k { 1.0 } else { -1.0 };
+        let other = sd.ends[0] + sd.ends[1] - node;
+        let bbar = sd.len * (2.0 * traction(smooth[node], sd.normal) + traction(smooth[other], sd.normal)) / 6.0;
+        num += (eta * bbar - d) / sd.len;
+        den += 1.0 / sd.len;
+        if many {
+            dv.push(d);
+        } else {
+            ds[i] = d;
+        }
+        let (e, grads, area) = &geo[k];
+        let at = e.iter().position(|&n| n == node).unwrap_or(0);
+        let y = area * traction(s_eq[k], grads[at]) - f[c] * area / 3.0;
+        d -= y;
+    }
+    let t = num / den;
+    for (i, &(k, side)) in fan.iter().enumerate() {
+        let sd = &sides[side];
+        let eta = if sd.elems[0] == k { 1.0 } else { -1.0 };
+        let di = if many { dv[i] } else { ds[i] };
+        let end = if sd.ends[0] == node { 0 } else { 1 };
+        proj[side][end][c] = eta * (t + di);
     }
 }
 
@@ -266,8 +369,17 @@ pub fn bound(inp: &Input) -> Option<Bound> {
     let f = inp.body_force;
     let (mut cols, mut last): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
     let (mut a, mut m, mut y, mut bbar, mut wt, mut skip) = (vec![], vec![], vec![], vec![], vec![], vec![]);
+    let mut fan: Vec<(usize, usize)> = Vec::new();
     for (node, elems) in node_elems.iter().enumerate() {
         if elems.is_empty() {
+            continue;
+        }
+        if fan_of(node, elems, &elem_sides, &sides, &mut fan) {
+            // A node inside: its elements and sides form a cycle, solved in
+            // one pass instead of through A Aᵀ (most nodes).
+            for c in 0..2 {
+                inner_node(node, c, &fan, &geo, &s_eq, &smooth, f, &sides, &mut proj);
+            }
             continue;
         }
         last.clear();
