@@ -20,9 +20,9 @@
 //! pressure, a free surface) t̂ is that traction; on sides with a prescribed
 //! displacement component that component is sought like an inner side's.
 //!
-//! Length: about 500 lines, a third of them the patch test; the node
-//! systems, the sides' tractions and the elements' energies share the side
-//! numbering and belong together.
+//! Length: about 620 lines, a sixth of them the patch test; the node
+//! systems (the general one and an inner node's fan), the sides' tractions
+//! and the elements' energies share the side numbering and belong together.
 
 use super::airy;
 use std::collections::HashMap;
