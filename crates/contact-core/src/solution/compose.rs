@@ -138,7 +138,7 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
         let t = std::time::Instant::now();
         if let Some(factor) = st.factor.filter(|f| energy::unsupported(scene, m, Some(f)).is_none()) {
             // A scene the bound covers that it still cannot bound says why.
-            match energy::bound(scene, m, st.k, factor, &sol.u, &sol.lambda, &punch_motions) {
+            match energy::bound(scene, m, st.k, factor, &disp, &sol.lambda, &punch_motions) {
                 Ok(b) => energy = Some(b),
                 Err(why) => notes.push(Note::new(
                     NoteKind::EstimateLimited,

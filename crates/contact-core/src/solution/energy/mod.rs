@@ -46,6 +46,7 @@ use crate::contact::rows::punch_coefficients;
 use crate::fem::assembly::{DofMap, FIXED};
 use crate::fem::constitutive::Constitutive;
 use crate::fem::loads::clip;
+use crate::linalg::sparse::sym_lower_matvec;
 use crate::linalg::Cholesky;
 use crate::mesh::{boundary::edge_normal, Mesh2d, Order};
 use crate::model::Model;
@@ -125,40 +126,6 @@ pub fn unsupported(scene: &Scene, model: &Model, factor: Option<&Cholesky>) -> O
     None
 }
 
-/// Nodal displacements of every body from the free DOFs and the prescribed
-/// values.
-fn displacements(meshes: &[Mesh2d], dofs: &DofMap, u: &[f64]) -> Vec<Vec<[f64; 2]>> {
-    let value = |d: usize| match dofs.free[d] {
-        FIXED => dofs.prescribed[d],
-        k => u[k],
-    };
-    meshes
-        .iter()
-        .enumerate()
-        .map(|(b, m)| {
-            (0..m.nodes.len())
-                .map(|n| [value(dofs.dof(b, n, 0)), value(dofs.dof(b, n, 1))])
-                .collect()
-        })
-        .collect()
-}
-
-/// y = K x for the lower triangle of a symmetric K.
-fn sym_matvec(k: &SparseColMat<usize, f64>, x: &[f64]) -> Vec<f64> {
-    let mut y = vec![0.0; x.len()];
-    let (cp, ri, v) = (k.symbolic().col_ptr(), k.symbolic().row_idx(), k.val());
-    for j in 0..k.ncols() {
-        for p in cp[j]..cp[j + 1] {
-            let i = ri[p];
-            y[i] += v[p] * x[j];
-            if i != j {
-                y[j] += v[p] * x[i];
-            }
-        }
-    }
-    y
-}
-
 /// A pair's candidate side: its ends, the pressure p* at each and the
 /// obstacle's row direction ν there; the traction on the body −p* ν is
 /// linear along the side, so that `airy` can carry it exactly.
@@ -169,6 +136,9 @@ struct ContactSide {
     pressure: [f64; 2],
     dir: [[f64; 2]; 2],
     form: Form,
+    /// The obstacle's curvature along the side (`form_of`), for the
+    /// admissibility check's margin.
+    curvature: f64,
 }
 
 /// How the obstacle's normal runs along a side: the traction −p*(x) ν(x)
@@ -243,20 +213,20 @@ fn form_of(shape: &crate::scene::Shape, a: [f64; 2], b: [f64; 2]) -> Option<(For
 }
 
 /// The bound of a solved frictionless scene on rigid obstacles (see
-/// `unsupported` for what it does not cover): `u` on the free DOFs,
-/// `lambda` the candidates' forces, `punches` each punch's motion (α1, α2,
+/// `unsupported` for what it does not cover): `disp` the answer's nodal
+/// displacements per body (the report's), `lambda` the candidates' forces, `punches` each punch's motion (α1, α2,
 /// θ), prescribed or solved.
 pub fn bound(
     scene: &Scene,
     model: &Model,
     k: &SparseColMat<usize, f64>,
     factor: &Cholesky,
-    u: &[f64],
+    disp: &[Vec<[f64; 2]>],
     lambda: &[f64],
     punches: &[(usize, [f64; 3])],
 ) -> Result<EnergyBound, &'static str> {
     let (meshes, dofs) = (&model.meshes, &model.dofs);
-    let u_h = displacements(meshes, dofs, u);
+    let u_h = disp;
     let mut given: Vec<HashMap<[usize; 2], Given>> = vec![HashMap::new(); meshes.len()];
     let key = |a: usize, b: usize| [a.min(b), a.max(b)];
     // Loads first, supports last (a held component's traction is sought
@@ -315,7 +285,7 @@ pub fn bound(
             };
             let mut pressure = [at(e.a).map_or(0.0, |x| x.0), at(e.b).map_or(0.0, |x| x.0)];
             let shape = &scene.obstacles[o].shape;
-            let Some((form, _)) = form_of(shape, mesh.nodes[e.a], mesh.nodes[e.b]) else {
+            let Some((form, turn)) = form_of(shape, mesh.nodes[e.a], mesh.nodes[e.b]) else {
                 if pressure != [0.0, 0.0] {
                     return Err("a side in contact runs past an open end of its obstacle");
                 }
@@ -351,6 +321,14 @@ pub fn bound(
                 pressure,
                 dir: [da, db],
                 form,
+                curvature: match form {
+                    Form::Straight => 0.0,
+                    Form::Arc { .. } => turn,
+                    // A side out of contact whose normal turns at a vertex:
+                    // the samples' turn over their spacing stands for its
+                    // curvature.
+                    Form::Kinked => turn * (SAMPLES - 1) as f64,
+                },
             };
             sides.push(side);
         }
@@ -421,7 +399,7 @@ pub fn bound(
     let mut rhs = Mat::<f64>::from_fn(dofs.n_free, 1, |i, _| d[i]);
     factor.solve_in_place(rhs.as_mut());
     let w2: Vec<f64> = (0..dofs.n_free).map(|i| rhs[(i, 0)]).collect();
-    let shift = sym_matvec(k, &w2)
+    let shift = sym_lower_matvec(k, &w2)
         .iter()
         .zip(&w2)
         .map(|(a, b)| a * b)
@@ -490,14 +468,7 @@ pub fn bound(
         }
         let (a, b) = (mesh.nodes[s.ends[0]], mesh.nodes[s.ends[1]]);
         let l = (b[0] - a[0]).hypot(b[1] - a[1]);
-        let shape = &scene.obstacles[s.obstacle].shape;
-        let curvature = match form_of(shape, a, b) {
-            Some((Form::Straight, _)) | None => 0.0,
-            Some((Form::Arc { .. }, k)) => k,
-            // A side out of contact whose normal turns at a vertex: the
-            // samples' turn over their spacing stands for its curvature.
-            Some((Form::Kinked, k)) => k * (SAMPLES - 1) as f64,
-        };
+        let curvature = s.curvature;
         if curvature > 0.0 {
             let (va, vb) = (field[s.ends[0]], field[s.ends[1]]);
             let vmax = va[0].hypot(va[1]).max(vb[0].hypot(vb[1]));
@@ -532,7 +503,7 @@ pub fn bound(
             }
         }
     }
-    let mut v = u_h.clone();
+    let mut v = u_h.to_vec();
     let mut w = vec![0.0; dofs.n_free];
     for (&(b, n), &delta) in &push {
         let dn = dir_at[&(b, n)];
@@ -557,7 +528,7 @@ pub fn bound(
     let correction = if push.is_empty() {
         0.0
     } else {
-        let kw = sym_matvec(k, &w);
+        let kw = sym_lower_matvec(k, &w);
         w.iter().zip(&kw).map(|(a, b)| a * b).sum::<f64>().max(0.0).sqrt()
     };
     // 2 ∫ p* (g − v · ν), Gauss–Legendre with 4 points on each side.
