@@ -4,7 +4,8 @@
 //! was reported reached, the estimate, the true L2 error of the described
 //! field (what the estimate and the target are of), the nodal values' and
 //! the resultant's, the DOFs and the time. `cargo run --release -p
-//! contact-verify --example targets`.
+//! contact-verify --example targets [NAME…]` (only the scenes whose name
+//! contains one of the NAMEs).
 
 use contact_verify::{bench, convergence, run};
 use serde_json::{json, Value};
@@ -34,12 +35,22 @@ fn main() {
         ("ball T3", "ball_on_flat", convergence::ball_request(0.02, "t3")),
         ("block T3", "hertz_block", bench::hertz_request(0.08, "t3", "auto")),
         ("block gmsh T3", "hertz_block", gmsh),
+        (
+            "block inline T6",
+            "hertz_block",
+            run::inlined(&bench::hertz_request(0.16, "t6", "auto")),
+        ),
     ];
     println!(
         "{:<16} {:>7} {:>8} {:>8} {:>9} {:>9} {:>9} {:>9} {:>7} {:>8}",
         "scene", "target", "reached", "dofs", "estimate", "true_l2", "nodal", "true_fy", "rounds", "seconds"
     );
-    for (name, table, base) in &scenes {
+    // Arguments keep the scenes whose name contains one of them.
+    let only: Vec<String> = std::env::args().skip(1).collect();
+    for (name, table, base) in scenes
+        .iter()
+        .filter(|(name, _, _)| only.is_empty() || only.iter().any(|o| name.contains(o.as_str())))
+    {
         for target in [0.005, 0.003, 0.002] {
             let mut req = base.clone();
             req["settings"] = json!({"accuracy": {"pressure_l2": target}});
@@ -48,6 +59,11 @@ fn main() {
             let seconds = t.elapsed().as_secs_f64();
             let e = contact_verify::overkill::reference_error(table, &r).expect("table");
             let f = r.refinement.as_ref().expect("refined");
+            if std::env::var_os("TARGETS_ROUNDS").is_some() {
+                for round in &f.rounds {
+                    eprintln!("    round {round:?}");
+                }
+            }
             let est = r.pairs[0].accuracy.as_ref().and_then(|a| a.pressure_l2);
             let reference = contact_verify::overkill::reference(table).expect("table");
             let (num, _, den) =
