@@ -15,10 +15,10 @@
 //! ```
 
 use contact_proto::{
-    Analysis, BodyRef, BodySpec, ContactSpec, Discretization, ElementKind, Facing, FoundationModel, FoundationSpec,
-    FrictionSpec, GradingSpec, HalfDiskSpec, MaterialSpec, MeshSpec, MethodName, ObstacleShape, ObstacleSpec,
-    OutputKind, PointLoadSpec, RectangleSpec, SolveRequest, SolverSettings, SupportSpec, SurfaceSpec, TractionSpec,
-    PROTOCOL_VERSION,
+    Analysis, BodyRef, BodySpec, ContactSpec, Discretization, ElementKind, ElementLists, Facing, FoundationModel,
+    FoundationSpec, FrictionSpec, GradingSpec, HalfDiskSpec, InlineMeshSpec, MaterialSpec, MeshSpec, MethodName,
+    ObstacleShape, ObstacleSpec, OutputKind, PointLoadSpec, RectangleSpec, SolveRequest, SolverSettings, SupportSpec,
+    SurfaceSpec, TractionSpec, PROTOCOL_VERSION,
 };
 
 /// A request with the service's defaults for everything not given.
@@ -206,6 +206,19 @@ pub fn rectangle(corner: [f64; 2], width: f64, height: f64, size: f64, element_n
         size,
         element: element_kind(element_name),
         grading: None,
+    })
+}
+
+/// A mesh given node by node: triangles as node indices (3 per T3, 6 per
+/// T6), each edge set as its edges' corner nodes.
+pub fn inline(nodes: &[[f64; 2]], elements: &[Vec<usize>], edge_sets: &[(&str, &[[usize; 2]])]) -> MeshSpec {
+    MeshSpec::Inline(InlineMeshSpec {
+        nodes: nodes.to_vec(),
+        elements: elements.iter().collect::<ElementLists>(),
+        edge_sets: edge_sets
+            .iter()
+            .map(|(name, edges)| (name.to_string(), edges.to_vec()))
+            .collect(),
     })
 }
 

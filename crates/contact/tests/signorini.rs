@@ -689,16 +689,11 @@ fn inline_disk_on_floor(
     top: &[[usize; 2]],
     settings: Value,
 ) -> Value {
-    json!({
-        "version": "1",
-        "bodies": [{
-            "name": "disk",
-            "material": {"youngs_modulus": 1.0, "poisson_ratio": 0.3},
-            "mesh": {"inline": {"nodes": nodes, "elements": elements, "edge_sets": {"rim": rim, "top": top}}},
-            "supports": [{"edges": "top", "ux": 0.0, "uy": -0.04}]
-        }],
-        "obstacles": [{"name": "floor", "shape": {"line": {"point": [0.0, -1.0], "normal": [0.0, 1.0]}}}],
-        "contacts": [{"body": "disk", "edges": "rim", "obstacle": "floor"}],
-        "settings": settings
-    })
+    let mesh = inline(nodes, elements, &[("rim", rim), ("top", top)]);
+    let disk = body("disk", 1.0, 0.3, mesh).support("top", Some(0.0), Some(-0.04));
+    let mut r = request(vec![disk], vec![pair("disk", "rim").obstacle("floor")])
+        .with_obstacle(obstacle("floor", line([0.0, -1.0], [0.0, 1.0])))
+        .to_value();
+    r["settings"] = settings;
+    r
 }
