@@ -15,9 +15,10 @@
 //! ```
 
 use contact_proto::{
-    BodyRef, BodySpec, ContactSpec, Discretization, ElementKind, Facing, FoundationModel, FoundationSpec, GradingSpec,
-    HalfDiskSpec, MaterialSpec, MeshSpec, MethodName, ObstacleShape, ObstacleSpec, PointLoadSpec, RectangleSpec,
-    SolveRequest, SolverSettings, SupportSpec, SurfaceSpec, TractionSpec, PROTOCOL_VERSION,
+    Analysis, BodyRef, BodySpec, ContactSpec, Discretization, ElementKind, ElementLists, Facing, FoundationModel,
+    FoundationSpec, FrictionSpec, GradingSpec, HalfDiskSpec, InlineMeshSpec, MaterialSpec, MeshSpec, MethodName,
+    ObstacleShape, ObstacleSpec, OutputKind, PointLoadSpec, RectangleSpec, SolveRequest, SolverSettings, SupportSpec,
+    SurfaceSpec, TractionSpec, PROTOCOL_VERSION,
 };
 
 /// A request with the service's defaults for everything not given.
@@ -47,6 +48,9 @@ pub trait RequestExt {
     fn with_foundation(self, f: FoundationSpec) -> Self;
     fn with_method(self, m: MethodName) -> Self;
     fn with_description(self, d: &str) -> Self;
+    fn with_analysis(self, a: Analysis) -> Self;
+    /// The fields the reply carries besides the contact answer.
+    fn with_outputs(self, o: &[OutputKind]) -> Self;
     /// The request as the JSON document the service reads.
     fn to_value(&self) -> serde_json::Value;
 }
@@ -68,9 +72,23 @@ impl RequestExt for SolveRequest {
         self.description = Some(d.to_string());
         self
     }
-    fn to_value(&self) -> serde_json::Value {
-        serde_json::to_value(self).expect("a request serializes")
+    fn with_analysis(mut self, a: Analysis) -> Self {
+        self.analysis = a;
+        self
     }
+    fn with_outputs(mut self, o: &[OutputKind]) -> Self {
+        self.outputs = o.to_vec();
+        self
+    }
+    fn to_value(&self) -> serde_json::Value {
+        wire(self)
+    }
+}
+
+/// Any part of a request as the JSON the service reads: for a test that
+/// changes one part of a checked-in example.
+pub fn wire(part: &impl serde::Serialize) -> serde_json::Value {
+    serde_json::to_value(part).expect("a request's part serializes")
 }
 
 /// `"t3"` or `"t6"` (anything else is T3's default).
@@ -84,6 +102,11 @@ pub fn element_kind(name: &str) -> ElementKind {
 /// A method by its wire name (`"auto"`, `"active_set"`, …).
 pub fn method_name(name: &str) -> MethodName {
     serde_json::from_value(serde_json::Value::String(name.to_string())).expect("a method name of the protocol")
+}
+
+/// A pair's discretization by its wire name (`"mortar"`, `"node_to_segment"`).
+pub fn discretization(name: &str) -> Discretization {
+    serde_json::from_value(serde_json::Value::String(name.to_string())).expect("a discretization of the protocol")
 }
 
 /// An elastic body with no supports or loads yet.
@@ -111,6 +134,8 @@ pub trait BodyExt {
     fn fixed(self, edges: &str) -> Self;
     /// Uniform pressure, positive pushing into the body.
     fn pressure(self, edges: &str, p: f64) -> Self;
+    /// Uniform traction vector [tx, ty] (force per length).
+    fn traction(self, edges: &str, t: [f64; 2]) -> Self;
     /// Uniform pressure on the part of the edge set with x in [x_min, x_max].
     fn pressure_on(self, edges: &str, p: f64, x_range: [f64; 2]) -> Self;
     /// A concentrated force at a point of the edge set.
@@ -136,6 +161,15 @@ impl BodyExt for BodySpec {
             edges: edges.to_string(),
             traction: None,
             pressure: Some(p),
+            x_range: None,
+        });
+        self
+    }
+    fn traction(mut self, edges: &str, t: [f64; 2]) -> Self {
+        self.tractions.push(TractionSpec {
+            edges: edges.to_string(),
+            traction: Some(t),
+            pressure: None,
             x_range: None,
         });
         self
@@ -172,6 +206,19 @@ pub fn rectangle(corner: [f64; 2], width: f64, height: f64, size: f64, element_n
         size,
         element: element_kind(element_name),
         grading: None,
+    })
+}
+
+/// A mesh given node by node: triangles as node indices (3 per T3, 6 per
+/// T6), each edge set as its edges' corner nodes.
+pub fn inline(nodes: &[[f64; 2]], elements: &[Vec<usize>], edge_sets: &[(&str, &[[usize; 2]])]) -> MeshSpec {
+    MeshSpec::Inline(InlineMeshSpec {
+        nodes: nodes.to_vec(),
+        elements: elements.iter().collect::<ElementLists>(),
+        edge_sets: edge_sets
+            .iter()
+            .map(|(name, edges)| (name.to_string(), edges.to_vec()))
+            .collect(),
     })
 }
 
@@ -265,6 +312,8 @@ pub trait PairExt {
     fn obstacle(self, name: &str) -> Self;
     fn against(self, body: &str, edges: &str, d: Discretization) -> Self;
     fn foundation(self, name: &str) -> Self;
+    /// Coulomb friction of coefficient μ.
+    fn friction(self, mu: f64) -> Self;
 }
 
 impl PairExt for ContactSpec {
@@ -282,6 +331,10 @@ impl PairExt for ContactSpec {
     }
     fn foundation(mut self, name: &str) -> Self {
         self.foundation = Some(BodyRef::Name(name.to_string()));
+        self
+    }
+    fn friction(mut self, mu: f64) -> Self {
+        self.friction = Some(FrictionSpec { coefficient: mu });
         self
     }
 }

@@ -5,7 +5,8 @@
 
 mod common;
 use common::*;
-use contact::proto::{ErrorCode, SolveReply};
+use contact::proto::{Analysis, BodySpec, Discretization, ErrorCode, FoundationModel, OutputKind, SolveReply};
+use contact_verify::build::*;
 use serde_json::{json, Value};
 use std::f64::consts::PI;
 
@@ -38,34 +39,25 @@ fn hertz_errors(r: &SolveReply, radius: f64, e: f64, nu: f64) -> (f64, f64, f64)
 
 /// A solid cylinder of revolution (r ≤ radius, 0 ≤ z ≤ height), elements
 /// 0.05 apart.
-fn cylinder(radius: f64, height: f64, youngs_modulus: f64, poisson_ratio: f64) -> Value {
-    json!({
-        "name": "cylinder",
-        "material": { "youngs_modulus": youngs_modulus, "poisson_ratio": poisson_ratio },
-        "mesh": { "rectangle": { "corner": [0.0, 0.0], "width": radius, "height": height, "size": 0.05 } }
-    })
+fn cylinder(radius: f64, height: f64, youngs_modulus: f64, poisson_ratio: f64) -> BodySpec {
+    let mesh = rectangle([0.0, 0.0], radius, height, 0.05, "t3");
+    body("cylinder", youngs_modulus, poisson_ratio, mesh)
 }
 
 /// `body` standing on the rigid flat z = 0, held by it alone.
-fn on_floor(body: Value) -> Value {
-    json!({
-        "version": "1",
-        "analysis": "axisymmetric",
-        "bodies": [body],
-        "obstacles": [{ "name": "floor", "shape": { "line": { "point": [0.0, 0.0], "normal": [0.0, 1.0] } } }],
-        "contacts": [{ "body": "cylinder", "edges": "bottom", "obstacle": "floor" }]
-    })
+fn on_floor(body: BodySpec) -> Value {
+    request(vec![body], vec![pair("cylinder", "bottom").obstacle("floor")])
+        .with_obstacle(obstacle("floor", line([0.0, 0.0], [0.0, 1.0])))
+        .with_analysis(Analysis::Axisymmetric)
+        .to_value()
 }
 
 /// `body` resting on a foundation at z = 0 over r ∈ [0, x_max].
-fn on_foundation(body: Value, model: Value, x_max: f64) -> Value {
-    json!({
-        "version": "1",
-        "analysis": "axisymmetric",
-        "bodies": [body],
-        "foundations": [{ "name": "soil", "y": 0.0, "x_min": 0.0, "x_max": x_max, "model": model }],
-        "contacts": [{ "body": "cylinder", "edges": "bottom", "foundation": "soil" }]
-    })
+fn on_foundation(body: BodySpec, model: FoundationModel, x_max: f64) -> Value {
+    request(vec![body], vec![pair("cylinder", "bottom").foundation("soil")])
+        .with_foundation(foundation("soil", model, 0.0, x_max, 0.0))
+        .with_analysis(Analysis::Axisymmetric)
+        .to_value()
 }
 
 fn ball(element: &str, h_min: f64) -> Value {
@@ -140,8 +132,7 @@ fn flat_punch_matches_boussinesq() {
 /// top of a cylinder standing on a rigid flat: the floor carries it exactly.
 #[test]
 fn an_axial_point_load_on_the_axis_is_a_point_force() {
-    let mut post = cylinder(1.0, 2.0, 100.0, 0.25);
-    post["point_loads"] = json!([{ "edges": "top", "at": [0.0, 2.0], "force": [0.0, -3.0] }]);
+    let post = cylinder(1.0, 2.0, 100.0, 0.25).point_load("top", [0.0, 2.0], [0.0, -3.0]);
     let req = on_floor(post);
     let r = solved(&req);
     assert!((r.resultant.fy / 3.0 - 1.0).abs() < 1e-9, "{}", r.resultant.fy);
@@ -186,21 +177,13 @@ fn two_balls_match_hertz() {
 /// (measured 1.7 % at the corners).
 #[test]
 fn press_fit_matches_lame() {
-    let body = |name: &str, corner: f64, width: f64| {
-        json!({
-            "name": name,
-            "material": { "youngs_modulus": 200.0, "poisson_ratio": 0.3 },
-            "mesh": { "rectangle": { "corner": [corner, 0.0], "width": width, "height": 1.0, "size": 0.05 } },
-            "supports": [{ "edges": "bottom", "uy": 0.0 }]
-        })
+    let ring = |name: &str, corner: f64, width: f64| {
+        body(name, 200.0, 0.3, rectangle([corner, 0.0], width, 1.0, 0.05, "t3")).support("bottom", None, Some(0.0))
     };
-    let req = json!({
-        "version": "1",
-        "analysis": "axisymmetric",
-        "bodies": [body("shaft", 0.0, 1.0), body("ring", 0.999, 1.001)],
-        "contacts": [{ "body": "ring", "edges": "left", "against": { "body": "shaft", "edges": "right" } }]
-    });
-    let r = solved(&req);
+    let bodies = vec![ring("shaft", 0.0, 1.0), ring("ring", 0.999, 1.001)];
+    let contact = pair("ring", "left").against("shaft", "right", Discretization::default());
+    let req = request(bodies, vec![contact]).with_analysis(Analysis::Axisymmetric);
+    let r = solved(&req.to_value());
     let lame = 200.0 * 0.001 * (4.0 - 1.0) / (2.0 * 1.0 * 4.0);
     let pts = &r.pairs[0].points;
     let area: f64 = pts.iter().map(|p| p.weight).sum();
@@ -226,9 +209,8 @@ fn press_fit_matches_lame() {
     assert_eq!(r.pairs[0].zones, vec![[0.999, 0.999]]);
     // In the shaft σ_rr = σ_θθ = −p (uniform compression): the reply's hoop
     // stress beside `stress` says so, within 2 % away from the ends.
-    let mut with_stress = req.clone();
-    with_stress["outputs"] = json!(["stress", "mesh"]);
-    let r = solved(&with_stress);
+    let with_stress = req.with_outputs(&[OutputKind::Stress, OutputKind::Mesh]);
+    let r = solved(&with_stress.to_value());
     let shaft = &r.bodies.as_ref().expect("bodies")[0];
     let (stress, hoop) = (
         shaft.stress.as_ref().unwrap(),
@@ -254,9 +236,8 @@ fn press_fit_matches_lame() {
 #[test]
 fn winkler_foundation_carries_the_load_of_revolution() {
     let (q, k, radius) = (1.0, 10.0, 2.0);
-    let mut disk = cylinder(radius, 0.5, 1e4, 0.3);
-    disk["tractions"] = json!([{ "edges": "top", "pressure": q }]);
-    let req = on_foundation(disk, json!({ "winkler": { "stiffness": k } }), 4.0);
+    let disk = cylinder(radius, 0.5, 1e4, 0.3).pressure("top", q);
+    let req = on_foundation(disk, FoundationModel::Winkler { stiffness: k }, 4.0);
     let r = solved(&req);
     let total = q * PI * radius * radius;
     assert!(
@@ -278,8 +259,7 @@ fn winkler_foundation_carries_the_load_of_revolution() {
 /// axis: the floor carries π R² H exactly, over the whole base.
 #[test]
 fn self_weight_of_a_cylinder_rests_on_the_floor() {
-    let mut post = cylinder(1.0, 2.0, 100.0, 0.25);
-    post["body_force"] = json!([0.0, -1.0]);
+    let post = cylinder(1.0, 2.0, 100.0, 0.25).body_force([0.0, -1.0]);
     let req = on_floor(post);
     let r = solved(&req);
     assert!((r.resultant.fy / (2.0 * PI) - 1.0).abs() < 1e-9, "{}", r.resultant.fy);
@@ -320,9 +300,15 @@ fn pasternak_layer_of_revolution_matches_the_bessel_solution() {
     let ell = (mu / k).sqrt();
     let (k0, k1) = (bessel_k(0.0, radius / ell), bessel_k(1.0, radius / ell));
     let w0 = q * PI * radius * radius / (k * PI * radius * radius + 2.0 * PI * radius * mu * k1 / (ell * k0));
-    let mut disk = cylinder(radius, 0.5, 1e6, 0.3);
-    disk["tractions"] = json!([{ "edges": "top", "pressure": q }]);
-    let req = on_foundation(disk, json!({ "pasternak": { "stiffness": k, "shear": mu } }), 12.0);
+    let disk = cylinder(radius, 0.5, 1e6, 0.3).pressure("top", q);
+    let req = on_foundation(
+        disk,
+        FoundationModel::Pasternak {
+            stiffness: k,
+            shear: mu,
+        },
+        12.0,
+    );
     let r = solved(&req);
     assert!((r.resultant.fy / (q * PI * radius * radius) - 1.0).abs() < 1e-9);
     let f = &r.foundations[0];

@@ -3,7 +3,8 @@
 
 mod common;
 use common::*;
-use contact::proto::{ErrorCode, FoundationResult};
+use contact::proto::{Analysis, ErrorCode, FoundationModel, FoundationResult};
+use contact_verify::build::{self, *};
 use serde_json::json;
 
 fn foundation(r: &contact::proto::SolveReply) -> &FoundationResult {
@@ -51,12 +52,12 @@ fn winkler_uniform_load_is_exact() {
 /// pressures right to 1e-12). 1e-8 asked: the service's own tolerance.
 #[test]
 fn thin_strip_on_winkler_is_solved_and_certified() {
-    let mut req = example("foundation_winkler_footing.json");
-    req["analysis"] = json!("plane_stress");
-    req["bodies"][0]["mesh"]["rectangle"] = json!({"corner": [-5.0, 0.0], "width": 10.0, "height": 0.02, "size": 0.01});
-    req["foundations"][0]["x_min"] = json!(-10.0);
-    req["foundations"][0]["x_max"] = json!(10.0);
-    let r = solved(&req);
+    let strip = body("footing", 1000.0, 0.25, rectangle([-5.0, 0.0], 10.0, 0.02, 0.01, "t3")).pressure("top", 1.0);
+    let soil = build::foundation("soil", FoundationModel::Winkler { stiffness: 100.0 }, -10.0, 10.0, 0.0);
+    let req = request(vec![strip], vec![pair("footing", "bottom").foundation("soil")])
+        .with_foundation(soil)
+        .with_analysis(Analysis::PlaneStress);
+    let r = solved(&req.to_value());
     assert_kkt(&r, 1e-8);
     for p in &r.pairs[0].points {
         assert!((p.pressure - 1.0).abs() < 1e-8, "p({}) = {}", p.x, p.pressure);
@@ -74,7 +75,10 @@ fn thin_strip_on_winkler_is_solved_and_certified() {
 fn pasternak_without_shear_is_winkler() {
     let winkler = solved(&example("foundation_winkler_footing.json"));
     let mut req = example("foundation_winkler_footing.json");
-    req["foundations"][0]["model"] = json!({ "pasternak": { "stiffness": 100.0, "shear": 0.0 } });
+    req["foundations"][0]["model"] = wire(&FoundationModel::Pasternak {
+        stiffness: 100.0,
+        shear: 0.0,
+    });
     let pasternak = solved(&req);
     for (p, q) in winkler.pairs[0].points.iter().zip(&pasternak.pairs[0].points) {
         assert!(
@@ -86,7 +90,10 @@ fn pasternak_without_shear_is_winkler() {
     }
     // A thin shear layer changes the answer by little: the edge line loads
     // √(kμ) w0 carry a share 2√(kμ)/(2ka + 2√(kμ)) of the load (1 % here).
-    req["foundations"][0]["model"] = json!({ "pasternak": { "stiffness": 100.0, "shear": 0.01 } });
+    req["foundations"][0]["model"] = wire(&FoundationModel::Pasternak {
+        stiffness: 100.0,
+        shear: 0.01,
+    });
     let thin = solved(&req);
     let at_centre = |f: &FoundationResult| f.w[f.x.iter().position(|x| x.abs() < 1e-9).expect("x = 0")];
     let (w_thin, w_winkler) = (at_centre(&thin.foundations[0]), at_centre(&winkler.foundations[0]));
@@ -207,16 +214,17 @@ fn half_plane_foundation_t6_pressure_does_not_alternate() {
 /// contact zone is part of the solution.
 #[test]
 fn eccentric_load_lifts_the_footing_off_a_winkler_foundation() {
-    let mut req = example("foundation_winkler_footing.json");
-    req["bodies"][0]["material"]["youngs_modulus"] = json!(1.0e7);
-    req["bodies"][0]["tractions"] = json!([]);
+    let footing = body("footing", 1.0e7, 0.25, rectangle([-1.0, 0.0], 2.0, 0.5, 0.05, "t3"));
+    let soil = build::foundation("soil", FoundationModel::Winkler { stiffness: 100.0 }, -5.0, 5.0, 0.0);
+    let contacts = vec![
+        pair("footing", "bottom").foundation("soil"),
+        pair("footing", "top").obstacle("press"),
+    ];
     // A fixed rigid roller pressed 0.01 into the top at x = 0.6 is the load.
-    req["obstacles"] = json!([{ "name": "press", "shape": { "circle": { "center": [0.6, 1.49], "radius": 1.0 } } }]);
-    req["contacts"] = json!([
-        { "body": "footing", "edges": "bottom", "foundation": "soil" },
-        { "body": "footing", "edges": "top", "obstacle": "press" }
-    ]);
-    let r = solved(&req);
+    let req = request(vec![footing], contacts)
+        .with_foundation(soil)
+        .with_obstacle(obstacle("press", circle([0.6, 1.49], 1.0)));
+    let r = solved(&req.to_value());
     assert_kkt(&r, 1e-8);
     let load = &r.pairs[1].resultant;
     let p = -load.fy;

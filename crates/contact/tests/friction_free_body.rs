@@ -301,25 +301,25 @@ fn a_free_body_step_out_of_iterations_says_why() {
 #[test]
 fn a_free_roller_pushed_at_its_axle_is_said_to_roll() {
     let roller = |q: f64| {
-        json!({
-            "version": "1", "analysis": "plane_strain",
-            "bodies": [
-                {"name": "roller", "material": {"youngs_modulus": 210000.0, "poisson_ratio": 0.3},
-                 "mesh": {"half_disk": {"center": [0.0, 20.0], "radius": 20.0, "facing": "down", "size": 1.25,
-                                        "element": "t3",
-                                        "grading": {"h_min": 0.011, "ratio": 1.1, "extent": 0.66}}},
-                 "tractions": [{"edges": "flat", "pressure": 12.5}, {"edges": "flat", "traction": [q, 0.0]}]},
-                {"name": "plate", "material": {"youngs_modulus": 210000.0, "poisson_ratio": 0.3},
-                 "mesh": {"rectangle": {"corner": [-30.0, -10.0], "width": 60.0, "height": 10.0, "size": 1.0,
-                                        "element": "t3",
-                                        "grading": {"focus": [0, 0], "h_min": 0.0144, "ratio": 1.1, "extent": 0.66}}},
-                 "supports": [{"edges": "bottom", "ux": 0.0, "uy": 0.0}]}
-            ],
-            "contacts": [{"body": "roller", "edges": "arc", "against": {"body": "plate", "edges": "top"},
-                          "friction": {"coefficient": 0.2}}],
-            "load_path": [{"loads": {"/bodies/0/tractions/1": 0.0}}, {"loads": {"/bodies/0/tractions/1": 1.0}}],
-            "settings": {"estimate": false}
-        })
+        let disk = half_disk([0.0, 20.0], 20.0, true, 1.25, "t3");
+        let roller = body("roller", 210000.0, 0.3, graded(disk, grading(0.011, 1.1, 0.66, None)))
+            .pressure("flat", 12.5)
+            .traction("flat", [q, 0.0]);
+        let plate = rectangle([-30.0, -10.0], 60.0, 10.0, 1.0, "t3");
+        let plate = body(
+            "plate",
+            210000.0,
+            0.3,
+            graded(plate, grading(0.0144, 1.1, 0.66, Some([0.0, 0.0]))),
+        );
+        let contact = pair("roller", "arc")
+            .against("plate", "top", Default::default())
+            .friction(0.2);
+        let mut req = request(vec![roller, plate.fixed("bottom")], vec![contact]);
+        req.settings.estimate = false;
+        let mut r = req.to_value();
+        r["load_path"] = json!([{"loads": {"/bodies/0/tractions/1": 0.0}}, {"loads": {"/bodies/0/tractions/1": 1.0}}]);
+        r
     };
     let pushed = common::solve(&roller(1.25)).expect("solved");
     let w = pushed

@@ -8,6 +8,7 @@ mod common;
 use common::*;
 use contact::proto::{ErrorCode, FrictionState, SolveReply, SolveStatus};
 use contact::scene::Limits;
+use contact_verify::build::*;
 use serde_json::{json, Value};
 
 const MU: f64 = 0.5;
@@ -195,18 +196,17 @@ fn what_the_full_system_does_not_take_is_refused() {
 /// moved sideways by 0.0002 and 0.0005: every bottom node in contact, 1002
 /// rows on 11k DOF.
 fn strip() -> Value {
-    json!({
-        "version": "1",
-        "bodies": [{
-            "name": "strip",
-            "material": {"youngs_modulus": 200.0, "poisson_ratio": 0.3},
-            "mesh": {"rectangle": {"corner": [-5.0, 0.0], "width": 10.0, "height": 0.2, "size": 0.02, "element": "t3"}},
-            "supports": [{"edges": "top", "uy": -0.001}, {"edges": "top", "ux": 1.0}]
-        }],
-        "obstacles": [{"name": "floor", "shape": {"line": {"point": [0.0, 0.0], "normal": [0.0, 1.0]}}}],
-        "contacts": [{"body": "strip", "edges": "bottom", "obstacle": "floor", "friction": {"coefficient": 0.3}}],
-        "load_path": shift_path(&[0.0, 0.0002, 0.0005])
-    })
+    let strip = body("strip", 200.0, 0.3, rectangle([-5.0, 0.0], 10.0, 0.2, 0.02, "t3"))
+        .support("top", None, Some(-0.001))
+        .support("top", Some(1.0), None);
+    let mut r = request(
+        vec![strip],
+        vec![pair("strip", "bottom").obstacle("floor").friction(0.3)],
+    )
+    .with_obstacle(obstacle("floor", line([0.0, 0.0], [0.0, 1.0])))
+    .to_value();
+    r["load_path"] = shift_path(&[0.0, 0.0002, 0.0005]);
+    r
 }
 
 /// Many rows on few DOFs: `auto` solves the strip on the full system (its

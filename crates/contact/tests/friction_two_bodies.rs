@@ -15,7 +15,8 @@
 
 mod common;
 use common::*;
-use contact::proto::{FrictionState, PairResult, Resultant, SolveStatus};
+use contact::proto::{Discretization, FrictionState, PairResult, Resultant, SolveStatus};
+use contact_verify::build::*;
 use serde_json::{json, Value};
 
 const MU: f64 = 0.5;
@@ -26,24 +27,25 @@ const NU: f64 = 0.3;
 /// The two identical cylinders (contact-zone element size `h` on the upper,
 /// 1.3 h on the lower), pressed by 0.08, then the upper top moved sideways by
 /// each of `shifts` in turn; `mu` on the pair (frictionless with None).
-fn cylinders(h: f64, discretization: &str, shifts: &[f64], mu: Option<f64>) -> Value {
-    let mut r = example("two_bodies_cylinders.json");
-    for (b, (cy, hb)) in [(R, h), (-R, 1.3 * h)].into_iter().enumerate() {
-        let body = &mut r["bodies"][b];
-        body["material"] = json!({"youngs_modulus": E, "poisson_ratio": NU});
-        let mesh = &mut body["mesh"]["half_disk"];
-        mesh["center"] = json!([0.0, cy]);
-        mesh["radius"] = json!(R);
-        mesh["size"] = json!(0.5);
-        mesh["element"] = json!("t6");
-        mesh["grading"] = json!({"h_min": hb, "ratio": 1.2, "extent": 0.8});
-    }
+fn cylinders(h: f64, discretization_name: &str, shifts: &[f64], mu: Option<f64>) -> Value {
+    let disk = |name: &str, cy: f64, down: bool, hb: f64| {
+        body(
+            name,
+            E,
+            NU,
+            graded(half_disk([0.0, cy], R, down, 0.5, "t6"), grading(hb, 1.2, 0.8, None)),
+        )
+    };
     // The sideways motion as its own support, so that the path scales it alone.
-    r["bodies"][0]["supports"] = json!([{"edges": "flat", "uy": -0.08}, {"edges": "flat", "ux": 1.0}]);
-    r["contacts"][0]["discretization"] = json!(discretization);
+    let upper = disk("upper", R, true, h)
+        .support("flat", None, Some(-0.08))
+        .support("flat", Some(1.0), None);
+    let lower = disk("lower", -R, false, 1.3 * h).fixed("flat");
+    let mut contact = pair("upper", "arc").against("lower", "arc", discretization(discretization_name));
     if let Some(mu) = mu {
-        r["contacts"][0]["friction"] = json!({"coefficient": mu});
+        contact = contact.friction(mu);
     }
+    let mut r = request(vec![upper, lower], vec![contact]).to_value();
     r["load_path"] = shift_path(shifts);
     r
 }
@@ -294,26 +296,24 @@ fn vanishing_friction_is_near_the_frictionless_two_body_solve() {
 fn dissimilar_materials_stick_like_spence() {
     let (mu, nu): (f64, f64) = (0.3, 0.3);
     let scale = 64.0;
-    let body = |name: &str, e: f64, corner: [f64; 2], size: [f64; 3], supports: Value| {
-        json!({
-            "name": name,
-            "material": {"youngs_modulus": e, "poisson_ratio": nu},
-            "mesh": {"rectangle": {"corner": corner, "width": size[0], "height": size[1], "size": size[2],
-                "grading": {"focus": [0.0, 0.0], "h_min": 0.01, "ratio": 1.1, "extent": 1.2}}},
-            "supports": supports
-        })
+    let block = |name: &str, e: f64, corner: [f64; 2], size: [f64; 3]| {
+        let mesh = rectangle(corner, size[0], size[1], size[2], "t3");
+        body(name, e, nu, graded(mesh, grading(0.01, 1.1, 1.2, Some([0.0, 0.0]))))
     };
-    let req = json!({
-        "version": "1",
-        "bodies": [
-            body("block", 200.0, [-20.0 * scale, -20.0 * scale], [40.0 * scale, 20.0 * scale, scale],
-                json!([{"edges": "bottom", "ux": 0.0, "uy": 0.0}])),
-            body("punch", 2e5, [-1.0, 0.0], [2.0, 0.5, 0.1], json!([{"edges": "top", "ux": 0.0, "uy": -0.1}]))
-        ],
-        "contacts": [{"body": "block", "edges": "top", "against": {"body": "punch", "edges": "bottom"},
-            "friction": {"coefficient": mu}}]
-    });
-    let r = solved(&req);
+    let bodies = vec![
+        block(
+            "block",
+            200.0,
+            [-20.0 * scale, -20.0 * scale],
+            [40.0 * scale, 20.0 * scale, scale],
+        )
+        .fixed("bottom"),
+        block("punch", 2e5, [-1.0, 0.0], [2.0, 0.5, 0.1]).support("top", Some(0.0), Some(-0.1)),
+    ];
+    let contact = pair("block", "top")
+        .against("punch", "bottom", Discretization::default())
+        .friction(mu);
+    let r = solved(&request(bodies, vec![contact]).to_value());
     let kappa = 3.0 - 4.0 * nu;
     let (g1, g2) = (200.0 / (2.0 * (1.0 + nu)), 2e5 / (2.0 * (1.0 + nu)));
     let beta = (g1 * (kappa - 1.0) - g2 * (kappa - 1.0)) / (g1 * (kappa + 1.0) + g2 * (kappa + 1.0));

@@ -141,18 +141,13 @@ fn uniform_compression_is_exact() {
 /// With s ≡ 0 the admissible set is a cone: scaling every load by λ scales the
 /// solution by λ (§6), including the partial contact zone.
 fn proportional_scene(k: f64) -> serde_json::Value {
-    json!({
-        "version": "1",
-        "bodies": [{
-            "material": {"youngs_modulus": 50.0, "poisson_ratio": 0.2},
-            "mesh": {"rectangle": {"corner": [-1.0, 0.0], "width": 2.0, "height": 1.0, "size": 0.1}},
-            "supports": [{"edges": "top", "ux": 0.0, "uy": 0.0}],
-            "tractions": [{"edges": "right", "traction": [0.0, 2.0 * k]}],
-            "body_force": [0.0, -k]
-        }],
-        "obstacles": [{"shape": {"line": {"point": [0.0, 0.0], "normal": [0.0, 1.0]}}}],
-        "contacts": [{"body": 0, "edges": "bottom", "obstacle": 0}]
-    })
+    let block = body("block", 50.0, 0.2, rectangle([-1.0, 0.0], 2.0, 1.0, 0.1, "t3"))
+        .fixed("top")
+        .traction("right", [0.0, 2.0 * k])
+        .body_force([0.0, -k]);
+    request(vec![block], vec![pair("block", "bottom").obstacle("floor")])
+        .with_obstacle(obstacle("floor", line([0.0, 0.0], [0.0, 1.0])))
+        .to_value()
 }
 
 #[test]
@@ -327,12 +322,8 @@ fn barrier_never_penetrates_and_converges_with_zeta() {
 fn an_unrelated_body_changes_nothing() {
     let alone = solved(&example("signorini_roller_on_flat.json"));
     let mut req = example("signorini_roller_on_flat.json");
-    req["bodies"].as_array_mut().unwrap().push(serde_json::json!({
-        "name": "far",
-        "material": { "youngs_modulus": 1.0, "poisson_ratio": 0.3 },
-        "mesh": { "rectangle": { "corner": [100.0, 0.0], "width": 40.0, "height": 1.0, "size": 2.0 } },
-        "supports": [{ "edges": "bottom", "ux": 0.0, "uy": 0.0 }]
-    }));
+    let far = body("far", 1.0, 0.3, rectangle([100.0, 0.0], 40.0, 1.0, 2.0, "t3")).fixed("bottom");
+    req["bodies"].as_array_mut().unwrap().push(wire(&far));
     let with = solved(&req);
     let peak = peak_pressure(&alone);
     assert_eq!(alone.pairs[0].points.len(), with.pairs[0].points.len());
@@ -698,16 +689,11 @@ fn inline_disk_on_floor(
     top: &[[usize; 2]],
     settings: Value,
 ) -> Value {
-    json!({
-        "version": "1",
-        "bodies": [{
-            "name": "disk",
-            "material": {"youngs_modulus": 1.0, "poisson_ratio": 0.3},
-            "mesh": {"inline": {"nodes": nodes, "elements": elements, "edge_sets": {"rim": rim, "top": top}}},
-            "supports": [{"edges": "top", "ux": 0.0, "uy": -0.04}]
-        }],
-        "obstacles": [{"name": "floor", "shape": {"line": {"point": [0.0, -1.0], "normal": [0.0, 1.0]}}}],
-        "contacts": [{"body": "disk", "edges": "rim", "obstacle": "floor"}],
-        "settings": settings
-    })
+    let mesh = inline(nodes, elements, &[("rim", rim), ("top", top)]);
+    let disk = body("disk", 1.0, 0.3, mesh).support("top", Some(0.0), Some(-0.04));
+    let mut r = request(vec![disk], vec![pair("disk", "rim").obstacle("floor")])
+        .with_obstacle(obstacle("floor", line([0.0, -1.0], [0.0, 1.0])))
+        .to_value();
+    r["settings"] = settings;
+    r
 }

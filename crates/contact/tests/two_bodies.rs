@@ -3,8 +3,9 @@
 
 mod common;
 use common::*;
-use contact::proto::{Discretization, SolveReply};
-use serde_json::{json, Value};
+use contact::proto::{Analysis, Discretization, MethodName, SolveReply, SolveRequest};
+use contact_verify::build::*;
+use serde_json::json;
 
 /// Hertz for two cylinders: effective radius and modulus (VERIFICATION.md §1).
 fn hertz_two(p: f64, r1: f64, r2: f64, (e1, nu1): (f64, f64), (e2, nu2): (f64, f64)) -> (f64, f64) {
@@ -123,11 +124,7 @@ fn swapping_the_bodies_changes_less_than_the_discretization_error() {
     let req = example("two_bodies_cylinders.json");
     let r1 = solved(&req);
     let mut swapped = req.clone();
-    swapped["contacts"][0] = json!({
-        "body": "lower", "edges": "arc",
-        "against": { "body": "upper", "edges": "arc" },
-        "discretization": "mortar"
-    });
+    swapped["contacts"][0] = wire(&pair("lower", "arc").against("upper", "arc", Discretization::Mortar));
     let r2 = solved(&swapped);
     let (p1, p2) = (r1.pairs[0].resultant.fy, -r2.pairs[0].resultant.fy);
     assert!((p1 - p2).abs() < 0.02 * p1, "load {p1} vs swapped {p2}");
@@ -143,33 +140,17 @@ fn swapping_the_bodies_changes_less_than_the_discretization_error() {
 
 /// Two stacked blocks on non-matching meshes (20 and 27 elements across),
 /// ν = 0, a uniform pressure on top, the upper block held only by contact.
-fn patch_scene(disc: &str, element: &str) -> Value {
-    let block = |name: &str, y0: f64, size: f64| {
-        json!({
-            "name": name,
-            "material": { "youngs_modulus": 1000.0, "poisson_ratio": 0.0 },
-            "mesh": { "rectangle": {
-                "corner": [-1.0, y0], "width": 2.0, "height": 1.0, "size": size, "element": element
-            } }
-        })
-    };
-    let mut lower = block("lower", -1.0, 0.1);
-    lower["supports"] = json!([{ "edges": "bottom", "ux": 0.0, "uy": 0.0 }]);
-    let mut upper = block("upper", 0.0, 2.0 / 27.0);
-    upper["supports"] = json!([]);
-    upper["tractions"] = json!([{ "edges": "top", "pressure": 1.0 }]);
-    json!({
-        "version": "1",
-        "analysis": "plane_stress",
-        "bodies": [upper, lower],
-        "obstacles": [],
-        "contacts": [{
-            "body": "upper", "edges": "bottom",
-            "against": { "body": "lower", "edges": "top" },
-            "discretization": disc
-        }],
-        "method": "active_set"
-    })
+fn patch_scene(disc: Discretization, element: &str) -> SolveRequest {
+    let block =
+        |name: &str, y0: f64, size: f64| body(name, 1000.0, 0.0, rectangle([-1.0, y0], 2.0, 1.0, size, element));
+    let lower = block("lower", -1.0, 0.1).fixed("bottom");
+    let upper = block("upper", 0.0, 2.0 / 27.0).pressure("top", 1.0);
+    request(
+        vec![upper, lower],
+        vec![pair("upper", "bottom").against("lower", "top", disc)],
+    )
+    .with_analysis(Analysis::PlaneStress)
+    .with_method(MethodName::ActiveSet)
 }
 
 /// The contact patch test (VERIFICATION.md §5): with the mortar rows the
@@ -180,7 +161,7 @@ fn patch_scene(disc: &str, element: &str) -> Value {
 #[test]
 fn contact_patch_test() {
     for element in ["t3", "t6"] {
-        let r = solved(&patch_scene("mortar", element));
+        let r = solved(&patch_scene(Discretization::Mortar, element).to_value());
         assert_kkt(&r, 1e-8);
         let pair = &r.pairs[0];
         for p in &pair.points {
@@ -208,7 +189,7 @@ fn contact_patch_test() {
         );
     }
 
-    let r = solved(&patch_scene("node_to_segment", "t3"));
+    let r = solved(&patch_scene(Discretization::NodeToSegment, "t3").to_value());
     assert_kkt(&r, 1e-8);
     let pair = &r.pairs[0];
     assert!((pair.resultant.fy - 2.0).abs() < 1e-10, "{:?}", pair.resultant);
@@ -234,17 +215,13 @@ fn a_much_stiffer_body_acts_as_a_rigid_obstacle() {
     let rigid = solved(&example("signorini_roller_on_flat.json"));
     let mut req = example("signorini_roller_on_flat.json");
     req["obstacles"] = json!([]);
-    req["bodies"].as_array_mut().unwrap().push(json!({
-        "name": "block",
-        "material": { "youngs_modulus": 200.0e6, "poisson_ratio": 0.3 },
-        "mesh": { "rectangle": { "corner": [-10.0, -5.0], "width": 20.0, "height": 5.0, "size": 0.4 } },
-        "supports": [{ "edges": "bottom", "ux": 0.0, "uy": 0.0 }]
-    }));
-    req["contacts"] = json!([{
-        "body": "roller", "edges": "arc",
-        "against": { "body": "block", "edges": "top" },
-        "discretization": "node_to_segment"
-    }]);
+    let block = body("block", 200.0e6, 0.3, rectangle([-10.0, -5.0], 20.0, 5.0, 0.4, "t3")).fixed("bottom");
+    req["bodies"].as_array_mut().unwrap().push(wire(&block));
+    req["contacts"] = json!([wire(&pair("roller", "arc").against(
+        "block",
+        "top",
+        Discretization::NodeToSegment
+    ))]);
     let elastic = solved(&req);
     let peak = peak_pressure(&rigid);
     let (a, b) = (&rigid.pairs[0].points, &elastic.pairs[0].points);
@@ -327,29 +304,17 @@ fn floating_cylinder_on_a_cylinder() {
 /// length the arc length between them.
 #[test]
 fn two_cylinders_zone_ends_at_the_last_node_in_contact() {
-    let disk = |name: &str, cy: f64, facing: &str, h_min: f64| {
-        json!({
-            "name": name,
-            "material": { "youngs_modulus": 200.0, "poisson_ratio": 0.3 },
-            "mesh": { "half_disk": {
-                "center": [0.0, cy], "radius": 8.0, "facing": facing, "size": 0.5,
-                "grading": { "h_min": h_min, "ratio": 1.1, "extent": 1.2 }
-            } }
-        })
+    let disk = |name: &str, cy: f64, down: bool, h_min: f64| {
+        let mesh = half_disk([0.0, cy], 8.0, down, 0.5, "t3");
+        body(name, 200.0, 0.3, graded(mesh, grading(h_min, 1.1, 1.2, None)))
     };
     let (p, radius, e_star) = (10.0, 4.0, 200.0 / (2.0 * (1.0 - 0.09)));
-    let mut upper = disk("upper", 8.0, "down", 0.01);
-    upper["supports"] = json!([{ "edges": "flat", "ux": 0.0 }]);
-    upper["tractions"] = json!([{ "edges": "flat", "pressure": p / 16.0 }]);
-    let mut lower = disk("lower", -8.0, "up", 0.013);
-    lower["supports"] = json!([{ "edges": "flat", "ux": 0.0, "uy": 0.0 }]);
-    let req = json!({
-        "version": "1",
-        "bodies": [upper, lower],
-        "obstacles": [],
-        "contacts": [{ "body": "upper", "edges": "arc", "against": { "body": "lower", "edges": "arc" } }]
-    });
-    let r = solved(&req);
+    let upper = disk("upper", 8.0, true, 0.01)
+        .support("flat", Some(0.0), None)
+        .pressure("flat", p / 16.0);
+    let lower = disk("lower", -8.0, false, 0.013).fixed("flat");
+    let contact = pair("upper", "arc").against("lower", "arc", Discretization::default());
+    let r = solved(&request(vec![upper, lower], vec![contact]).to_value());
     let pair = &r.pairs[0];
     assert!((pair.resultant.fy - p).abs() < 1e-9 * p, "{:?}", pair.resultant);
     let (a, _) = contact_verify::reference::hertz(p, radius, e_star);
@@ -400,21 +365,15 @@ fn two_cylinders_zone_ends_at_the_last_node_in_contact() {
 #[test]
 fn a_vertical_interface_reports_its_zone_along_the_surface() {
     let block = |name: &str, x0: f64, y0: f64, held: &str| {
-        json!({
-            "name": name,
-            "material": { "youngs_modulus": 200.0, "poisson_ratio": 0.3 },
-            "mesh": { "rectangle": { "corner": [x0, y0], "width": 1.0, "height": 1.0, "size": 0.05 } },
-            "supports": [{ "edges": "bottom", "uy": 0.0 }, { "edges": held, "ux": 0.0 }]
-        })
+        body(name, 200.0, 0.3, rectangle([x0, y0], 1.0, 1.0, 0.05, "t3"))
+            .support("bottom", None, Some(0.0))
+            .support(held, Some(0.0), None)
     };
     let p = 200.0 * 0.001 / (2.0 * (1.0 - 0.09));
     for (raised, s, y) in [(0.0, [0.0, 1.0], [1.0, 0.0]), (0.5, [0.5, 1.0], [1.0, 0.5])] {
-        let req = json!({
-            "version": "1",
-            "bodies": [block("left", 0.0, 0.0, "left"), block("right", 0.999, raised, "right")],
-            "contacts": [{ "body": "right", "edges": "left", "against": { "body": "left", "edges": "right" } }]
-        });
-        let r = solved(&req);
+        let bodies = vec![block("left", 0.0, 0.0, "left"), block("right", 0.999, raised, "right")];
+        let contact = pair("right", "left").against("left", "right", Discretization::default());
+        let r = solved(&request(bodies, vec![contact]).to_value());
         let pair = &r.pairs[0];
         let [z] = pair.zones_along[..] else {
             panic!("raised {raised}: one zone along the face: {:?}", pair.zones_along)

@@ -5,7 +5,7 @@
 
 use faer::sparse::SparseColMat;
 
-use super::constitutive::LinearIsotropic;
+use super::constitutive::{law_of, Constitutive, Law};
 use super::kernel::{self, Integration, Plane, Ring};
 use super::reference::{T3, T6};
 use super::rigid_modes::{self, free_modes, mode_row, virtual_supports, RigidModes};
@@ -243,9 +243,9 @@ fn axis_conditions(
     Ok(())
 }
 
-/// The law of a body in the scene's analysis.
-pub fn law(body: &crate::scene::Body, analysis: Analysis) -> LinearIsotropic {
-    LinearIsotropic::new(body.youngs_modulus, body.poisson_ratio, analysis.into())
+/// The law of a body in the scene's analysis (`constitutive::law_of`).
+pub fn law(body: &crate::scene::Body, analysis: Analysis) -> Law {
+    law_of(body.youngs_modulus, body.poisson_ratio, analysis.into())
 }
 
 /// How a body's elements integrate: the P2–P0 element for nearly
@@ -261,32 +261,22 @@ pub fn integration(body: &crate::scene::Body, order: crate::mesh::Order, analysi
 }
 
 /// Assembles K_ff and K_fd of all bodies: the pattern once from the node graph,
-/// then element matrices added in place (no triplet sort). Each (element,
-/// strains) pair runs its own monomorphised loop (`add_body`).
+/// then element matrices added in place (no triplet sort).
 pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Result<Stiffness, CoreError> {
-    use crate::mesh::Order;
     let n = dofs.n_free;
     let (col_ptr, row_idx) = pattern(meshes, dofs);
     let mut global = Global::new(&col_ptr, &row_idx);
+    let mut gd = [0usize; 12];
     for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
         let law = law(body, scene.analysis);
-        let axi = scene.analysis == Analysis::Axisymmetric;
         let how = integration(body, mesh.order, scene.analysis);
-        let g = &mut global;
-        match (mesh.order, axi) {
-            (Order::T3, false) => add_body(mesh, b, dofs, g, |x, ke| {
-                kernel::stiffness::<T3, Plane, _, 2, 3, 3>(x, &law, how, ke)
-            }),
-            (Order::T3, true) => add_body(mesh, b, dofs, g, |x, ke| {
-                kernel::stiffness::<T3, Ring, _, 2, 3, 4>(x, &law, how, ke)
-            }),
-            (Order::T6, false) => add_body(mesh, b, dofs, g, |x, ke| {
-                kernel::stiffness::<T6, Plane, _, 2, 6, 3>(x, &law, how, ke)
-            }),
-            (Order::T6, true) => add_body(mesh, b, dofs, g, |x, ke| {
-                kernel::stiffness::<T6, Ring, _, 2, 6, 4>(x, &law, how, ke)
-            }),
-        }
+        each_element(mesh, scene.analysis, &law, how, 0..mesh.n_elems(), |conn, ke| {
+            for (i, &node) in conn.iter().enumerate() {
+                gd[2 * i] = dofs.dof(b, node, 0);
+                gd[2 * i + 1] = dofs.dof(b, node, 1);
+            }
+            global.add(&gd[..2 * conn.len()], &dofs.free, ke);
+        });
     }
     let Global { vals, k_fd, .. } = global;
     // SAFETY-free construction: the checked constructor validates sortedness and bounds.
@@ -297,28 +287,55 @@ pub fn assemble_stiffness(scene: &Scene, meshes: &[Mesh2d], dofs: &DofMap) -> Re
     })
 }
 
-/// Adds the K elements of body `b` (K nodes each), whose stiffness
-/// `element` writes into a (2K)² row-major buffer.
-fn add_body<const K: usize>(
+/// Calls `each(conn, ke)` with the nodes and the stiffness (row-major,
+/// (2K)², DOFs u0x, u0y, u1x, ...) of each element `elems` lists, for `law`
+/// in `analysis`: the one place the plane and ring bodies meet the kernel.
+/// Each (element, strains) pair runs its own monomorphised loop (`for_order`),
+/// chosen once per call, not per element.
+pub fn each_element<L: Constitutive<3> + Constitutive<4>>(
     mesh: &Mesh2d,
-    b: usize,
-    dofs: &DofMap,
-    g: &mut Global,
+    analysis: Analysis,
+    law: &L,
+    how: Integration,
+    elems: impl Iterator<Item = usize>,
+    mut each: impl FnMut(&[usize], &[f64]),
+) {
+    use crate::mesh::Order;
+    let each = &mut each;
+    match (mesh.order, analysis == Analysis::Axisymmetric) {
+        (Order::T3, false) => for_order(mesh, elems, each, |x, ke| {
+            kernel::stiffness::<T3, Plane, _, 2, 3, 3>(x, law, how, ke)
+        }),
+        (Order::T3, true) => for_order(mesh, elems, each, |x, ke| {
+            kernel::stiffness::<T3, Ring, _, 2, 3, 4>(x, law, how, ke)
+        }),
+        (Order::T6, false) => for_order(mesh, elems, each, |x, ke| {
+            kernel::stiffness::<T6, Plane, _, 2, 6, 3>(x, law, how, ke)
+        }),
+        (Order::T6, true) => for_order(mesh, elems, each, |x, ke| {
+            kernel::stiffness::<T6, Ring, _, 2, 6, 4>(x, law, how, ke)
+        }),
+    }
+}
+
+/// `each_element` for elements of K nodes, whose stiffness `element` writes
+/// into a (2K)² row-major buffer.
+fn for_order<const K: usize>(
+    mesh: &Mesh2d,
+    elems: impl Iterator<Item = usize>,
+    each: &mut impl FnMut(&[usize], &[f64]),
     element: impl Fn(&[[f64; 2]; K], &mut [f64]),
 ) {
     let nd = 2 * K;
     let mut ke = [0.0; 144];
     let mut x = [[0.0; 2]; K];
-    let mut gd = [0usize; 12];
-    for e in 0..mesh.n_elems() {
+    for e in elems {
         let conn = mesh.elem(e);
-        for (i, &node) in conn.iter().enumerate() {
-            x[i] = mesh.nodes[node];
-            gd[2 * i] = dofs.dof(b, node, 0);
-            gd[2 * i + 1] = dofs.dof(b, node, 1);
+        for (xi, &node) in x.iter_mut().zip(conn) {
+            *xi = mesh.nodes[node];
         }
         element(&x, &mut ke);
-        g.add(&gd[..nd], &dofs.free, &ke[..nd * nd]);
+        each(conn, &ke[..nd * nd]);
     }
 }
 

@@ -1,22 +1,22 @@
 //! K_ff and K_fd of a body of tetrahedra, and its internal forces K u.
 //!
 //! K = Σ_e K_e with K_e = `fem::kernel::stiffness` of the element (T4 or T10)
-//! with the solid strains and the linear isotropic law in `Section::Solid`;
+//! with the solid strains and the body's law in `Section::Solid`;
 //! the P2–P0 element (mean dilatation) for T10 from ν ≥ 0.45, as in 2D. The
 //! sparse pattern and scatter are `fem::pattern`'s with D = 3.
 
 use super::dofs::SolidDofs;
 use super::SolidBody;
 use crate::fem::assembly::{Stiffness, NEARLY_INCOMPRESSIBLE};
-use crate::fem::constitutive::{LinearIsotropic, Section};
+use crate::fem::constitutive::{law_of, Law, Section};
 use crate::fem::kernel::{self, Integration, Solid};
 use crate::fem::pattern::{self, Global};
 use crate::fem::reference::{T10, T4};
 use crate::mesh3d::Order;
 
-/// The body's law.
-pub fn law(body: &SolidBody) -> LinearIsotropic {
-    LinearIsotropic::new(body.youngs_modulus, body.poisson_ratio, Section::Solid)
+/// The body's law (`constitutive::law_of`).
+pub fn law(body: &SolidBody) -> Law {
+    law_of(body.youngs_modulus, body.poisson_ratio, Section::Solid)
 }
 
 /// The P2–P0 element for nearly incompressible T10, the full rule otherwise

@@ -11,6 +11,7 @@ use crate::contact::{
     compliance::Foundations,
     free_motions::{self, FreeMotions, Motion},
 };
+use crate::fem::constitutive::Constitutive;
 use crate::fem::kernel::Integration;
 use crate::fem::{self, element};
 use crate::mesh::Mesh2d;
@@ -356,9 +357,8 @@ fn body_outputs(scene: &Scene, meshes: &[Mesh2d], disp: &[Vec<[f64; 2]>]) -> Opt
             .zip(meshes)
             .zip(disp)
             .map(|((body, mesh), disp)| {
-                // (xx, yy, xy, zz): in plane strain ε_zz = 0, σ_zz = ν (σ_xx + σ_yy);
-                // 0 in plane stress; in axisymmetry (rr, zz, rz, θθ), the hoop
-                // stress from u_r / r.
+                // (xx, yy, xy, zz): in plane strain ε_zz = 0; σ_zz = 0 in plane
+                // stress; in axisymmetry (rr, zz, rz, θθ), the hoop stress from u_r / r.
                 let stress4: Option<Vec<[f64; 4]>> = o_stress.then(|| {
                     let law = crate::fem::assembly::law(body, scene.analysis);
                     let how = crate::fem::assembly::integration(body, mesh.order, scene.analysis);
@@ -378,12 +378,12 @@ fn body_outputs(scene: &Scene, meshes: &[Mesh2d], disp: &[Vec<[f64; 2]>]) -> Opt
                                 },
                                 Analysis::PlaneStrain | Analysis::PlaneStress => {
                                     let s = element::centroid_stress(mesh.order, &x, &law, &ue);
-                                    let nu_zz = if scene.analysis == Analysis::PlaneStrain {
-                                        body.poisson_ratio
-                                    } else {
-                                        0.0
-                                    };
-                                    [s[0], s[1], s[2], nu_zz * (s[0] + s[1])]
+                                    // σ_zz at ε_zz = 0, the fourth component of the law's
+                                    // 4-form (`Constitutive`): ν (σ_xx + σ_yy) for isotropy in
+                                    // plane strain, 0 in plane stress.
+                                    let g = element::centroid_gradient(mesh.order, &x, &ue);
+                                    let zz = Constitutive::<4>::stress(&law, &[g[0], g[3], g[1] + g[2], 0.0])[3];
+                                    [s[0], s[1], s[2], zz]
                                 }
                             };
                             s.map(|v| sc.stress(v))

@@ -13,11 +13,9 @@
 
 use std::collections::HashMap;
 
-use crate::fem::assembly::{integration, law, DofMap};
-use crate::fem::kernel::{self, Plane, Ring};
+use crate::fem::assembly::{each_element, integration, law, DofMap};
 use crate::fem::loads::coupling_forces;
-use crate::fem::reference::{T3, T6};
-use crate::mesh::{Mesh2d, Order};
+use crate::mesh::Mesh2d;
 use crate::scene::{Analysis, Control, Scene};
 use crate::solution::report::CouplingReport;
 
@@ -103,47 +101,17 @@ fn rigid_fit(mesh: &Mesh2d, nodes: &[usize], u: &[[f64; 2]], reference: [f64; 2]
     ]
 }
 
-/// Adds (K u)_i of body `b`'s elements to every node i of `at`.
+/// Adds (K u)_i of body `b`'s elements to every node i of `at`: the
+/// elements touching one of them.
 fn add_ku(scene: &Scene, b: usize, mesh: &Mesh2d, u: &[[f64; 2]], at: &mut HashMap<usize, [f64; 2]>) {
     let body = &scene.bodies[b];
     let law = law(body, scene.analysis);
     let how = integration(body, mesh.order, scene.analysis);
-    let axi = scene.analysis == Analysis::Axisymmetric;
-    match (mesh.order, axi) {
-        (Order::T3, false) => each_element(mesh, u, at, |x, ke| {
-            kernel::stiffness::<T3, Plane, _, 2, 3, 3>(x, &law, how, ke)
-        }),
-        (Order::T3, true) => each_element(mesh, u, at, |x, ke| {
-            kernel::stiffness::<T3, Ring, _, 2, 3, 4>(x, &law, how, ke)
-        }),
-        (Order::T6, false) => each_element(mesh, u, at, |x, ke| {
-            kernel::stiffness::<T6, Plane, _, 2, 6, 3>(x, &law, how, ke)
-        }),
-        (Order::T6, true) => each_element(mesh, u, at, |x, ke| {
-            kernel::stiffness::<T6, Ring, _, 2, 6, 4>(x, &law, how, ke)
-        }),
-    }
-}
-
-/// K_e u_e of every element (K nodes) touching a node of `at`, added there.
-fn each_element<const K: usize>(
-    mesh: &Mesh2d,
-    u: &[[f64; 2]],
-    at: &mut HashMap<usize, [f64; 2]>,
-    element: impl Fn(&[[f64; 2]; K], &mut [f64]),
-) {
-    let nd = 2 * K;
-    let mut ke = [0.0; 144];
-    let mut x = [[0.0; 2]; K];
-    for e in 0..mesh.n_elems() {
-        let conn = mesh.elem(e);
-        if !conn.iter().any(|n| at.contains_key(n)) {
-            continue;
-        }
-        for (i, &node) in conn.iter().enumerate() {
-            x[i] = mesh.nodes[node];
-        }
-        element(&x, &mut ke);
+    let touching: Vec<usize> = (0..mesh.n_elems())
+        .filter(|&e| mesh.elem(e).iter().any(|n| at.contains_key(n)))
+        .collect();
+    each_element(mesh, scene.analysis, &law, how, touching.into_iter(), |conn, ke| {
+        let nd = 2 * conn.len();
         for (i, node) in conn.iter().enumerate() {
             let Some(r) = at.get_mut(node) else { continue };
             for c in 0..2 {
@@ -155,5 +123,5 @@ fn each_element<const K: usize>(
                     .sum::<f64>();
             }
         }
-    }
+    });
 }

@@ -558,7 +558,7 @@ pub fn bound(
             std::array::from_fn(|c| {
                 let mut e = [0.0; 3];
                 e[c] = 1.0;
-                <crate::fem::constitutive::LinearIsotropic as Constitutive<3>>::stress(&law, &e)[r]
+                Constitutive::<3>::stress(&law, &e)[r]
             })
         });
         let elems: Vec<[usize; 3]> = (0..mesh.n_elems())

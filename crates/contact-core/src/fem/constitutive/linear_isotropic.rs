@@ -1,14 +1,5 @@
-//! The constitutive seam: what a material gives at a quadrature point.
-//!
-//! A law maps the strain ε (Voigt, engineering shear) at a point to the stress
-//! σ, the tangent D = ∂σ/∂ε and the strain energy density W with σ = ∂W/∂ε.
-//! The element kernels ask the law, never a formula, so a new law (or finite
-//! deformation, where ε becomes the Green–Lagrange strain and σ the second
-//! Piola–Kirchhoff stress) touches this module alone.
-//!
-//! Voigt orders: plane (xx, yy, xy); axisymmetric (rr, zz, rz, θθ); solid
-//! (xx, yy, zz, yz, xz, xy). Linear isotropic elasticity, with
-//! c = E / ((1 + ν)(1 − 2ν)):
+//! Linear isotropic elasticity, Young's modulus E and Poisson's ratio ν.
+//! With c = E / ((1 + ν)(1 − 2ν)):
 //!
 //! - plane strain: D = c [[1−ν, ν, 0], [ν, 1−ν, 0], [0, 0, (1−2ν)/2]];
 //! - plane stress: D = E/(1−ν²) [[1, ν, 0], [ν, 1, 0], [0, 0, (1−ν)/2]];
@@ -17,52 +8,7 @@
 //!
 //! W = ½ σ·ε = ½ εᵀ D ε.
 
-use crate::scene::Analysis;
-
-/// The stress state a law works in: the three 2D sections and the 3D solid.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Section {
-    PlaneStrain,
-    PlaneStress,
-    /// r–z half-section of a body of revolution, with the hoop strain u_r / r.
-    Axisymmetric,
-    Solid,
-}
-
-impl Section {
-    /// The number of Voigt components of its strain and stress.
-    pub const fn voigt_len(self) -> usize {
-        match self {
-            Section::PlaneStrain | Section::PlaneStress => 3,
-            Section::Axisymmetric => 4,
-            Section::Solid => 6,
-        }
-    }
-}
-
-impl From<Analysis> for Section {
-    fn from(a: Analysis) -> Self {
-        match a {
-            Analysis::PlaneStrain => Section::PlaneStrain,
-            Analysis::PlaneStress => Section::PlaneStress,
-            Analysis::Axisymmetric => Section::Axisymmetric,
-        }
-    }
-}
-
-/// A material at a quadrature point, with S Voigt components.
-pub trait Constitutive<const S: usize> {
-    /// σ(ε).
-    fn stress(&self, strain: &[f64; S]) -> [f64; S];
-    /// D = ∂σ/∂ε at ε (the stiffness kernel asks at ε = 0, the reference state).
-    fn tangent(&self, strain: &[f64; S]) -> [[f64; S]; S];
-    /// W(ε), the strain energy per unit volume.
-    fn energy(&self, strain: &[f64; S]) -> f64;
-    /// λ of the split D = D_dev + λ m mᵀ (m the strains whose sum is the
-    /// volume change) that the P2–P0 element integrates on the mean
-    /// dilatation (`kernel::Integration::MeanDilatation`): Lamé's λ for isotropy.
-    fn volumetric_lambda(&self) -> f64;
-}
+use super::{Constitutive, Section};
 
 /// Linear isotropic elasticity (Young's modulus E, Poisson's ratio ν).
 ///
@@ -222,6 +168,32 @@ mod tests {
         let w = LinearIsotropic::new(e, nu, Section::Solid).energy(&solid);
         let want = lame(&solid[..3], &solid[3..]);
         assert!((w / want - 1.0).abs() < 1e-14, "{w} vs {want}");
+    }
+
+    /// The plane law's 4-form answers out of the plane (`Constitutive`'s
+    /// doc): at ε_zz = 0 its fourth component is σ_zz = ν (σ_xx + σ_yy) in
+    /// plane strain and 0 in plane stress, its first three the plane stress
+    /// state; to 1e-14 of the stresses (a few roundings apart).
+    #[test]
+    fn the_plane_four_form_gives_the_out_of_plane_stress() {
+        let (e, nu) = (70.0, 0.33);
+        let eps = [1e-3, -4e-4, 7e-4];
+        let four = [eps[0], eps[1], eps[2], 0.0];
+        for section in [Section::PlaneStrain, Section::PlaneStress] {
+            let law = LinearIsotropic::new(e, nu, section);
+            let s3 = Constitutive::<3>::stress(&law, &eps);
+            let s4 = Constitutive::<4>::stress(&law, &four);
+            let scale = s3.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            let zz = if section == Section::PlaneStrain {
+                nu * (s3[0] + s3[1])
+            } else {
+                0.0
+            };
+            assert!((s4[3] - zz).abs() <= 1e-14 * scale, "{section:?}: {} vs {zz}", s4[3]);
+            for i in 0..3 {
+                assert!((s4[i] - s3[i]).abs() <= 1e-14 * scale, "{section:?} {i}");
+            }
+        }
     }
 
     /// The solid law is Hooke's: a uniaxial stress σ_xx alone comes from
