@@ -403,6 +403,9 @@ pub enum FrictionState {
     Stick,
     Slip,
     Open,
+    /// In contact, with no free motion along the surface: the supports
+    /// prescribe the slip and take the friction force.
+    Prescribed,
 }
 
 /// A contact zone along the surface of its edge set: arc length from the
