@@ -2,11 +2,12 @@
 //! and the state (`prescribed` where every DOF the slip reads is held: the
 //! solve has no tangential row there, applies no friction force, and the
 //! point slides by what the supports prescribe; its traction is then the
-//! normal force's share along the tangent alone, 0 against an obstacle); per pair the stick and slip zones and the tangential
-//! resultant (added to the pair's and the total resultant, which are the
-//! whole contact force on the bodies, and against another body to the force
-//! on that one); and the Coulomb conditions'
-//! residuals in the certificate, which decide the status like the others.
+//! normal force's share along the tangent alone, 0 against an obstacle); per
+//! pair the stick and slip zones and the tangential resultant (added to the
+//! pair's and the total resultant, which are the whole contact force on the
+//! bodies, and against another body to the force on that one); and the
+//! Coulomb conditions' residuals in the certificate, which decide the status
+//! like the others.
 
 use std::collections::HashMap;
 

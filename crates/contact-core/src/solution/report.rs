@@ -386,9 +386,8 @@ pub struct PairFriction {
     pub points: Vec<PointFriction>,
 }
 
-/// A contact point's tangential traction (along the normal turned 90°
-/// counter-clockwise, on the body), its slip in the step along the same
-/// direction, and its state.
+/// A contact point's tangential traction (along the normal turned 90° counter-clockwise, on the body), its slip
+/// in the step along the same direction, and its state (`proto::FrictionState` says what each means).
 #[derive(Debug, Clone, Copy)]
 pub struct PointFriction {
     pub traction: f64,
@@ -403,8 +402,6 @@ pub enum FrictionState {
     Stick,
     Slip,
     Open,
-    /// In contact, with no free motion along the surface: the supports
-    /// prescribe the slip and take the friction force.
     Prescribed,
 }
 

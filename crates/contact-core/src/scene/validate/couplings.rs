@@ -144,17 +144,17 @@ fn near_enough(reference: [f64; 2], (lo, hi): ([f64; 2], [f64; 2]), path: &str) 
     let gap = |k: usize| (lo[k] - reference[k]).max(reference[k] - hi[k]).max(0.0);
     let distance = gap(0).hypot(gap(1));
     // A body of no size is the mesh checks' to refuse, not the reference's.
-    if distance <= MAX_REFERENCE_DISTANCE * size || !(size > 0.0) {
+    if distance <= MAX_REFERENCE_DISTANCE * size || size.is_nan() || size <= 0.0 {
         return Ok(());
     }
     Err(invalid(
         K::Request,
         path,
         format!(
-            "the reference point [{:?}, {:?}] lies {distance:.3e} from its body, {:.1e} times the body's size {size:.3e} \
-                (the largest side of its bounding box); a coupling's reference must lie within {MAX_REFERENCE_DISTANCE:.0e} \
-                times that size (the lever arms about it would cost the solve its precision): is it in the \
-                body's units?",
+            "the reference point [{:?}, {:?}] lies {distance:.3e} from its body, {:.1e} times the body's size \
+                {size:.3e} (the largest side of its bounding box); a coupling's reference must lie within \
+                {MAX_REFERENCE_DISTANCE:.0e} times that size (the lever arms about it would cost the solve its \
+                precision): is it in the body's units?",
             reference[0],
             reference[1],
             distance / size
