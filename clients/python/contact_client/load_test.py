@@ -36,9 +36,10 @@ later (start the service with ``--cache-mb 0``, or the repeats are cache hits)::
 once from one session (``--only``, default ``hertz_t3``), each with
 ``--time-limit`` (default 2 s); it prints the latency of the ``busy`` answers
 and of the others, each taken from the sending of its query, and exits 1 if
-any reply came later than max(10 %, 0.2 s) past the time limit, or was lost or
-wrong (with ``--serve-args "--workers 1 --queue-limit 4"`` most of a burst of
-32 is ``busy``)::
+any reply came later than max(10 %, 0.2 s) past the time limit, any ``busy``
+later than ``--busy-within`` (default 5 ms), or any was lost or wrong (with
+``--serve-args "--workers 1 --queue-limit 4"`` most of a burst of 32 is
+``busy``)::
 
     python -m contact_client.load_test --serve target/release/contact --serve-args "--workers 1 --queue-limit 4" \
         --burst 32 --rounds 10
@@ -341,7 +342,7 @@ def allowed_lateness(limit: float) -> float:
 
 
 def burst(connect: str, size: int = 32, rounds: int = 5, only: str = "hertz_t3", time_limit: float = 2.0,
-          timeout: float = 60.0, tls: dict | None = None) -> dict:
+          timeout: float = 60.0, tls: dict | None = None, busy_within: float = 0.005) -> dict:
     """The --burst mode: ``rounds`` times, ``size`` requests sent at once from ONE
     session (zenoh delivers one session's queries through one link, in order),
     each with ``time_limit``; a round starts when the last one ended.
@@ -351,7 +352,8 @@ def burst(connect: str, size: int = 32, rounds: int = 5, only: str = "hertz_t3",
     not read in the order sent, so a quick ``busy`` is not timed behind the
     solves sent before it). Figures: the ``busy`` latencies, the others', and
     the deadline check: each reply within ``time_limit`` + max(10 %, 0.2 s)
-    of its sending. ``ok`` replies must equal the one to the same request sent
+    of its sending, and each ``busy`` within ``busy_within`` seconds of it
+    (``busy_late``). ``ok`` replies must equal the one to the same request sent
     alone without the limit (``judge``), unless their ``notes`` say the limit
     cut a part (the estimate's companion solve); ``timeout`` is an answer."""
     check_loopback(connect)
@@ -442,6 +444,8 @@ def burst(connect: str, size: int = 32, rounds: int = 5, only: str = "hertz_t3",
         "latency_s": {"p50": percentile(lat, 0.50), "p99": percentile(lat, 0.99), "max": lat[-1] if lat else 0.0},
         "busy_latency_s": {"p50": percentile(busy, 0.50), "p99": percentile(busy, 0.99),
                            "max": busy[-1] if busy else 0.0},
+        "busy_within_s": busy_within,
+        "busy_late": sum(x > busy_within for x in busy),
         "service_busy_latency_s": service_busy,
         "notes": tally.notes,
     }
@@ -466,7 +470,7 @@ def burst_report(r: dict) -> str:
         f"burst x rounds     : {r['size']} x {r['rounds']} = {r['sent']} from one session, "
         f"time_limit {r['time_limit_s']} s",
         f"busy               : {r['busy']}: p50 {busy['p50'] * 1e3:.1f} ms, p99 {busy['p99'] * 1e3:.1f} ms, "
-        f"max {busy['max'] * 1e3:.1f} ms",
+        f"max {busy['max'] * 1e3:.1f} ms; {r['busy_late']} later than {r['busy_within_s'] * 1e3:g} ms",
     ]
     sb = r.get("service_busy_latency_s")
     if sb:
@@ -506,6 +510,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--burst", type=int, metavar="N",
                    help="burst mode: N requests at once from one session (--only, default hertz_t3), --rounds times")
     p.add_argument("--rounds", type=int, default=5, help="bursts sent one after the other (default 5)")
+    p.add_argument("--busy-within", type=float, default=5.0, metavar="MS",
+                   help="with --burst: fail when a busy answer takes longer than this (default 5 ms)")
     p.add_argument("--time-limit", type=float, default=2.0,
                    help="with --burst: every request's time_limit in seconds (default 2)")
     p.add_argument("--clients", type=int, default=16, help="concurrent clients (default 16)")
@@ -531,16 +537,19 @@ def main(argv: list[str] | None = None) -> int:
                 return 0 if deadlines(endpoint, sizes, a.timeout, tls) else 1
         return 0 if deadlines(a.connect, sizes, a.timeout) else 1
     if a.burst is not None:
-        if a.burst < 1 or a.rounds < 1 or a.burst * a.rounds > 100_000 or not a.time_limit > 0:
-            p.error("--burst and --rounds must be positive, at most 100000 queries in all; --time-limit positive")
-        kw = dict(size=a.burst, rounds=a.rounds, only=a.only or "hertz_t3", time_limit=a.time_limit, timeout=a.timeout)
+        if a.burst < 1 or a.rounds < 1 or a.burst * a.rounds > 100_000 or not a.time_limit > 0 \
+                or not a.busy_within > 0:
+            p.error("--burst and --rounds must be positive, at most 100000 queries in all; --time-limit and "
+                    "--busy-within positive")
+        kw = dict(size=a.burst, rounds=a.rounds, only=a.only or "hertz_t3", time_limit=a.time_limit, timeout=a.timeout,
+                  busy_within=a.busy_within * 1e-3)
         if a.serve:
             with started(a) as (endpoint, tls):
                 r = burst(endpoint, tls=tls, **kw)
         else:
             r = burst(a.connect, **kw)
         print(burst_report(r))
-        return 1 if r["lost"] or r["wrong"] or r["late"] else 0
+        return 1 if r["lost"] or r["wrong"] or r["late"] or r["busy_late"] else 0
     if a.serve:
         with started(a) as (endpoint, tls):
             r = run(endpoint, a.clients, a.requests, a.timeout, a.max_seconds, a.spread, a.only, a.overflow, tls)

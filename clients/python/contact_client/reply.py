@@ -24,7 +24,9 @@ __all__ = ["Reply", "POINT_COLUMNS", "FRICTION_COLUMNS"]
 #: The columns of :meth:`Reply.points` and :meth:`Reply.to_dataframe`, one row per
 #: candidate point: the pair's index, body and target, then the point's fields, and
 #: on a pair with friction its ``tangential_traction``, ``slip`` (in the last load
-#: step) and ``state`` (``"stick"``, ``"slip"`` or ``"open"``).
+#: step) and ``state`` (``"stick"``, ``"slip"``, ``"open"`` or ``"prescribed"``: no free
+#: motion along the surface there, so the slip is the supports' and the model applies
+#: no friction force at that point; the supports take it).
 POINT_COLUMNS = ("pair", "body", "target", "x", "y", "gap", "pressure", "force", "weight", "node", "nx", "ny",
                  "tangential_traction", "slip", "state")
 
@@ -141,7 +143,8 @@ class Reply(dict):
         obstacle, other body or foundation; ``nx``, ``ny`` the row's normal). On a
         pair with friction, ``tangential_traction`` (along the point's tangent,
         (−ny, nx) unless the reply gives one), ``slip`` (in the last load step,
-        along the same tangent) and ``state`` (``"stick"``, ``"slip"``, ``"open"``);
+        along the same tangent) and ``state`` (``"stick"``, ``"slip"``, ``"open"``,
+        ``"prescribed"``: the supports fix the slip and take the friction force);
         None on a pair without. Units are the request's."""
         cols: dict[str, list] = {c: [] for c in POINT_COLUMNS}
         for k, pair in enumerate(self.get("pairs", [])):

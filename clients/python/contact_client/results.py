@@ -30,7 +30,8 @@ def to_numpy(result: dict) -> list[dict]:
 
     Friction: ``tangential_traction`` and ``slip`` (float arrays: the tangential traction on
     the body and the slip in the last load step, along the point's tangent) and ``state``
-    (str array: ``"stick"``, ``"slip"`` or ``"open"``), ``mu``, the pair's coefficient, and
+    (str array: ``"stick"``, ``"slip"``, ``"open"`` or ``"prescribed"``, where the supports fix
+    the slip and take the friction force, none of which the model applies), ``mu``, the pair's coefficient, and
     ``stick_zones`` (k x 2 x-intervals of the runs that stick). On a pair without friction
     the float arrays and ``mu`` are NaN, ``state`` holds ``""`` and ``stick_zones`` is empty,
     so the keys are the same on every reply.

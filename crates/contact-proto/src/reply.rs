@@ -504,6 +504,14 @@ pub enum FrictionState {
     Slip,
     /// Not in contact.
     Open,
+    /// In contact where no free motion moves the point along the surface
+    /// (supports hold every displacement its slip reads, on both sides): the
+    /// slip is the one the supports prescribe, and the model applies no
+    /// friction force there (the supports take it, outside the reply's
+    /// friction). `tangential_traction` is then the normal force's share
+    /// along the tangent alone (0 against an obstacle). A `prescribed_slip`
+    /// warning names such points when their slip is not 0.
+    Prescribed,
 }
 /// A contact zone along the surface of the pair's edge set.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -609,7 +617,8 @@ pub struct ContactPoint {
     /// Pairs with friction: slip in this load step [length] relative to the other surface, along the tangent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub slip: Option<f64>,
-    /// Pairs with friction: stick, slip or open.
+    /// Pairs with friction: stick, slip, open or prescribed (the supports
+    /// fix the slip; no friction force in the model there).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub state: Option<FrictionState>,
 }

@@ -163,7 +163,10 @@ pub struct CouplingSpec {
     /// surface: its nodes are no contact candidates, even at the ends it
     /// shares with one (a half-disk's flat and arc share two nodes).
     pub edges: String,
-    /// The reference point [x, y] [length]: the axle's centre.
+    /// The reference point [x, y] [length]: the axle's centre. At most 10⁴
+    /// times the body's size (the largest side of its bounding box) away from
+    /// that box: farther, the lever arms about it cost the solve its
+    /// precision, and the request is refused (`invalid_request`).
     pub reference: [f64; 2],
     /// ux [length] or Fx [force]; default: displacement 0.
     #[serde(default)]

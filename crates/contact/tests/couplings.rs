@@ -118,6 +118,28 @@ fn a_load_on_a_coupling_moves_it_as_far_as_its_reaction_says() {
     }
 }
 
+/// A reference point far away but within the bound (10⁴ times the body's
+/// size from its box) serves as well as the centre when the rotation is held:
+/// the coupled nodes then move as u_ref whatever its position, the same
+/// discrete problem, so the axle's motion, its force and the zone agree to
+/// the solves' round-off (1e-12 relative; measured 0 and 3.6e-16). Its moment about
+/// the far point is the same contact force's, d times the horizontal force
+/// the solve leaves (round-off of the contact's), so it only checks finite.
+#[test]
+fn a_far_reference_within_the_bound_is_the_same_coupling() {
+    let near = solved(&roller_on_axle(json!({"vertical": {"load": -5.0}})));
+    let mut req = roller_on_axle(json!({"vertical": {"load": -5.0}}));
+    // The half-disk's box is the square of side 16 about (0, 8): its top is y = 16.
+    req["bodies"][0]["couplings"][0]["reference"] = json!([0.0, 16.0 + 1e4 * 16.0]);
+    let far = solved(&req);
+    let (a, b) = (coupling(&near), coupling(&far));
+    for (x, y) in [(a.uy, b.uy), (a.fy, b.fy)] {
+        assert!((x - y).abs() <= 1e-12 * x.abs(), "{a:?} {b:?}");
+    }
+    assert!((half_width(&near) / half_width(&far) - 1.0).abs() <= 1e-12);
+    assert!(b.m.is_finite(), "{b:?}");
+}
+
 /// `load_factors` scale a coupling's loads and displacements with the rest:
 /// the axle pressed by 5 at factors 0.5 and 1 carries 2.5 and 5 (equilibrium,
 /// 1e-12), and its displacement pressed at 0.5 is a prescribed half.
@@ -393,6 +415,19 @@ fn couplings_that_cannot_be_are_refused_at_their_path() {
         "/load_path/0/loads/~1bodies~10~1couplings~10~1twist",
         "names no load",
     );
+    // A reference point beyond 10⁴ times the body's size (16, the half-disk's
+    // square) from it: 1e308 was answered `incompatible_loads` ("would slide
+    // or tip"), and 10⁶ sizes away with the rotation free too.
+    for far in [[0.0, 1e308], [-1e308, 8.0], [0.0, 8.0 + 16.0 * 1e6]] {
+        refused(
+            with(&|r| {
+                r["bodies"][0]["couplings"][0]["reference"] = json!(far);
+                r["bodies"][0]["couplings"][0]["rotation"] = json!({"load": 0.0});
+            }),
+            &format!("{c}/reference"),
+            "times the body's size 1.600e1",
+        );
+    }
     // A second body in no pair, pressed through a coupling: nothing holds it.
     refused(
         with(&|r| {

@@ -487,8 +487,13 @@ fn a_contact_edge_held_along_x_slides_by_the_slip_its_contact_prescribes() {
 /// force μ λ taken by the support, outside the solve. Before, the reply read
 /// "stick" with no friction and said nothing. Now the `prescribed_slip`
 /// warning counts every point in contact (the slip of each is the support's
-/// 0.001) and says the supports take their friction force, which the reply's
-/// friction leaves out.
+/// 0.001) and says the supports take their friction force. Each point in
+/// contact says so too: state `prescribed` (it read `stick`), its slip the
+/// support's 0.001 along its tangent (−n_y, n_x) (it read 0; exact but for
+/// the tangent's round-off, 1e-12), and no tangential traction (the model
+/// applies none; against an obstacle the normal force has no share along
+/// t): exactly 0. In two load steps (factors 0.5 and 1) each step's slip is
+/// its increment, 0.0005, counted from where the previous step left it.
 #[test]
 fn a_contact_edge_whose_slip_the_supports_take_is_named() {
     let mut req = example("signorini_roller_on_flat.json");
@@ -510,5 +515,25 @@ fn a_contact_edge_whose_slip_the_supports_take_is_named() {
         &format!("The supports take the friction force of {in_contact} of them"),
     ] {
         assert!(w.message.contains(part), "{part:?} not in {}", w.message);
+    }
+    let prescribed = |points: &[contact::proto::ContactPoint], slip: f64| {
+        for p in points {
+            if p.pressure <= 0.0 {
+                assert_eq!(p.state, Some(contact::proto::FrictionState::Open), "{p:?}");
+                continue;
+            }
+            assert_eq!(p.state, Some(contact::proto::FrictionState::Prescribed), "{p:?}");
+            let along = -p.normal[1] * slip;
+            assert!((p.slip.unwrap() - along).abs() <= 1e-12 * slip, "{p:?}");
+            assert_eq!(p.tangential_traction, Some(0.0), "{p:?}");
+        }
+    };
+    prescribed(&r.pairs[0].points, 0.001);
+    req["load_factors"] = json!([0.5, 1.0]);
+    let r = solved(&req);
+    let steps = r.steps.as_ref().expect("two steps");
+    assert_eq!(steps.len(), 2);
+    for step in steps {
+        prescribed(&step.pairs[0].points, 0.0005);
     }
 }

@@ -82,9 +82,28 @@ pub struct Tangents {
     /// fixes the slip too (empty: none).
     pub tied: Vec<Option<f64>>,
     /// The frictional candidates left without a row (no free DOF moves
-    /// along t: the supports take their friction force), each with its
-    /// tangent and the prescribed part of its tangential displacement.
-    pub held: Vec<(usize, [f64; 2], f64)>,
+    /// along t: the supports take their friction force).
+    pub held: Vec<HeldPoint>,
+}
+
+/// A frictional candidate without a tangential row: every DOF its slip
+/// reads is prescribed, so its slip is a datum and the solve applies no
+/// friction force there (the supports take it).
+#[derive(Debug, Clone)]
+pub struct HeldPoint {
+    /// Its candidate (normal row).
+    pub candidate: usize,
+    /// The tangent its slip is measured along (as a row's `tangent`).
+    pub tangent: [f64; 2],
+    /// n · t: the normal force's share along the tangent (as a row's `lean`).
+    pub lean: f64,
+    /// Its tangential displacement relative to the other surface, all
+    /// prescribed (nondimensional).
+    pub prescribed: f64,
+    /// The turned coefficients and the punch, to read the previous step's
+    /// tangential displacement (`Tangents::held_slips`).
+    terms: Vec<Term>,
+    punch: Option<(usize, [f64; 3])>,
 }
 
 impl Tangents {
@@ -149,7 +168,14 @@ impl Tangents {
                 })
             });
             if row.is_empty() {
-                t.held.push((i, tangent, -minus_prescribed - moved));
+                t.held.push(HeldPoint {
+                    candidate: i,
+                    tangent,
+                    lean: cos,
+                    prescribed: -minus_prescribed - moved,
+                    terms,
+                    punch,
+                });
                 continue;
             }
             t.row_of[i] = Some(t.of.len());
@@ -199,25 +225,20 @@ impl Tangents {
     /// indexing) and the punches' motions (α1, α2, θ) by obstacle; zero for
     /// an empty displacement (the undeformed start).
     pub fn of_nodal(&self, dofs: &DofMap, displacement: &[f64], punches: &HashMap<usize, [f64; 3]>) -> Vec<f64> {
-        if displacement.is_empty() {
-            return vec![0.0; self.len()];
-        }
         self.terms
             .iter()
             .zip(&self.punch)
-            .map(|(terms, punch)| {
-                let body: f64 = terms
-                    .iter()
-                    .map(|t| {
-                        let d = |c: usize| displacement[dofs.dof(t.body, t.node, c)];
-                        t.coef[0] * d(0) + t.coef[1] * d(1)
-                    })
-                    .sum();
-                let moved = punch.map_or(0.0, |(o, ct)| {
-                    punches.get(&o).map_or(0.0, |a| (0..3).map(|k| ct[k] * a[k]).sum())
-                });
-                body - moved
-            })
+            .map(|(terms, punch)| tangential(terms, *punch, dofs, displacement, punches))
+            .collect()
+    }
+
+    /// The slip in the step of each point of `held`: its prescribed
+    /// tangential displacement less the one at the previous step's end
+    /// (`displacement`, `punches` as for `of_nodal`; empty at the start).
+    pub fn held_slips(&self, dofs: &DofMap, displacement: &[f64], punches: &HashMap<usize, [f64; 3]>) -> Vec<f64> {
+        self.held
+            .iter()
+            .map(|h| h.prescribed - tangential(&h.terms, h.punch, dofs, displacement, punches))
             .collect()
     }
 
@@ -275,6 +296,32 @@ impl Tangents {
             }
         }
     }
+}
+
+/// The tangential displacement Σ coef · u of turned `terms`, relative to
+/// the punch, for a displacement of every DOF and the punches' motions;
+/// zero for an empty displacement (the undeformed start).
+fn tangential(
+    terms: &[Term],
+    punch: Option<(usize, [f64; 3])>,
+    dofs: &DofMap,
+    displacement: &[f64],
+    punches: &HashMap<usize, [f64; 3]>,
+) -> f64 {
+    if displacement.is_empty() {
+        return 0.0;
+    }
+    let body: f64 = terms
+        .iter()
+        .map(|t| {
+            let d = |c: usize| displacement[dofs.dof(t.body, t.node, c)];
+            t.coef[0] * d(0) + t.coef[1] * d(1)
+        })
+        .sum();
+    let moved = punch.map_or(0.0, |(o, ct)| {
+        punches.get(&o).map_or(0.0, |a| (0..3).map(|k| ct[k] * a[k]).sum())
+    });
+    body - moved
 }
 
 /// A free-DOF coefficient this small against the row's largest is round-off

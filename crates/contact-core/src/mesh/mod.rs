@@ -131,6 +131,13 @@ pub(crate) fn segment_param(q: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
 
 /// Largest side of the bounding box of `nodes` (2D or 3D).
 pub fn extent<const D: usize>(nodes: &[[f64; D]]) -> f64 {
+    let (lo, hi) = bounds(nodes);
+    (0..D).map(|c| hi[c] - lo[c]).fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// Lowest and highest corners of the bounding box of `nodes` (2D or 3D);
+/// inverted (+∞, −∞) when there are none.
+pub fn bounds<const D: usize>(nodes: &[[f64; D]]) -> ([f64; D], [f64; D]) {
     let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
     for p in nodes {
         for c in 0..D {
@@ -138,7 +145,7 @@ pub fn extent<const D: usize>(nodes: &[[f64; D]]) -> f64 {
             hi[c] = hi[c].max(p[c]);
         }
     }
-    (0..D).map(|c| hi[c] - lo[c]).fold(f64::NEG_INFINITY, f64::max)
+    (lo, hi)
 }
 
 /// Signed area of triangle (p, q, r); positive when counter-clockwise.

@@ -1,9 +1,13 @@
 //! Friction in the report: per point the tangential traction, the step's slip
-//! and the state; per pair the stick and slip zones and the tangential
-//! resultant (added to the pair's and the total resultant, which are the
-//! whole contact force on the bodies, and against another body to the force
-//! on that one); and the Coulomb conditions'
-//! residuals in the certificate, which decide the status like the others.
+//! and the state (`prescribed` where every DOF the slip reads is held: the
+//! solve has no tangential row there, applies no friction force, and the
+//! point slides by what the supports prescribe; its traction is then the
+//! normal force's share along the tangent alone, 0 against an obstacle); per
+//! pair the stick and slip zones and the tangential resultant (added to the
+//! pair's and the total resultant, which are the whole contact force on the
+//! bodies, and against another body to the force on that one); and the
+//! Coulomb conditions' residuals in the certificate, which decide the status
+//! like the others.
 
 use std::collections::HashMap;
 
@@ -27,6 +31,7 @@ pub fn attach(report: &mut Report, scene: &Scene, model: &Model, t: &Tangents, s
     if report.status == Status::Solved && report.certificate.worst() > scene.settings.tolerance {
         report.status = Status::NumericalError;
     }
+    let held: HashMap<usize, usize> = t.held.iter().enumerate().map(|(j, h)| (h.candidate, j)).collect();
     let mut total = Resultant::default();
     for (p, pair) in scene.pairs.iter().enumerate() {
         if pair.friction <= 0.0 {
@@ -45,19 +50,23 @@ pub fn attach(report: &mut Report, scene: &Scene, model: &Model, t: &Tangents, s
                 // The whole contact force's tangential component, which the
                 // Coulomb law bounds (the friction force alone but against
                 // another body).
-                let (traction, slip) = match t.row_of[i] {
-                    Some(k) => (
-                        -t.along(k, s.lambda[i], s.tau[k]) / cons.candidates[i].weight,
-                        s.slip[k],
+                let weight = cons.candidates[i].weight;
+                let (traction, slip, tangent) = match (t.row_of[i], held.get(&i)) {
+                    (Some(k), _) => (-t.along(k, s.lambda[i], s.tau[k]) / weight, s.slip[k], t.tangent[k]),
+                    // No friction force: only the normal force's share.
+                    (None, Some(&j)) => (
+                        -t.held[j].lean * s.lambda[i] / weight,
+                        s.held_slip[j],
+                        t.held[j].tangent,
                     ),
-                    None => (0.0, 0.0),
+                    (None, None) => (0.0, 0.0, [0.0; 2]),
                 };
-                let tangent = match (&pair.target, t.row_of[i]) {
-                    (Target::Body { .. }, Some(k)) => Some(t.tangent[k]),
-                    _ => None,
-                };
+                let tangent =
+                    matches!(pair.target, Target::Body { .. } if t.row_of[i].is_some() || held.contains_key(&i))
+                        .then_some(tangent);
                 let st = match state.get(&(p, q.node)) {
                     _ if !s.in_contact[i] => FrictionState::Open,
+                    _ if held.contains_key(&i) => FrictionState::Prescribed,
                     Some(State::Slip(_)) => FrictionState::Slip,
                     _ => FrictionState::Stick,
                 };

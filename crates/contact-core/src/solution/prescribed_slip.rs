@@ -148,7 +148,7 @@ pub fn find(scene: &Scene, model: &Model, tangents: &Tangents) -> Vec<Held> {
         tangents
             .held
             .iter()
-            .filter_map(|&(i, _, slip)| carried(scene, model, &holders, i, slip)),
+            .filter_map(|h| carried(scene, model, &holders, h.candidate, h.prescribed)),
     );
     found
 }
@@ -294,12 +294,13 @@ fn warning(scene: &Scene, p: usize, g: &Group) -> Warning {
     }
     let (one, held_by) = (at.len() == 1, held.iter().cloned().collect::<Vec<_>>().join(", "));
     // Points without a tangential row: their friction force goes to the
-    // supports, and the reply's friction reads stick and 0 there.
+    // supports, and the reply says `prescribed` there (see `solution::friction`).
     let carried = match g.carried {
         0 => String::new(),
         n => format!(
             ". The supports take the friction force of {n} of them (no free motion along the surface there): the \
-                reply's friction (traction, slip, state, resultant) leaves it out"
+                model applies none there, so the reply gives their state as `prescribed` with the prescribed slip, \
+                and neither their tangential traction nor the pair's tangential resultant holds that force"
         ),
     };
     Warning {

@@ -386,9 +386,8 @@ pub struct PairFriction {
     pub points: Vec<PointFriction>,
 }
 
-/// A contact point's tangential traction (along the normal turned 90°
-/// counter-clockwise, on the body), its slip in the step along the same
-/// direction, and its state.
+/// A contact point's tangential traction (along the normal turned 90° counter-clockwise, on the body), its slip
+/// in the step along the same direction, and its state (`proto::FrictionState` says what each means).
 #[derive(Debug, Clone, Copy)]
 pub struct PointFriction {
     pub traction: f64,
@@ -403,6 +402,7 @@ pub enum FrictionState {
     Stick,
     Slip,
     Open,
+    Prescribed,
 }
 
 /// A contact zone along the surface of its edge set: arc length from the

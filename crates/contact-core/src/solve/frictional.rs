@@ -106,6 +106,9 @@ pub(super) fn solve_frictional(
             }
         };
         let shares = settle_block(&sm, &mut sol, &mut friction);
+        // The points without a tangential row slide by what the supports
+        // prescribe, from where the previous step left them.
+        friction.held_slip = tangents.held_slips(&model.dofs, &history.displacement, &history.punches);
         obs.leave(Stage::ContactSolve)?;
         obs.timings.contact_solve = sol.t_contact;
         // The friction forces join the loads: the certificate's equilibrium is

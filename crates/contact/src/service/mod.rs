@@ -18,6 +18,7 @@
 
 pub mod config;
 pub mod health;
+pub mod priority;
 pub mod progress;
 pub mod router;
 pub mod worker;

@@ -19,7 +19,8 @@
 //! again; still queued at the deadline, answered `timeout` unsolved) and `catch_unwind` (a panic is answered
 //! `internal_error` and logged with the request id; the process goes on). Every
 //! reply carries the request id `<instance>-<n>`, and the client's
-//! `client_id` when it could be read.
+//! `client_id` when it could be read. Reads and solves run at a lower
+//! scheduling priority than zenoh's threads (`priority`).
 //!
 //! Length: the door, admission, the read and the worker pool are one path of
 //! a request; a third of the file is their unit tests.
@@ -176,6 +177,7 @@ async fn read(payload: ZBytes, held: DoorBytes, state: &Arc<State>) -> Result<Va
     let _reading = Counted::new(state, |s| &s.reading);
     let limits = state.cfg.limits;
     let read = tokio::task::spawn_blocking(move || {
+        super::priority::lower_this_thread();
         let checked = std::panic::catch_unwind(AssertUnwindSafe(|| {
             crate::wire::validate_bytes(&payload.to_bytes(), &limits)
         }));
@@ -233,6 +235,7 @@ async fn solve_on_worker(request: Validated, state: &Arc<State>, id: &str, arriv
     let _running = Counted::new(state, |s| &s.in_flight);
     let (st, rid) = (state.clone(), id.to_string());
     let joined = tokio::task::spawn_blocking(move || {
+        super::priority::lower_this_thread();
         let _progress = st.publisher.get().map(|s| {
             let key = super::progress::key_for(request.client_id(), &rid);
             super::progress::install(s.clone(), key, rid.clone())

@@ -290,6 +290,7 @@ fn pair(pr: PairReport) -> p::PairResult {
                         r::FrictionState::Stick => p::FrictionState::Stick,
                         r::FrictionState::Slip => p::FrictionState::Slip,
                         r::FrictionState::Open => p::FrictionState::Open,
+                        r::FrictionState::Prescribed => p::FrictionState::Prescribed,
                     }),
                 }
             })

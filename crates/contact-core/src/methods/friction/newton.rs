@@ -49,6 +49,9 @@ pub struct Friction {
     pub u_scale: f64,
     /// The free motions β of the step (empty without a block).
     pub beta: Vec<f64>,
+    /// The slip in the step of each point of `Tangents::held` (prescribed;
+    /// set by the route, which knows the previous step: `held_slips`).
+    pub held_slip: Vec<f64>,
 }
 
 /// The states a step starts from: a point known from the previous step in
@@ -105,6 +108,7 @@ pub(super) fn finish(
         in_contact: in_contact.clone(),
         u_scale: u.iter().fold(0.0f64, |a, x| a.max(x.abs())),
         beta: beta.clone(),
+        held_slip: Vec::new(),
     };
     let sol = Solution {
         u,

@@ -13,11 +13,12 @@ use crate::mesh::generate::{DiskPart, Grading};
 use crate::mesh::{gmsh, quality, Order};
 use crate::scene::{Body, MeshSource, PointLoad, Scales, Support, Traction};
 
-/// What the first pass learns: the scales, each body's estimated node count,
-/// and the Gmsh files it parsed.
+/// What the first pass learns: the scales, each body's estimated node count
+/// and bounding box (in the request's units), and the Gmsh files it parsed.
 pub struct Survey {
     pub scales: Scales,
     pub nodes: Vec<f64>,
+    pub boxes: Vec<([f64; 2], [f64; 2])>,
     pub parsed: Vec<Option<gmsh::Parsed>>,
 }
 
@@ -27,6 +28,7 @@ pub fn survey(req: &SolveRequest, limits: &Limits) -> Result<Survey, CoreError> 
     let mut length: f64 = 0.0;
     let mut modulus: f64 = 0.0;
     let mut nodes = Vec::with_capacity(req.bodies.len());
+    let mut boxes = Vec::with_capacity(req.bodies.len());
     let mut parsed = Vec::with_capacity(req.bodies.len());
     for (i, b) in req.bodies.iter().enumerate() {
         let p = format!("/bodies/{i}/material");
@@ -48,6 +50,7 @@ pub fn survey(req: &SolveRequest, limits: &Limits) -> Result<Survey, CoreError> 
             _ => None,
         };
         let (ext, n) = crate::scene::size_limit::extent_and_nodes(&b.mesh, file.as_ref());
+        boxes.push(bounds(&b.mesh, file.as_ref()));
         parsed.push(file);
         length = length.max(ext);
         nodes.push(n);
@@ -70,8 +73,24 @@ pub fn survey(req: &SolveRequest, limits: &Limits) -> Result<Survey, CoreError> 
             axisymmetric: req.analysis == proto::Analysis::Axisymmetric,
         },
         nodes,
+        boxes,
         parsed,
     })
+}
+
+/// A box that holds the body's mesh, in the request's units: a disk's whole
+/// square for a half or quarter disk (at most its radius too far, which the
+/// coupling's bound, 10⁴ times the body's size, does not notice).
+fn bounds(m: &MeshSpec, parsed: Option<&gmsh::Parsed>) -> ([f64; 2], [f64; 2]) {
+    match m {
+        MeshSpec::Rectangle(r) => (r.corner, [r.corner[0] + r.width, r.corner[1] + r.height]),
+        MeshSpec::HalfDisk(d) | MeshSpec::QuarterDisk(d) => (
+            [d.center[0] - d.radius, d.center[1] - d.radius],
+            [d.center[0] + d.radius, d.center[1] + d.radius],
+        ),
+        MeshSpec::Inline(i) => crate::mesh::bounds(&i.nodes),
+        MeshSpec::Gmsh(_) => parsed.map_or(([0.0; 2], [0.0; 2]), |p| crate::mesh::bounds(&p.nodes)),
+    }
 }
 
 /// The bodies, nondimensional, and their names (for the pairs).
@@ -234,6 +253,7 @@ pub fn bodies(req: &SolveRequest, survey: &Survey) -> Result<(Vec<String>, Vec<B
             b,
             &bp,
             &edges,
+            survey.boxes[i],
             survey.scales,
             req.analysis == proto::Analysis::Axisymmetric,
         )?;

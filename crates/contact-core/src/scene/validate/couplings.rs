@@ -29,12 +29,26 @@ pub(super) fn control(c: proto::Control, k: usize, path: &str, scales: Scales) -
     })
 }
 
+/// How far a coupling's reference point may lie from its body, in the body's
+/// size (the largest side of its bounding box). The coupled nodes move as
+/// u_ref + θ × (x − x_ref): at a distance d the rotation's lever arms are
+/// d/L times the body's own, and the rigid motions about the reference lose
+/// about log10(d/L) digits. Measured on the roller of
+/// `signorini_roller_on_flat.json` (L = 16) pressed through its axle with
+/// the rotation free: the same answer (to 1e-15) up to d = 3·10⁵ L, and at
+/// 10⁶ L its vertical translation taken for one contact does not resist
+/// (`incompatible_loads`); at 10³⁰⁸ a pushed roller (`roller_pushed_through_axle.json`)
+/// "would slide or tip". 10⁴ L leaves a factor 30 below the first failure
+/// and is still far beyond any lever a body is coupled through.
+pub const MAX_REFERENCE_DISTANCE: f64 = 1e4;
+
 /// The couplings of body `b` (at JSON pointer `bp`) whose edge sets are
-/// `edges`.
+/// `edges`; `bounds` the body's bounding box in the request's units.
 pub fn couplings(
     b: &BodySpec,
     bp: &str,
     edges: &BTreeSet<String>,
+    bounds: ([f64; 2], [f64; 2]),
     scales: Scales,
     axisymmetric: bool,
 ) -> Result<Vec<Coupling>, CoreError> {
@@ -62,6 +76,7 @@ pub fn couplings(
         }
         finite(cs.reference[0], &format!("{cp}/reference/0"), K::Geometry)?;
         finite(cs.reference[1], &format!("{cp}/reference/1"), K::Geometry)?;
+        near_enough(cs.reference, bounds, &format!("{cp}/reference"))?;
         let given = [cs.horizontal, cs.vertical, cs.rotation];
         let mut controls = [Control::Displacement(0.0); 3];
         for (k, c) in given.into_iter().enumerate() {
@@ -119,6 +134,32 @@ pub fn couplings(
         });
     }
     Ok(out)
+}
+
+/// Refuses a reference point farther from the body's box `bounds` than
+/// `MAX_REFERENCE_DISTANCE` times the box's largest side.
+fn near_enough(reference: [f64; 2], (lo, hi): ([f64; 2], [f64; 2]), path: &str) -> Result<(), CoreError> {
+    let size = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+    // Componentwise distance to the box (0 inside); hypot does not overflow.
+    let gap = |k: usize| (lo[k] - reference[k]).max(reference[k] - hi[k]).max(0.0);
+    let distance = gap(0).hypot(gap(1));
+    // A body of no size is the mesh checks' to refuse, not the reference's.
+    if distance <= MAX_REFERENCE_DISTANCE * size || size.is_nan() || size <= 0.0 {
+        return Ok(());
+    }
+    Err(invalid(
+        K::Request,
+        path,
+        format!(
+            "the reference point [{:?}, {:?}] lies {distance:.3e} from its body, {:.1e} times the body's size \
+                {size:.3e} (the largest side of its bounding box); a coupling's reference must lie within \
+                {MAX_REFERENCE_DISTANCE:.0e} times that size (the lever arms about it would cost the solve its \
+                precision): is it in the body's units?",
+            reference[0],
+            reference[1],
+            distance / size
+        ),
+    ))
 }
 
 /// What the pairs show: a coupled edge set is no contact surface (its nodes
