@@ -9,6 +9,7 @@ use contact_core::mesh::uniform::refine_uniform;
 use contact_core::solution::energy::EnergyBound;
 use contact_core::{Limits, Scene};
 use contact_proto::SolveRequest;
+use contact_verify::build::*;
 use serde_json::{json, Value};
 
 /// The bound and the potential on the scene's mesh and on two nested
@@ -47,20 +48,13 @@ fn extrapolated(j: [f64; 3]) -> f64 {
 /// margin for the extrapolation, whose ratio 2.5 shows the corners' rate.
 #[test]
 fn the_bound_is_above_the_error_of_a_clamped_block() {
-    let req = json!({
-        "version": "1",
-        "analysis": "plane_strain",
-        "bodies": [{
-            "name": "block",
-            "material": {"youngs_modulus": 100.0, "poisson_ratio": 0.3},
-            "mesh": {"rectangle": {"corner": [0.0, 0.0], "width": 2.0, "height": 1.0, "size": 0.2}},
-            "supports": [{"edges": "bottom", "ux": 0.0, "uy": 0.0}],
-            "tractions": [{"edges": "top", "traction": [0.3, -1.0]}],
-            "body_force": [0.0, -0.5]
-        }],
-        "obstacles": [{"name": "far", "shape": {"line": {"point": [0.0, 1.2], "normal": [0.0, -1.0]}}}],
-        "contacts": [{"body": "block", "edges": "top", "obstacle": "far"}]
-    });
+    let block = body("block", 100.0, 0.3, rectangle([0.0, 0.0], 2.0, 1.0, 0.2, "t3"))
+        .fixed("bottom")
+        .traction("top", [0.3, -1.0])
+        .body_force([0.0, -0.5]);
+    let req = request(vec![block], vec![pair("block", "top").obstacle("far")])
+        .with_obstacle(obstacle("far", line([0.0, 1.2], [0.0, -1.0])))
+        .to_value();
     let l = levels(&req);
     let j = [l[0].potential, l[1].potential, l[2].potential];
     assert!(j[0] > j[1] && j[1] > j[2], "nested meshes lower the potential: {j:?}");
