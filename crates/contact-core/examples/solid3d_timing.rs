@@ -82,7 +82,7 @@ fn main() {
             cost.nnz as f64, cost.flops
         );
         let t = std::time::Instant::now();
-        let (fwd, inv) = ordering::nested_dissection(&mesh, &dofs);
+        let (fwd, inv) = ordering::nested_dissection(&mesh, &dofs).unwrap();
         let nd = SymbolicFactor::try_new_ordered(&k.k, &fwd, &inv).unwrap().cost();
         println!(
             "  factor (nested dissection): nnz(L) {:.3e}, {:.3e} multiply-adds (ordering and analysis {:.2} s)",

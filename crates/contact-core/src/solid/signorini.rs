@@ -154,7 +154,7 @@ pub fn solve(body: &SolidBody, rows: &PlaneRows, settings: &Settings) -> Result<
     compatible(&c, &r)?;
     let t1 = std::time::Instant::now();
     let refs: Vec<&[(usize, f64)]> = fr.rows.iter().map(|r| r.as_slice()).collect();
-    let (fwd, inv) = ordering::nested_dissection(body.mesh, &dofs);
+    let (fwd, inv) = ordering::nested_dissection(body.mesh, &dofs)?;
     let symbolic = Arc::new(SymbolicFactor::try_new_ordered(&k.k, &fwd, &inv)?);
     let op = condensed::prepare_on(k.clone(), &refs, symbolic, t1)?;
     let t2 = std::time::Instant::now();
