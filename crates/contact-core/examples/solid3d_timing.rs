@@ -12,10 +12,12 @@
 //! the 2D solve uses and in the nested-dissection order of
 //! `solid::ordering`, which the 3D solves use.
 //!
-//! `cargo run --release -p contact-core --example solid3d_timing [-- --cost]` (`--cost`: the factors' costs
-//! alone, no numeric factorization).
+//! `cargo run --release -p contact-core --example solid3d_timing [-- --cost] [--small]` (`--cost`: the factors'
+//! costs alone, no numeric factorization; `--small`: the 50k-DOF boxes only).
 
-use contact_core::linalg::cholesky::{FactorCost, SymbolicFactor};
+use std::sync::Arc;
+
+use contact_core::linalg::cholesky::{Cholesky, FactorCost, SymbolicFactor};
 use contact_core::mesh::generate::{graded_points, Grading};
 use contact_core::mesh3d::generate::{grid, uniform};
 use contact_core::mesh3d::{Mesh3d, Order};
@@ -46,7 +48,11 @@ fn mesh(n: usize, order: Order) -> Mesh3d {
 
 fn main() {
     let cost_only = std::env::args().any(|a| a == "--cost");
+    let small = std::env::args().any(|a| a == "--small");
     for (n, order) in [(23, Order::T4), (44, Order::T4), (11, Order::T10)] {
+        if small && n == 44 {
+            continue;
+        }
         let t = std::time::Instant::now();
         let mesh = mesh(n, order);
         let t_mesh = t.elapsed().as_secs_f64();
@@ -83,7 +89,8 @@ fn main() {
         );
         let t = std::time::Instant::now();
         let (fwd, inv) = ordering::nested_dissection(&mesh, &dofs).unwrap();
-        let nd = SymbolicFactor::try_new_ordered(&k.k, &fwd, &inv).unwrap().cost();
+        let analysis = Arc::new(SymbolicFactor::try_new_ordered(&k.k, &fwd, &inv).unwrap());
+        let nd = analysis.cost();
         println!(
             "  factor (nested dissection): nnz(L) {:.3e}, {:.3e} multiply-adds (ordering and analysis {:.2} s)",
             nd.nnz as f64,
@@ -93,6 +100,20 @@ fn main() {
         if cost_only {
             continue;
         }
+        // The numeric factorization alone against the time model fitted on
+        // 2D factors (`FactorCost::reference_secs`).
+        let t = std::time::Instant::now();
+        drop(Cholesky::with_symbolic(analysis, &k.k).unwrap());
+        let real = t.elapsed().as_secs_f64();
+        // This machine's scale, measured on a 2D grid just after: what the
+        // 3D factor's ratio would be if the 2D model held for it.
+        let scale = contact_core::linalg::calibrate::calibrate();
+        println!(
+            "  numeric factorization {real:.3} s; the 2D-fitted model predicts {:.3} s on its reference machine \
+             (real / predicted {:.2}; a 2D grid's just after {scale:.2})",
+            nd.reference_secs(),
+            real / nd.reference_secs()
+        );
         let s = linear::solve(&body).unwrap();
         let [a, f, so] = s.seconds;
         println!(
