@@ -14,9 +14,9 @@
 //!   about the base line the supports cannot load;
 //! - the report of each answer (`solid::report`): the patch test's single
 //!   patch is the base (area, force, centre of pressure, outline), the
-//!   off-centre block's resultant balances the load with the reactions, the
-//!   Hertz patch's area gives a, and a box over a groove rests on two
-//!   patches;
+//!   off-centre block's and the tilted plane's resultants balance the load
+//!   with the reactions, the Hertz patch's area gives a, and a box over a
+//!   groove rests on two patches;
 //! - the nested dissection stops at a passed deadline.
 //!
 //! Tolerances: where the discrete solution is exact (the patch test), 1e-10
@@ -27,7 +27,7 @@
 //! entries are relative round-off residuals, 1e-10 leaving two decades of
 //! slack over the measured 1e-13 to 1e-12 (printed).
 //!
-//! Length: about 590 lines; the report's checks sit beside the solves of
+//! Length: about 630 lines; the report's checks sit beside the solves of
 //! the scenes they read (the Hertz solve alone takes 3.5 s) rather than
 //! solving them again in a file of their own.
 
@@ -310,19 +310,23 @@ fn off_centre(order: Order) {
         assert!(worst > -1e-10, "{worst:e}");
     }
     assert!(lifted > 0 && pressed > 0);
-    balance(&mesh, &c, &report(&body, &r, &c).unwrap(), force);
+    // The pressure p on the part [¾, 1] × [0, ½] of the top z = ½: the
+    // force (0, 0, −pA) at its centroid (7/8, ¼, ½).
+    let rep = report(&body, &r, &c).unwrap();
+    balance(&mesh, &c, &rep, [0.875, 0.25, 0.5], [0.0, 0.0, -force]);
 }
 
-/// The report's resultant against the loads: the pressure p on the part
-/// [¾, 1] × [0, ½] of the top z = ½ has the force (0, 0, −pA) at its
-/// centroid (7/8, ¼, ½), and the consistent nodal loads reproduce it
-/// exactly (Σ N_j = 1, Σ N_j x_j = x). With the support reactions (the
-/// residual K u − f − Bᵀλ on the supported DOFs), the forces and moments
-/// on the body sum to zero: K u annihilates the rigid motions, and off the
-/// supports the residual is the certificate's equilibrium (1e-13 of the
-/// terms over a few thousand DOFs): 1e-10 of pA and pA·L.
-fn balance(mesh: &Mesh3d, c: &Contact, rep: &SolidContactReport, force: f64) {
-    let (at, load) = ([0.875, 0.25, 0.5], [0.0, 0.0, -force]);
+/// The report's resultant against the loads, one uniform pressure of
+/// resultant `load` acting at `at` (its face set's centroid): the
+/// consistent nodal loads reproduce that force and moment exactly (Σ N_j =
+/// 1, Σ N_j x_j = x). With the support reactions (the residual K u − f −
+/// Bᵀλ on the supported DOFs), the forces and moments on the body sum to
+/// zero: K u annihilates the rigid motions, and off the supports the
+/// residual is the certificate's equilibrium (1e-13 of the terms over a
+/// few thousand DOFs): 1e-10 of |load| and |load|·L (L = 1). The patches'
+/// forces sum to Σ λ_i, the resultant's size, to round-off.
+fn balance(mesh: &Mesh3d, c: &Contact, rep: &SolidContactReport, at: [f64; 3], load: [f64; 3]) {
+    let force = load.iter().map(|v| v * v).sum::<f64>().sqrt();
     let mut f = [0.0; 3];
     let mut m = [0.0; 3];
     let mut add = |x: [f64; 3], v: [f64; 3]| {
@@ -346,17 +350,52 @@ fn balance(mesh: &Mesh3d, c: &Contact, rep: &SolidContactReport, force: f64) {
         std::array::from_fn(|k| m[k] + rm[k]),
     );
     let patches: f64 = rep.patches.iter().map(|p| p.force).sum();
+    let total: f64 = c.lambda.iter().sum();
     println!(
-        "  resultant {rf:?}, moment {rm:?}; unbalanced force {f:?}, moment {m:?} (of pA = {force}); {} patch(es), \
-         Σ forces − pA = {:.1e}",
+        "  resultant {rf:?}, moment {rm:?}; unbalanced force {f:?}, moment {m:?} (of |load| = {force}); {} \
+         patch(es), Σ forces − Σλ = {:.1e}",
         rep.patches.len(),
-        patches - force
+        patches - total
     );
     for k in 0..3 {
         assert!(f[k].abs() < 1e-10 * force, "force {f:?}");
         assert!(m[k].abs() < 1e-10 * force, "moment {m:?}");
     }
-    assert!((patches - force).abs() < 1e-12 * force, "patches carry {patches}");
+    assert!(
+        (patches - total).abs() < 1e-12 * total,
+        "patches carry {patches} of {total}"
+    );
+}
+
+/// The box under uniform pressure on a plane tilted by 0.05 about the y
+/// axis (normal (sin θ, 0, cos θ), through the origin): the base touches
+/// along x = 0 first and the box, held sideways by its rollers, sinks until
+/// a strip of it carries the load. The contact forces act along the tilted
+/// normal, the x rollers take their x component; the resultant balances
+/// the load (0, 0, −p) at (½, ½, 1) with the reactions (`balance`), and
+/// Σ λ cos θ = p (the free sinking's equilibrium, round-off).
+#[test]
+fn a_tilted_plane_s_resultant_balances_the_load() {
+    for order in [Order::T4, Order::T10] {
+        let mesh = graded(order);
+        let body = on_plane_body(&mesh);
+        let theta: f64 = 0.05;
+        let plane = Plane::try_new([0.0; 3], [theta.sin(), 0.0, theta.cos()]).unwrap();
+        let r = rows(&body, "z_min", plane).unwrap();
+        let c = signorini::solve(&body, &r, &Settings::default()).unwrap();
+        assert_kkt(&c, 1e-10);
+        let rep = report(&body, &r, &c).unwrap();
+        let open = rep.points.iter().filter(|q| !q.in_contact).count();
+        println!(
+            "{order:?}: {open} of {} rows open, patches' areas {:?}",
+            rep.points.len(),
+            rep.patches.iter().map(|p| p.area).collect::<Vec<_>>()
+        );
+        assert!(open > 0, "partial contact");
+        let sinking = rep.resultant.force[2];
+        assert!((sinking - P).abs() < 1e-12 * P, "Σλ cos θ = {sinking}");
+        balance(&mesh, &c, &rep, [0.5, 0.5, 1.0], [0.0, 0.0, -P]);
+    }
 }
 
 #[test]
