@@ -26,15 +26,6 @@ use contact_core::solid::dofs::dof_map;
 use contact_core::solid::obstacle::{rows, Plane};
 use contact_core::solid::{linear, ordering, signorini, stiffness, FaceLoad, SolidBody, Support};
 
-fn roller(faces: &str, c: usize) -> Support {
-    let mut fix = [None; 3];
-    fix[c] = Some(0.0);
-    Support {
-        faces: faces.into(),
-        fix,
-    }
-}
-
 fn mesh(n: usize, order: Order) -> Mesh3d {
     let h = 1.0 / n as f64;
     let g = Grading {
@@ -57,10 +48,10 @@ fn main() {
         let mesh = mesh(n, order);
         let t_mesh = t.elapsed().as_secs_f64();
         let sides = vec![
-            roller("x_min", 0),
-            roller("x_max", 0),
-            roller("y_min", 1),
-            roller("y_max", 1),
+            Support::roller("x_min", 0),
+            Support::roller("x_max", 0),
+            Support::roller("y_min", 1),
+            Support::roller("y_max", 1),
         ];
         let mut body = SolidBody {
             mesh: &mesh,
@@ -73,7 +64,7 @@ fn main() {
             }],
             body_force: [0.0; 3],
         };
-        body.supports.push(roller("z_min", 2));
+        body.supports.push(Support::roller("z_min", 2));
         let dofs = dof_map(&body, None).unwrap();
         println!(
             "{order:?} n = {n}: {} nodes, {} elements, {} free DOFs (mesh {t_mesh:.2} s)",

@@ -21,15 +21,6 @@ use contact_core::solid::obstacle::{rows, Plane};
 use contact_core::solid::ordering::nested_dissection;
 use contact_core::solid::{signorini, stiffness, FaceLoad, SolidBody, Support};
 
-fn roller(faces: &str, c: usize) -> Support {
-    let mut fix = [None; 3];
-    fix[c] = Some(0.0);
-    Support {
-        faces: faces.into(),
-        fix,
-    }
-}
-
 /// A box on a plane under a uniform pressure, with an hour to solve it:
 /// with the machine scale at 1e9 (a machine a billion times slower than
 /// the reference) its factorization is predicted past the hour and refused
@@ -46,7 +37,7 @@ fn a_3d_factorization_predicted_past_the_time_left_is_not_started() {
         supports: ["x_min", "x_max", "y_min", "y_max"]
             .iter()
             .enumerate()
-            .map(|(k, f)| roller(f, k / 2))
+            .map(|(k, f)| Support::roller(f, k / 2))
             .collect(),
         loads: vec![FaceLoad::Pressure {
             faces: "z_max".into(),

@@ -48,15 +48,6 @@ const E: f64 = 2.0;
 const NU: f64 = 0.3;
 const P: f64 = 0.01;
 
-fn roller(faces: &str, c: usize) -> Support {
-    let mut fix = [None; 3];
-    fix[c] = Some(0.0);
-    Support {
-        faces: faces.into(),
-        fix,
-    }
-}
-
 fn graded(order: Order) -> Mesh3d {
     let g = Grading {
         h_min: 0.04,
@@ -73,10 +64,10 @@ fn on_plane_body(mesh: &Mesh3d) -> SolidBody<'_> {
         youngs_modulus: E,
         poisson_ratio: NU,
         supports: vec![
-            roller("x_min", 0),
-            roller("x_max", 0),
-            roller("y_min", 1),
-            roller("y_max", 1),
+            Support::roller("x_min", 0),
+            Support::roller("x_max", 0),
+            Support::roller("y_min", 1),
+            Support::roller("y_max", 1),
         ],
         loads: vec![FaceLoad::Pressure {
             faces: "z_max".into(),
@@ -246,7 +237,7 @@ fn off_centre(order: Order) {
         mesh: &mesh,
         youngs_modulus: E,
         poisson_ratio: NU,
-        supports: vec![roller("y_min", 1), roller("peg", 0)],
+        supports: vec![Support::roller("y_min", 1), Support::roller("peg", 0)],
         loads: vec![FaceLoad::Pressure {
             faces: "load".into(),
             p: P,
@@ -454,7 +445,7 @@ fn a_paraboloid_on_a_flat_matches_hertz_to_its_mesh_size() {
         mesh: &mesh,
         youngs_modulus: E,
         poisson_ratio: NU,
-        supports: vec![roller("x_min", 0), roller("y_min", 1)],
+        supports: vec![Support::roller("x_min", 0), Support::roller("y_min", 1)],
         loads: vec![FaceLoad::Pressure {
             faces: "z_max".into(),
             p: force / 4.0,

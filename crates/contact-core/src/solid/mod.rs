@@ -42,6 +42,19 @@ pub struct Support {
     pub fix: [Option<f64>; 3],
 }
 
+impl Support {
+    /// A roller (or symmetry plane) on `faces`: u_c = 0, the other two
+    /// components free.
+    pub fn roller(faces: &str, c: usize) -> Self {
+        let mut fix = [None; 3];
+        fix[c] = Some(0.0);
+        Self {
+            faces: faces.into(),
+            fix,
+        }
+    }
+}
+
 /// A load on a face set, per unit area of the deformed-free (reference)
 /// surface.
 #[derive(Debug, Clone, PartialEq)]

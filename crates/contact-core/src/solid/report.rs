@@ -102,6 +102,7 @@ pub struct Resultant {
 /// The contact answer of a solid on a plane (module doc).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SolidContactReport {
+    /// In the order of their first row.
     pub patches: Vec<Patch>,
     /// Every candidate row, in the rows' order.
     pub points: Vec<ContactPoint>,
