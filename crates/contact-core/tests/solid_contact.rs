@@ -495,6 +495,29 @@ fn a_paraboloid_on_a_flat_matches_hertz_to_its_mesh_size() {
         patch.faces.len()
     );
     assert!((a_faces / a - 1.0).abs() < 0.15, "a from the faces {a_faces}");
+    // The outline: one loop, the symmetry planes' edges and an arc; the
+    // arc's vertices (off the planes) are pressed nodes next to open ones
+    // (a face's diagonal apart, √2 h), so near the edge r = a: within 2h
+    // inside and h outside (measured 0.860 a to 1.005 a).
+    assert_eq!(patch.outline.len(), 1);
+    let arc: Vec<f64> = patch.outline[0]
+        .iter()
+        .filter(|x| x[0] > 1e-12 && x[1] > 1e-12)
+        .map(|x| x[0].hypot(x[1]))
+        .collect();
+    let (rmin, rmax) = arc
+        .iter()
+        .fold((f64::MAX, 0.0f64), |(lo, hi), &r| (lo.min(r), hi.max(r)));
+    println!(
+        "  outline arc: {} vertices, r / a in [{:.3}, {:.3}]",
+        arc.len(),
+        rmin / a,
+        rmax / a
+    );
+    assert!(
+        !arc.is_empty() && rmin > 0.8 * a && rmax < 1.1 * a,
+        "arc r in [{rmin}, {rmax}]"
+    );
     assert!((patch.force - force / 4.0).abs() < 1e-12 * force);
     assert!(a_faces <= a_h, "the faces in contact are inside the rows' area");
     assert!(
