@@ -12,10 +12,12 @@
 //! the 2D solve uses and in the nested-dissection order of
 //! `solid::ordering`, which the 3D solves use.
 //!
-//! `cargo run --release -p contact-core --example solid3d_timing [-- --cost]` (`--cost`: the factors' costs
-//! alone, no numeric factorization).
+//! `cargo run --release -p contact-core --example solid3d_timing [-- --cost] [--small]` (`--cost`: the factors'
+//! costs alone, no numeric factorization; `--small`: the 50k-DOF boxes only).
 
-use contact_core::linalg::cholesky::{FactorCost, SymbolicFactor};
+use std::sync::Arc;
+
+use contact_core::linalg::cholesky::{Cholesky, FactorCost, SymbolicFactor};
 use contact_core::mesh::generate::{graded_points, Grading};
 use contact_core::mesh3d::generate::{grid, uniform};
 use contact_core::mesh3d::{Mesh3d, Order};
@@ -23,15 +25,6 @@ use contact_core::scene::Settings;
 use contact_core::solid::dofs::dof_map;
 use contact_core::solid::obstacle::{rows, Plane};
 use contact_core::solid::{linear, ordering, signorini, stiffness, FaceLoad, SolidBody, Support};
-
-fn roller(faces: &str, c: usize) -> Support {
-    let mut fix = [None; 3];
-    fix[c] = Some(0.0);
-    Support {
-        faces: faces.into(),
-        fix,
-    }
-}
 
 fn mesh(n: usize, order: Order) -> Mesh3d {
     let h = 1.0 / n as f64;
@@ -46,15 +39,19 @@ fn mesh(n: usize, order: Order) -> Mesh3d {
 
 fn main() {
     let cost_only = std::env::args().any(|a| a == "--cost");
+    let small = std::env::args().any(|a| a == "--small");
     for (n, order) in [(23, Order::T4), (44, Order::T4), (11, Order::T10)] {
+        if small && n == 44 {
+            continue;
+        }
         let t = std::time::Instant::now();
         let mesh = mesh(n, order);
         let t_mesh = t.elapsed().as_secs_f64();
         let sides = vec![
-            roller("x_min", 0),
-            roller("x_max", 0),
-            roller("y_min", 1),
-            roller("y_max", 1),
+            Support::roller("x_min", 0),
+            Support::roller("x_max", 0),
+            Support::roller("y_min", 1),
+            Support::roller("y_max", 1),
         ];
         let mut body = SolidBody {
             mesh: &mesh,
@@ -67,7 +64,7 @@ fn main() {
             }],
             body_force: [0.0; 3],
         };
-        body.supports.push(roller("z_min", 2));
+        body.supports.push(Support::roller("z_min", 2));
         let dofs = dof_map(&body, None).unwrap();
         println!(
             "{order:?} n = {n}: {} nodes, {} elements, {} free DOFs (mesh {t_mesh:.2} s)",
@@ -82,8 +79,9 @@ fn main() {
             cost.nnz as f64, cost.flops
         );
         let t = std::time::Instant::now();
-        let (fwd, inv) = ordering::nested_dissection(&mesh, &dofs);
-        let nd = SymbolicFactor::try_new_ordered(&k.k, &fwd, &inv).unwrap().cost();
+        let (fwd, inv) = ordering::nested_dissection(&mesh, &dofs).unwrap();
+        let analysis = Arc::new(SymbolicFactor::try_new_ordered(&k.k, &fwd, &inv).unwrap());
+        let nd = analysis.cost();
         println!(
             "  factor (nested dissection): nnz(L) {:.3e}, {:.3e} multiply-adds (ordering and analysis {:.2} s)",
             nd.nnz as f64,
@@ -93,6 +91,20 @@ fn main() {
         if cost_only {
             continue;
         }
+        // The numeric factorization alone against the time model fitted on
+        // 2D factors (`FactorCost::reference_secs`).
+        let t = std::time::Instant::now();
+        drop(Cholesky::with_symbolic(analysis, &k.k).unwrap());
+        let real = t.elapsed().as_secs_f64();
+        // This machine's scale, measured on a 2D grid just after: what the
+        // 3D factor's ratio would be if the 2D model held for it.
+        let scale = contact_core::linalg::calibrate::calibrate();
+        println!(
+            "  numeric factorization {real:.3} s; the 2D-fitted model predicts {:.3} s on its reference machine \
+             (real / predicted {:.2}; a 2D grid's just after {scale:.2})",
+            nd.reference_secs(),
+            real / nd.reference_secs()
+        );
         let s = linear::solve(&body).unwrap();
         let [a, f, so] = s.seconds;
         println!(

@@ -11,7 +11,13 @@
 //!   certificate;
 //! - an off-centre load on a block that may tilt: part of the base lifts
 //!   off, and the contact forces balance the load's force and its moment
-//!   about the base line the supports cannot load.
+//!   about the base line the supports cannot load;
+//! - the report of each answer (`solid::report`): the patch test's single
+//!   patch is the base (area, force, centre of pressure, outline), the
+//!   off-centre block's and the tilted plane's resultants balance the load
+//!   with the reactions, the Hertz patch's area gives a, and a box over a
+//!   groove rests on two patches;
+//! - the nested dissection stops at a passed deadline.
 //!
 //! Tolerances: where the discrete solution is exact (the patch test), 1e-10
 //! is the round-off of the factorization and of the dense W, ε · cond, with
@@ -20,28 +26,27 @@
 //! the load, the round-off of its saddle-point solve; the certificate's
 //! entries are relative round-off residuals, 1e-10 leaving two decades of
 //! slack over the measured 1e-13 to 1e-12 (printed).
+//!
+//! Length: about 630 lines; the report's checks sit beside the solves of
+//! the scenes they read (the Hertz solve alone takes 3.5 s) rather than
+//! solving them again in a file of their own.
 
+use contact_core::cancel::Deadline;
 use contact_core::error::{CoreError, InvalidKind};
 use contact_core::mesh::generate::Grading;
 use contact_core::mesh3d::generate::box_mesh;
 use contact_core::mesh3d::{Mesh3d, Order};
 use contact_core::scene::Settings;
+use contact_core::solid::dofs::dof_map;
 use contact_core::solid::obstacle::{rows, Plane};
+use contact_core::solid::ordering::nested_dissection;
+use contact_core::solid::report::{report, SolidContactReport};
 use contact_core::solid::signorini::{self, Contact};
 use contact_core::solid::{FaceLoad, SolidBody, Support};
 
 const E: f64 = 2.0;
 const NU: f64 = 0.3;
 const P: f64 = 0.01;
-
-fn roller(faces: &str, c: usize) -> Support {
-    let mut fix = [None; 3];
-    fix[c] = Some(0.0);
-    Support {
-        faces: faces.into(),
-        fix,
-    }
-}
 
 fn graded(order: Order) -> Mesh3d {
     let g = Grading {
@@ -59,10 +64,10 @@ fn on_plane_body(mesh: &Mesh3d) -> SolidBody<'_> {
         youngs_modulus: E,
         poisson_ratio: NU,
         supports: vec![
-            roller("x_min", 0),
-            roller("x_max", 0),
-            roller("y_min", 1),
-            roller("y_max", 1),
+            Support::roller("x_min", 0),
+            Support::roller("x_max", 0),
+            Support::roller("y_min", 1),
+            Support::roller("y_max", 1),
         ],
         loads: vec![FaceLoad::Pressure {
             faces: "z_max".into(),
@@ -145,7 +150,54 @@ fn a_box_on_a_plane_under_uniform_pressure_presses_it_uniformly() {
         assert_kkt(&c, 1e-10);
         // The exact field touches the plane everywhere: no node penetrates.
         assert!(nodal_gap(&mesh, &c, plane, "z_min") > -1e-10);
+        whole_base_patch(&report(&body, &r, &c).unwrap());
     }
+}
+
+/// The report of the box pressed uniformly: one patch, the whole base. Its
+/// area is the unit square's as a sum of face areas (round-off, 1e-12: a
+/// few hundred products of O(h) lengths), its force the load p·1 to the
+/// certificate's 1e-10, its centre of pressure the base's centroid (λ_i = p
+/// a_i, so Σ λ_i x_i / Σ λ_i = ∫ x dA / A exactly: 1e-10 of the size), and
+/// its outline one loop on the base's perimeter, of length 4.
+fn whole_base_patch(rep: &SolidContactReport) {
+    assert_eq!(rep.patches.len(), 1, "one patch");
+    let p = &rep.patches[0];
+    let length: f64 = p.outline.iter().map(|l| perimeter(l)).sum();
+    println!(
+        "  one patch: area − 1 = {:.1e}, tributary − 1 = {:.1e}, force / P − 1 = {:.1e}, centre {:?}, {} loop(s) of \
+         length {length}",
+        p.area - 1.0,
+        p.tributary_area - 1.0,
+        p.force / P - 1.0,
+        p.centre_of_pressure,
+        p.outline.len()
+    );
+    assert!((p.area - 1.0).abs() < 1e-12, "area {}", p.area);
+    assert!((p.tributary_area - 1.0).abs() < 1e-12, "Σ a_i {}", p.tributary_area);
+    assert!((p.force - P).abs() < 1e-10 * P, "force {}", p.force);
+    for (x, want) in p.centre_of_pressure.iter().zip([0.5, 0.5, 0.0]) {
+        assert!((x - want).abs() < 1e-10, "centre {:?}", p.centre_of_pressure);
+    }
+    assert!((p.peak_pressure - P).abs() < 1e-10 * P, "peak {}", p.peak_pressure);
+    assert_eq!(p.outline.len(), 1, "one loop");
+    assert!((length - 4.0).abs() < 1e-12, "perimeter {length}");
+    for x in &p.outline[0] {
+        let off = x[0].min(1.0 - x[0]).min(x[1]).min(1.0 - x[1]).abs().max(x[2].abs());
+        assert!(off < 1e-14, "{x:?} is not on the base's edge");
+    }
+    assert!(rep.points.iter().all(|q| q.in_contact), "every row pressed");
+    assert_eq!(p.rows.len(), rep.points.len());
+}
+
+/// The length of a closed polygon.
+fn perimeter(ring: &[[f64; 3]]) -> f64 {
+    (0..ring.len())
+        .map(|i| {
+            let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
+            ((0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>()).sqrt()
+        })
+        .sum()
 }
 
 /// A block [0, 1] × [0, ½] × [0, ½] (half of a block symmetric about y = 0),
@@ -185,7 +237,7 @@ fn off_centre(order: Order) {
         mesh: &mesh,
         youngs_modulus: E,
         poisson_ratio: NU,
-        supports: vec![roller("y_min", 1), roller("peg", 0)],
+        supports: vec![Support::roller("y_min", 1), Support::roller("peg", 0)],
         loads: vec![FaceLoad::Pressure {
             faces: "load".into(),
             p: P,
@@ -249,6 +301,92 @@ fn off_centre(order: Order) {
         assert!(worst > -1e-10, "{worst:e}");
     }
     assert!(lifted > 0 && pressed > 0);
+    // The pressure p on the part [¾, 1] × [0, ½] of the top z = ½: the
+    // force (0, 0, −pA) at its centroid (7/8, ¼, ½).
+    let rep = report(&body, &r, &c).unwrap();
+    balance(&mesh, &c, &rep, [0.875, 0.25, 0.5], [0.0, 0.0, -force]);
+}
+
+/// The report's resultant against the loads, one uniform pressure of
+/// resultant `load` acting at `at` (its face set's centroid): the
+/// consistent nodal loads reproduce that force and moment exactly (Σ N_j =
+/// 1, Σ N_j x_j = x). With the support reactions (the residual K u − f −
+/// Bᵀλ on the supported DOFs), the forces and moments on the body sum to
+/// zero: K u annihilates the rigid motions, and off the supports the
+/// residual is the certificate's equilibrium (1e-13 of the terms over a
+/// few thousand DOFs): 1e-10 of |load| and |load|·L (L = 1). The patches'
+/// forces sum to Σ λ_i, the resultant's size, to round-off.
+fn balance(mesh: &Mesh3d, c: &Contact, rep: &SolidContactReport, at: [f64; 3], load: [f64; 3]) {
+    let force = load.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let mut f = [0.0; 3];
+    let mut m = [0.0; 3];
+    let mut add = |x: [f64; 3], v: [f64; 3]| {
+        let t = [
+            x[1] * v[2] - x[2] * v[1],
+            x[2] * v[0] - x[0] * v[2],
+            x[0] * v[1] - x[1] * v[0],
+        ];
+        (0..3).for_each(|k| {
+            f[k] += v[k];
+            m[k] += t[k];
+        });
+    };
+    add(at, load);
+    for (n, x) in mesh.nodes.iter().enumerate() {
+        add(*x, std::array::from_fn(|k| c.reactions[3 * n + k]));
+    }
+    let (rf, rm) = (rep.resultant.force, rep.resultant.moment);
+    let (f, m): ([f64; 3], [f64; 3]) = (
+        std::array::from_fn(|k| f[k] + rf[k]),
+        std::array::from_fn(|k| m[k] + rm[k]),
+    );
+    let patches: f64 = rep.patches.iter().map(|p| p.force).sum();
+    let total: f64 = c.lambda.iter().sum();
+    println!(
+        "  resultant {rf:?}, moment {rm:?}; unbalanced force {f:?}, moment {m:?} (of |load| = {force}); {} \
+         patch(es), Σ forces − Σλ = {:.1e}",
+        rep.patches.len(),
+        patches - total
+    );
+    for k in 0..3 {
+        assert!(f[k].abs() < 1e-10 * force, "force {f:?}");
+        assert!(m[k].abs() < 1e-10 * force, "moment {m:?}");
+    }
+    assert!(
+        (patches - total).abs() < 1e-12 * total,
+        "patches carry {patches} of {total}"
+    );
+}
+
+/// The box under uniform pressure on a plane tilted by 0.05 about the y
+/// axis (normal (sin θ, 0, cos θ), through the origin): the base touches
+/// along x = 0 first and the box, held sideways by its rollers, sinks until
+/// a strip of it carries the load. The contact forces act along the tilted
+/// normal, the x rollers take their x component; the resultant balances
+/// the load (0, 0, −p) at (½, ½, 1) with the reactions (`balance`), and
+/// Σ λ cos θ = p (the free sinking's equilibrium, round-off).
+#[test]
+fn a_tilted_plane_s_resultant_balances_the_load() {
+    for order in [Order::T4, Order::T10] {
+        let mesh = graded(order);
+        let body = on_plane_body(&mesh);
+        let theta: f64 = 0.05;
+        let plane = Plane::try_new([0.0; 3], [theta.sin(), 0.0, theta.cos()]).unwrap();
+        let r = rows(&body, "z_min", plane).unwrap();
+        let c = signorini::solve(&body, &r, &Settings::default()).unwrap();
+        assert_kkt(&c, 1e-10);
+        let rep = report(&body, &r, &c).unwrap();
+        let open = rep.points.iter().filter(|q| !q.in_contact).count();
+        println!(
+            "{order:?}: {open} of {} rows open, patches' areas {:?}",
+            rep.points.len(),
+            rep.patches.iter().map(|p| p.area).collect::<Vec<_>>()
+        );
+        assert!(open > 0, "partial contact");
+        let sinking = rep.resultant.force[2];
+        assert!((sinking - P).abs() < 1e-12 * P, "Σλ cos θ = {sinking}");
+        balance(&mesh, &c, &rep, [0.5, 0.5, 1.0], [0.0, 0.0, -P]);
+    }
 }
 
 #[test]
@@ -307,7 +445,7 @@ fn a_paraboloid_on_a_flat_matches_hertz_to_its_mesh_size() {
         mesh: &mesh,
         youngs_modulus: E,
         poisson_ratio: NU,
-        supports: vec![roller("x_min", 0), roller("y_min", 1)],
+        supports: vec![Support::roller("x_min", 0), Support::roller("y_min", 1)],
         loads: vec![FaceLoad::Pressure {
             faces: "z_max".into(),
             p: force / 4.0,
@@ -339,6 +477,49 @@ fn a_paraboloid_on_a_flat_matches_hertz_to_its_mesh_size() {
         c.pressure[axis] / p0
     );
     assert!((a_h / a - 1.0).abs() < 0.15, "a_h = {a_h}, a = {a}");
+    // The report: one patch carrying P/4 (round-off, as Σλ), its faces'
+    // area π a² / 4 within the same 15 % on a. The faces in contact are the
+    // inner bound, about half an element inside the edge (h / 2a = 5 %):
+    // measured 0.937 a, against 1.005 a from the rows' Σ a_i.
+    let rep = report(&body, &r, &c).unwrap();
+    assert_eq!(rep.patches.len(), 1);
+    let patch = &rep.patches[0];
+    let a_faces = (4.0 * patch.area / std::f64::consts::PI).sqrt();
+    println!(
+        "  report: a from the faces' area / a = {:.4}, from Σ a_i {:.4}; peak {:.4} p0 at {:?}; {} loop(s), {} faces",
+        a_faces / a,
+        (4.0 * patch.tributary_area / std::f64::consts::PI).sqrt() / a,
+        patch.peak_pressure / p0,
+        patch.peak_at,
+        patch.outline.len(),
+        patch.faces.len()
+    );
+    assert!((a_faces / a - 1.0).abs() < 0.15, "a from the faces {a_faces}");
+    // The outline: one loop, the symmetry planes' edges and an arc; the
+    // arc's vertices (off the planes) are pressed nodes next to open ones
+    // (a face's diagonal apart, √2 h), so near the edge r = a: within 2h
+    // inside and h outside (measured 0.860 a to 1.005 a).
+    assert_eq!(patch.outline.len(), 1);
+    let arc: Vec<f64> = patch.outline[0]
+        .iter()
+        .filter(|x| x[0] > 1e-12 && x[1] > 1e-12)
+        .map(|x| x[0].hypot(x[1]))
+        .collect();
+    let (rmin, rmax) = arc
+        .iter()
+        .fold((f64::MAX, 0.0f64), |(lo, hi), &r| (lo.min(r), hi.max(r)));
+    println!(
+        "  outline arc: {} vertices, r / a in [{:.3}, {:.3}]",
+        arc.len(),
+        rmin / a,
+        rmax / a
+    );
+    assert!(
+        !arc.is_empty() && rmin > 0.8 * a && rmax < 1.1 * a,
+        "arc r in [{rmin}, {rmax}]"
+    );
+    assert!((patch.force - force / 4.0).abs() < 1e-12 * force);
+    assert!(a_faces <= a_h, "the faces in contact are inside the rows' area");
     assert!(
         (c.pressure[axis] / p0 - 1.0).abs() < 0.15,
         "p(0) = {}, p0 = {p0}",
@@ -365,5 +546,96 @@ fn loads_no_contact_force_can_balance_are_refused() {
             Err(CoreError::Invalid { kind: k, reason, .. }) => assert_eq!(k, kind, "p = {p}: {reason}"),
             other => panic!("p = {p}: expected a refusal, got {:?}", other.map(|c| c.converged)),
         }
+    }
+}
+
+/// A box pressed on a plane with a groove: the rows over the strip
+/// 0.3 < x < 0.7 start 0.05 away (the plane's trench, added to their gaps
+/// as Hertz's paraboloid is), twelve times the box's sinking p / M, so
+/// they stay open; the box rests on two strips, two patches. Their forces
+/// sum to the load (the free sinking's equilibrium, 1e-12 as above), and
+/// on the uniform mesh of h = 1/8 each patch is the faces of its strip of
+/// nodes, x ≤ ¼ or x ≥ ¾: area ¼ and an outline of length 2.5, to
+/// round-off.
+#[test]
+fn a_box_over_a_groove_rests_on_two_patches() {
+    for order in [Order::T4, Order::T10] {
+        let mesh = box_mesh([0.0; 3], [1.0; 3], 0.125, None, order);
+        let body = on_plane_body(&mesh);
+        let plane = Plane::try_new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
+        let mut r = rows(&body, "z_min", plane).unwrap();
+        for (gap, &n) in r.gap.iter_mut().zip(&r.nodes) {
+            if (mesh.nodes[n][0] - 0.5).abs() < 0.2 {
+                *gap += 0.05;
+            }
+        }
+        let c = signorini::solve(&body, &r, &Settings::default()).unwrap();
+        assert_kkt(&c, 1e-10);
+        let rep = report(&body, &r, &c).unwrap();
+        let forces: Vec<f64> = rep.patches.iter().map(|p| p.force).collect();
+        let total: f64 = forces.iter().sum();
+        println!(
+            "{order:?}: {} patches, forces {forces:?} (Σ − P = {:.1e} P), areas {:?}, perimeters {:?}",
+            rep.patches.len(),
+            (total - P) / P,
+            rep.patches.iter().map(|p| p.area).collect::<Vec<_>>(),
+            rep.patches
+                .iter()
+                .map(|p| p.outline.iter().map(|l| perimeter(l)).sum::<f64>())
+                .collect::<Vec<_>>()
+        );
+        assert_eq!(rep.patches.len(), 2);
+        assert!((total - P).abs() < 1e-12 * P, "Σ = {total}");
+        assert!((rep.resultant.force[2] - P).abs() < 1e-12 * P);
+        for p in &rep.patches {
+            assert!(p.force > 0.0);
+            assert!((p.area - 0.25).abs() < 1e-12, "area {}", p.area);
+            assert_eq!(p.outline.len(), 1);
+            assert!((perimeter(&p.outline[0]) - 2.5).abs() < 1e-12);
+            let side = p.centre_of_pressure[0] < 0.5;
+            assert!(
+                p.rows.iter().all(|&i| (rep.points[i].position[0] < 0.5) == side),
+                "a patch on both sides of the groove"
+            );
+        }
+        for q in &rep.points {
+            let over = (q.position[0] - 0.5).abs() < 0.2;
+            assert_eq!(q.in_contact, !over, "{:?}", q);
+        }
+    }
+}
+
+/// The 3D ordering keeps a request's clock: under a deadline already passed
+/// (`Deadline::install(0)`, as the service installs a request's limit) the
+/// nested dissection stops with the timeout of stage `factorization`, and
+/// so does the contact solve that calls it, rather than running the order
+/// to its end; under a deadline an hour away the order is the one computed
+/// without any, a permutation of the free DOFs.
+#[test]
+fn a_passed_deadline_stops_the_3d_ordering() {
+    let mesh = graded(Order::T4);
+    let body = on_plane_body(&mesh);
+    let plane = Plane::try_new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
+    let r = rows(&body, "z_min", plane).unwrap();
+    let touching: Vec<usize> = r.nodes.clone();
+    let dofs = dof_map(&body, Some(&touching)).unwrap();
+    let free = nested_dissection(&mesh, &dofs).unwrap();
+    {
+        let _d = Deadline::install(std::time::Duration::from_secs(3600));
+        assert_eq!(nested_dissection(&mesh, &dofs).unwrap(), free);
+    }
+    let mut seen = vec![false; dofs.n_free];
+    free.0.iter().for_each(|&f| seen[f] = true);
+    assert!(seen.iter().all(|&s| s) && free.0.len() == dofs.n_free);
+    assert!((0..dofs.n_free).all(|i| free.1[free.0[i]] == i));
+    let _d = Deadline::install(std::time::Duration::ZERO);
+    let t = nested_dissection(&mesh, &dofs).unwrap_err();
+    assert_eq!(
+        (t.stage, t.limit_s),
+        (contact_core::outcome::ProgressStage::Factorization, 0.0)
+    );
+    match signorini::solve(&body, &r, &Settings::default()) {
+        Err(CoreError::Timeout { stage, limit_s }) => assert_eq!((stage, limit_s), ("factorization", 0.0)),
+        other => panic!("expected a timeout, got {:?}", other.map(|c| c.converged)),
     }
 }

@@ -39,15 +39,6 @@ fn graded(hi: [f64; 3], order: Order) -> Mesh3d {
     box_mesh([0.0; 3], hi, 0.25, Some(([0.0; 3], g)), order)
 }
 
-fn roller(faces: &str, c: usize) -> Support {
-    let mut fix = [None; 3];
-    fix[c] = Some(0.0);
-    Support {
-        faces: faces.into(),
-        fix,
-    }
-}
-
 fn body(mesh: &Mesh3d, nu: f64, supports: Vec<Support>, loads: Vec<FaceLoad>, b: [f64; 3]) -> SolidBody<'_> {
     SolidBody {
         mesh,
@@ -118,7 +109,11 @@ fn uniaxial_stress_patch_test_is_exact_on_t4_and_t10() {
     // ν = 0.49 on T10 runs the P2–P0 element, which holds a uniform pressure too.
     for (order, nu) in [(Order::T4, 0.3), (Order::T10, 0.3), (Order::T10, 0.49)] {
         let mesh = graded([1.0, 0.8, 1.2], order);
-        let supports = vec![roller("x_min", 0), roller("y_min", 1), roller("z_min", 2)];
+        let supports = vec![
+            Support::roller("x_min", 0),
+            Support::roller("y_min", 1),
+            Support::roller("z_min", 2),
+        ];
         let b = body(&mesh, nu, supports, top_pressure(), [0.0; 3]);
         let s = linear::solve(&b).unwrap();
         let eu = nodal_error(&mesh, &s.u, |x| [nu * P * x[0] / E, nu * P * x[1] / E, -P * x[2] / E]);
@@ -142,11 +137,11 @@ fn oedometric_patch_test_is_exact_on_t4_and_t10() {
         let m = E * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
         let mesh = graded([1.0, 1.0, 1.0], order);
         let supports = vec![
-            roller("x_min", 0),
-            roller("x_max", 0),
-            roller("y_min", 1),
-            roller("y_max", 1),
-            roller("z_min", 2),
+            Support::roller("x_min", 0),
+            Support::roller("x_max", 0),
+            Support::roller("y_min", 1),
+            Support::roller("y_max", 1),
+            Support::roller("z_min", 2),
         ];
         let b = body(&mesh, nu, supports, top_pressure(), [0.0; 3]);
         let s = linear::solve(&b).unwrap();
@@ -164,11 +159,11 @@ fn t10_bar_under_its_own_weight_is_exact() {
     let m = E * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
     let mesh = graded([0.3, 0.3, h], Order::T10);
     let supports = vec![
-        roller("x_min", 0),
-        roller("x_max", 0),
-        roller("y_min", 1),
-        roller("y_max", 1),
-        roller("z_min", 2),
+        Support::roller("x_min", 0),
+        Support::roller("x_max", 0),
+        Support::roller("y_min", 1),
+        Support::roller("y_max", 1),
+        Support::roller("z_min", 2),
     ];
     let b = body(&mesh, nu, supports, Vec::new(), [0.0, 0.0, -g]);
     let s = linear::solve(&b).unwrap();
@@ -218,7 +213,7 @@ fn a_traction_is_carried_by_the_supports() {
 #[test]
 fn supports_that_leave_a_rigid_motion_free_are_refused() {
     let mesh = graded([1.0, 1.0, 1.0], Order::T4);
-    let b = body(&mesh, 0.3, vec![roller("z_min", 2)], top_pressure(), [0.0; 3]);
+    let b = body(&mesh, 0.3, vec![Support::roller("z_min", 2)], top_pressure(), [0.0; 3]);
     match linear::solve(&b) {
         Err(CoreError::Invalid {
             kind: InvalidKind::NoSupport,
@@ -233,7 +228,7 @@ fn supports_that_leave_a_rigid_motion_free_are_refused() {
         }
         other => panic!("expected no_support, got {:?}", other.map(|s| s.dofs.n_free)),
     }
-    let b = body(&mesh, 0.3, vec![roller("bottom", 2)], top_pressure(), [0.0; 3]);
+    let b = body(&mesh, 0.3, vec![Support::roller("bottom", 2)], top_pressure(), [0.0; 3]);
     assert!(matches!(
         linear::solve(&b),
         Err(CoreError::Invalid {

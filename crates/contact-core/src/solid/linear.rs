@@ -34,7 +34,7 @@ pub fn solve(body: &SolidBody) -> Result<Static, CoreError> {
     let f_ext = loads::external(body)?;
     let f = loads::free_rhs(&f_ext, &dofs, &k);
     let t1 = std::time::Instant::now();
-    let (fwd, inv) = ordering::nested_dissection(body.mesh, &dofs);
+    let (fwd, inv) = ordering::nested_dissection(body.mesh, &dofs)?;
     let chol = Cholesky::with_symbolic(Arc::new(SymbolicFactor::try_new_ordered(&k.k, &fwd, &inv)?), &k.k)?;
     let t2 = std::time::Instant::now();
     let u = loads::full_field(&dofs, &chol.solve(&f));

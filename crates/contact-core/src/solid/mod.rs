@@ -1,6 +1,7 @@
 //! The 3D solid: linear elasticity of a tetrahedral body (`mesh3d`, T4 or
-//! T10) and its frictionless contact with a rigid plane. Not yet reachable
-//! from a request: the wire types, routing and report come with issue 40.
+//! T10) and its frictionless contact with a rigid plane, with the answer's
+//! contact patches. Not yet reachable from a request: the wire types and
+//! routing come with issue 40.
 //!
 //! The dimension lives in the element and mesh rooms: the element stiffness
 //! is `fem::kernel::stiffness` over `fem::reference::{T4, T10}` with the
@@ -12,9 +13,11 @@
 //! body of tetrahedra adds: 3 DOFs per node (`dofs`, DOF 3·node + c), its
 //! assembly and loads on face sets (`stiffness`, `loads`), a linear solve
 //! (`linear`), rows against a plane (`obstacle`), the Signorini solve with
-//! its KKT certificate (`signorini`), and a nested-dissection order of the
-//! DOFs for the factorization (`ordering`: AMD fills 3D factors 2–4 times
-//! more).
+//! its KKT certificate (`signorini`), the answer as contact patches (area,
+//! force, centre of pressure, peak, outline polygons), points and the
+//! resultant (`report`), and a nested-dissection order of the DOFs for the
+//! factorization (`ordering`: AMD fills 3D factors 2–4 times more; it polls
+//! the request's deadline as the other stages do).
 //!
 //! Lengths, moduli and loads are nondimensional (the caller's scales), as
 //! everywhere below the scene.
@@ -24,6 +27,7 @@ pub mod linear;
 pub mod loads;
 pub mod obstacle;
 pub mod ordering;
+pub mod report;
 pub mod signorini;
 pub mod stiffness;
 
@@ -36,6 +40,19 @@ use crate::mesh3d::Mesh3d;
 pub struct Support {
     pub faces: String,
     pub fix: [Option<f64>; 3],
+}
+
+impl Support {
+    /// A roller (or symmetry plane) on `faces`: u_c = 0, the other two
+    /// components free.
+    pub fn roller(faces: &str, c: usize) -> Self {
+        let mut fix = [None; 3];
+        fix[c] = Some(0.0);
+        Self {
+            faces: faces.into(),
+            fix,
+        }
+    }
 }
 
 /// A load on a face set, per unit area of the deformed-free (reference)

@@ -74,6 +74,9 @@ impl Plane {
 #[derive(Debug, Clone)]
 pub struct PlaneRows {
     pub plane: Plane,
+    /// The contact face set the rows were made from (`report` reads its
+    /// faces).
+    pub faces: String,
     /// The multiplier node of each row.
     pub nodes: Vec<usize>,
     /// Each row's nodal terms (node, c): the row reads −n · Σ c u_node ≤ gap
@@ -119,7 +122,7 @@ pub fn rows(body: &SolidBody, faces: &str, plane: Plane) -> Result<PlaneRows, Co
     }
     Ok(match mesh.order {
         Order::T4 => nodal(mesh, set, faces, plane),
-        Order::T10 => mortar(mesh, set, plane),
+        Order::T10 => mortar(mesh, set, faces, plane),
     })
 }
 
@@ -138,10 +141,48 @@ fn nodal(mesh: &Mesh3d, set: &[Face], faces: &str, plane: Plane) -> PlaneRows {
     }
     PlaneRows {
         plane,
+        faces: faces.to_string(),
         terms: nodes.iter().map(|&n| vec![(n, 1.0)]).collect(),
         gap: nodes.iter().map(|&n| plane.distance(mesh.nodes[n])).collect(),
         nodes,
         area,
+    }
+}
+
+/// A quadrature point of a 6-node face: its barycentric coordinates L, the
+/// face's shape functions N there, the area it weighs (the rule's weight
+/// times |∂x/∂ξ × ∂x/∂η|, the curved face's) and its position.
+pub(super) struct FacePoint {
+    pub l: [f64; 3],
+    pub n: [f64; 6],
+    pub da: f64,
+    pub at: [f64; 3],
+}
+
+/// Dunavant's degree-4 points on a 6-node face (`mids` present).
+pub(super) fn t6_points<'a>(mesh: &'a Mesh3d, f: &Face) -> impl Iterator<Item = FacePoint> + 'a {
+    let nodes: Vec<usize> = f.nodes().collect();
+    debug_assert_eq!(nodes.len(), 6, "a 6-node face");
+    let x: [[f64; 3]; 6] = std::array::from_fn(|i| mesh.nodes[nodes[i]]);
+    RULE6.iter().map(move |q| {
+        let (n, g) = T6::evaluate(&q.xi);
+        let tangent = |r: usize| -> [f64; 3] { std::array::from_fn(|c| (0..6).map(|i| g[i][r] * x[i][c]).sum()) };
+        let na = cross(tangent(0), tangent(1));
+        FacePoint {
+            l: [1.0 - q.xi[0] - q.xi[1], q.xi[0], q.xi[1]],
+            n,
+            da: q.weight * dot(na, na).sqrt(),
+            at: std::array::from_fn(|c| (0..6).map(|i| n[i] * x[i][c]).sum()),
+        }
+    })
+}
+
+/// The area of a face: the flat triangle's on T4, the curved 6-node
+/// face's on T10 (the area its rows' a_i share: Σ_i Φ_i = 1).
+pub fn face_area(mesh: &Mesh3d, f: &Face) -> f64 {
+    match f.mids {
+        None => mesh.face_area_normal(f).0,
+        Some(_) => t6_points(mesh, f).map(|p| p.da).sum(),
     }
 }
 
@@ -154,20 +195,13 @@ struct Acc {
 }
 
 /// Dual mortar rows on the corners of 6-node faces (module doc).
-fn mortar(mesh: &Mesh3d, set: &[Face], plane: Plane) -> PlaneRows {
+fn mortar(mesh: &Mesh3d, set: &[Face], faces: &str, plane: Plane) -> PlaneRows {
     let mut order: Vec<usize> = Vec::new();
     let mut acc: std::collections::HashMap<usize, Acc> = std::collections::HashMap::new();
     for f in set {
         let nodes: Vec<usize> = f.nodes().collect();
-        let x: [[f64; 3]; 6] = std::array::from_fn(|i| mesh.nodes[nodes[i]]);
-        for q in &RULE6 {
-            let (n, g) = T6::evaluate(&q.xi);
-            let tangent = |r: usize| -> [f64; 3] { std::array::from_fn(|c| (0..6).map(|i| g[i][r] * x[i][c]).sum()) };
-            let na = cross(tangent(0), tangent(1));
-            let da = q.weight * dot(na, na).sqrt();
-            let at: [f64; 3] = std::array::from_fn(|c| (0..6).map(|i| n[i] * x[i][c]).sum());
+        for FacePoint { l, n, da, at } in t6_points(mesh, f) {
             let d = plane.distance(at);
-            let l = [1.0 - q.xi[0] - q.xi[1], q.xi[0], q.xi[1]];
             for (k, &corner) in f.corners.iter().enumerate() {
                 let psi = 4.0 * l[k] - 1.0;
                 let a = acc.entry(corner).or_insert_with(|| {
@@ -187,6 +221,7 @@ fn mortar(mesh: &Mesh3d, set: &[Face], plane: Plane) -> PlaneRows {
     }
     let mut out = PlaneRows {
         plane,
+        faces: faces.to_string(),
         nodes: Vec::with_capacity(order.len()),
         terms: Vec::with_capacity(order.len()),
         area: Vec::with_capacity(order.len()),

@@ -10,16 +10,28 @@
 //! instead of 5.7e12 at 293k (nnz(L) 4.6e8 against 8.6e8); on a T10 box of
 //! 49k DOF 7.5e10 against 1.8e11. AMD, local and greedy, does not find the
 //! planes that cut a 3D mesh in two.
+//!
+//! The order keeps the request's clock: each step of the recursion polls
+//! the deadline (`cancel::check`, stage `factorization`, which the order
+//! belongs to) and a passed one ends it with the timeout every stage
+//! returns. A step sorts its set's coordinates, O(m log m) for m nodes, so
+//! the polls are at most that far apart (the whole top step at most, about
+//! one sort of all the nodes), and they cost one clock read per step, about
+//! n / 64 reads in all.
 
 use super::dofs::SolidDofs;
+use crate::cancel::{self, Timeout};
 use crate::fem::pattern::FIXED;
 use crate::mesh3d::Mesh3d;
+use crate::outcome::ProgressStage;
 
 /// Leaves of the dissection: sets of at most this many nodes keep their order.
 const LEAF: usize = 64;
 
-/// (fwd, inv): fwd[i] is the free DOF at position i of the factor.
-pub fn nested_dissection(mesh: &Mesh3d, dofs: &SolidDofs) -> (Vec<usize>, Vec<usize>) {
+/// (fwd, inv): fwd[i] is the free DOF at position i of the factor; a
+/// `Timeout` once this thread's deadline has passed (module doc).
+pub fn nested_dissection(mesh: &Mesh3d, dofs: &SolidDofs) -> Result<(Vec<usize>, Vec<usize>), Timeout> {
+    cancel::check(ProgressStage::Factorization)?;
     let mut adj: Vec<Vec<u32>> = vec![Vec::new(); mesh.nodes.len()];
     for e in 0..mesh.n_elems() {
         let conn = mesh.elem(e);
@@ -33,7 +45,7 @@ pub fn nested_dissection(mesh: &Mesh3d, dofs: &SolidDofs) -> (Vec<usize>, Vec<us
     }
     let mut side = vec![0u8; mesh.nodes.len()];
     let mut order = Vec::with_capacity(mesh.nodes.len());
-    dissect((0..mesh.nodes.len()).collect(), mesh, &adj, &mut side, &mut order);
+    dissect((0..mesh.nodes.len()).collect(), mesh, &adj, &mut side, &mut order)?;
     let fwd: Vec<usize> = order
         .iter()
         .flat_map(|&n| (0..3).map(move |c| dofs.free[3 * n + c]))
@@ -43,15 +55,23 @@ pub fn nested_dissection(mesh: &Mesh3d, dofs: &SolidDofs) -> (Vec<usize>, Vec<us
     for (i, &f) in fwd.iter().enumerate() {
         inv[f] = i;
     }
-    (fwd, inv)
+    Ok((fwd, inv))
 }
 
 /// Appends the nodes of `set` to `order`: both halves (recursively), then
-/// their separator. `side` is all 0 on entry and on return.
-fn dissect(set: Vec<usize>, mesh: &Mesh3d, adj: &[Vec<u32>], side: &mut [u8], order: &mut Vec<usize>) {
+/// their separator. `side` is all 0 on entry and on return (also on a
+/// timeout, which leaves `order` unfinished).
+fn dissect(
+    set: Vec<usize>,
+    mesh: &Mesh3d,
+    adj: &[Vec<u32>],
+    side: &mut [u8],
+    order: &mut Vec<usize>,
+) -> Result<(), Timeout> {
+    cancel::check(ProgressStage::Factorization)?;
     if set.len() <= LEAF {
         order.extend(set);
-        return;
+        return Ok(());
     }
     let (lo, hi) = set.iter().fold(([f64::MAX; 3], [f64::MIN; 3]), |(lo, hi), &n| {
         let x = mesh.nodes[n];
@@ -83,9 +103,10 @@ fn dissect(set: Vec<usize>, mesh: &Mesh3d, adj: &[Vec<u32>], side: &mut [u8], or
     // no cut along this axis helps; the set keeps its order.
     if low.is_empty() || high.is_empty() {
         order.extend(set);
-        return;
+        return Ok(());
     }
-    dissect(low, mesh, adj, side, order);
-    dissect(high, mesh, adj, side, order);
+    dissect(low, mesh, adj, side, order)?;
+    dissect(high, mesh, adj, side, order)?;
     order.extend(separator);
+    Ok(())
 }
