@@ -7,8 +7,10 @@
 //! stops at the next boundary with [`Timeout`] (a `CoreError::Timeout`), unwinding normally,
 //! so everything it allocated is dropped and the thread is free again. The
 //! numeric factorization polls between its supernode updates
-//! (`linalg::numeric`); what does not poll (the fill-reducing ordering, one
-//! sparse sweep) runs to its end: the overshoot is at most one such step.
+//! (`linalg::numeric`), and the 3D nested dissection at every level of its
+//! recursion (`solid::ordering`); what does not poll (faer's AMD ordering of
+//! the plane scenes, one sparse sweep) runs to its end: the overshoot is at
+//! most one such step.
 //!
 //! A thread-local rather than a parameter keeps the numerical signatures free of
 //! service concerns; the guard restores the previous deadline on drop (also when
