@@ -572,6 +572,7 @@ pub fn bound(
             elems: &elems,
             u_eq: &u_eq[b],
             u_cmp: &v[b],
+            u_norm: &u_h[b],
             d: dm,
             body_force: body.body_force,
             given: &given[b],
@@ -584,7 +585,7 @@ pub fn bound(
             return Err("the equilibrated tractions do not balance an element");
         }
         squared += out.indicators.iter().sum::<f64>();
-        norm2 += energy_norm2(&mesh.nodes, &elems, &u_h[b], &dm);
+        norm2 += out.norm2;
     }
     let work: f64 = (0..dofs.free.len())
         .map(|g| {
@@ -620,28 +621,4 @@ fn body_of(dofs: &DofMap, g: usize) -> (usize, usize) {
     let node = g / 2;
     let b = dofs.node_offset.iter().rposition(|&o| o <= node).unwrap_or(0);
     (b, g - 2 * dofs.node_offset[b])
-}
-
-/// ‖u‖²_E = Σ_K |K| ε_Kᵀ D ε_K.
-fn energy_norm2(nodes: &[[f64; 2]], elems: &[[usize; 3]], u: &[[f64; 2]], d: &[[f64; 3]; 3]) -> f64 {
-    elems
-        .iter()
-        .map(|&[a, b, c]| {
-            let (pa, pb, pc) = (nodes[a], nodes[b], nodes[c]);
-            let det = (pb[0] - pa[0]) * (pc[1] - pa[1]) - (pc[0] - pa[0]) * (pb[1] - pa[1]);
-            let g = [
-                [(pb[1] - pc[1]) / det, (pc[0] - pb[0]) / det],
-                [(pc[1] - pa[1]) / det, (pa[0] - pc[0]) / det],
-                [(pa[1] - pb[1]) / det, (pb[0] - pa[0]) / det],
-            ];
-            let mut eps = [0.0; 3];
-            for (i, &n) in [a, b, c].iter().enumerate() {
-                eps[0] += g[i][0] * u[n][0];
-                eps[1] += g[i][1] * u[n][1];
-                eps[2] += g[i][1] * u[n][0] + g[i][0] * u[n][1];
-            }
-            let s: [f64; 3] = std::array::from_fn(|r| (0..3).map(|c| d[r][c] * eps[c]).sum());
-            0.5 * det.abs() * (s[0] * eps[0] + s[1] * eps[1] + s[2] * eps[2])
-        })
-        .sum()
 }
