@@ -363,21 +363,21 @@ pub fn stress(p: &[[f64; 2]; 3], t: &[[[f64; 2]; 2]; 3]) -> Option<SubStress> {
             *h += d * t;
         }
     }
+    // (A⁻ᵀ Ĥ A⁻¹)_rs = Σ inv[k][r] Ĥ_kl inv[l][s] with Ĥ = [[ξξ, ξη], [ξη, ηη]]:
+    // the map from (ξξ, ηη, ξη) to (xx, yy, xy), once per element.
+    let map: [[f64; 3]; 3] = std::array::from_fn(|o| {
+        let (r, s) = [(0, 0), (1, 1), (0, 1)][o];
+        [
+            inv[0][r] * inv[0][s],
+            inv[1][r] * inv[1][s],
+            inv[0][r] * inv[1][s] + inv[1][r] * inv[0][s],
+        ]
+    });
     for j in 0..3 {
         for q in 0..3 {
             let hh = &hess[9 * j + 3 * q..9 * j + 3 * q + 3];
-            let hr = [[hh[0], hh[2]], [hh[2], hh[1]]];
-            // (A⁻ᵀ Ĥ A⁻¹)_rs = Σ inv[k][r] Ĥ_kl inv[l][s].
-            let phys = |r: usize, s: usize| -> f64 {
-                let mut v = 0.0;
-                for k in 0..2 {
-                    for l in 0..2 {
-                        v += inv[k][r] * hr[k][l] * inv[l][s];
-                    }
-                }
-                v
-            };
-            let (pxx, pyy, pxy) = (phys(0, 0), phys(1, 1), phys(0, 1));
+            let [pxx, pyy, pxy]: [f64; 3] =
+                std::array::from_fn(|o| map[o][0] * hh[0] + map[o][1] * hh[1] + map[o][2] * hh[2]);
             out.at[j][q] = [pyy, pxx, -pxy];
             let x = rp[j][q];
             out.points[j][q] = [

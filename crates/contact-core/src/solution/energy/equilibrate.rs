@@ -20,9 +20,11 @@
 //! pressure, a free surface) t̂ is that traction; on sides with a prescribed
 //! displacement component that component is sought like an inner side's.
 //!
-//! Length: about 620 lines, a sixth of them the patch test; the node
+//! Length: about 700 lines, a seventh of them the patch test; the node
 //! systems (the general one and an inner node's fan), the sides' tractions
-//! and the elements' energies share the side numbering and belong together.
+//! and the elements' energies share the side numbering and belong together
+//! (the numbering, the walk's packed elements and the reused buffers are
+//! what keeps the bound a small share of a solve).
 
 use super::airy;
 use std::collections::HashMap;
@@ -198,16 +200,21 @@ fn traction(s: [f64; 3], n: [f64; 2]) -> [f64; 2] {
     [s[0] * n[0] + s[2] * n[1], s[2] * n[0] + s[1] * n[1]]
 }
 
-/// What an element holds for the node systems, in one place (read together
-/// around every node).
+/// What the walk around a node reads of an element, in one place (a walk
+/// is a string of cache misses otherwise: corners, sides, stress and
+/// gradients in arrays of their own).
+struct Walk {
+    corners: [u32; 3],
+    sides: [u32; 3],
+    /// Each corner's row y = ∫_K σ_h : ε(φ_i) − ∫_K f φ_i, per component.
+    y: [[f64; 2]; 3],
+}
+
+/// What the node systems read, element by element and side by side.
 struct Around<'a> {
-    corners: &'a [[u32; 3]],
-    geo: &'a [Geometry],
-    elem_sides: &'a [[usize; 3]],
+    walk: &'a [Walk],
     sides: &'a [Side],
-    s_eq: &'a [[f64; 3]],
     smooth: &'a [[f64; 3]],
-    f: [f64; 2],
 }
 
 /// The projections b of an inner node's sides, both components in one walk
@@ -219,11 +226,12 @@ struct Around<'a> {
 /// boundary or its elements do not close around it.
 fn inner_node(node: usize, elems: &[u32], at: &Around, fan: &mut Vec<Step>, proj: &mut [[[f64; 2]; 2]]) -> bool {
     fan.clear();
-    let corner = |k: usize| at.corners[k].iter().position(|&n| n as usize == node).unwrap_or(0);
+    let corner = |k: usize| at.walk[k].corners.iter().position(|&n| n as usize == node).unwrap_or(0);
+    let sides_of = |k: usize| at.walk[k].sides.map(|id| id as usize);
     let first = elems[0] as usize;
     let mut k = first;
     let mut c_at = corner(k);
-    let mut side = sides_at(&at.elem_sides[k], c_at)[0];
+    let mut side = sides_at(&sides_of(k), c_at)[0];
     let (mut d, mut num, mut den) = ([0.0; 2], [0.0; 2], 0.0);
     let sn = at.smooth[node];
     for _ in 0..elems.len() {
@@ -234,8 +242,7 @@ fn inner_node(node: usize, elems: &[u32], at: &Around, fan: &mut Vec<Step>, proj
         let eta = if sd.elems[0] == k { 1.0 } else { -1.0 };
         let other = sd.ends[0] + sd.ends[1] - node;
         let (tn, to) = (traction(sn, sd.normal), traction(at.smooth[other], sd.normal));
-        let (_, grads, area) = &at.geo[k];
-        let ty = traction(at.s_eq[k], grads[c_at]);
+        let y = at.walk[k].y[c_at];
         fan.push(Step {
             side,
             end: if sd.ends[0] == node { 0 } else { 1 },
@@ -245,11 +252,10 @@ fn inner_node(node: usize, elems: &[u32], at: &Around, fan: &mut Vec<Step>, proj
         for c in 0..2 {
             let bbar = sd.len * (2.0 * tn[c] + to[c]) / 6.0;
             num[c] += (eta * bbar - d[c]) / sd.len;
-            let y = area * ty[c] - at.f[c] * area / 3.0;
-            d[c] -= y;
+            d[c] -= y[c];
         }
         den += 1.0 / sd.len;
-        let two = sides_at(&at.elem_sides[k], c_at);
+        let two = sides_at(&sides_of(k), c_at);
         let out = if two[0] == side { two[1] } else { two[0] };
         let next = &at.sides[out];
         if next.elems[1] == NONE {
@@ -326,7 +332,10 @@ pub fn bound(inp: &Input) -> Option<Bound> {
             }
             let (a, b) = (e[j], e[(j + 1) % 3]);
             let (pa, pb) = (inp.nodes[a], inp.nodes[b]);
-            let len = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+            // A plain root, not hypot (whose guard against overflow is slow,
+            // once per side): a side is far from overflow.
+            let (dx, dy) = (pb[0] - pa[0], pb[1] - pa[1]);
+            let len = (dx * dx + dy * dy).sqrt();
             let id = sides.len();
             let mut side = Side {
                 ends: [a, b],
@@ -404,14 +413,23 @@ pub fn bound(inp: &Input) -> Option<Bound> {
     let (mut cols, mut last): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
     let (mut a, mut m, mut y, mut bbar, mut wt, mut skip) = (vec![], vec![], vec![], vec![], vec![], vec![]);
     let mut fan: Vec<Step> = Vec::new();
+    let walk: Vec<Walk> = geo
+        .iter()
+        .zip(&s_eq)
+        .zip(&elem_sides)
+        .map(|(((e, grads, area), s), ids)| Walk {
+            corners: e.map(|n| n as u32),
+            sides: ids.map(|id| id as u32),
+            y: std::array::from_fn(|i| {
+                let ty = traction(*s, grads[i]);
+                std::array::from_fn(|c| area * ty[c] - f[c] * area / 3.0)
+            }),
+        })
+        .collect();
     let around = Around {
-        corners: &corners,
-        geo: &geo,
-        elem_sides: &elem_sides,
+        walk: &walk,
         sides: &sides,
-        s_eq: &s_eq,
         smooth: &smooth,
-        f,
     };
     for node in 0..inp.nodes.len() {
         let elems = elems_at(node);

@@ -26,7 +26,7 @@
 //! change under that replacement is one solve with the factor at hand. A
 //! side in contact where the normal turns otherwise is out of reach.
 //!
-//! Length: about 520 lines, the bound's data from the scene (loads,
+//! Length: about 620 lines, the bound's data from the scene (loads,
 //! supports, the contact pressure, the admissibility correction, the contact
 //! term) in one pass over the same sides; the equilibration, the Airy stress
 //! and a punch's balance are modules of their own.
@@ -38,7 +38,6 @@ mod punch;
 use std::collections::HashMap;
 
 use faer::sparse::SparseColMat;
-use faer::Mat;
 
 use crate::contact::free_motions::Motion;
 use crate::contact::gap::closest;
@@ -396,9 +395,10 @@ pub fn bound(
             }
         }
     }
-    let mut rhs = Mat::<f64>::from_fn(dofs.n_free, 1, |i, _| d[i]);
-    factor.solve_in_place(rhs.as_mut());
-    let w2: Vec<f64> = (0..dofs.n_free).map(|i| rhs[(i, 0)]).collect();
+    // d is zero but at the contact sides' nodes: its forward sweep works
+    // the supernodes their DOFs reach alone.
+    let y = factor.forward_sparse(&d);
+    let w2 = factor.backward(&y);
     let shift = sym_lower_matvec(k, &w2)
         .iter()
         .zip(&w2)
@@ -406,16 +406,16 @@ pub fn bound(
         .sum::<f64>()
         .max(0.0)
         .sqrt();
-    let moved = |b: usize, n: usize, c: usize, w: &Mat<f64>| match dofs.free[dofs.dof(b, n, c)] {
+    let moved = |b: usize, n: usize, c: usize, w: &[f64]| match dofs.free[dofs.dof(b, n, c)] {
         FIXED => 0.0,
-        i => w[(i, 0)],
+        i => w[i],
     };
     let u_eq: Vec<Vec<[f64; 2]>> = u_h
         .iter()
         .enumerate()
         .map(|(b, nodes)| {
             (0..nodes.len())
-                .map(|n| [nodes[n][0] + moved(b, n, 0, &rhs), nodes[n][1] + moved(b, n, 1, &rhs)])
+                .map(|n| [nodes[n][0] + moved(b, n, 0, &w2), nodes[n][1] + moved(b, n, 1, &w2)])
                 .collect()
         })
         .collect();
