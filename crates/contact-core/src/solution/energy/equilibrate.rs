@@ -23,8 +23,8 @@
 //! Length: about 700 lines, a seventh of them the patch test; the node
 //! systems (the general one and an inner node's fan), the sides' tractions
 //! and the elements' energies share the side numbering and belong together
-//! (the numbering, the walk's packed elements and the reused buffers are
-//! what keeps the bound a small share of a solve).
+//! (the numbering, the elements' rows kept for the walk and the reused
+//! buffers are what keeps the bound a small share of a solve).
 
 use super::airy;
 use std::collections::HashMap;
@@ -200,19 +200,13 @@ fn traction(s: [f64; 3], n: [f64; 2]) -> [f64; 2] {
     [s[0] * n[0] + s[2] * n[1], s[2] * n[0] + s[1] * n[1]]
 }
 
-/// What the walk around a node reads of an element, in one place (a walk
-/// is a string of cache misses otherwise: corners, sides, stress and
-/// gradients in arrays of their own).
-struct Walk {
-    corners: [u32; 3],
-    sides: [u32; 3],
-    /// Each corner's row y = ∫_K σ_h : ε(φ_i) − ∫_K f φ_i, per component.
-    y: [[f64; 2]; 3],
-}
-
 /// What the node systems read, element by element and side by side.
 struct Around<'a> {
-    walk: &'a [Walk],
+    corners: &'a [[u32; 3]],
+    elem_sides: &'a [[usize; 3]],
+    /// Each element's rows, per corner i and component:
+    /// ∫_K σ_h : ε(φ_i) − ∫_K f φ_i.
+    rows: &'a [[[f64; 2]; 3]],
     sides: &'a [Side],
     smooth: &'a [[f64; 3]],
 }
@@ -226,8 +220,8 @@ struct Around<'a> {
 /// boundary or its elements do not close around it.
 fn inner_node(node: usize, elems: &[u32], at: &Around, fan: &mut Vec<Step>, proj: &mut [[[f64; 2]; 2]]) -> bool {
     fan.clear();
-    let corner = |k: usize| at.walk[k].corners.iter().position(|&n| n as usize == node).unwrap_or(0);
-    let sides_of = |k: usize| at.walk[k].sides.map(|id| id as usize);
+    let corner = |k: usize| at.corners[k].iter().position(|&n| n as usize == node).unwrap_or(0);
+    let sides_of = |k: usize| at.elem_sides[k];
     let first = elems[0] as usize;
     let mut k = first;
     let mut c_at = corner(k);
@@ -242,7 +236,7 @@ fn inner_node(node: usize, elems: &[u32], at: &Around, fan: &mut Vec<Step>, proj
         let eta = if sd.elems[0] == k { 1.0 } else { -1.0 };
         let other = sd.ends[0] + sd.ends[1] - node;
         let (tn, to) = (traction(sn, sd.normal), traction(at.smooth[other], sd.normal));
-        let y = at.walk[k].y[c_at];
+        let y = at.rows[k][c_at];
         fan.push(Step {
             side,
             end: if sd.ends[0] == node { 0 } else { 1 },
@@ -285,22 +279,48 @@ fn inner_node(node: usize, elems: &[u32], at: &Around, fan: &mut Vec<Step>, proj
 /// for a degenerate element.
 pub fn bound(inp: &Input) -> Option<Bound> {
     let ne = inp.elems.len();
-    let mut geo = Vec::with_capacity(ne);
-    let mut s_eq = Vec::with_capacity(ne);
+    let f = inp.body_force;
+    // One pass over the elements keeps what the node systems need of σ_h:
+    // the corners in 32 bits, each corner's row and the nodal stresses,
+    // averaged over each node's elements (by area): the tractions sought
+    // stay closest to theirs, which are nearer the exact traction than
+    // either element's own (Zienkiewicz–Zhu recovery). The gradients are
+    // made again where they are needed next: cheaper than the first touch
+    // of the memory that would keep them (about a millisecond per megabyte,
+    // measured with perf on the roller example's fresh process).
+    let mut corners: Vec<[u32; 3]> = Vec::with_capacity(ne);
+    let mut rows: Vec<[[f64; 2]; 3]> = Vec::with_capacity(ne);
+    let mut smooth = vec![[0.0; 3]; inp.nodes.len()];
+    let mut weight = vec![0.0; inp.nodes.len()];
     for &e in inp.elems {
-        let g = geometry(inp.nodes, e);
-        if g.2 <= 0.0 {
+        let (e, grads, area) = geometry(inp.nodes, e);
+        if area <= 0.0 {
             return None;
         }
-        s_eq.push(stress(&inp.d, &g.1, g.0, inp.u_eq));
-        geo.push(g);
+        let s = stress(&inp.d, &grads, e, inp.u_eq);
+        for &n in &e {
+            for r in 0..3 {
+                smooth[n][r] += area * s[r];
+            }
+            weight[n] += area;
+        }
+        rows.push(std::array::from_fn(|i| {
+            let ty = traction(s, grads[i]);
+            std::array::from_fn(|c| area * ty[c] - f[c] * area / 3.0)
+        }));
+        corners.push(e.map(|n| n as u32));
+    }
+    for (s, w) in smooth.iter_mut().zip(&weight) {
+        if *w > 0.0 {
+            s.iter_mut().for_each(|v| *v /= w);
+        }
     }
     // Elements around each node, in increasing order (a counting sort into
     // one array instead of a list per node: no allocation per node).
     let mut node_start = vec![0usize; inp.nodes.len() + 1];
-    for (e, _, _) in &geo {
+    for e in &corners {
         for &n in e {
-            node_start[n + 1] += 1;
+            node_start[n as usize + 1] += 1;
         }
     }
     for n in 0..inp.nodes.len() {
@@ -308,16 +328,13 @@ pub fn bound(inp: &Input) -> Option<Bound> {
     }
     let mut node_list = vec![0u32; node_start[inp.nodes.len()]];
     let mut fill = node_start.clone();
-    for (k, (e, _, _)) in geo.iter().enumerate() {
-        for &n in e {
+    for (k, e) in corners.iter().enumerate() {
+        for n in e.map(|n| n as usize) {
             node_list[fill[n]] = k as u32;
             fill[n] += 1;
         }
     }
     let elems_at = |n: usize| &node_list[node_start[n]..node_start[n + 1]];
-    // The corners again, in 32 bits: small enough to stay in cache while
-    // the sides' neighbours and the nodes' fans are looked up in them.
-    let corners: Vec<[u32; 3]> = geo.iter().map(|g| g.0.map(|n| n as u32)).collect();
     // Sides, oriented by their first (lowest-numbered) element's
     // counter-clockwise walk; the other element is found among the
     // elements of the side's first corner (the elements in turn, so a
@@ -325,7 +342,7 @@ pub fn bound(inp: &Input) -> Option<Bound> {
     let mut sides: Vec<Side> = Vec::with_capacity(2 * ne);
     let mut elem_sides = vec![[NONE; 3]; ne];
     for k in 0..ne {
-        let e = geo[k].0;
+        let e = corners[k].map(|n| n as usize);
         for j in 0..3 {
             if elem_sides[k][j] != NONE {
                 continue;
@@ -391,43 +408,13 @@ pub fn bound(inp: &Input) -> Option<Bound> {
             }
         }
     }
-    // Nodal stresses averaged over each node's elements (by area): the
-    // tractions sought stay closest to theirs, which are nearer the exact
-    // traction than either element's own (Zienkiewicz–Zhu recovery).
-    let mut smooth = vec![[0.0; 3]; inp.nodes.len()];
-    let mut weight = vec![0.0; inp.nodes.len()];
-    for (k, (e, _, area)) in geo.iter().enumerate() {
-        for &n in e {
-            for r in 0..3 {
-                smooth[n][r] += area * s_eq[k][r];
-            }
-            weight[n] += area;
-        }
-    }
-    for (s, w) in smooth.iter_mut().zip(&weight) {
-        if *w > 0.0 {
-            s.iter_mut().for_each(|v| *v /= w);
-        }
-    }
-    let f = inp.body_force;
     let (mut cols, mut last): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
     let (mut a, mut m, mut y, mut bbar, mut wt, mut skip) = (vec![], vec![], vec![], vec![], vec![], vec![]);
     let mut fan: Vec<Step> = Vec::new();
-    let walk: Vec<Walk> = geo
-        .iter()
-        .zip(&s_eq)
-        .zip(&elem_sides)
-        .map(|(((e, grads, area), s), ids)| Walk {
-            corners: e.map(|n| n as u32),
-            sides: ids.map(|id| id as u32),
-            y: std::array::from_fn(|i| {
-                let ty = traction(*s, grads[i]);
-                std::array::from_fn(|c| area * ty[c] - f[c] * area / 3.0)
-            }),
-        })
-        .collect();
     let around = Around {
-        walk: &walk,
+        corners: &corners,
+        elem_sides: &elem_sides,
+        rows: &rows,
         sides: &sides,
         smooth: &smooth,
     };
@@ -461,16 +448,8 @@ pub fn bound(inp: &Input) -> Option<Bound> {
             y.clear();
             y.resize(nr, 0.0);
             for (r, k) in elems.iter().map(|&k| k as usize).enumerate() {
-                let (e, grads, area) = &geo[k];
-                let i = e.iter().position(|&n| n == node).unwrap_or(0);
-                let s = s_eq[k];
-                let g = grads[i];
-                let q = if c == 0 {
-                    s[0] * g[0] + s[2] * g[1]
-                } else {
-                    s[2] * g[0] + s[1] * g[1]
-                };
-                let mut rhs = area * q - f[c] * area / 3.0;
+                let i = corners[k].iter().position(|&n| n as usize == node).unwrap_or(0);
+                let mut rhs = rows[k][i][c];
                 for &id in &elem_sides[k] {
                     let sd = &sides[id];
                     let Some(end) = sd.ends.iter().position(|&n| n == node) else {
@@ -535,8 +514,10 @@ pub fn bound(inp: &Input) -> Option<Bound> {
     let mut indicators = vec![0.0; ne];
     let (mut closure, mut scale) = (0.0_f64, 0.0_f64);
     let mut norm2 = 0.0;
-    for (k, (e, grads, area)) in geo.iter().enumerate() {
-        let eps = strain(grads, *e, inp.u_norm);
+    for (k, &elem) in inp.elems.iter().enumerate() {
+        let (e, grads, area) = geometry(inp.nodes, elem);
+        let grads = &grads;
+        let eps = strain(grads, e, inp.u_norm);
         let sn: [f64; 3] = std::array::from_fn(|r| (0..3).map(|c| inp.d[r][c] * eps[c]).sum());
         norm2 += area * (sn[0] * eps[0] + sn[1] * eps[1] + sn[2] * eps[2]);
         let p = [inp.nodes[e[0]], inp.nodes[e[1]], inp.nodes[e[2]]];
@@ -570,7 +551,7 @@ pub fn bound(inp: &Input) -> Option<Bound> {
         let sub = airy::stress(&p, &t)?;
         closure = closure.max(sub.closure);
         scale = scale.max(sub.scale);
-        let sh = stress(&inp.d, grads, *e, inp.u_cmp);
+        let sh = stress(&inp.d, grads, e, inp.u_cmp);
         scale = scale.max(sh.iter().fold(0.0_f64, |m, v| m.max(v.abs())));
         let mut sum = 0.0;
         for j in 0..3 {
