@@ -561,15 +561,13 @@ pub fn bound(
                 <crate::fem::constitutive::LinearIsotropic as Constitutive<3>>::stress(&law, &e)[r]
             })
         });
-        let elems: Vec<[usize; 3]> = (0..mesh.n_elems())
-            .map(|e| {
-                let c = mesh.elem(e);
-                [c[0], c[1], c[2]]
-            })
-            .collect();
+        // Linear triangles (`unsupported`): three corners per element, read
+        // in place rather than copied.
+        let (elems, rest) = mesh.elems.as_chunks::<3>();
+        debug_assert!(rest.is_empty() && elems.len() == mesh.n_elems());
         let inp = equilibrate::Input {
             nodes: &mesh.nodes,
-            elems: &elems,
+            elems,
             u_eq: &u_eq[b],
             u_cmp: &v[b],
             u_norm: &u_h[b],
