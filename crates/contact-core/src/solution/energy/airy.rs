@@ -237,14 +237,17 @@ fn reference_points() -> [[[f64; 2]; 3]; 3] {
 /// space of one triangle onto another's (cubics, the centroid split and C¹
 /// all map), so every element reads its Hessians from this one table.
 /// Degrees of freedom: φ, φ_ξ, φ_η at each corner, then the derivative
-/// along each side's reference normal at its midpoint.
-fn reference_table() -> &'static [[[[f64; 3]; 12]; 3]; 3] {
-    static TABLE: std::sync::OnceLock<[[[[f64; 3]; 12]; 3]; 3]> = std::sync::OnceLock::new();
+/// along each side's reference normal at its midpoint. Laid out by degree of
+/// freedom, the 27 values of one (sub-triangle j, point q, component r at
+/// 9 j + 3 q + r) in a row: `stress` sums the rows weighted by the degrees
+/// of freedom, all 27 sums at once (independent, so they vectorise).
+fn reference_table() -> &'static [[f64; 27]; 12] {
+    static TABLE: std::sync::OnceLock<[[f64; 27]; 12]> = std::sync::OnceLock::new();
     TABLE.get_or_init(|| {
         let pts = reference_points();
         let h = longest(&REFERENCE);
         let c = [1.0 / 3.0, 1.0 / 3.0];
-        let mut table = [[[[0.0; 3]; 12]; 3]; 3];
+        let mut table = [[0.0; 27]; 12];
         for m in 0..12 {
             let mut phi = [0.0; 3];
             let mut grad = [[0.0; 2]; 3];
@@ -263,7 +266,7 @@ fn reference_table() -> &'static [[[[f64; 3]; 12]; 3]; 3] {
                     let x = pts[j][q];
                     let d2 = mono_2([(x[0] - c[0]) / h, (x[1] - c[1]) / h]);
                     for r in 0..3 {
-                        table[j][q][m][r] = dot(&d2[r], &coef[j]) / (h * h);
+                        table[m][9 * j + 3 * q + r] = dot(&d2[r], &coef[j]) / (h * h);
                     }
                 }
             }
@@ -311,7 +314,10 @@ pub fn stress(p: &[[f64; 2]; 3], t: &[[[f64; 2]; 2]; 3]) -> Option<SubStress> {
         phi[j + 1] = phi[j] + dot(&g0, &d) + l * dot(&third, &d);
         grad[j + 1] = [g0[0] + l * whole[0], g0[1] + l * whole[1]];
     }
-    let closure = ((grad[3][0] - grad[0][0]).hypot(grad[3][1] - grad[0][1]) / h).max((phi[3] - phi[0]).abs() / (h * h));
+    // A plain root, not hypot (whose guard against overflow is slow, once per
+    // element): the gap is a round-off-sized traction, far from overflow.
+    let (gx, gy) = (grad[3][0] - grad[0][0], grad[3][1] - grad[0][1]);
+    let closure = ((gx * gx + gy * gy).sqrt() / h).max((phi[3] - phi[0]).abs() / (h * h));
     // x = p0 + A ξ: reference gradients are Aᵀ ∇φ, the reference normal
     // derivative at a midpoint is Aᵀ ∇φ there along the reference normal.
     let a = [
@@ -348,27 +354,30 @@ pub fn stress(p: &[[f64; 2]; 3], t: &[[[f64; 2]; 2]; 3]) -> Option<SubStress> {
         closure,
         scale,
     };
+    // The reference Hessians at the nine points, summed in the order of the
+    // degrees of freedom; the first three (φ and ∇φ at p[0]) are 0 by the
+    // walk's start, and adding their zero products would change nothing.
+    let mut hess = [0.0; 27];
+    for (d, row) in dofs.iter().zip(table).skip(3) {
+        for (h, t) in hess.iter_mut().zip(row) {
+            *h += d * t;
+        }
+    }
+    // (A⁻ᵀ Ĥ A⁻¹)_rs = Σ inv[k][r] Ĥ_kl inv[l][s] with Ĥ = [[ξξ, ξη], [ξη, ηη]]:
+    // the map from (ξξ, ηη, ξη) to (xx, yy, xy), once per element.
+    let map: [[f64; 3]; 3] = std::array::from_fn(|o| {
+        let (r, s) = [(0, 0), (1, 1), (0, 1)][o];
+        [
+            inv[0][r] * inv[0][s],
+            inv[1][r] * inv[1][s],
+            inv[0][r] * inv[1][s] + inv[1][r] * inv[0][s],
+        ]
+    });
     for j in 0..3 {
         for q in 0..3 {
-            let mut hh = [0.0; 3];
-            for (m, d) in dofs.iter().enumerate() {
-                let row = &table[j][q][m];
-                hh[0] += d * row[0];
-                hh[1] += d * row[1];
-                hh[2] += d * row[2];
-            }
-            let hr = [[hh[0], hh[2]], [hh[2], hh[1]]];
-            // (A⁻ᵀ Ĥ A⁻¹)_rs = Σ inv[k][r] Ĥ_kl inv[l][s].
-            let phys = |r: usize, s: usize| -> f64 {
-                let mut v = 0.0;
-                for k in 0..2 {
-                    for l in 0..2 {
-                        v += inv[k][r] * hr[k][l] * inv[l][s];
-                    }
-                }
-                v
-            };
-            let (pxx, pyy, pxy) = (phys(0, 0), phys(1, 1), phys(0, 1));
+            let hh = &hess[9 * j + 3 * q..9 * j + 3 * q + 3];
+            let [pxx, pyy, pxy]: [f64; 3] =
+                std::array::from_fn(|o| map[o][0] * hh[0] + map[o][1] * hh[1] + map[o][2] * hh[2]);
             out.at[j][q] = [pyy, pxx, -pxy];
             let x = rp[j][q];
             out.points[j][q] = [

@@ -20,9 +20,11 @@
 //! pressure, a free surface) t̂ is that traction; on sides with a prescribed
 //! displacement component that component is sought like an inner side's.
 //!
-//! Length: about 620 lines, a sixth of them the patch test; the node
+//! Length: about 700 lines, a seventh of them the patch test; the node
 //! systems (the general one and an inner node's fan), the sides' tractions
-//! and the elements' energies share the side numbering and belong together.
+//! and the elements' energies share the side numbering and belong together
+//! (the numbering, the elements' rows kept for the walk and the reused
+//! buffers are what keeps the bound a small share of a solve).
 
 use super::airy;
 use std::collections::HashMap;
@@ -46,6 +48,9 @@ pub struct Input<'a> {
     pub u_eq: &'a [[f64; 2]],
     /// The displacement whose stress is compared with the admissible one.
     pub u_cmp: &'a [[f64; 2]],
+    /// The displacement whose energy ‖u‖²_E is summed alongside (the
+    /// answer's own norm), on the gradients the equilibration has at hand.
+    pub u_norm: &'a [[f64; 2]],
     /// Plane D (Voigt xx, yy, xy with engineering shear).
     pub d: [[f64; 3]; 3],
     pub body_force: [f64; 2],
@@ -62,6 +67,8 @@ pub struct Input<'a> {
 pub struct Bound {
     pub indicators: Vec<f64>,
     pub closure: f64,
+    /// ‖u_norm‖²_E = Σ_K |K| ε_Kᵀ D ε_K.
+    pub norm2: f64,
 }
 
 struct Side {
@@ -106,7 +113,8 @@ fn geometry(nodes: &[[f64; 2]], e: [usize; 3]) -> Geometry {
     (e, grads, two_a / 2.0)
 }
 
-fn stress(d: &[[f64; 3]; 3], grads: &[[f64; 2]; 3], e: [usize; 3], u: &[[f64; 2]]) -> [f64; 3] {
+/// ε (xx, yy, engineering xy) of `u` on the element with corners `e`.
+fn strain(grads: &[[f64; 2]; 3], e: [usize; 3], u: &[[f64; 2]]) -> [f64; 3] {
     let mut eps = [0.0; 3];
     for (i, g) in grads.iter().enumerate() {
         let ui = u[e[i]];
@@ -114,6 +122,11 @@ fn stress(d: &[[f64; 3]; 3], grads: &[[f64; 2]; 3], e: [usize; 3], u: &[[f64; 2]
         eps[1] += g[1] * ui[1];
         eps[2] += g[1] * ui[0] + g[0] * ui[1];
     }
+    eps
+}
+
+fn stress(d: &[[f64; 3]; 3], grads: &[[f64; 2]; 3], e: [usize; 3], u: &[[f64; 2]]) -> [f64; 3] {
+    let eps = strain(grads, e, u);
     std::array::from_fn(|r| (0..3).map(|c| d[r][c] * eps[c]).sum())
 }
 
@@ -161,39 +174,84 @@ pub(super) fn solve_factored(m: &[f64], skip: &[bool], rhs: &mut [f64], n: usize
     }
 }
 
-/// The elements around an inner node in turn, each with the side it is
-/// entered by (the next one's is the side it is left by); false where the
-/// node is on the boundary or its elements do not close around it.
-fn fan_of(
-    node: usize,
-    elems: &[usize],
-    elem_sides: &[[usize; 3]],
-    sides: &[Side],
-    fan: &mut Vec<(usize, usize)>,
-) -> bool {
+/// One element of an inner node's fan: the side it is entered by, the
+/// node's end of that side, the side's sign η for the element and the
+/// running sum d before it.
+#[derive(Clone, Copy)]
+struct Step {
+    side: usize,
+    end: usize,
+    eta: f64,
+    d: [f64; 2],
+}
+
+/// The two sides of an element at its corner `at`, in the element's side
+/// order (side j runs from corner j to corner j + 1).
+fn sides_at(sides_of: &[usize; 3], at: usize) -> [usize; 2] {
+    match at {
+        0 => [sides_of[0], sides_of[2]],
+        1 => [sides_of[0], sides_of[1]],
+        _ => [sides_of[1], sides_of[2]],
+    }
+}
+
+/// A side's traction components from a stress (xx, yy, xy) and a normal.
+fn traction(s: [f64; 3], n: [f64; 2]) -> [f64; 2] {
+    [s[0] * n[0] + s[2] * n[1], s[2] * n[0] + s[1] * n[1]]
+}
+
+/// What the node systems read, element by element and side by side.
+struct Around<'a> {
+    corners: &'a [[u32; 3]],
+    elem_sides: &'a [[usize; 3]],
+    /// Each element's rows, per corner i and component:
+    /// ∫_K σ_h : ε(φ_i) − ∫_K f φ_i.
+    rows: &'a [[[f64; 2]; 3]],
+    sides: &'a [Side],
+    smooth: &'a [[f64; 3]],
+}
+
+/// The projections b of an inner node's sides, both components in one walk
+/// around its elements in turn, each entered by a side (the next one's is
+/// the side it is left by): element k's row reads c_k − c_{k+1} = y_k with
+/// c_k = η b of the side it is entered by, so c_k = t + d_k with d the
+/// running sum of −y, and t keeps Σ (b − b̄)² / |Γ| least (the general
+/// path's choice). False, with nothing written, where the node is on the
+/// boundary or its elements do not close around it.
+fn inner_node(node: usize, elems: &[u32], at: &Around, fan: &mut Vec<Step>, proj: &mut [[[f64; 2]; 2]]) -> bool {
     fan.clear();
-    let at_node = |k: usize| {
-        let mut two = [NONE; 2];
-        let mut i = 0;
-        for &id in &elem_sides[k] {
-            if sides[id].ends.contains(&node) && i < 2 {
-                two[i] = id;
-                i += 1;
-            }
-        }
-        two
-    };
-    let (first, mut side) = (elems[0], at_node(elems[0])[0]);
+    let corner = |k: usize| at.corners[k].iter().position(|&n| n as usize == node).unwrap_or(0);
+    let sides_of = |k: usize| at.elem_sides[k];
+    let first = elems[0] as usize;
     let mut k = first;
+    let mut c_at = corner(k);
+    let mut side = sides_at(&sides_of(k), c_at)[0];
+    let (mut d, mut num, mut den) = ([0.0; 2], [0.0; 2], 0.0);
+    let sn = at.smooth[node];
     for _ in 0..elems.len() {
-        let sd = &sides[side];
+        let sd = &at.sides[side];
         if sd.elems[1] == NONE {
             return false;
         }
-        fan.push((k, side));
-        let two = at_node(k);
+        let eta = if sd.elems[0] == k { 1.0 } else { -1.0 };
+        let other = sd.ends[0] + sd.ends[1] - node;
+        let (tn, to) = (traction(sn, sd.normal), traction(at.smooth[other], sd.normal));
+        let y = at.rows[k][c_at];
+        fan.push(Step {
+            side,
+            end: if sd.ends[0] == node { 0 } else { 1 },
+            eta,
+            d,
+        });
+        for c in 0..2 {
+            let bbar = sd.len * (2.0 * tn[c] + to[c]) / 6.0;
+            num[c] += (eta * bbar - d[c]) / sd.len;
+            d[c] -= y[c];
+        }
+        den += 1.0 / sd.len;
+        let two = sides_at(&sides_of(k), c_at);
         let out = if two[0] == side { two[1] } else { two[0] };
-        let next = &sides[out];
+        let next = &at.sides[out];
         if next.elems[1] == NONE {
             return false;
         }
@@ -202,117 +260,126 @@ fn fan_of(
         } else {
             next.elems[0]
         };
+        c_at = corner(k);
         side = out;
     }
-    k == first && side == fan[0].1
-}
-
-/// The projections b of an inner node's sides for component c: around the
-/// fan, element k's row reads c_k − c_{k+1} = y_k with c_k = η b of the side
-/// it is entered by, so c_k = t + d_k with d the running sum of −y, and t
-/// keeps Σ (b − b̄)² / |Γ| least (the general path's choice).
-#[allow(clippy::too_many_arguments)]
-fn inner_node(
-    node: usize,
-    c: usize,
-    fan: &[(usize, usize)],
-    geo: &[Geometry],
-    s_eq: &[[f64; 3]],
-    smooth: &[[f64; 3]],
-    f: [f64; 2],
-    sides: &[Side],
-    proj: &mut [[[f64; 2]; 2]],
-) {
-    let traction = |s: [f64; 3], n: [f64; 2]| {
-        if c == 0 {
-            s[0] * n[0] + s[2] * n[1]
-        } else {
-            s[2] * n[0] + s[1] * n[1]
-        }
-    };
-    let (mut d, mut num, mut den) = (0.0, 0.0, 0.0);
-    let mut ds = [0.0; 16];
-    let many = fan.len() > ds.len();
-    let mut dv = Vec::new();
-    for (i, &(k, side)) in fan.iter().enumerate() {
-        let sd = &sides[side];
-        let eta = if sd.elems[0] == k { 1.0 } else { -1.0 };
-        let other = sd.ends[0] + sd.ends[1] - node;
-        let bbar = sd.len * (2.0 * traction(smooth[node], sd.normal) + traction(smooth[other], sd.normal)) / 6.0;
-        num += (eta * bbar - d) / sd.len;
-        den += 1.0 / sd.len;
-        if many {
-            dv.push(d);
-        } else {
-            ds[i] = d;
-        }
-        let (e, grads, area) = &geo[k];
-        let at = e.iter().position(|&n| n == node).unwrap_or(0);
-        let y = area * traction(s_eq[k], grads[at]) - f[c] * area / 3.0;
-        d -= y;
+    if k != first || side != fan[0].side {
+        return false;
     }
-    let t = num / den;
-    for (i, &(k, side)) in fan.iter().enumerate() {
-        let sd = &sides[side];
-        let eta = if sd.elems[0] == k { 1.0 } else { -1.0 };
-        let di = if many { dv[i] } else { ds[i] };
-        let end = if sd.ends[0] == node { 0 } else { 1 };
-        proj[side][end][c] = eta * (t + di);
+    for st in fan.iter() {
+        for c in 0..2 {
+            let t = num[c] / den;
+            proj[st.side][st.end][c] = st.eta * (t + st.d[c]);
+        }
     }
+    true
 }
 
 /// The admissible stress's distance to σ(u_cmp), element by element; None
 /// for a degenerate element.
 pub fn bound(inp: &Input) -> Option<Bound> {
     let ne = inp.elems.len();
-    let mut geo = Vec::with_capacity(ne);
-    let mut s_eq = Vec::with_capacity(ne);
+    let f = inp.body_force;
+    // One pass over the elements keeps what the node systems need of σ_h:
+    // the corners in 32 bits, each corner's row and the nodal stresses,
+    // averaged over each node's elements (by area): the tractions sought
+    // stay closest to theirs, which are nearer the exact traction than
+    // either element's own (Zienkiewicz–Zhu recovery). The gradients are
+    // made again where they are needed next: cheaper than the first touch
+    // of the memory that would keep them (about a millisecond per megabyte,
+    // measured with perf on the roller example's fresh process).
+    let mut corners: Vec<[u32; 3]> = Vec::with_capacity(ne);
+    let mut rows: Vec<[[f64; 2]; 3]> = Vec::with_capacity(ne);
+    let mut smooth = vec![[0.0; 3]; inp.nodes.len()];
+    let mut weight = vec![0.0; inp.nodes.len()];
     for &e in inp.elems {
-        let g = geometry(inp.nodes, e);
-        if g.2 <= 0.0 {
+        let (e, grads, area) = geometry(inp.nodes, e);
+        if area <= 0.0 {
             return None;
         }
-        s_eq.push(stress(&inp.d, &g.1, g.0, inp.u_eq));
-        geo.push(g);
+        let s = stress(&inp.d, &grads, e, inp.u_eq);
+        for &n in &e {
+            for r in 0..3 {
+                smooth[n][r] += area * s[r];
+            }
+            weight[n] += area;
+        }
+        rows.push(std::array::from_fn(|i| {
+            let ty = traction(s, grads[i]);
+            std::array::from_fn(|c| area * ty[c] - f[c] * area / 3.0)
+        }));
+        corners.push(e.map(|n| n as u32));
     }
-    // Sides, oriented by their first element's counter-clockwise walk: the
-    // (element, corner) half-sides sorted by their corners' pair.
-    let mut half: Vec<([usize; 2], u32, u8)> = Vec::with_capacity(3 * ne);
-    for (k, (e, _, _)) in geo.iter().enumerate() {
-        for j in 0..3 {
-            let (a, b) = (e[j], e[(j + 1) % 3]);
-            half.push(([a.min(b), a.max(b)], k as u32, j as u8));
+    for (s, w) in smooth.iter_mut().zip(&weight) {
+        if *w > 0.0 {
+            s.iter_mut().for_each(|v| *v /= w);
         }
     }
-    half.sort_unstable();
+    // Elements around each node, in increasing order (a counting sort into
+    // one array instead of a list per node: no allocation per node).
+    let mut node_start = vec![0usize; inp.nodes.len() + 1];
+    for e in &corners {
+        for &n in e {
+            node_start[n as usize + 1] += 1;
+        }
+    }
+    for n in 0..inp.nodes.len() {
+        node_start[n + 1] += node_start[n];
+    }
+    let mut node_list = vec![0u32; node_start[inp.nodes.len()]];
+    let mut fill = node_start.clone();
+    for (k, e) in corners.iter().enumerate() {
+        for n in e.map(|n| n as usize) {
+            node_list[fill[n]] = k as u32;
+            fill[n] += 1;
+        }
+    }
+    let elems_at = |n: usize| &node_list[node_start[n]..node_start[n + 1]];
+    // Sides, oriented by their first (lowest-numbered) element's
+    // counter-clockwise walk; the other element is found among the
+    // elements of the side's first corner (the elements in turn, so a
+    // side's first element numbers it).
     let mut sides: Vec<Side> = Vec::with_capacity(2 * ne);
-    let mut elem_sides = vec![[0usize; 3]; ne];
-    let mut i = 0;
-    while i < half.len() {
-        let (key, k, j) = half[i];
-        let (k, j) = (k as usize, j as usize);
-        let e = geo[k].0;
-        let (a, b) = (e[j], e[(j + 1) % 3]);
-        let (pa, pb) = (inp.nodes[a], inp.nodes[b]);
-        let len = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
-        let id = sides.len();
-        let mut side = Side {
-            ends: [a, b],
-            elems: [k, NONE],
-            normal: [(pb[1] - pa[1]) / len, -(pb[0] - pa[0]) / len],
-            len,
-        };
-        elem_sides[k][j] = id;
-        i += 1;
-        // A side has at most two elements (a third would make the mesh
-        // non-manifold, which the mesh checks refuse).
-        while i < half.len() && half[i].0 == key {
-            let (k2, j2) = (half[i].1 as usize, half[i].2 as usize);
-            side.elems[1] = k2;
-            elem_sides[k2][j2] = id;
-            i += 1;
+    let mut elem_sides = vec![[NONE; 3]; ne];
+    for k in 0..ne {
+        let e = corners[k].map(|n| n as usize);
+        for j in 0..3 {
+            if elem_sides[k][j] != NONE {
+                continue;
+            }
+            let (a, b) = (e[j], e[(j + 1) % 3]);
+            let (pa, pb) = (inp.nodes[a], inp.nodes[b]);
+            // A plain root, not hypot (whose guard against overflow is slow,
+            // once per side): a side is far from overflow.
+            let (dx, dy) = (pb[0] - pa[0], pb[1] - pa[1]);
+            let len = (dx * dx + dy * dy).sqrt();
+            let id = sides.len();
+            let mut side = Side {
+                ends: [a, b],
+                elems: [k, NONE],
+                normal: [(pb[1] - pa[1]) / len, -(pb[0] - pa[0]) / len],
+                len,
+            };
+            elem_sides[k][j] = id;
+            // A side has at most two elements (a third would make the mesh
+            // non-manifold, which the mesh checks refuse).
+            let (a32, b32) = (a as u32, b as u32);
+            for &k2 in elems_at(a) {
+                let k2 = k2 as usize;
+                if k2 <= k {
+                    continue;
+                }
+                let e2 = corners[k2];
+                if let Some(j2) = (0..3).find(|&j2| {
+                    let (c, d) = (e2[j2], e2[(j2 + 1) % 3]);
+                    (c == a32 && d == b32) || (c == b32 && d == a32)
+                }) {
+                    side.elems[1] = k2;
+                    elem_sides[k2][j2] = id;
+                }
+            }
+            sides.push(side);
         }
-        sides.push(side);
     }
     let sign = |side: &Side, k: usize| if side.elems[0] == k { 1.0 } else { -1.0 };
     // The given traction of a side at its ends, in the side's own order.
@@ -341,52 +408,31 @@ pub fn bound(inp: &Input) -> Option<Bound> {
             }
         }
     }
-    // Elements and sides around each node.
-    let mut node_elems: Vec<Vec<usize>> = vec![Vec::new(); inp.nodes.len()];
-    for (k, (e, _, _)) in geo.iter().enumerate() {
-        for &n in e {
-            node_elems[n].push(k);
-        }
-    }
-    // Nodal stresses averaged over each node's elements (by area): the
-    // tractions sought stay closest to theirs, which are nearer the exact
-    // traction than either element's own (Zienkiewicz–Zhu recovery).
-    let mut smooth = vec![[0.0; 3]; inp.nodes.len()];
-    let mut weight = vec![0.0; inp.nodes.len()];
-    for (k, (e, _, area)) in geo.iter().enumerate() {
-        for &n in e {
-            for r in 0..3 {
-                smooth[n][r] += area * s_eq[k][r];
-            }
-            weight[n] += area;
-        }
-    }
-    for (s, w) in smooth.iter_mut().zip(&weight) {
-        if *w > 0.0 {
-            s.iter_mut().for_each(|v| *v /= w);
-        }
-    }
-    let f = inp.body_force;
     let (mut cols, mut last): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
     let (mut a, mut m, mut y, mut bbar, mut wt, mut skip) = (vec![], vec![], vec![], vec![], vec![], vec![]);
-    let mut fan: Vec<(usize, usize)> = Vec::new();
-    for (node, elems) in node_elems.iter().enumerate() {
+    let mut fan: Vec<Step> = Vec::new();
+    let around = Around {
+        corners: &corners,
+        elem_sides: &elem_sides,
+        rows: &rows,
+        sides: &sides,
+        smooth: &smooth,
+    };
+    for node in 0..inp.nodes.len() {
+        let elems = elems_at(node);
         if elems.is_empty() {
             continue;
         }
-        if fan_of(node, elems, &elem_sides, &sides, &mut fan) {
+        if inner_node(node, elems, &around, &mut fan, &mut proj) {
             // A node inside: its elements and sides form a cycle, solved in
             // one pass instead of through A Aᵀ (most nodes).
-            for c in 0..2 {
-                inner_node(node, c, &fan, &geo, &s_eq, &smooth, f, &sides, &mut proj);
-            }
             continue;
         }
         last.clear();
         for c in 0..2 {
             // Unknown sides at this node, and each element's row.
             cols.clear();
-            for &k in elems {
+            for k in elems.iter().map(|&k| k as usize) {
                 for &id in &elem_sides[k] {
                     if sides[id].ends.contains(&node) && sought[id][c] && !cols.contains(&id) {
                         cols.push(id);
@@ -401,17 +447,9 @@ pub fn bound(inp: &Input) -> Option<Bound> {
             a.resize(nr * nc, 0.0);
             y.clear();
             y.resize(nr, 0.0);
-            for (r, &k) in elems.iter().enumerate() {
-                let (e, grads, area) = &geo[k];
-                let i = e.iter().position(|&n| n == node).unwrap_or(0);
-                let s = s_eq[k];
-                let g = grads[i];
-                let q = if c == 0 {
-                    s[0] * g[0] + s[2] * g[1]
-                } else {
-                    s[2] * g[0] + s[1] * g[1]
-                };
-                let mut rhs = area * q - f[c] * area / 3.0;
+            for (r, k) in elems.iter().map(|&k| k as usize).enumerate() {
+                let i = corners[k].iter().position(|&n| n as usize == node).unwrap_or(0);
+                let mut rhs = rows[k][i][c];
                 for &id in &elem_sides[k] {
                     let sd = &sides[id];
                     let Some(end) = sd.ends.iter().position(|&n| n == node) else {
@@ -475,7 +513,13 @@ pub fn bound(inp: &Input) -> Option<Bound> {
     let compliance = inverse3(inp.d);
     let mut indicators = vec![0.0; ne];
     let (mut closure, mut scale) = (0.0_f64, 0.0_f64);
-    for (k, (e, grads, _)) in geo.iter().enumerate() {
+    let mut norm2 = 0.0;
+    for (k, &elem) in inp.elems.iter().enumerate() {
+        let (e, grads, area) = geometry(inp.nodes, elem);
+        let grads = &grads;
+        let eps = strain(grads, e, inp.u_norm);
+        let sn: [f64; 3] = std::array::from_fn(|r| (0..3).map(|c| inp.d[r][c] * eps[c]).sum());
+        norm2 += area * (sn[0] * eps[0] + sn[1] * eps[1] + sn[2] * eps[2]);
         let p = [inp.nodes[e[0]], inp.nodes[e[1]], inp.nodes[e[2]]];
         let centroid = [(p[0][0] + p[1][0] + p[2][0]) / 3.0, (p[0][1] + p[1][1] + p[2][1]) / 3.0];
         // The body force's particular stress, div σ_p = −f.
@@ -507,7 +551,7 @@ pub fn bound(inp: &Input) -> Option<Bound> {
         let sub = airy::stress(&p, &t)?;
         closure = closure.max(sub.closure);
         scale = scale.max(sub.scale);
-        let sh = stress(&inp.d, grads, *e, inp.u_cmp);
+        let sh = stress(&inp.d, grads, e, inp.u_cmp);
         scale = scale.max(sh.iter().fold(0.0_f64, |m, v| m.max(v.abs())));
         let mut sum = 0.0;
         for j in 0..3 {
@@ -524,7 +568,11 @@ pub fn bound(inp: &Input) -> Option<Bound> {
         indicators[k] = sum;
     }
     let closure = if scale > 0.0 { closure / scale } else { closure };
-    Some(Bound { indicators, closure })
+    Some(Bound {
+        indicators,
+        closure,
+        norm2,
+    })
 }
 
 #[cfg(test)]
@@ -608,6 +656,7 @@ mod tests {
                 elems: &elems,
                 u_eq: &u,
                 u_cmp: &u,
+                u_norm: &u,
                 d,
                 body_force: [0.0, 0.0],
                 given: &given,
@@ -617,6 +666,13 @@ mod tests {
             let total: f64 = b.indicators.iter().sum();
             assert!(total < 1e-24 * energy.max(1.0), "held {held}: {total:e}");
             assert!(b.closure < 1e-10, "closure {}", b.closure);
+            // ‖u‖²_E of the uniform state on the unit square is σ : ε.
+            let norm2 = s[0] * eps[0] + s[1] * eps[1] + s[2] * eps[2];
+            assert!(
+                (b.norm2 - norm2).abs() < 1e-14 * norm2,
+                "norm² {} against {norm2}",
+                b.norm2
+            );
         }
     }
 }

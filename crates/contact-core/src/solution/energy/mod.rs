@@ -26,7 +26,7 @@
 //! change under that replacement is one solve with the factor at hand. A
 //! side in contact where the normal turns otherwise is out of reach.
 //!
-//! Length: about 520 lines, the bound's data from the scene (loads,
+//! Length: about 620 lines, the bound's data from the scene (loads,
 //! supports, the contact pressure, the admissibility correction, the contact
 //! term) in one pass over the same sides; the equilibration, the Airy stress
 //! and a punch's balance are modules of their own.
@@ -38,7 +38,6 @@ mod punch;
 use std::collections::HashMap;
 
 use faer::sparse::SparseColMat;
-use faer::Mat;
 
 use crate::contact::free_motions::Motion;
 use crate::contact::gap::closest;
@@ -396,9 +395,10 @@ pub fn bound(
             }
         }
     }
-    let mut rhs = Mat::<f64>::from_fn(dofs.n_free, 1, |i, _| d[i]);
-    factor.solve_in_place(rhs.as_mut());
-    let w2: Vec<f64> = (0..dofs.n_free).map(|i| rhs[(i, 0)]).collect();
+    // d is zero but at the contact sides' nodes: its forward sweep works
+    // the supernodes their DOFs reach alone.
+    let y = factor.forward_sparse(&d);
+    let w2 = factor.backward(&y);
     let shift = sym_lower_matvec(k, &w2)
         .iter()
         .zip(&w2)
@@ -406,16 +406,16 @@ pub fn bound(
         .sum::<f64>()
         .max(0.0)
         .sqrt();
-    let moved = |b: usize, n: usize, c: usize, w: &Mat<f64>| match dofs.free[dofs.dof(b, n, c)] {
+    let moved = |b: usize, n: usize, c: usize, w: &[f64]| match dofs.free[dofs.dof(b, n, c)] {
         FIXED => 0.0,
-        i => w[(i, 0)],
+        i => w[i],
     };
     let u_eq: Vec<Vec<[f64; 2]>> = u_h
         .iter()
         .enumerate()
         .map(|(b, nodes)| {
             (0..nodes.len())
-                .map(|n| [nodes[n][0] + moved(b, n, 0, &rhs), nodes[n][1] + moved(b, n, 1, &rhs)])
+                .map(|n| [nodes[n][0] + moved(b, n, 0, &w2), nodes[n][1] + moved(b, n, 1, &w2)])
                 .collect()
         })
         .collect();
@@ -561,17 +561,16 @@ pub fn bound(
                 Constitutive::<3>::stress(&law, &e)[r]
             })
         });
-        let elems: Vec<[usize; 3]> = (0..mesh.n_elems())
-            .map(|e| {
-                let c = mesh.elem(e);
-                [c[0], c[1], c[2]]
-            })
-            .collect();
+        // Linear triangles (`unsupported`): three corners per element, read
+        // in place rather than copied.
+        let (elems, rest) = mesh.elems.as_chunks::<3>();
+        debug_assert!(rest.is_empty() && elems.len() == mesh.n_elems());
         let inp = equilibrate::Input {
             nodes: &mesh.nodes,
-            elems: &elems,
+            elems,
             u_eq: &u_eq[b],
             u_cmp: &v[b],
+            u_norm: &u_h[b],
             d: dm,
             body_force: body.body_force,
             given: &given[b],
@@ -584,7 +583,7 @@ pub fn bound(
             return Err("the equilibrated tractions do not balance an element");
         }
         squared += out.indicators.iter().sum::<f64>();
-        norm2 += energy_norm2(&mesh.nodes, &elems, &u_h[b], &dm);
+        norm2 += out.norm2;
     }
     let work: f64 = (0..dofs.free.len())
         .map(|g| {
@@ -620,28 +619,4 @@ fn body_of(dofs: &DofMap, g: usize) -> (usize, usize) {
     let node = g / 2;
     let b = dofs.node_offset.iter().rposition(|&o| o <= node).unwrap_or(0);
     (b, g - 2 * dofs.node_offset[b])
-}
-
-/// ‖u‖²_E = Σ_K |K| ε_Kᵀ D ε_K.
-fn energy_norm2(nodes: &[[f64; 2]], elems: &[[usize; 3]], u: &[[f64; 2]], d: &[[f64; 3]; 3]) -> f64 {
-    elems
-        .iter()
-        .map(|&[a, b, c]| {
-            let (pa, pb, pc) = (nodes[a], nodes[b], nodes[c]);
-            let det = (pb[0] - pa[0]) * (pc[1] - pa[1]) - (pc[0] - pa[0]) * (pb[1] - pa[1]);
-            let g = [
-                [(pb[1] - pc[1]) / det, (pc[0] - pb[0]) / det],
-                [(pc[1] - pa[1]) / det, (pa[0] - pc[0]) / det],
-                [(pa[1] - pb[1]) / det, (pb[0] - pa[0]) / det],
-            ];
-            let mut eps = [0.0; 3];
-            for (i, &n) in [a, b, c].iter().enumerate() {
-                eps[0] += g[i][0] * u[n][0];
-                eps[1] += g[i][1] * u[n][1];
-                eps[2] += g[i][1] * u[n][0] + g[i][0] * u[n][1];
-            }
-            let s: [f64; 3] = std::array::from_fn(|r| (0..3).map(|c| d[r][c] * eps[c]).sum());
-            0.5 * det.abs() * (s[0] * eps[0] + s[1] * eps[1] + s[2] * eps[2])
-        })
-        .sum()
 }
