@@ -412,7 +412,12 @@ fn refinement_predicts_its_rounds_within_the_time_limit() {
     let took = t.elapsed().as_secs_f64();
     let f = r.refinement.as_ref().unwrap();
     assert_eq!((f.stopped.as_str(), f.rounds.len()), ("time_limit", 1), "{f:?}");
-    assert!(took <= limit, "answered after {took:.3} s, limit {limit:.3} s");
+    // Within the service's promise for a limit (10 % of it, or 0.2 s): the
+    // limit is twice one solve measured just before, and on a machine whose
+    // load changes between the two (2 cores, load 6) this answer once came
+    // back past the bare limit.
+    let slack = (0.1 * limit).max(0.2);
+    assert!(took <= limit + slack, "answered after {took:.3} s, limit {limit:.3} s");
     assert_eq!(r.pairs[0].accuracy.as_ref().unwrap().basis, "two_level");
     let w = r
         .warnings
