@@ -174,17 +174,6 @@ fn reach(from: [f64; 2], points: &[[f64; 2]]) -> f64 {
 
 /// The centre of the points' bounding box.
 fn midpoint(points: &[[f64; 2]]) -> [f64; 2] {
-    let (lo, hi) = bounding_box(points);
+    let (lo, hi) = crate::mesh::bounds(points);
     [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])]
-}
-
-fn bounding_box(points: &[[f64; 2]]) -> ([f64; 2], [f64; 2]) {
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for p in points {
-        for k in 0..2 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    (lo, hi)
 }

@@ -223,7 +223,12 @@ pub fn fit_quadratic(pts: &[(f64, f64)]) -> Option<[f64; 3]> {
 
 /// A pair's nodal pressure as (x, y, p), sorted for `along_polyline`.
 pub fn field(pair: &PairReport) -> Vec<(f64, f64, f64)> {
-    let mut v: Vec<(f64, f64, f64)> = pair.points.iter().map(|q| (q.x, q.y, q.pressure)).collect();
+    weighted_field(pair).into_iter().map(|(x, y, p, _)| (x, y, p)).collect()
+}
+
+/// `field` with each node's tributary weight: (x, y, p, w), in the same order.
+pub(crate) fn weighted_field(pair: &PairReport) -> Vec<(f64, f64, f64, f64)> {
+    let mut v: Vec<(f64, f64, f64, f64)> = pair.points.iter().map(|q| (q.x, q.y, q.pressure, q.weight)).collect();
     v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
     v
 }

@@ -219,8 +219,7 @@ fn order(singular: &[SingularEnd]) -> f64 {
 /// (the spikes at the steps: 0.3–1.0 % of p0, each within 0.8–1.2 of
 /// |p′| |h₊ − h₋| / 3). p′ is the central difference of the neighbours.
 fn grading_deviation(pair: &PairReport, counted: &dyn Fn(f64, f64) -> bool) -> f64 {
-    let mut pts: Vec<(f64, f64, f64, f64)> = pair.points.iter().map(|q| (q.x, q.y, q.pressure, q.weight)).collect();
-    pts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    let pts = accuracy::weighted_field(pair);
     let dist = |a: (f64, f64, f64, f64), b: (f64, f64, f64, f64)| (a.0 - b.0).hypot(a.1 - b.1);
     pts.windows(3)
         .filter(|w| w.iter().all(|q| q.2 > 0.0) && counted(w[1].0, w[1].1))
@@ -355,8 +354,7 @@ const PLACEMENT_SAMPLES: usize = 64;
 /// solution's squared L2 error), which neither level of `two_level` sees when
 /// both ends fall alike; the nodes further in are off by 20× less.
 fn edge_deviation(pair: &PairReport) -> f64 {
-    let mut pts: Vec<(f64, f64, f64, f64)> = pair.points.iter().map(|q| (q.x, q.y, q.pressure, q.weight)).collect();
-    pts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    let pts = accuracy::weighted_field(pair);
     let dist = |a: (f64, f64, f64, f64), b: (f64, f64, f64, f64)| (a.0 - b.0).hypot(a.1 - b.1);
     let mut sum = 0.0;
     for z in &pair.zones_along {
