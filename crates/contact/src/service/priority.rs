@@ -5,12 +5,10 @@
 //! get a core while solves hold them. Under Linux's scheduler a thread at
 //! nice 10 weighs 110 against 1024 at nice 0, so a woken zenoh thread is
 //! picked well ahead of a solve; a solve with the core to itself loses
-//! nothing. Measured with the load test's burst mode (32 at once from one
-//! session, 1 worker, queue 4, 100 rounds, the same binary with and without,
-//! on 2 cores at load 5–6 from other work): `busy` at the client p50 2.8–3.3
-//! ms against 6.0–8.0, p99 16–23 against 18–30, max 17–28 against 20–78; in
-//! the service 0.001 ms either way, so the wait was for the cores. The
-//! solves of those bursts took 62–80 ms at the median against 49–56.
+//! nothing. On 2 loaded cores this about halved the median `busy` at the
+//! client, while the service's own part stayed at microseconds, and slowed a
+//! burst's solves by about a quarter: the figures and how they were measured
+//! are in `docs/howto/service.md` (how the service behaves under a burst).
 //!
 //! The cost: on a machine shared with other busy processes the solves yield
 //! to theirs too. Linux only (`setpriority` with the thread's id sets one
