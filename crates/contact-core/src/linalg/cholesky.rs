@@ -42,7 +42,15 @@ pub struct SymbolicFactor {
 impl SymbolicFactor {
     /// Orders `a` (lower triangle) and analyzes the factor's structure.
     pub fn try_new(a: &SparseColMat<usize, f64>) -> Result<Self, LinalgError> {
-        Self::of(a, super::symbolic::symbolic(a)?)
+        Self::try_new_keyed(a, pattern_key(a))
+    }
+
+    /// `try_new` for a pattern whose `pattern_key` the caller already has
+    /// (the operator cache's lookup): hashing the pattern costs a pass over
+    /// its indices, which the lookup and the analysis made twice.
+    pub fn try_new_keyed(a: &SparseColMat<usize, f64>, key: u64) -> Result<Self, LinalgError> {
+        debug_assert_eq!(key, pattern_key(a));
+        Ok(Self::of(a, super::symbolic::symbolic(a)?, key))
     }
 
     /// Analyzes `a` (lower triangle) in the caller's fill-reducing order
@@ -50,20 +58,20 @@ impl SymbolicFactor {
     /// matrices whose geometry knows a better order than AMD (a 3D mesh's
     /// nested dissection, `solid::ordering`).
     pub fn try_new_ordered(a: &SparseColMat<usize, f64>, fwd: &[usize], inv: &[usize]) -> Result<Self, LinalgError> {
-        Self::of(a, super::symbolic::in_order(a, fwd, inv)?)
+        Ok(Self::of(a, super::symbolic::in_order(a, fwd, inv)?, pattern_key(a)))
     }
 
-    fn of(a: &SparseColMat<usize, f64>, symbolic: SymbolicCholesky<usize>) -> Result<Self, LinalgError> {
+    fn of(a: &SparseColMat<usize, f64>, symbolic: SymbolicCholesky<usize>, key: u64) -> Self {
         let SymbolicCholeskyRaw::Supernodal(sym) = symbolic.raw() else {
             unreachable!("factorization is forced supernodal")
         };
-        Ok(Self {
+        Self {
             descendants: super::numeric::Descendants::of(sym),
             cost: FactorCost::of(&symbolic),
             symbolic,
             n: a.nrows(),
-            key: pattern_key(a),
-        })
+            key,
+        }
     }
 
     /// The key of the pattern this analysis is for.

@@ -48,11 +48,6 @@ pub struct Parsed {
 }
 
 impl Parsed {
-    /// Largest side of the bounding box and the node count (for scales and limits).
-    pub fn extent_and_nodes(&self) -> (f64, f64) {
-        (super::extent(&self.nodes), self.nodes.len() as f64)
-    }
-
     /// The checked mesh with coordinates divided by `length`; `path` is the
     /// JSON pointer of the MSH text (errors point there and name the Gmsh tags).
     pub fn try_mesh(&self, length: f64, path: &str) -> Result<Mesh2d, CoreError> {

@@ -132,6 +132,11 @@ pub(crate) fn segment_param(q: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
 /// Largest side of the bounding box of `nodes` (2D or 3D).
 pub fn extent<const D: usize>(nodes: &[[f64; D]]) -> f64 {
     let (lo, hi) = bounds(nodes);
+    box_extent(lo, hi)
+}
+
+/// Largest side of the box from `lo` to `hi` (−∞ for an inverted, empty box).
+pub fn box_extent<const D: usize>(lo: [f64; D], hi: [f64; D]) -> f64 {
     (0..D).map(|c| hi[c] - lo[c]).fold(f64::NEG_INFINITY, f64::max)
 }
 

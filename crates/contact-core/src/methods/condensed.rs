@@ -42,7 +42,7 @@ pub fn prepare_rows(
     let symbolic = match cache.and_then(|c| c.get_symbolic(pattern)) {
         Some(s) => s,
         None => {
-            let s = Arc::new(SymbolicFactor::try_new(&stiffness.k)?);
+            let s = Arc::new(SymbolicFactor::try_new_keyed(&stiffness.k, pattern)?);
             if let Some(c) = cache {
                 c.insert_symbolic(s.clone());
             }

@@ -17,14 +17,28 @@ enum Knob {
     Size,
 }
 
-/// Nominal extent and predicted node count of a body's mesh (`parsed`: the
-/// body's Gmsh file, read once by the caller).
-pub(super) fn extent_and_nodes(m: &MeshSpec, parsed: Option<&gmsh::Parsed>) -> (f64, f64) {
+/// A box that holds a body's mesh, in the request's units (a disk's whole
+/// square for a half or quarter disk: at most its radius too far, which the
+/// coupling's bound, 10⁴ times the body's size, does not notice), and the
+/// mesh's predicted node count (`parsed`: the body's Gmsh file, read once by
+/// the caller). The box's largest side is the body's nominal extent.
+pub(super) fn box_and_nodes(m: &MeshSpec, parsed: Option<&gmsh::Parsed>) -> (([f64; 2], [f64; 2]), f64) {
     match m {
-        MeshSpec::Rectangle(r) => (r.width.max(r.height), count(m, Knob::Size, 1.0)),
-        MeshSpec::HalfDisk(d) | MeshSpec::QuarterDisk(d) => (2.0 * d.radius, count(m, Knob::Size, 1.0)),
-        MeshSpec::Inline(i) => (crate::mesh::extent(&i.nodes), i.nodes.len() as f64),
-        MeshSpec::Gmsh(_) => parsed.map_or((0.0, 0.0), gmsh::Parsed::extent_and_nodes),
+        MeshSpec::Rectangle(r) => (
+            (r.corner, [r.corner[0] + r.width, r.corner[1] + r.height]),
+            count(m, Knob::Size, 1.0),
+        ),
+        MeshSpec::HalfDisk(d) | MeshSpec::QuarterDisk(d) => (
+            (
+                [d.center[0] - d.radius, d.center[1] - d.radius],
+                [d.center[0] + d.radius, d.center[1] + d.radius],
+            ),
+            count(m, Knob::Size, 1.0),
+        ),
+        MeshSpec::Inline(i) => (crate::mesh::bounds(&i.nodes), i.nodes.len() as f64),
+        MeshSpec::Gmsh(_) => parsed.map_or((([0.0; 2], [0.0; 2]), 0.0), |p| {
+            (crate::mesh::bounds(&p.nodes), p.nodes.len() as f64)
+        }),
     }
 }
 

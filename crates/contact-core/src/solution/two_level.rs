@@ -258,9 +258,6 @@ fn peak_difference(answer: &PairReport, other: &PairReport, counted: &dyn Fn(f64
     if pa <= 0.0 || po <= 0.0 {
         return None;
     }
-    // Root mean square over the region (weighed by the tributary weights):
-    // the largest single difference picked up the nodal ripple of mortar
-    // rows on two cylinders (the peak estimated 5–26× its true error).
     // Root mean square over the region (weighed by the tributary weights),
     // or the difference at the maximum itself where that is larger: the
     // largest difference anywhere picked up the nodal ripple of mortar rows

@@ -49,8 +49,9 @@ pub fn survey(req: &SolveRequest, limits: &Limits) -> Result<Survey, CoreError> 
             )?),
             _ => None,
         };
-        let (ext, n) = crate::scene::size_limit::extent_and_nodes(&b.mesh, file.as_ref());
-        boxes.push(bounds(&b.mesh, file.as_ref()));
+        let ((lo, hi), n) = crate::scene::size_limit::box_and_nodes(&b.mesh, file.as_ref());
+        let ext = crate::mesh::box_extent(lo, hi);
+        boxes.push((lo, hi));
         parsed.push(file);
         length = length.max(ext);
         nodes.push(n);
@@ -76,21 +77,6 @@ pub fn survey(req: &SolveRequest, limits: &Limits) -> Result<Survey, CoreError> 
         boxes,
         parsed,
     })
-}
-
-/// A box that holds the body's mesh, in the request's units: a disk's whole
-/// square for a half or quarter disk (at most its radius too far, which the
-/// coupling's bound, 10⁴ times the body's size, does not notice).
-fn bounds(m: &MeshSpec, parsed: Option<&gmsh::Parsed>) -> ([f64; 2], [f64; 2]) {
-    match m {
-        MeshSpec::Rectangle(r) => (r.corner, [r.corner[0] + r.width, r.corner[1] + r.height]),
-        MeshSpec::HalfDisk(d) | MeshSpec::QuarterDisk(d) => (
-            [d.center[0] - d.radius, d.center[1] - d.radius],
-            [d.center[0] + d.radius, d.center[1] + d.radius],
-        ),
-        MeshSpec::Inline(i) => crate::mesh::bounds(&i.nodes),
-        MeshSpec::Gmsh(_) => parsed.map_or(([0.0; 2], [0.0; 2]), |p| crate::mesh::bounds(&p.nodes)),
-    }
 }
 
 /// The bodies, nondimensional, and their names (for the pairs).
