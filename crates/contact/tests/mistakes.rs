@@ -480,6 +480,70 @@ fn a_contact_edge_held_along_x_slides_by_the_slip_its_contact_prescribes() {
     }
 }
 
+/// The same held edge at μ = 20: no Coulomb answer was found (the iteration
+/// runs to its cap). Closed and sliding by the slip its contact fixes, a node
+/// free along y alone feels λ n_y from its normal force and τ n_x = ±μ λ n_x
+/// from its friction: where μ |n_x| ≥ n_y against the slip's sense it wedges,
+/// its friction pushing it in at least as hard as its normal force pushes it
+/// out, and pressed in it has no answer, closed or open. Before, the reply
+/// said nothing of it beside the `prescribed_slip` warning's "it grows with μ
+/// without bound". Now the warning says the step did not settle and that
+/// its values are the last iterate's, and names the wedging points: each
+/// listed one meets μ |n_x| ≥ n_y on the cylinder's own normal (checked to
+/// 1e-9, round-off of the positions' six printed digits aside: 1e-5 of x).
+#[test]
+fn a_held_edge_that_wedges_at_a_large_mu_says_so() {
+    let mu = 20.0;
+    let mut req = hertz_coarse();
+    req["bodies"][0]["supports"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({"edges": "top", "ux": 0.001}));
+    req["contacts"][0]["friction"] = json!({"coefficient": mu});
+    let r = solve(&req).expect("a reply");
+    assert_ne!(r.status, contact::proto::SolveStatus::Solved, "{:?}", r.status);
+    let w = r
+        .warnings
+        .iter()
+        .find(|w| w.code == "prescribed_slip")
+        .expect("prescribed_slip");
+    let m = &w.message;
+    assert!(m.contains("did not settle") && m.contains("not an answer"), "{m}");
+    let listed = m.split(" wedge (").nth(1).expect("the wedging points listed");
+    let listed = &listed[..listed.find("):").expect("their list ends")];
+    let centre = req["obstacles"][0]["shape"]["circle"]["center"]
+        .as_array()
+        .unwrap()
+        .clone();
+    let (cx, cy) = (centre[0].as_f64().unwrap(), centre[1].as_f64().unwrap());
+    let mut seen = 0;
+    for point in listed.split("), (") {
+        let xy: Vec<f64> = point
+            .trim_matches(|c| c == '(' || c == ')')
+            .split(", ")
+            .filter_map(|v| v.parse().ok())
+            .collect();
+        if xy.len() != 2 {
+            continue;
+        }
+        let (nx, ny) = (xy[0] - cx, cy - xy[1]);
+        assert!(
+            mu * nx.abs() >= ny * (1.0 - 1e-5),
+            "{xy:?}: μ |n_x| {} < n_y {ny}",
+            mu * nx.abs()
+        );
+        seen += 1;
+    }
+    assert!(seen > 0, "{m}");
+    let from: f64 = m
+        .split("from μ = ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|v| v.parse().ok())
+        .expect("the μ from which they wedge");
+    assert!(from <= mu && from > 1.0, "{from}");
+}
+
 /// The roller on the flat floor with its arc (the contact's own edge set)
 /// also held along x, and the whole roller moved by 0.001 along x, with
 /// μ = 0.3: on a flat floor every contact node's tangent is x, held, so no
