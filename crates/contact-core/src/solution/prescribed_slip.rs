@@ -81,6 +81,8 @@ pub struct Held {
     carried: bool,
     /// A tied point: the μ from which it wedges (module docs), if any.
     wedges_from: Option<f64>,
+    /// Carried, against a punch (whose reported load leaves its friction out).
+    on_punch: bool,
 }
 
 /// The frictional candidates whose slip the supports prescribe, from the
@@ -157,6 +159,7 @@ pub fn find(scene: &Scene, model: &Model, tangents: &Tangents) -> Vec<Held> {
             slip,
             carried: false,
             wedges_from: None,
+            on_punch: false,
         });
     }
     found.extend(
@@ -174,16 +177,27 @@ pub fn find(scene: &Scene, model: &Model, tangents: &Tangents) -> Vec<Held> {
 /// the solve and the reply's friction (the roller of the Cattaneo–Mindlin
 /// example with its arc also held along x: every point slid by the
 /// prescribed 0.001 and the reply read "stick", friction 0). A punch moved by
-/// a load leaves the slip free.
+/// a load along the slip leaves it free; one moved by a prescribed motion
+/// there takes their friction through the supports, which its reported load
+/// leaves out (a flat punch over a top held along x, moved sideways: load 0,
+/// where sliding takes μ P).
 fn carried(scene: &Scene, model: &Model, holders: &Holders, i: usize, slip: f64) -> Option<Held> {
     let c = &model.cons.candidates[i];
     let mut by = holders.any(c.body, c.node);
+    let mut ob_punch = false;
     match &scene.pairs[c.pair].target {
         Target::Obstacle(o) => {
             let ob = &scene.obstacles[*o];
+            // A load-controlled component along which the slip moves leaves
+            // it free (a flat punch's vertical load does not: its tangent is x).
+            let along = c.punch_tangent().map_or([0.0; 3], |(_, ct)| ct);
+            let loaded = |(k, c): (usize, &Control)| matches!(c, Control::Load(_)) && along[k].abs() > ALONG;
             match &ob.punch {
-                Some(p) if p.controls.iter().any(|c| matches!(c, Control::Load(_))) => return None,
-                Some(_) => by.insert(format!("punch '{}''s prescribed motion", ob.name)),
+                Some(p) if p.controls.iter().enumerate().any(loaded) => return None,
+                Some(_) => {
+                    ob_punch = true;
+                    by.insert(format!("punch '{}''s prescribed motion", ob.name))
+                }
                 None => by.insert(format!("the fixed obstacle '{}'", ob.name)),
             };
         }
@@ -206,6 +220,7 @@ fn carried(scene: &Scene, model: &Model, holders: &Holders, i: usize, slip: f64)
         slip,
         carried: true,
         wedges_from: None,
+        on_punch: ob_punch,
     })
 }
 
@@ -257,6 +272,7 @@ fn closed(scene: &Scene, model: &Model, tangents: &Tangents, holders: &Holders, 
         slip,
         carried: false,
         wedges_from: (r * slip < 0.0).then(|| ((1.0 - r * lean) / r.abs()).max(0.0)),
+        on_punch: false,
     })
 }
 
@@ -284,6 +300,7 @@ pub fn warnings(scene: &Scene, held: &[Held], lambda: &[f64], settled: bool) -> 
         group.by.extend(h.by.iter().cloned());
         group.slip = group.slip.max(h.slip.abs());
         group.carried += usize::from(h.carried);
+        group.carried_punch |= h.on_punch;
     }
     found
         .into_iter()
@@ -310,6 +327,8 @@ struct Group {
     slip: f64,
     /// How many of them have no tangential row (`Held::carried`).
     carried: usize,
+    /// Some of those against a punch (`Held::on_punch`).
+    carried_punch: bool,
     /// The pair's points that wedge at its μ, in a step that did not settle,
     /// and the least μ from which one does.
     wedged: Vec<[f64; 2]>,
@@ -329,7 +348,12 @@ fn warning(scene: &Scene, p: usize, g: &Group) -> Warning {
         n => format!(
             ". The supports take the friction force of {n} of them (no free motion along the surface there): the \
                 model applies none there, so the reply gives their state as `prescribed` with the prescribed slip, \
-                and neither their tangential traction nor the pair's tangential resultant holds that force"
+                and neither their tangential traction nor the pair's tangential resultant holds that force{}",
+            if g.carried_punch {
+                ", nor the punch's reported load (sliding, they take μ λ each from it)"
+            } else {
+                ""
+            }
         ),
     };
     let wedged = match g.wedged.len() {
