@@ -28,6 +28,9 @@ pub use crate::outcome::ProgressStage;
 pub struct Timeout {
     pub stage: ProgressStage,
     pub limit_s: f64,
+    /// From `check_room`: the seconds the work not started was predicted to
+    /// take and those left, the deadline not yet passed.
+    pub predicted: Option<(f64, f64)>,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -88,6 +91,7 @@ pub fn check(stage: ProgressStage) -> Result<(), Timeout> {
         Some(l) if Instant::now() >= l.at => Err(Timeout {
             stage,
             limit_s: l.limit.as_secs_f64(),
+            predicted: None,
         }),
         _ => Ok(()),
     }
@@ -100,6 +104,7 @@ pub fn check_room(stage: ProgressStage, secs: f64) -> Result<(), Timeout> {
         Some(l) if remaining_secs() < secs => Err(Timeout {
             stage,
             limit_s: l.limit.as_secs_f64(),
+            predicted: Some((secs, remaining_secs())),
         }),
         _ => Ok(()),
     }
@@ -130,7 +135,7 @@ mod tests {
             let _d = Deadline::install(Duration::ZERO);
             assert!(expired());
             match check(ProgressStage::Assembly) {
-                Err(Timeout { stage, limit_s }) => {
+                Err(Timeout { stage, limit_s, .. }) => {
                     assert_eq!(stage, "assembly");
                     assert_eq!(limit_s, 0.0);
                 }
@@ -150,6 +155,11 @@ mod tests {
         assert!(check_room(ProgressStage::Factorization, 1.0).is_ok());
         let t = check_room(ProgressStage::Factorization, 7200.0).unwrap_err();
         assert_eq!((t.stage, t.limit_s), (ProgressStage::Factorization, 3600.0));
+        // The limit not yet passed: the reply says what was predicted.
+        let (needed, left) = t.predicted.expect("a prediction");
+        assert!(needed == 7200.0 && left > 3500.0 && left <= 3600.0, "{needed} {left}");
+        let e = crate::error::CoreError::from(t).to_string();
+        assert!(e.contains("was not started") && !e.contains("exceeded"), "{e}");
     }
 
     #[test]

@@ -45,9 +45,15 @@ pub enum CoreError {
     TooLarge { path: String, reason: String },
     #[error(transparent)]
     Linalg(crate::linalg::LinalgError),
-    /// The solve ran past its time limit and was stopped after `stage`.
-    #[error("the solve exceeded its time limit of {limit_s} s and was stopped after stage '{stage}'")]
-    Timeout { stage: &'static str, limit_s: f64 },
+    /// The solve ran past its time limit and was stopped after `stage`, or
+    /// stopped at it when its work was predicted to take (first) more than
+    /// the seconds left (second).
+    #[error("{}", timeout_message(.stage, *.limit_s, *.predicted))]
+    Timeout {
+        stage: &'static str,
+        limit_s: f64,
+        predicted: Option<(f64, f64)>,
+    },
 }
 
 /// A factorization stopped at the deadline is the solve's timeout, like any stage's.
@@ -65,7 +71,20 @@ impl From<crate::cancel::Timeout> for CoreError {
         CoreError::Timeout {
             stage: t.stage.as_str(),
             limit_s: t.limit_s,
+            predicted: t.predicted,
         }
+    }
+}
+
+/// A stage refused before its limit passed says so: the graded block with a
+/// 1.5 s limit was answered at 1.2 s "exceeded its time limit".
+fn timeout_message(stage: &str, limit_s: f64, predicted: Option<(f64, f64)>) -> String {
+    match predicted {
+        None => format!("the solve exceeded its time limit of {limit_s} s and was stopped after stage '{stage}'"),
+        Some((needed, left)) => format!(
+            "the solve would pass its time limit of {limit_s} s: stage '{stage}' was predicted to need {needed:.2} s \
+                more, and {left:.2} s were left, so it was not started"
+        ),
     }
 }
 

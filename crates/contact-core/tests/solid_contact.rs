@@ -635,7 +635,7 @@ fn a_passed_deadline_stops_the_3d_ordering() {
         (contact_core::outcome::ProgressStage::Factorization, 0.0)
     );
     match signorini::solve(&body, &r, &Settings::default()) {
-        Err(CoreError::Timeout { stage, limit_s }) => assert_eq!((stage, limit_s), ("factorization", 0.0)),
+        Err(CoreError::Timeout { stage, limit_s, .. }) => assert_eq!((stage, limit_s), ("factorization", 0.0)),
         other => panic!("expected a timeout, got {:?}", other.map(|c| c.converged)),
     }
 }

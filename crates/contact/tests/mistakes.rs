@@ -480,6 +480,137 @@ fn a_contact_edge_held_along_x_slides_by_the_slip_its_contact_prescribes() {
     }
 }
 
+/// The same held edge at μ = 20: no Coulomb answer was found (the iteration
+/// runs to its cap). Closed and sliding by the slip its contact fixes, a node
+/// free along y alone feels λ n_y from its normal force and τ n_x = ±μ λ n_x
+/// from its friction: where μ |n_x| ≥ n_y against the slip's sense it wedges,
+/// its friction pushing it in at least as hard as its normal force pushes it
+/// out, and pressed in it has no answer, closed or open. Before, the reply
+/// said nothing of it beside the `prescribed_slip` warning's "it grows with μ
+/// without bound". Now the warning says the step did not settle and that
+/// its values are the last iterate's, and names the wedging points: each
+/// listed one meets μ |n_x| ≥ n_y on the cylinder's own normal (checked to
+/// 1e-9, round-off of the positions' six printed digits aside: 1e-5 of x).
+#[test]
+fn a_held_edge_that_wedges_at_a_large_mu_says_so() {
+    let mu = 20.0;
+    let mut req = hertz_coarse();
+    req["bodies"][0]["supports"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({"edges": "top", "ux": 0.001}));
+    req["contacts"][0]["friction"] = json!({"coefficient": mu});
+    let r = solve(&req).expect("a reply");
+    assert_ne!(r.status, contact::proto::SolveStatus::Solved, "{:?}", r.status);
+    let w = r
+        .warnings
+        .iter()
+        .find(|w| w.code == "prescribed_slip")
+        .expect("prescribed_slip");
+    let m = &w.message;
+    assert!(m.contains("did not settle") && m.contains("not an answer"), "{m}");
+    let listed = m.split(" wedge (").nth(1).expect("the wedging points listed");
+    let listed = &listed[..listed.find("):").expect("their list ends")];
+    let centre = req["obstacles"][0]["shape"]["circle"]["center"]
+        .as_array()
+        .unwrap()
+        .clone();
+    let (cx, cy) = (centre[0].as_f64().unwrap(), centre[1].as_f64().unwrap());
+    let mut seen = 0;
+    for point in listed.split("), (") {
+        let xy: Vec<f64> = point
+            .trim_matches(|c| c == '(' || c == ')')
+            .split(", ")
+            .filter_map(|v| v.parse().ok())
+            .collect();
+        if xy.len() != 2 {
+            continue;
+        }
+        let (nx, ny) = (xy[0] - cx, cy - xy[1]);
+        assert!(
+            mu * nx.abs() >= ny * (1.0 - 1e-5),
+            "{xy:?}: μ |n_x| {} < n_y {ny}",
+            mu * nx.abs()
+        );
+        seen += 1;
+    }
+    assert!(seen > 0, "{m}");
+    let from: f64 = m
+        .split("from μ = ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|v| v.parse().ok())
+        .expect("the μ from which they wedge");
+    assert!(from <= mu && from > 1.0, "{from}");
+}
+
+/// A punch over the block's top, the top also held along x (the contact's
+/// own edge set), μ = 0.3. Each contact node's slip is then the punch's own
+/// motion (a flat punch: no free DOF along x, no tangential row) or that and
+/// what its closed gap fixes (a circular one), and its friction passes from
+/// the punch straight to the support. With a punch component along that slip
+/// load-controlled the model cannot share that force: before, the flat
+/// punch pushed by 1 (μ P = 3) was refused `incompatible_loads` as sliding
+/// ("must lie in [0, 0]"), the circular one ran to the iteration cap with
+/// α1 of 5.7e14, pushed or not. Now both are `invalid_request` at the punch's
+/// horizontal load, saying why and to prescribe that motion. The flat punch
+/// left unpushed still answers: it sticks (α1 = 0) and its vertical load
+/// balances the contact (to 1e-10 of it; round-off measured 1e-15).
+#[test]
+fn a_load_controlled_punch_over_a_held_edge_is_refused_with_its_cause() {
+    let punch = |file: &str, q: f64| {
+        let mut req = example(file);
+        req["bodies"][0]["mesh"]["rectangle"]["grading"]["h_min"] = json!(0.05);
+        req["bodies"][0]["supports"]
+            .as_array_mut()
+            .unwrap()
+            .push(json!({"edges": "top", "ux": 0.0}));
+        req["obstacles"][0]["punch"]["horizontal"] = json!({"load": q});
+        req["contacts"][0]["friction"] = json!({"coefficient": 0.3});
+        req
+    };
+    for (file, q) in [
+        ("indentation_flat_punch.json", 1.0),
+        ("indentation_circular_punch.json", 0.0),
+    ] {
+        let m = refused(
+            &punch(file, q),
+            ErrorCode::InvalidRequest,
+            "/obstacles/0/punch/horizontal/load",
+        );
+        assert!(m.contains("Prescribe the punch's horizontal motion"), "{file}: {m}");
+    }
+    let r = solved(&punch("indentation_flat_punch.json", 0.0));
+    let p = &r.punches[0];
+    assert!(p.alpha1.abs() <= 1e-12 * p.alpha2.abs(), "{p:?}");
+    assert!((p.p2 + 10.0).abs() <= 1e-10 * 10.0, "{p:?}");
+}
+
+/// The flat punch moved sideways by 0.001 over that held top: every node in
+/// contact slides by 0.001 and the support takes its friction μ λ, so
+/// pushing the punch takes μ P; its reported load (0) leaves that out. Before,
+/// nothing said so (a vertical load on the punch, which does not move the
+/// slip, hid every such point from `prescribed_slip`). Now the warning counts
+/// every node in contact and says the punch's load leaves their friction out.
+#[test]
+fn a_punch_moved_over_a_held_edge_warns_that_its_load_leaves_friction_out() {
+    let mut req = example("indentation_flat_punch.json");
+    req["bodies"][0]["mesh"]["rectangle"]["grading"]["h_min"] = json!(0.05);
+    req["bodies"][0]["supports"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({"edges": "top", "ux": 0.0}));
+    req["obstacles"][0]["punch"]["horizontal"] = json!({"displacement": 0.001});
+    req["obstacles"][0]["punch"]["rotation"] = json!({"displacement": 0.0});
+    req["contacts"][0]["friction"] = json!({"coefficient": 0.3});
+    let r = solved(&req);
+    let in_contact = r.pairs[0].points.iter().filter(|p| p.pressure > 0.0).count();
+    let w = r.warnings.iter().find(|w| w.code == "prescribed_slip");
+    let w = w.unwrap_or_else(|| panic!("{:?}", codes(&r)));
+    assert_eq!(w.value as usize, in_contact, "{}", w.message);
+    assert!(w.message.contains("nor the punch's reported load"), "{}", w.message);
+}
+
 /// The roller on the flat floor with its arc (the contact's own edge set)
 /// also held along x, and the whole roller moved by 0.001 along x, with
 /// μ = 0.3: on a flat floor every contact node's tangent is x, held, so no

@@ -29,6 +29,18 @@
 //! that stays open carries no friction force. A slip prescribed to 0 (both
 //! sides held still: the press fit's closing step, a symmetry plane held on
 //! both bodies) is not reported: the point may stick, with a bounded force.
+//!
+//! A tied point can wedge. Closed and sliding by its datum s, its forces move
+//! its gap by a (1 + r γ) λ (γ = μ sign(s) − ℓ, ℓ = n · t, a its own
+//! compliance; `methods::friction::gauss_seidel`): where 1 + r γ ≤ 0, from
+//! μ = (1 − r ℓ) / |r| on when r s < 0, its friction force pushes it into the
+//! surface at least as hard as its normal force pushes it out (a node free
+//! along y alone: μ |n_x| ≥ n_y). Pressed in by the rest, it then has no
+//! Coulomb answer, closed or open. The Hertz block with its top held along x
+//! against the cylinder (R 8, zone half-width 0.67, so |n_x| / n_y ≤ 0.084)
+//! solves at μ = 0.3 and ran to its iteration cap at μ = 20 and 100, with
+//! the zone shrunk to |x| < 0.39 and 0.07, where μ |x| / R < 1: a step that
+//! does not settle names such points in its warning (`wedges_from`).
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
@@ -67,6 +79,10 @@ pub struct Held {
     /// Without a tangential row: the supports take its friction force, which
     /// the reply's friction leaves out.
     carried: bool,
+    /// A tied point: the μ from which it wedges (module docs), if any.
+    wedges_from: Option<f64>,
+    /// Carried, against a punch (whose reported load leaves its friction out).
+    on_punch: bool,
 }
 
 /// The frictional candidates whose slip the supports prescribe, from the
@@ -142,6 +158,8 @@ pub fn find(scene: &Scene, model: &Model, tangents: &Tangents) -> Vec<Held> {
             by: held,
             slip,
             carried: false,
+            wedges_from: None,
+            on_punch: false,
         });
     }
     found.extend(
@@ -159,16 +177,27 @@ pub fn find(scene: &Scene, model: &Model, tangents: &Tangents) -> Vec<Held> {
 /// the solve and the reply's friction (the roller of the Cattaneo–Mindlin
 /// example with its arc also held along x: every point slid by the
 /// prescribed 0.001 and the reply read "stick", friction 0). A punch moved by
-/// a load leaves the slip free.
+/// a load along the slip leaves it free; one moved by a prescribed motion
+/// there takes their friction through the supports, which its reported load
+/// leaves out (a flat punch over a top held along x, moved sideways: load 0,
+/// where sliding takes μ P).
 fn carried(scene: &Scene, model: &Model, holders: &Holders, i: usize, slip: f64) -> Option<Held> {
     let c = &model.cons.candidates[i];
     let mut by = holders.any(c.body, c.node);
+    let mut ob_punch = false;
     match &scene.pairs[c.pair].target {
         Target::Obstacle(o) => {
             let ob = &scene.obstacles[*o];
+            // A load-controlled component along which the slip moves leaves
+            // it free (a flat punch's vertical load does not: its tangent is x).
+            let along = c.punch_tangent().map_or([0.0; 3], |(_, ct)| ct);
+            let loaded = |(k, c): (usize, &Control)| matches!(c, Control::Load(_)) && along[k].abs() > ALONG;
             match &ob.punch {
-                Some(p) if p.controls.iter().any(|c| matches!(c, Control::Load(_))) => return None,
-                Some(_) => by.insert(format!("punch '{}''s prescribed motion", ob.name)),
+                Some(p) if p.controls.iter().enumerate().any(loaded) => return None,
+                Some(_) => {
+                    ob_punch = true;
+                    by.insert(format!("punch '{}''s prescribed motion", ob.name))
+                }
                 None => by.insert(format!("the fixed obstacle '{}'", ob.name)),
             };
         }
@@ -190,6 +219,8 @@ fn carried(scene: &Scene, model: &Model, holders: &Holders, i: usize, slip: f64)
         by,
         slip,
         carried: true,
+        wedges_from: None,
+        on_punch: ob_punch,
     })
 }
 
@@ -232,6 +263,7 @@ fn closed(scene: &Scene, model: &Model, tangents: &Tangents, holders: &Holders, 
     }
     let mut by = holders.any(c.body, c.node);
     by.insert(target);
+    let lean = tangents.lean.get(k).copied().unwrap_or(0.0);
     Some(Held {
         candidate: i,
         pair: c.pair,
@@ -239,15 +271,26 @@ fn closed(scene: &Scene, model: &Model, tangents: &Tangents, holders: &Holders, 
         by,
         slip,
         carried: false,
+        wedges_from: (r * slip < 0.0).then(|| ((1.0 - r * lean) / r.abs()).max(0.0)),
+        on_punch: false,
     })
 }
 
 /// One warning per pair with points of `held` in contact (λ > 0; a point
 /// that stays open carries no friction force, as the ends of the
 /// Cattaneo–Mindlin roller's arc, held by its flat's supports, 8 above the
-/// floor): value the number of such points, limit 0.
-pub fn warnings(scene: &Scene, held: &[Held], lambda: &[f64]) -> Vec<Warning> {
+/// floor): value the number of such points, limit 0. A step that did not
+/// settle (`settled` false) also names the pair's points that wedge at its μ.
+pub fn warnings(scene: &Scene, held: &[Held], lambda: &[f64], settled: bool) -> Vec<Warning> {
     let mut found: BTreeMap<usize, Group> = BTreeMap::new();
+    let mut wedged: BTreeMap<usize, (Vec<[f64; 2]>, f64)> = BTreeMap::new();
+    for h in held.iter().filter(|_| !settled) {
+        if let Some(from) = h.wedges_from.filter(|&m| m <= scene.pairs[h.pair].friction) {
+            let w = wedged.entry(h.pair).or_insert((Vec::new(), f64::INFINITY));
+            w.0.push(h.x);
+            w.1 = w.1.min(from);
+        }
+    }
     for h in held
         .iter()
         .filter(|h| lambda.get(h.candidate).is_some_and(|l| *l > 0.0))
@@ -257,11 +300,17 @@ pub fn warnings(scene: &Scene, held: &[Held], lambda: &[f64]) -> Vec<Warning> {
         group.by.extend(h.by.iter().cloned());
         group.slip = group.slip.max(h.slip.abs());
         group.carried += usize::from(h.carried);
+        group.carried_punch |= h.on_punch;
     }
     found
         .into_iter()
         .map(|(p, mut g)| {
             g.at.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+            if let Some((mut at, from)) = wedged.remove(&p) {
+                at.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+                g.wedged = at;
+                g.wedges_from = from;
+            }
             warning(scene, p, &g)
         })
         .collect()
@@ -278,20 +327,19 @@ struct Group {
     slip: f64,
     /// How many of them have no tangential row (`Held::carried`).
     carried: usize,
+    /// Some of those against a punch (`Held::on_punch`).
+    carried_punch: bool,
+    /// The pair's points that wedge at its μ, in a step that did not settle,
+    /// and the least μ from which one does.
+    wedged: Vec<[f64; 2]>,
+    wedges_from: f64,
 }
 
 fn warning(scene: &Scene, p: usize, g: &Group) -> Warning {
     let (at, held, slip) = (&g.at, &g.by, g.slip);
     let pair = &scene.pairs[p];
     let length = scene.scales.length;
-    let mut places: Vec<String> = at
-        .iter()
-        .take(LISTED)
-        .map(|x| format!("({}, {})", shown(x[0] * length), shown(x[1] * length)))
-        .collect();
-    if at.len() > LISTED {
-        places.push(format!("and {} more", at.len() - LISTED));
-    }
+    let places = listed(at, length);
     let (one, held_by) = (at.len() == 1, held.iter().cloned().collect::<Vec<_>>().join(", "));
     // Points without a tangential row: their friction force goes to the
     // supports, and the reply says `prescribed` there (see `solution::friction`).
@@ -300,7 +348,27 @@ fn warning(scene: &Scene, p: usize, g: &Group) -> Warning {
         n => format!(
             ". The supports take the friction force of {n} of them (no free motion along the surface there): the \
                 model applies none there, so the reply gives their state as `prescribed` with the prescribed slip, \
-                and neither their tangential traction nor the pair's tangential resultant holds that force"
+                and neither their tangential traction nor the pair's tangential resultant holds that force{}",
+            if g.carried_punch {
+                ", nor the punch's reported load (sliding, they take μ λ each from it)"
+            } else {
+                ""
+            }
+        ),
+    };
+    let wedged = match g.wedged.len() {
+        0 => String::new(),
+        n => format!(
+            ". This step did not settle, and at μ = {}, {n} of the points whose slip the supports and the contact fix \
+                wedge ({}): sliding by that slip, their friction force pushes them into the surface at least as \
+                hard as their normal force pushes them out (from μ = {} on, μ |n_x| ≥ n_y for a node free along y \
+                alone), so wherever the rest presses one in it has no Coulomb answer, closed or open. No answer \
+                was found; whether one exists with them lifted off is not known, and the values of this reply are \
+                the iteration's last, not an answer. Below μ = {} none of them wedges",
+            pair.friction,
+            listed(&g.wedged, length).join(", "),
+            shown(g.wedges_from),
+            shown(g.wedges_from),
         ),
     };
     Warning {
@@ -313,7 +381,7 @@ fn warning(scene: &Scene, p: usize, g: &Group) -> Warning {
                 supports ({held_by}), by up to {}: {} by it whatever μ (here {}), with the friction \
                 force μ λ. At a real μ that is Coulomb's answer, but it grows with μ without bound, so a large μ is \
                 not the stick limit here. Release one of the supports at {} (hold that \
-                body at its other end), or move the body by its far end{carried}",
+                body at its other end), or move the body by its far end{carried}{wedged}",
             if one { "node" } else { "nodes" },
             scene.bodies[pair.body].name,
             places.join(", "),
@@ -324,6 +392,19 @@ fn warning(scene: &Scene, p: usize, g: &Group) -> Warning {
             if one { "that node" } else { "those nodes" },
         ),
     }
+}
+
+/// Up to `LISTED` positions as the request gives them, and how many more.
+fn listed(at: &[[f64; 2]], length: f64) -> Vec<String> {
+    let mut places: Vec<String> = at
+        .iter()
+        .take(LISTED)
+        .map(|x| format!("({}, {})", shown(x[0] * length), shown(x[1] * length)))
+        .collect();
+    if at.len() > LISTED {
+        places.push(format!("and {} more", at.len() - LISTED));
+    }
+    places
 }
 
 /// The prescribed displacement of a node along t (nondimensional).

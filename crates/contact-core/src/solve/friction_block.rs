@@ -4,11 +4,11 @@
 //! block's answer completed after the solve.
 
 use crate::contact::friction::Tangents;
-use crate::error::CoreError;
+use crate::error::{CoreError, InvalidKind};
 use crate::mesh::Mesh2d;
 use crate::methods::{self, friction::Friction, Solution};
 use crate::model::Model;
-use crate::scene::Scene;
+use crate::scene::{Control, Scene, COMPONENTS};
 
 /// The load-controlled punch motions and the free rigid modes of bodies
 /// held only by contact of a frictional step (None without any): their
@@ -62,6 +62,7 @@ impl StepModel {
     pub fn build(s: &Scene, meshes: Vec<Mesh2d>) -> Result<Self, CoreError> {
         let mut model = Model::build(s, meshes)?;
         let tangents = Tangents::new(s, &model.meshes, &model.cons, &model.dofs);
+        held_under_loaded_punch(s, &model, &tangents)?;
         let (block, keep) = punch_block(s, &mut model, &tangents)?.unzip();
         Ok(Self {
             model,
@@ -70,6 +71,63 @@ impl StepModel {
             keep: keep.unwrap_or_default(),
         })
     }
+}
+
+/// Refuses a frictional point that faces a load-controlled punch and whose
+/// own motion along the surface the supports hold (a contact edge also held
+/// along x): its slip is then the punch's motion alone (no tangential row:
+/// `Tangents::held`), or that and what its closed gap fixes (`tied`), and its
+/// friction force passes from the punch straight to the supports. The
+/// friction block carries no such share: a flat punch over the held top of
+/// the block, pressed by 10 and pushed by 1 at μ = 0.3, was refused as if it
+/// had to slide ("the horizontal load must lie in [0, 0]"); a circular one
+/// ran to the iteration cap with α1 = 5.7e14 and θ = 7.2e13 rad, pushed or
+/// not. Not refused: a held point under a punch whose loaded components along
+/// its slip are all 0 (it sticks, α1 = 0, as answered).
+fn held_under_loaded_punch(scene: &Scene, model: &Model, tangents: &Tangents) -> Result<(), CoreError> {
+    let tied_rows = (0..tangents.len()).filter_map(|k| tangents.tied(k).map(|r| (tangents.of[k], Some(r))));
+    let held = tangents.held.iter().map(|h| (h.candidate, None));
+    for (i, tied) in held.chain(tied_rows) {
+        let c = &model.cons.candidates[i];
+        let (Some((o, ct)), Some((_, cn))) = (c.punch_tangent(), c.punch()) else {
+            continue;
+        };
+        let Some(punch) = &scene.obstacles[o].punch else {
+            continue;
+        };
+        // What a motion of the punch moves the slip by: along t, less (tied)
+        // what it moves the gap by times r, which the closed gap fixes (a
+        // circular punch's vertical motion, whose share is n_x both ways).
+        let moves = |j: usize| tied.map_or(ct[j], |r| ct[j] - r * cn[j]);
+        // A share below this (of the coefficients' size) is round-off.
+        const ALONG: f64 = 1e-9;
+        let scale = ct.iter().chain(&cn).fold(0.0f64, |m, v| m.max(v.abs()));
+        let loaded = (0..3).find(|&j| {
+            moves(j).abs() > ALONG * scale
+                && matches!(punch.controls[j], Control::Load(v) if tied.is_some() || v != 0.0)
+        });
+        let Some(j) = loaded else {
+            continue;
+        };
+        let body = &scene.bodies[c.body].name;
+        let name = &scene.obstacles[o].name;
+        return Err(CoreError::Invalid {
+            kind: InvalidKind::Request,
+            path: format!("/obstacles/{o}/punch/{}/load", COMPONENTS[j]),
+            reason: format!(
+                "the supports of body '{body}' hold its contact nodes against punch '{name}' along the surface \
+                    (a support on the contact's own edge set), so their slip is the punch's own motion and their \
+                    friction force passes from the punch straight to those supports: with the punch's {} motion \
+                    load-controlled, this model cannot share that force between the punch and the supports and \
+                    gives no answer (it reported the punch sliding, or motions without bound). Prescribe the \
+                    punch's {} motion (a displacement, the reply then gives its load), or release the support \
+                    along the surface on the contact's edge set",
+                COMPONENTS[j], COMPONENTS[j]
+            ),
+            loads: Vec::new(),
+        });
+    }
+    Ok(())
 }
 
 /// Completes the free motions of a solved step: every motion's amplitude

@@ -132,8 +132,9 @@ pub(super) fn solve_frictional(
             factor: None,
         };
         let mut r = report(&s, &composed, &sm, sol, &friction, obs);
+        let settled = r.status == Status::Solved;
         r.warnings
-            .extend(prescribed_slip::warnings(&s, &prescribed, &friction.lambda));
+            .extend(prescribed_slip::warnings(&s, &prescribed, &friction.lambda, settled));
         history = friction.history;
         obs = Observer::new();
         steps.push(LoadStep::of(k, loads, &r));

@@ -184,6 +184,7 @@ mod tests {
         errors.push(CoreError::Timeout {
             stage: "mesh",
             limit_s: 1.0,
+            predicted: None,
         });
         for e in errors {
             let code = serde_json::to_value(error_reply(&e).code).unwrap();

@@ -131,7 +131,7 @@ fn solve_states(
     // The Newton iteration cycled from these states under every rescaling:
     // nonsmooth Gauss–Seidel finds states near the answer, from which it
     // converges.
-    let sweeps = super::gauss_seidel::sweep(w, q, e, t, GAUSS_SEIDEL_SWEEPS, GAUSS_SEIDEL_TOL);
+    let sweeps = super::gauss_seidel::sweep(w, (q, e, closed), t, GAUSS_SEIDEL_SWEEPS, GAUSS_SEIDEL_TOL);
     let budget = max_iterations - run.iterations;
     let mut again =
         restarted(&mut dense, t, sweeps.state, (&c, &ct), budget).expect("the dense Newton step does not fail");
