@@ -33,7 +33,10 @@
 
 pub mod airy;
 pub mod equilibrate;
+mod pending;
 mod punch;
+
+pub use pending::{Operator, Pending};
 
 use std::collections::HashMap;
 
