@@ -24,6 +24,11 @@
 //! said 0.30 % where the true error was 0.73 %, and 0.0003 % for a
 //! resultant 0.59 % off.
 //!
+//! **Energy bound** (`solution::energy`): made by the estimator
+//! (`Estimator::energy`) once per reply, for the answer returned, from what
+//! its solve kept (`energy::Pending`); a refinement round keeps it until the
+//! next round replaces it.
+//!
 //! **Refinement** (`settings.accuracy`). Generated meshes: round after round
 //! the smallest element `h_min` shrinks by a factor f sized from the last
 //! estimate to land just under the target (`AIM`; ¼ to ¾), the grading's
