@@ -22,8 +22,9 @@ pub trait Operator: Send + Sync {
 
 /// A solved answer the bound covers, with the model, the operator and the
 /// fields it is made from. It holds the answer's factor while it is kept:
-/// during a refinement round the last round's, besides the round's own
-/// (a round has 2–10× the unknowns of the one before, so 10–50 % more).
+/// while a refinement round solves, the last round's factor is held besides
+/// the round's own (the last round's is the smaller: a quarter of the
+/// unknowns on a given mesh, whose rounds split every triangle in four).
 pub struct Pending {
     pub model: Arc<Model>,
     pub operator: Arc<dyn Operator>,
