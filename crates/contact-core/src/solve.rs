@@ -63,8 +63,9 @@ pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
     Ok(report)
 }
 
-/// The scene once per load factor or load path step.
-fn solve_steps(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<Report, CoreError> {
+/// The scene once per load factor or load path step, without the error
+/// estimate and the refinement (whose companions and rounds it solves).
+pub fn solve_steps(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<Report, CoreError> {
     if scene.has_friction() {
         return solve_frictional(scene, limits, cache);
     }
@@ -129,21 +130,22 @@ fn solve_once(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> 
     crate::progress::plan(plan);
 
     obs.enter(Stage::Assembly);
-    let model = Model::build(scene, meshes)?;
+    let model = Arc::new(Model::build(scene, meshes)?);
     match admit::route(scene, model.parts(), limits)? {
         Route::Full => solve_full(scene, &model, obs),
-        Route::Condensed => solve_condensed(scene, &model, cache, obs),
+        Route::Condensed => solve_condensed(scene, model, cache, obs),
     }
 }
 
 /// One factorization (or the cache's), the LCP on the contact rows.
 fn solve_condensed(
     scene: &Scene,
-    model: &Model,
+    model: Arc<Model>,
     cache: Option<&OperatorCache>,
     mut obs: Observer,
 ) -> Result<Report, CoreError> {
     let key = cache::key(scene, &model.meshes, &model.dofs, &model.cons);
+    let model_ref: &Model = &model;
     let (op, cache_state) = match cache.and_then(|c| c.get(key)) {
         Some(op) => {
             crate::progress::revise(crate::outcome::ProgressStage::Factorization, 0.0);
@@ -179,7 +181,7 @@ fn solve_condensed(
     obs.leave(Stage::ContactSolve)?;
     obs.timings.contact_solve = sol.t_contact;
     let solved = Solved {
-        model,
+        model: model_ref,
         k: &op.stiffness.k,
         f: &f,
         loads: None,
@@ -187,9 +189,20 @@ fn solve_condensed(
         predicted: Some(op.chol.cost().predicted_secs()),
         compliance: compliance.as_ref(),
         friction: &[],
-        factor: Some(&op.chol),
+        operator: Some((model.clone(), op.clone())),
     };
     Ok(compose::report(scene, &solved, sol, obs, cache_state))
+}
+
+/// The energy bound solves with the condensed route's operator
+/// (`energy::Pending`).
+impl crate::solution::energy::Operator for cache::Prepared {
+    fn stiffness(&self) -> &faer::sparse::SparseColMat<usize, f64> {
+        &self.stiffness.k
+    }
+    fn factor(&self) -> &crate::linalg::Cholesky {
+        &self.chol
+    }
 }
 
 /// Exact methods on the whole system: no condensation, no cache (they are
@@ -222,7 +235,7 @@ fn solve_full(scene: &Scene, model: &Model, mut obs: Observer) -> Result<Report,
         predicted: None,
         compliance: None,
         friction: &[],
-        factor: None,
+        operator: None,
     };
     Ok(compose::report(scene, &solved, sol, obs, CacheState::Off))
 }

@@ -515,9 +515,9 @@ fn a_trial_estimator_through_the_seam_needs_no_companion() {
     }
 
     // The two-level estimator through the seam: the default estimate, to the
-    // bit. The energy bound is not the estimator's: it is made with the answer
-    // when an estimate is asked (`solution::energy`), so the bare answer has
-    // none and the default one has it.
+    // bit. The energy bound is made apart (`Estimator::energy`, once for the
+    // answer returned, by `adapt::estimate` and the rounds), from what an
+    // estimated solve keeps: the bare answer keeps nothing and has none.
     let mut report = bare;
     let solver = |s: &Scene| contact_core::solve(s, &limits, None);
     contact_core::adapt::estimate_by(&TwoLevel, &scene, &mut report, &solver, usize::MAX);
@@ -617,5 +617,68 @@ fn steps_in_a_given_mesh_spacing_are_estimated() {
         (0.9..=2.0).contains(&(est / truth)),
         "estimate {est:.3e}, true {truth:.3e} at {} DOF",
         r.size.dofs
+    );
+}
+
+/// With `settings.accuracy` the energy bound is made once, for the round
+/// returned (`Estimator::energy`, counted here through the seam): the disk
+/// from a coarse start takes at least two rounds, and the bound the reply
+/// carries is the one a single estimated solve on the final round's mesh
+/// gives. Both are the same computation on the same factor and fields, so
+/// they agree to round-off (1e-12 relative; measured equal to the bit).
+#[test]
+fn refinement_bounds_the_energy_of_the_returned_round_alone() {
+    use contact_core::adapt::estimator::{Companion, Estimator, TwoLevel};
+    use contact_core::solution::energy::{EnergyBound, Pending};
+    use contact_core::solution::report::{PairAccuracy, PairReport, Report};
+    use contact_core::{Limits, Scene};
+    use std::cell::RefCell;
+
+    /// The two-level estimator, recording every bound it is asked for.
+    struct Counting(RefCell<Vec<(Scene, usize)>>);
+    impl Estimator for Counting {
+        fn companion(&self, scene: &Scene, report: &Report, max: usize) -> Result<Option<Companion>, String> {
+            TwoLevel.companion(scene, report, max)
+        }
+        fn pair(&self, answer: &PairReport, companion: Option<(&PairReport, f64)>) -> PairAccuracy {
+            TwoLevel.pair(answer, companion)
+        }
+        fn share(&self, scene: &Scene) -> f64 {
+            TwoLevel.share(scene)
+        }
+        fn energy(&self, scene: &Scene, answer: &Pending) -> Result<EnergyBound, &'static str> {
+            self.0.borrow_mut().push((scene.clone(), answer.model.dofs.n_free));
+            TwoLevel.energy(scene, answer)
+        }
+    }
+
+    let mut req = disk_request(0.02, "t3");
+    req["settings"] = json!({"accuracy": {"pressure_l2": 0.005}});
+    let parsed: contact_proto::SolveRequest = serde_json::from_value(req).unwrap();
+    let limits = Limits::default();
+    let scene = Scene::try_new(&parsed, &limits).unwrap();
+    let target = scene.settings.accuracy.unwrap();
+    let bare = |s: &Scene| contact_core::solve::solve_steps(s, &limits, None);
+    let est = Counting(RefCell::new(Vec::new()));
+    let r = contact_core::adapt::refine_by(&est, &scene, target, &bare, limits.max_dofs).unwrap();
+    let rounds = &r.refinement.as_ref().unwrap().rounds;
+    assert!(rounds.len() >= 2, "{rounds:?}");
+    let asked = est.0.into_inner();
+    assert_eq!(asked.len(), 1, "one bound for {} rounds", rounds.len());
+    let (last, dofs) = asked.into_iter().next().unwrap();
+    assert_eq!(dofs, r.size.dofs);
+    let bound = r.energy.expect("the returned round's bound");
+    assert_eq!(r.pairs[0].accuracy.as_ref().unwrap().energy, Some(bound.relative()));
+
+    let mut single = last;
+    single.settings.accuracy = None;
+    single.settings.estimate = true;
+    let s = contact_core::solve(&single, &limits, None).unwrap();
+    assert_eq!(s.size.dofs, r.size.dofs);
+    let alone = s.energy.expect("a single solve's bound");
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * a.abs().max(b.abs());
+    assert!(
+        close(alone.absolute, bound.absolute) && close(alone.norm, bound.norm),
+        "{alone:?} vs {bound:?}"
     );
 }

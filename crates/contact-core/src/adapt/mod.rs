@@ -24,6 +24,11 @@
 //! said 0.30 % where the true error was 0.73 %, and 0.0003 % for a
 //! resultant 0.59 % off.
 //!
+//! **Energy bound** (`solution::energy`): made by the estimator
+//! (`Estimator::energy`) once per reply, for the answer returned, from what
+//! its solve kept (`energy::Pending`); a refinement round keeps it until the
+//! next round replaces it.
+//!
 //! **Refinement** (`settings.accuracy`). Generated meshes: round after round
 //! the smallest element `h_min` shrinks by a factor f sized from the last
 //! estimate to land just under the target (`AIM`; ¼ to ¾), the grading's
@@ -103,7 +108,11 @@ pub type Solver<'a> = dyn Fn(&Scene) -> Result<Report, CoreError> + 'a;
 /// service also bounds by its memory per request), which a finer companion
 /// may not pass.
 pub fn estimate(scene: &Scene, report: &mut Report, solve: &Solver, max_dofs: usize) {
-    estimate_by(estimator::of(scene), scene, report, solve, max_dofs);
+    let est = estimator::of(scene);
+    // The bound first: the answer's factor it solves with is then released
+    // before the companion's is made.
+    bound_energy(est, scene, report);
+    estimate_by(est, scene, report, solve, max_dofs);
 }
 
 /// The estimate's time over the solve's own, for the progress plan (the
@@ -138,8 +147,9 @@ pub fn estimate_by(
         crate::progress::stage(crate::progress::ESTIMATE);
         let _nested = crate::progress::Sink::nested();
         let what = companion.what;
-        // A companion that is not the next round needs no energy bound of
-        // its own (`compose` makes one only for an estimated answer).
+        // A companion that is not the next round is never returned: it keeps
+        // nothing for an energy bound (`compose` keeps it only for an
+        // estimated answer).
         if !companion.next_round {
             companion.scene.settings.estimate = false;
             companion.scene.settings.accuracy = None;
@@ -178,6 +188,31 @@ pub fn estimate_by(
     finer
 }
 
+/// The energy bound of the answer returned (`Estimator::energy`), from what
+/// its solve kept (which is then released): into the report, or a note
+/// saying why there is none. Timed as the estimate's.
+fn bound_energy(est: &dyn Estimator, scene: &Scene, report: &mut Report) {
+    let Some(answer) = report.pending_energy.take() else {
+        return;
+    };
+    let t = Instant::now();
+    match est.energy(scene, &answer) {
+        Ok(b) => report.energy = Some(b),
+        Err(why) => report.notes.push(Note::new(
+            NoteKind::EstimateLimited,
+            format!("no guaranteed energy bound: {why}"),
+        )),
+    }
+    // Timed before the answer's factor is released, as it was when the
+    // bound was made in the post stage (the release is the solve's, and
+    // happens with or without a bound).
+    let dt = t.elapsed().as_secs_f64();
+    drop(answer);
+    report.timings.estimate += dt;
+    report.timings.total += dt;
+    with_energy(report);
+}
+
 /// Every pair's accuracy carries the answer's energy bound (`solution::energy`).
 fn with_energy(report: &mut Report) {
     let bound = report.energy.map(|e| e.relative());
@@ -191,12 +226,25 @@ fn with_energy(report: &mut Report) {
 /// `max_dofs`: the deployment's size limit, which no round may pass (its
 /// prediction stops the rounds before the mesh is built).
 pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver, max_dofs: usize) -> Result<Report, CoreError> {
+    refine_by(estimator::of(scene), scene, target, solve, max_dofs)
+}
+
+/// `refine` by `est`. The energy bound is made once, for the round returned
+/// (`Estimator::energy`): a round is known to be the last only after its own
+/// estimate, so each round keeps what the bound needs until the next one
+/// replaces it.
+pub fn refine_by(
+    est: &dyn Estimator,
+    scene: &Scene,
+    target: AccuracyTarget,
+    solve: &Solver,
+    max_dofs: usize,
+) -> Result<Report, CoreError> {
     let target = AccuracyTarget {
         max_dofs: target.max_dofs.min(max_dofs),
         ..target
     };
     let started = Instant::now();
-    let est = estimator::of(scene);
     crate::progress::round(1);
     let mut report = solve(scene)?;
     let mut finer = estimate_by(est, scene, &mut report, solve, max_dofs);
@@ -301,6 +349,7 @@ pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver, max_dofs: u
             break StopReason::NotConverging;
         }
     };
+    bound_energy(est, &current, &mut report);
     let total = started.elapsed().as_secs_f64();
     // The earlier rounds' time counts as the estimate's.
     report.timings.estimate += (total - report.timings.total).max(0.0);

@@ -5,6 +5,7 @@
 
 use faer::sparse::SparseColMat;
 use faer::Mat;
+use std::sync::Arc;
 
 use crate::contact::{
     self,
@@ -43,9 +44,9 @@ pub struct Solved<'a> {
     /// With friction, its share of the free motions' equilibrium
     /// (`FreeMotions::equilibrium`).
     pub friction: &'a [(f64, f64)],
-    /// The stiffness factor (condensed path), which the energy bound's
-    /// pressure correction solves with.
-    pub factor: Option<&'a crate::linalg::Cholesky>,
+    /// The model and the operator (condensed path), which the energy
+    /// bound's pressure correction solves with (`energy::Pending`).
+    pub operator: Option<(Arc<Model>, Arc<dyn energy::Operator>)>,
 }
 
 /// Certificate, status, contact zones, optional fields: the report.
@@ -131,24 +132,22 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
     let turns = body_turns(&m.dofs, free.map(|p| (p, beta.as_slice())));
     let warnings = validity::check(scene, &m.meshes, &disp, &m.cons, &punch_motions, &turns, &pairs);
     let bodies = body_outputs(scene, &m.meshes, &disp);
-    // The energy bound goes with the error estimate; it costs a solve with
-    // the factor at hand and a pass over the elements.
-    let mut t_energy = 0.0;
-    let mut energy = None;
-    if status == Status::Solved && (scene.settings.estimate || scene.settings.accuracy.is_some()) {
-        let t = std::time::Instant::now();
-        if let Some(factor) = st.factor.filter(|f| energy::unsupported(scene, m, Some(f)).is_none()) {
-            // A scene the bound covers that it still cannot bound says why.
-            match energy::bound(scene, m, st.k, factor, &disp, &sol.lambda, &punch_motions) {
-                Ok(b) => energy = Some(b),
-                Err(why) => notes.push(Note::new(
-                    NoteKind::EstimateLimited,
-                    format!("no guaranteed energy bound: {why}"),
-                )),
-            }
-        }
-        t_energy = t.elapsed().as_secs_f64();
-    }
+    // The energy bound goes with the error estimate; it is made only for
+    // the answer returned (`adapt`), from what is kept here.
+    let pending_energy = st
+        .operator
+        .as_ref()
+        .filter(|_| status == Status::Solved && (scene.settings.estimate || scene.settings.accuracy.is_some()))
+        .filter(|(model, op)| energy::unsupported(scene, model, Some(op.factor())).is_none())
+        .map(|(model, op)| {
+            Arc::new(energy::Pending {
+                model: model.clone(),
+                operator: op.clone(),
+                disp: disp.clone(),
+                lambda: sol.lambda.clone(),
+                punches: punch_motions.clone(),
+            })
+        });
     let couplings = crate::solution::couplings::couplings(scene, &m.meshes, &m.dofs, &disp, &m.external);
     // The post stage has no deadline check: its answer is ready.
     let _ = obs.leave(Stage::Post);
@@ -182,11 +181,9 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
         warnings,
         outputs: scene.outputs,
         axisymmetric: scene.analysis == Analysis::Axisymmetric,
-        energy,
+        energy: None,
+        pending_energy,
     };
-    // Timed inside the post stage; it is the estimate's.
-    report.timings.estimate += t_energy;
-    report.timings.post = (report.timings.post - t_energy).max(0.0);
     if excess > UNBOUNDED {
         if report.status == Status::Solved {
             report.status = Status::NumericalError;

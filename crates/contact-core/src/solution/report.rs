@@ -1,10 +1,14 @@
 //! The domain result of a solve: what the core knows of the answer, in the
 //! request's units. The service's reply (`contact::wire`) is written from it
 //! field by field; benches and tests read it directly.
+//!
+//! Length: about 500 lines, the report's types alone (one struct or enum per
+//! part of the answer the reply writes), with their few accessors.
 
 pub use crate::observer::Timings;
 use crate::outcome::{EstimateBasis, MethodRan, Note, StopReason, WarningCode};
 use crate::scene::{Discretization, Outputs};
+use std::sync::Arc;
 
 /// The answer to a scene that could be attempted.
 #[derive(Debug, Clone)]
@@ -47,6 +51,9 @@ pub struct Report {
     /// The guaranteed bound of the energy-norm error (`solution::energy`),
     /// when the error is estimated and the scene is one the bound covers.
     pub energy: Option<crate::solution::energy::EnergyBound>,
+    /// What the energy bound is made from, kept until the answer is known to
+    /// be the one returned (`energy::Pending`); never on the wire.
+    pub pending_energy: Option<Arc<crate::solution::energy::Pending>>,
 }
 
 /// Tolerance-driven refinement (`crate::adapt`).

@@ -129,7 +129,7 @@ pub(super) fn solve_frictional(
             predicted: factor.map(|f| f.1),
             compliance: None,
             friction: &shares,
-            factor: None,
+            operator: None,
         };
         let mut r = report(&s, &composed, &sm, sol, &friction, obs);
         let settled = r.status == Status::Solved;

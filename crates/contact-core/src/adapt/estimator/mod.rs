@@ -1,14 +1,16 @@
 //! The estimator seam: how an answer's error bar is made. An estimator
 //! names the companion solve it compares the answer against (or none), and
-//! makes each pair's `accuracy` from the answer and that companion;
-//! `adapt::estimate` and the refinement rounds call it and nothing else of
-//! it. A second estimator is one file in this folder plus one arm in `of`
+//! makes each pair's `accuracy` from the answer and that companion, and the
+//! guaranteed energy bound of the answer returned (once per reply, from what
+//! its solve kept: `solution::energy::Pending`); `adapt::estimate` and the
+//! refinement rounds call it and nothing else of it. A second estimator is one file in this folder plus one arm in `of`
 //! (the test `a_trial_estimator_through_the_seam_needs_no_companion` defines
 //! one inside the test alone).
 
 mod two_level;
 
 use crate::scene::Scene;
+use crate::solution::energy::{EnergyBound, Pending};
 use crate::solution::report::{PairAccuracy, PairReport, Report};
 
 pub use two_level::TwoLevel;
@@ -37,6 +39,13 @@ pub trait Estimator {
     /// The estimate's time over the solve's own, for the progress plan and
     /// the rounds' time prediction.
     fn share(&self, scene: &Scene) -> f64;
+    /// The guaranteed energy bound (`solution::energy`) of the answer
+    /// returned, from what its solve kept, or why there is none. Called once
+    /// per reply, for that answer alone: never for a refinement round that
+    /// is not returned, nor for a companion.
+    fn energy(&self, scene: &Scene, answer: &Pending) -> Result<EnergyBound, &'static str> {
+        answer.bound(scene)
+    }
 }
 
 /// The estimator of a scene: the registration a second estimator adds its

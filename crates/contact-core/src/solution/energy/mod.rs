@@ -33,7 +33,10 @@
 
 pub mod airy;
 pub mod equilibrate;
+mod pending;
 mod punch;
+
+pub use pending::{Operator, Pending};
 
 use std::collections::HashMap;
 
@@ -399,13 +402,10 @@ pub fn bound(
     // the supernodes their DOFs reach alone.
     let y = factor.forward_sparse(&d);
     let w2 = factor.backward(&y);
-    let shift = sym_lower_matvec(k, &w2)
-        .iter()
-        .zip(&w2)
-        .map(|(a, b)| a * b)
-        .sum::<f64>()
-        .max(0.0)
-        .sqrt();
+    // ‖w‖²_E = wᵀ K w = wᵀ d, since K w = d: a dot product over the contact
+    // sides' DOFs (where d lives) instead of a product with K (0.2–0.3 ms of
+    // the bound's 22 ms on the Hertz example at 30k DOF).
+    let shift = d.iter().zip(&w2).map(|(a, b)| a * b).sum::<f64>().max(0.0).sqrt();
     let moved = |b: usize, n: usize, c: usize, w: &[f64]| match dofs.free[dofs.dof(b, n, c)] {
         FIXED => 0.0,
         i => w[i],

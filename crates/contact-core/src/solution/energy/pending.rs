@@ -1,0 +1,58 @@
+//! What the energy bound needs of a solved answer, kept with its report until
+//! the answer is known to be the one returned: with `settings.accuracy` a
+//! round is final only once its own estimate is read, after its solve, and a
+//! bound made with every round (15–32 % of each round's solve) was thrown
+//! away with every round but the last. `adapt` makes the bound from this
+//! (`Estimator::energy`) for the answer it returns, and for no other.
+
+use std::sync::Arc;
+
+use faer::sparse::SparseColMat;
+
+use super::{bound, EnergyBound};
+use crate::linalg::Cholesky;
+use crate::model::Model;
+use crate::scene::Scene;
+
+/// The stiffness and its factor of a solve (the condensed route's operator).
+pub trait Operator: Send + Sync {
+    fn stiffness(&self) -> &SparseColMat<usize, f64>;
+    fn factor(&self) -> &Cholesky;
+}
+
+/// A solved answer the bound covers, with the model, the operator and the
+/// fields it is made from. It holds the answer's factor while it is kept:
+/// while a refinement round solves, the last round's factor is held besides
+/// the round's own (the last round's is the smaller: a quarter of the
+/// unknowns on a given mesh, whose rounds split every triangle in four).
+pub struct Pending {
+    pub model: Arc<Model>,
+    pub operator: Arc<dyn Operator>,
+    /// Nodal displacements of every body (`compose`).
+    pub disp: Vec<Vec<[f64; 2]>>,
+    pub lambda: Vec<f64>,
+    /// Every punch's motion (obstacle, [α₁, α₂, θ]).
+    pub punches: Vec<(usize, [f64; 3])>,
+}
+
+impl Pending {
+    /// The bound of the answer (`energy::bound`), or why there is none.
+    pub fn bound(&self, scene: &Scene) -> Result<EnergyBound, &'static str> {
+        let op = &*self.operator;
+        bound(
+            scene,
+            &self.model,
+            op.stiffness(),
+            op.factor(),
+            &self.disp,
+            &self.lambda,
+            &self.punches,
+        )
+    }
+}
+
+impl std::fmt::Debug for Pending {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Pending {{ dofs: {} }}", self.model.dofs.n_free)
+    }
+}
