@@ -26,8 +26,8 @@
 //!
 //! **Energy bound** (`solution::energy`): made by the estimator
 //! (`Estimator::energy`) once per reply, for the answer returned, from what
-//! its solve kept (`energy::Pending`); a refinement round keeps it until the
-//! next round replaces it.
+//! its solve kept (`energy::Pending`); a refinement round keeps it through
+//! its own estimate and releases it before the next round solves.
 //!
 //! **Refinement** (`settings.accuracy`). Generated meshes: round after round
 //! the smallest element `h_min` shrinks by a factor f sized from the last
@@ -231,8 +231,9 @@ pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver, max_dofs: u
 
 /// `refine` by `est`. The energy bound is made once, for the round returned
 /// (`Estimator::energy`): a round is known to be the last only after its own
-/// estimate, so each round keeps what the bound needs until the next one
-/// replaces it.
+/// estimate, so each round keeps what the bound needs through that
+/// estimate, and releases it before the next round solves (should that round
+/// fail, the last one stands without a bound, and a note says why).
 pub fn refine_by(
     est: &dyn Estimator,
     scene: &Scene,
@@ -297,13 +298,35 @@ pub fn refine_by(
                 }
                 .expect("refining always succeeds");
                 crate::progress::round(rounds.len() + 1);
+                // The last round's factor goes before this round's is made:
+                // kept, it would sit beside the new one (a quarter of it on a
+                // given mesh, more on a generated one's smaller steps), past
+                // the memory the request was admitted for. Should this round
+                // fail, the last one stands without its energy bound.
+                let released = report.pending_energy.take().is_some();
+                let unbounded = |report: &mut Report| {
+                    if released {
+                        report.notes.push(Note::new(
+                            NoteKind::EstimateLimited,
+                            "no guaranteed energy bound: this round's factor was released for the next round, \
+                             which did not solve",
+                        ));
+                    }
+                };
                 match solve(&next) {
                     Ok(r) => (next, r),
-                    Err(CoreError::Timeout { .. }) => break StopReason::TimeLimit,
-                    Err(CoreError::TooLarge { .. }) => break StopReason::SizeLimit,
+                    Err(CoreError::Timeout { .. }) => {
+                        unbounded(&mut report);
+                        break StopReason::TimeLimit;
+                    }
+                    Err(CoreError::TooLarge { .. }) => {
+                        unbounded(&mut report);
+                        break StopReason::SizeLimit;
+                    }
                     // A later round that cannot be solved (its mesh, its
                     // numerics) leaves the last round's answer standing.
                     Err(e) => {
+                        unbounded(&mut report);
                         failure = Some(e.to_string());
                         break StopReason::RoundFailed;
                     }

@@ -21,10 +21,11 @@ pub trait Operator: Send + Sync {
 }
 
 /// A solved answer the bound covers, with the model, the operator and the
-/// fields it is made from. It holds the answer's factor while it is kept:
-/// while a refinement round solves, the last round's factor is held besides
-/// the round's own (the last round's is the smaller: a quarter of the
-/// unknowns on a given mesh, whose rounds split every triangle in four).
+/// fields it is made from. It holds the answer's factor while it is kept: a
+/// refinement round's factor stays beside its coarser companion's while that
+/// solves (about a quarter of the round's unknowns), and is released before
+/// the next round solves (`adapt::refine_by`; a finer companion, which is
+/// the next round, solves within the last round's estimate, beside it).
 pub struct Pending {
     pub model: Arc<Model>,
     pub operator: Arc<dyn Operator>,
