@@ -23,8 +23,9 @@ pub fn pairs(req: &SolveRequest, survey: &Survey, n: &Names) -> Result<(Vec<Pair
     if req.contacts.is_empty() {
         return Err(invalid(
             K::NoContactCandidates,
-            "/contacts",
-            "at least one contact pair is required",
+            // At the request itself: an absent `contacts` reads as empty.
+            "",
+            "at least one contact pair is required in `contacts`",
         ));
     }
     let mut pairs = Vec::new();
@@ -84,7 +85,8 @@ pub fn pairs(req: &SolveRequest, survey: &Survey, n: &Names) -> Result<(Vec<Pair
         let stiffness = |b: usize| {
             let m = &req.bodies[b].material;
             match req.analysis {
-                proto::Analysis::PlaneStrain | proto::Analysis::Axisymmetric => {
+                // A 3D solid never reaches the pairs (`Scene::try_new`); its E* is plane strain's.
+                proto::Analysis::PlaneStrain | proto::Analysis::Axisymmetric | proto::Analysis::Solid => {
                     m.youngs_modulus / (1.0 - m.poisson_ratio * m.poisson_ratio)
                 }
                 proto::Analysis::PlaneStress => m.youngs_modulus,
