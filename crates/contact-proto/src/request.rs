@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 /// A contact problem: bodies, rigid obstacles, contact pairs, method and outputs.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
+#[schemars(transform = required_by_analysis)]
 pub struct SolveRequest {
     /// Protocol version; must be "1".
     pub version: String,
@@ -78,6 +79,16 @@ pub struct SolveRequest {
     /// `obstacles`, `foundations` and `contacts` stay empty).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub solid: Option<crate::solid::SolidSpec>,
+}
+
+/// A 2D request needs `bodies` and `contacts`, a 3D solid its `solid`: the
+/// service refuses the others, and the schema is as strict (serde reads an
+/// absent list as empty, so the types alone would not say it).
+fn required_by_analysis(schema: &mut schemars::Schema) {
+    let solid = serde_json::json!({"properties": {"analysis": {"const": "solid"}}, "required": ["analysis"]});
+    schema.insert("if".into(), solid);
+    schema.insert("then".into(), serde_json::json!({"required": ["solid"]}));
+    schema.insert("else".into(), serde_json::json!({"required": ["bodies", "contacts"]}));
 }
 
 /// One step of a load path.

@@ -340,4 +340,18 @@ fn mistakes_are_refused_with_their_place() {
     let e = solve_with(&good, &limits).expect_err("too large");
     assert_eq!(serde_json::to_value(e.code).unwrap(), json!("too_large"));
     assert_eq!(e.path, "/solid/body/mesh/box");
+    // Grid lines are bounded before they are made: an h_min at the least
+    // double would ask for 1e323 of them, a side of 1e308 for as many cells.
+    for (pointer, v) in [
+        ("/solid/body/mesh/box/grading/h_min", json!(5e-324)),
+        ("/solid/body/mesh/box/lengths/0", json!(1e308)),
+    ] {
+        let e = solve(&change(pointer, v)).expect_err(pointer);
+        assert_eq!(
+            serde_json::to_value(e.code).unwrap(),
+            json!("too_large"),
+            "{pointer}: {e:?}"
+        );
+        assert_eq!(e.path, "/solid/body/mesh/box");
+    }
 }

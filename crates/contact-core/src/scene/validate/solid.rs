@@ -278,14 +278,42 @@ fn box_nodes(
     limits: &Limits,
     path: &str,
 ) -> Result<f64, CoreError> {
+    let per_cell = if t10 { 2.0 } else { 1.0 };
+    let nodes = |cells: [f64; 3]| -> f64 { cells.iter().map(|n| per_cell * n + 1.0).product() };
+    // Bounds on the graded cells of each axis before any is made (an h_min
+    // of 5e-324 would ask for 1e323 lines): no cell is below h_min, and past
+    // the uniform zone (2 extent wide) each side grows by `ratio` to `size`
+    // within log(size / h_min) / log(ratio) + 1 cells.
+    let bound: [f64; 3] = std::array::from_fn(|a| {
+        let length = hi[a] - lo[a];
+        match grading {
+            None => (length / size).ceil().max(1.0),
+            Some((_, g)) => {
+                let growing = if g.ratio > 1.0 {
+                    (size / g.h_min).ln() / g.ratio.ln() + 2.0
+                } else {
+                    f64::INFINITY
+                };
+                (length / g.h_min)
+                    .min(2.0 * (g.extent / g.h_min + 1.0) + 2.0 * growing + length / size + 2.0)
+                    .ceil()
+            }
+        }
+    });
+    too_many(nodes(bound.map(|b| b.max(1.0))), limits, path).or_else(|e| {
+        // Over by the bound: made, the lines tell; a bound past 1e7 cells on
+        // one axis is over any limit this service is run with (4e7 nodes).
+        if bound.iter().any(|&b| b > 1e7) {
+            return Err(e);
+        }
+        Ok(())
+    })?;
     let cells: [f64; 3] = std::array::from_fn(|a| match grading {
         Some((focus, g)) => (graded_points(lo[a], hi[a], focus[a], g, size).len() - 1) as f64,
-        None => ((hi[a] - lo[a]) / size).ceil().max(1.0),
+        None => bound[a],
     });
-    let per_cell = if t10 { 2.0 } else { 1.0 };
-    let nodes = cells.iter().map(|n| per_cell * n + 1.0).product();
-    too_many(nodes, limits, path)?;
-    Ok(nodes)
+    too_many(nodes(cells), limits, path)?;
+    Ok(nodes(cells))
 }
 
 /// The size limit on 3 DOFs per node.
