@@ -23,9 +23,8 @@ pub fn pairs(req: &SolveRequest, survey: &Survey, n: &Names) -> Result<(Vec<Pair
     if req.contacts.is_empty() {
         return Err(invalid(
             K::NoContactCandidates,
-            // At the request itself: an absent `contacts` reads as empty.
-            "",
-            "at least one contact pair is required in `contacts`",
+            "/contacts",
+            "at least one contact pair is required",
         ));
     }
     let mut pairs = Vec::new();
