@@ -1,7 +1,8 @@
 //! 3D solids through the wire (`analysis: "solid"`), by the entry the CLI
 //! and the service use (`solve_bytes`), against truths and closed forms:
 //!
-//! - the contact patch test: a box on a rigid plane under a uniform
+//! - the contact patch test (also through a Gmsh file, the example
+//!   `solid_block_on_flat_gmsh.json`): a box on a rigid plane under a uniform
 //!   pressure, its four sides on rollers, is oedometric, a field in T4's
 //!   space: every point's pressure is p, on T4 (nodal rows) and T10 (dual
 //!   mortar rows);
@@ -82,6 +83,20 @@ fn a_box_pressed_uniformly_presses_the_plane_uniformly() {
         assert!((s.resultant.force[2] - p).abs() < 1e-9 * p);
         assert_eq!(patch.outline.len(), 1, "one loop around the base");
     }
+}
+
+/// The Gmsh example (a generated box written as MSH 4.1): the same patch
+/// test through the Gmsh reader, its physical surfaces as the face sets.
+#[test]
+fn the_gmsh_block_presses_the_flat_uniformly() {
+    let r = solved(&example("solid_block_on_flat_gmsh.json"));
+    let s = r.solid.as_ref().unwrap();
+    let worst = s.points.iter().fold(0.0f64, |a, q| a.max((q.pressure - 2.0).abs())) / 2.0;
+    println!("{} points, pressure error {worst:.1e}", s.points.len());
+    assert!(worst < 1e-11 && s.points.iter().all(|q| q.in_contact));
+    assert!((s.resultant.force[2] - 3200.0).abs() < 1e-9 * 3200.0);
+    assert_eq!(s.patches.len(), 1);
+    assert!((s.patches[0].area - 1600.0).abs() < 1e-12 * 1600.0);
 }
 
 /// The uniaxial block: rollers on the symmetry planes x = 0 and y = 0 only
