@@ -59,6 +59,7 @@ __all__ = [
     "hertz_measure",
     "effective_modulus",
     "ball_on_flat",
+    "ball_on_flat_3d",
     "hertz_sphere_reference",
     "flat_punch_of_revolution",
     "boussinesq_pressure",
@@ -725,6 +726,51 @@ def ball_on_flat(
         settings=None if accuracy is None else {"accuracy": accuracy},
         description=f"elastic ball R={radius} {how} onto a rigid flat (axisymmetric)",
     )
+
+
+def ball_on_flat_3d(
+    load: float = 6153.846153846154,
+    radius: float = 50.0,
+    youngs_modulus: float = 210000.0,
+    poisson_ratio: float = 0.3,
+    side: float = 10.0,
+    h_min: float = 0.2,
+    extent: float = 1.2,
+    element: str = "t10",
+) -> dict:
+    """A ball of ``radius`` pressed on a rigid flat by the total ``load``, in 3D as Hertz
+    poses it (proto/examples/solid_ball_on_flat.json, its defaults).
+
+    The ball is a quarter of a cube of ``side`` (rollers on the symmetry planes x = 0
+    and y = 0) whose flat face z = 0 carries the ball's gap r^2 / (2 ``radius``) to the
+    flat (``initial_gap.paraboloid``); the quarter's top carries load / 4 as a uniform
+    pressure. Cells of ``h_min`` within ``extent`` of the apex, graded by 2 up to
+    ``side`` / 2. Reference: ``hertz_sphere_reference(load, radius, ...)``; the reply's
+    ``solid.resultant.force[2]`` is load / 4.
+    """
+    return {
+        "version": "1",
+        "description": f"ball R={radius} pressed by {load} on a rigid flat (3D, quarter model)",
+        "analysis": "solid",
+        "solid": {
+            "body": {
+                "name": "ball",
+                "material": {"youngs_modulus": youngs_modulus, "poisson_ratio": poisson_ratio},
+                "mesh": {"box": {
+                    "corner": [0.0, 0.0, 0.0], "lengths": [side, side, side], "size": side / 2.0,
+                    "element": element,
+                    "grading": {"focus": [0.0, 0.0, 0.0], "h_min": h_min, "ratio": 2.0, "extent": extent},
+                }},
+                "supports": [{"faces": "x_min", "ux": 0.0}, {"faces": "y_min", "uy": 0.0}],
+                "tractions": [{"faces": "z_max", "pressure": load / 4.0 / (side * side)}],
+            },
+            "obstacle": {"name": "flat", "shape": {"plane": {"point": [0.0, 0.0, 0.0], "normal": [0.0, 0.0, 1.0]}}},
+            "contact": {
+                "faces": "z_min",
+                "initial_gap": {"paraboloid": {"apex": [0.0, 0.0, 0.0], "radius": radius}},
+            },
+        },
+    }
 
 
 def flat_punch_of_revolution(

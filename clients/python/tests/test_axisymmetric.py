@@ -135,3 +135,27 @@ def test_ball_on_flat_takes_an_accuracy_and_meets_it():
     reply = solve_local(req)
     assert reply["refinement"]["reached"] and len(reply["refinement"]["rounds"]) >= 2
     assert _hertz_l2(reply, a, p0) < 0.01
+
+
+def test_ball_on_flat_3d_matches_hertz():
+    """The 3D quarter model (T10, cells a/5 at the apex): the apex pressure within
+    3 % of p0 (0.984 measured: a corner row's pressure is a weighted mean over its
+    faces, below a concave peak), the quarter's force the load / 4 to round-off, and
+    a from a least-squares line of p^2 against r^2 (Hertz's p makes it one) within
+    2 % (1.006 measured)."""
+    from contact_client.scenes import ball_on_flat_3d
+
+    load, radius = 6153.846153846154, 50.0
+    reply = solve_local(ball_on_flat_3d(load=load, radius=radius))
+    assert reply["status"] == "solved"
+    solid = reply["solid"]
+    assert abs(solid["resultant"]["force"][2] - load / 4) < 1e-9 * load
+    a, p0 = hertz_sphere_reference(load, radius, 210000.0, 0.3)
+    (patch,) = solid["patches"]
+    assert abs(patch["peak_pressure"] / p0 - 1) < 0.03
+    pts = [(q["at"][0] ** 2 + q["at"][1] ** 2, q["pressure"] ** 2) for q in solid["points"] if q["in_contact"]]
+    mx = sum(x for x, _ in pts) / len(pts)
+    my = sum(y for _, y in pts) / len(pts)
+    slope = sum((x - mx) * (y - my) for x, y in pts) / sum((x - mx) ** 2 for x, _ in pts)
+    a_h = math.sqrt((slope * mx - my) / slope)
+    assert abs(a_h / a - 1) < 0.02

@@ -12,6 +12,9 @@
 //! Each stage is a typed value in and out; the [`Observer`] announces, times
 //! and deadline-checks them.
 //!
+//! A 3D solid (`analysis: "solid"`) takes its own route, `solve::solid`
+//! (`solve_solid`): one body, one plane, the same stages.
+//!
 //! The frictional route's step loop is `solve/frictional.rs`; its block of
 //! punch and free-body motions `solve::friction_block`, its notes on a
 //! step that fell short `solve::notes`.
@@ -34,7 +37,9 @@ use crate::solution::report::{with_steps, CacheState, LoadStep, Report, Timings}
 mod friction_block;
 mod frictional;
 mod notes;
+mod solid;
 use frictional::solve_frictional;
+pub use solid::solve_solid;
 
 /// Solves the scene, once per load factor or load path step (one
 /// factorization serves them all); with friction, step after step from the

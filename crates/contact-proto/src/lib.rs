@@ -11,11 +11,13 @@ pub mod progress;
 pub mod reply;
 pub mod request;
 pub mod schema;
+pub mod solid;
 
 pub use elements::ElementLists;
 pub use error::{ErrorCode, ErrorDetails, ErrorReply, LoadBound};
 pub use reply::*;
 pub use request::*;
+pub use solid::*;
 
 /// Protocol version carried by every message; bumped on incompatible changes.
 pub const PROTOCOL_VERSION: &str = "1";

@@ -23,9 +23,12 @@ pub struct SolveReply {
     pub method: MethodRan,
     /// Iterations of the contact solver.
     pub iterations: usize,
-    /// One entry per contact pair, in request order.
+    /// One entry per contact pair, in request order (empty for a 3D solid:
+    /// see `solid`).
     pub pairs: Vec<PairResult>,
-    /// Total contact force and moment about the origin acting on the bodies.
+    /// Total contact force and moment about the origin acting on the bodies
+    /// (for a 3D solid: its x and y force and its moment about the z axis;
+    /// the whole resultant is `solid.resultant`).
     pub resultant: Resultant,
     /// KKT residuals of the discrete solution, relative and dimensionless.
     pub certificate: Certificate,
@@ -86,6 +89,11 @@ pub struct SolveReply {
     /// answer (the top-level fields describe the last round).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub refinement: Option<Refinement>,
+    /// The answer of a 3D solid (`analysis: "solid"`): its contact patches,
+    /// points and resultant. Its `timings.factorization` includes the
+    /// condensation.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub solid: Option<crate::solid::SolidResult>,
 }
 
 /// Tolerance-driven refinement: each round halves the generated meshes'

@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 /// A contact problem: bodies, rigid obstacles, contact pairs, method and outputs.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
+#[schemars(transform = required_by_analysis)]
 pub struct SolveRequest {
     /// Protocol version; must be "1".
     pub version: String,
@@ -22,10 +23,12 @@ pub struct SolveRequest {
     /// Optional limit on the solve time in seconds; the service applies the smaller of this and its own limit.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub time_limit: Option<f64>,
-    /// Plane strain (default) or plane stress.
+    /// Plane strain (default), plane stress, axisymmetry, or a 3D solid.
     #[serde(default)]
     pub analysis: Analysis,
-    /// Elastic bodies (at least one).
+    /// Elastic bodies (at least one; none with `analysis: "solid"`, whose
+    /// body is in `solid`).
+    #[serde(default)]
     pub bodies: Vec<BodySpec>,
     /// Rigid obstacles the bodies may touch.
     #[serde(default)]
@@ -34,7 +37,9 @@ pub struct SolveRequest {
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub foundations: Vec<FoundationSpec>,
     /// Contact pairs: which boundary edges of which body may touch which
-    /// obstacle, other body or foundation.
+    /// obstacle, other body or foundation (at least one; none with
+    /// `analysis: "solid"`).
+    #[serde(default)]
     pub contacts: Vec<ContactSpec>,
     /// Constraint treatment.
     #[serde(default)]
@@ -70,6 +75,20 @@ pub struct SolveRequest {
     /// consistent (e.g. mm, N, MPa) whatever the names say.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub units: Option<Units>,
+    /// The 3D problem, with `analysis: "solid"` only (then `bodies`,
+    /// `obstacles`, `foundations` and `contacts` stay empty).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub solid: Option<crate::solid::SolidSpec>,
+}
+
+/// A 2D request needs `bodies` and `contacts`, a 3D solid its `solid`: the
+/// service refuses the others, and the schema is as strict (serde reads an
+/// absent list as empty, so the types alone would not say it).
+fn required_by_analysis(schema: &mut schemars::Schema) {
+    let solid = serde_json::json!({"properties": {"analysis": {"const": "solid"}}, "required": ["analysis"]});
+    schema.insert("if".into(), solid);
+    schema.insert("then".into(), serde_json::json!({"required": ["solid"]}));
+    schema.insert("else".into(), serde_json::json!({"required": ["bodies", "contacts"]}));
 }
 
 /// One step of a load path.
@@ -103,7 +122,7 @@ pub struct Units {
     pub stress: Option<String>,
 }
 
-/// 2D kinematic assumption.
+/// Kinematic assumption: a 2D section, or a 3D solid.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Analysis {
@@ -117,6 +136,10 @@ pub enum Analysis {
     /// at radius r is a ring load. Radial resultants and moments vanish by
     /// symmetry and are reported as 0; punches move along the axis only.
     Axisymmetric,
+    /// A 3D body of tetrahedra (the request's `solid`): one body, one rigid
+    /// plane, frictionless, method `auto` or `active_set`; no load factors,
+    /// load path, outputs or error estimate yet.
+    Solid,
 }
 
 /// One elastic body.

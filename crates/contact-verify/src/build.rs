@@ -39,6 +39,7 @@ pub fn request(bodies: Vec<BodySpec>, contacts: Vec<ContactSpec>) -> SolveReques
         load_factors: Vec::new(),
         load_path: Vec::new(),
         units: None,
+        solid: None,
     }
 }
 

@@ -56,6 +56,9 @@ pub fn reply(r: &SolveReply) -> String {
         num(r.resultant.fy),
         num(r.resultant.m)
     );
+    if let Some(s) = &r.solid {
+        solid(&mut o, s, [&length, &force, &stress, &moment]);
+    }
     for (k, p) in r.pairs.iter().enumerate() {
         let target = p
             .obstacle
@@ -324,6 +327,35 @@ pub fn reply(r: &SolveReply) -> String {
         let _ = writeln!(o, "note         {n}");
     }
     o.trim_end().to_string()
+}
+
+/// The 3D answer: the whole resultant and each patch (`units`: length,
+/// force, stress and moment names).
+fn solid(o: &mut String, s: &contact_proto::SolidResult, units: [&String; 4]) {
+    let [length, force, stress, moment] = units;
+    let v = |x: [f64; 3]| format!("({}, {}, {})", num(x[0]), num(x[1]), num(x[2]));
+    let _ = writeln!(
+        o,
+        "solid        body '{}' on obstacle '{}' (face set '{}'): force {}{force}, moment {}{moment} (on the body, \
+         about the origin)",
+        s.body,
+        s.obstacle,
+        s.faces,
+        v(s.resultant.force),
+        v(s.resultant.moment)
+    );
+    for (k, p) in s.patches.iter().enumerate() {
+        let _ = writeln!(
+            o,
+            "  patch {k}    area {}{length}² (tributary {}), force {}{force}, centre {}, peak {}{stress} at {}",
+            num(p.area),
+            num(p.tributary_area),
+            num(p.force),
+            v(p.centre_of_pressure),
+            num(p.peak_pressure),
+            v(p.peak_at)
+        );
+    }
 }
 
 pub fn error(e: &ErrorReply) -> String {

@@ -9,6 +9,7 @@
 pub mod scaling;
 pub mod settings;
 mod size_limit;
+pub mod solid;
 pub mod validate;
 
 pub use scaling::Scales;

@@ -1,7 +1,8 @@
 //! The 3D solid: linear elasticity of a tetrahedral body (`mesh3d`, T4 or
 //! T10) and its frictionless contact with a rigid plane, with the answer's
-//! contact patches. Not yet reachable from a request: the wire types and
-//! routing come with issue 40.
+//! contact patches. A request reaches it with `analysis: "solid"`: the
+//! door makes a `scene::solid::SolidScene`, `door` builds and checks its
+//! given mesh, the route `solve::solid` solves it.
 //!
 //! The dimension lives in the element and mesh rooms: the element stiffness
 //! is `fem::kernel::stiffness` over `fem::reference::{T4, T10}` with the
@@ -22,7 +23,9 @@
 //! Lengths, moduli and loads are nondimensional (the caller's scales), as
 //! everywhere below the scene.
 
+pub mod answer;
 pub mod dofs;
+pub mod door;
 pub mod linear;
 pub mod loads;
 pub mod obstacle;
@@ -34,44 +37,7 @@ pub mod stiffness;
 use crate::error::{CoreError, InvalidKind};
 use crate::mesh3d::Mesh3d;
 
-/// Components held on a face set: `fix[c] = Some(v)` prescribes u_c = v on
-/// every node of the set (a roller or symmetry plane fixes one component).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Support {
-    pub faces: String,
-    pub fix: [Option<f64>; 3],
-}
-
-impl Support {
-    /// A roller (or symmetry plane) on `faces`: u_c = 0, the other two
-    /// components free.
-    pub fn roller(faces: &str, c: usize) -> Self {
-        let mut fix = [None; 3];
-        fix[c] = Some(0.0);
-        Self {
-            faces: faces.into(),
-            fix,
-        }
-    }
-}
-
-/// A load on a face set, per unit area of the deformed-free (reference)
-/// surface.
-#[derive(Debug, Clone, PartialEq)]
-pub enum FaceLoad {
-    /// Pressure p acting against the outward normal (p > 0 pushes in).
-    Pressure { faces: String, p: f64 },
-    /// A traction vector t.
-    Traction { faces: String, t: [f64; 3] },
-}
-
-impl FaceLoad {
-    pub fn faces(&self) -> &str {
-        match self {
-            FaceLoad::Pressure { faces, .. } | FaceLoad::Traction { faces, .. } => faces,
-        }
-    }
-}
+pub use crate::scene::solid::{FaceLoad, Support};
 
 /// An elastic body of tetrahedra with its material, supports and loads.
 #[derive(Debug, Clone)]

@@ -37,37 +37,8 @@
 use super::SolidBody;
 use crate::error::{CoreError, InvalidKind};
 use crate::fem::reference::{triangle::RULE6, ReferenceElement, T6};
-use crate::mesh3d::{cross, dot, sub, Face, Mesh3d, Order};
-
-/// A rigid plane: a point on it and its unit normal, out of the obstacle.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Plane {
-    pub point: [f64; 3],
-    pub normal: [f64; 3],
-}
-
-impl Plane {
-    /// The plane through `point` with normal along `normal` (any length > 0).
-    pub fn try_new(point: [f64; 3], normal: [f64; 3]) -> Result<Self, CoreError> {
-        let l = dot(normal, normal).sqrt();
-        if !(l > 0.0 && l.is_finite()) || point.iter().any(|v| !v.is_finite()) {
-            return Err(CoreError::invalid(
-                InvalidKind::Geometry,
-                "obstacle",
-                format!("a plane needs a finite point and a nonzero normal, got {point:?} and {normal:?}"),
-            ));
-        }
-        Ok(Self {
-            point,
-            normal: normal.map(|v| v / l),
-        })
-    }
-
-    /// d(x) = (x − p)·n.
-    pub fn distance(&self, x: [f64; 3]) -> f64 {
-        dot(sub(x, self.point), self.normal)
-    }
-}
+use crate::mesh3d::{cross, dot, Face, Mesh3d, Order};
+pub use crate::scene::solid::Plane;
 
 /// The candidate rows: one per node of the contact face set (T4), one per
 /// corner (T10).
@@ -111,6 +82,19 @@ impl PlaneRows {
 
 /// The rows of face set `faces` against `plane`.
 pub fn rows(body: &SolidBody, faces: &str, plane: Plane) -> Result<PlaneRows, CoreError> {
+    rows_with(body, faces, plane, &|_| 0.0)
+}
+
+/// The rows with `extra(x)` added to the distance d(x) before it is
+/// weighted: a flat face set standing for a curved one (Hertz's paraboloid
+/// r²/2R, `scene::SolidScene::extra_gap`). Integrated as d is on T10
+/// faces (a quadratic `extra` exactly on a flat face).
+pub fn rows_with(
+    body: &SolidBody,
+    faces: &str,
+    plane: Plane,
+    extra: &dyn Fn([f64; 3]) -> f64,
+) -> Result<PlaneRows, CoreError> {
     let mesh = body.mesh;
     let set = body.face_set(faces, "contact/faces")?;
     if set.is_empty() {
@@ -121,12 +105,12 @@ pub fn rows(body: &SolidBody, faces: &str, plane: Plane) -> Result<PlaneRows, Co
         ));
     }
     Ok(match mesh.order {
-        Order::T4 => nodal(mesh, set, faces, plane),
-        Order::T10 => mortar(mesh, set, faces, plane),
+        Order::T4 => nodal(mesh, set, faces, plane, extra),
+        Order::T10 => mortar(mesh, set, faces, plane, extra),
     })
 }
 
-fn nodal(mesh: &Mesh3d, set: &[Face], faces: &str, plane: Plane) -> PlaneRows {
+fn nodal(mesh: &Mesh3d, set: &[Face], faces: &str, plane: Plane, extra: &dyn Fn([f64; 3]) -> f64) -> PlaneRows {
     let nodes = mesh.face_set_nodes(faces);
     let mut index = std::collections::HashMap::with_capacity(nodes.len());
     for (i, &n) in nodes.iter().enumerate() {
@@ -143,7 +127,10 @@ fn nodal(mesh: &Mesh3d, set: &[Face], faces: &str, plane: Plane) -> PlaneRows {
         plane,
         faces: faces.to_string(),
         terms: nodes.iter().map(|&n| vec![(n, 1.0)]).collect(),
-        gap: nodes.iter().map(|&n| plane.distance(mesh.nodes[n])).collect(),
+        gap: nodes
+            .iter()
+            .map(|&n| plane.distance(mesh.nodes[n]) + extra(mesh.nodes[n]))
+            .collect(),
         nodes,
         area,
     }
@@ -195,13 +182,13 @@ struct Acc {
 }
 
 /// Dual mortar rows on the corners of 6-node faces (module doc).
-fn mortar(mesh: &Mesh3d, set: &[Face], faces: &str, plane: Plane) -> PlaneRows {
+fn mortar(mesh: &Mesh3d, set: &[Face], faces: &str, plane: Plane, extra: &dyn Fn([f64; 3]) -> f64) -> PlaneRows {
     let mut order: Vec<usize> = Vec::new();
     let mut acc: std::collections::HashMap<usize, Acc> = std::collections::HashMap::new();
     for f in set {
         let nodes: Vec<usize> = f.nodes().collect();
         for FacePoint { l, n, da, at } in t6_points(mesh, f) {
-            let d = plane.distance(at);
+            let d = plane.distance(at) + extra(at);
             for (k, &corner) in f.corners.iter().enumerate() {
                 let psi = 4.0 * l[k] - 1.0;
                 let a = acc.entry(corner).or_insert_with(|| {

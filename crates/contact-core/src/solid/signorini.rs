@@ -160,11 +160,13 @@ pub fn solve(body: &SolidBody, rows: &PlaneRows, settings: &Settings) -> Result<
     let r: Vec<f64> = rf.iter().map(|v| -v).collect();
     compatible(&c, &r)?;
     let t1 = std::time::Instant::now();
+    crate::progress::stage(crate::progress::ProgressStage::Factorization);
     let refs: Vec<&[(usize, f64)]> = fr.rows.iter().map(|r| r.as_slice()).collect();
     let (fwd, inv) = ordering::nested_dissection(body.mesh, &dofs)?;
     let symbolic = Arc::new(SymbolicFactor::try_new_ordered(&k.k, &fwd, &inv)?);
     let op = condensed::prepare_on(k.clone(), &refs, symbolic, t1)?;
     let t2 = std::time::Instant::now();
+    crate::progress::stage(crate::progress::ProgressStage::ContactSolve);
     let y = op.chol.forward(&f);
     let q: Vec<f64> = fr.g.iter().zip(op.condensed.rows_of(&y)).map(|(g, b)| g - b).collect();
     let (res, mut beta) = if nm == 0 {

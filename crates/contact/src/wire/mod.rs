@@ -3,13 +3,16 @@
 
 use contact_core::cache::OperatorCache;
 use contact_core::error::CoreError;
+use contact_core::scene::validate::solid_scene;
+use contact_core::solid::door::{self, SolidProblem};
 use contact_core::{Limits, Scene};
-use contact_proto::{ErrorCode, ErrorDetails, ErrorReply, LoadBound, SolveReply, Units};
+use contact_proto::{Analysis, ErrorCode, ErrorDetails, ErrorReply, LoadBound, SolveReply, Units};
 
 use crate::parse::parse_request;
 
 pub mod progress;
 pub mod reply;
+pub mod solid;
 
 /// Bytes in, reply or structured error out: what the service and the CLI call.
 pub fn solve_bytes(bytes: &[u8], limits: &Limits) -> Result<SolveReply, ErrorReply> {
@@ -29,19 +32,31 @@ pub fn solve_bytes_cached(
 /// for the numerics. The service validates on arrival and hands this to a
 /// worker, so a request is validated once.
 pub struct Validated {
-    scene: Scene,
+    scene: Door,
     units: Option<Units>,
+}
+
+/// What the door made of a request: a 2D scene, or a 3D solid.
+enum Door {
+    Plane(Box<Scene>),
+    Solid(Box<SolidProblem>),
 }
 
 impl Validated {
     /// The request's `client_id`, echoed in its reply.
     pub fn client_id(&self) -> Option<&str> {
-        self.scene.client_id.as_deref()
+        match &self.scene {
+            Door::Plane(s) => s.client_id.as_deref(),
+            Door::Solid(s) => s.scene.client_id.as_deref(),
+        }
     }
 
     /// The request's own `time_limit`, seconds, if it gives one.
     pub fn time_limit(&self) -> Option<f64> {
-        self.scene.time_limit
+        match &self.scene {
+            Door::Plane(s) => s.time_limit,
+            Door::Solid(s) => s.scene.time_limit,
+        }
     }
 }
 
@@ -52,7 +67,10 @@ impl Validated {
 pub fn validate_bytes(bytes: &[u8], limits: &Limits) -> Result<Validated, ErrorReply> {
     let run = || -> Result<Validated, CoreError> {
         let req = parse_request(bytes, limits)?;
-        let scene = Scene::try_new(&req, limits)?;
+        let scene = match req.analysis {
+            Analysis::Solid => Door::Solid(Box::new(door::admit(solid_scene(&req, limits)?)?)),
+            _ => Door::Plane(Box::new(Scene::try_new(&req, limits)?)),
+        };
         Ok(Validated {
             scene,
             units: req.units,
@@ -72,9 +90,12 @@ pub fn solve_validated(
     limits: &Limits,
     cache: Option<&OperatorCache>,
 ) -> Result<SolveReply, ErrorReply> {
-    match contact_core::solve(&request.scene, limits, cache) {
-        Ok(report) => {
-            let mut r = reply::reply(report);
+    let solved = match &request.scene {
+        Door::Plane(scene) => contact_core::solve(scene, limits, cache).map(reply::reply),
+        Door::Solid(scene) => contact_core::solve_solid(scene, limits).map(solid::reply),
+    };
+    match solved {
+        Ok(mut r) => {
             r.units.clone_from(&request.units);
             Ok(r)
         }

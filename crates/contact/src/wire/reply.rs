@@ -87,6 +87,7 @@ pub fn reply(mut report: Report) -> p::SolveReply {
                 })
                 .collect(),
         }),
+        solid: None,
     };
     crate::output::attach_vtu(&mut reply, outputs, &stress_zz, axisymmetric);
     reply
@@ -189,7 +190,7 @@ fn certificate(c: r::Certificate) -> p::Certificate {
     }
 }
 
-fn timings(t: r::Timings) -> p::Timings {
+pub(super) fn timings(t: r::Timings) -> p::Timings {
     p::Timings {
         mesh: t.mesh,
         assembly: t.assembly,

@@ -293,32 +293,45 @@ pub fn edge_names(m: &MeshSpec, parsed: Option<&gmsh::Parsed>) -> BTreeSet<Strin
 }
 
 fn check_grading(g: &proto::GradingSpec, size: f64, path: &str) -> Result<(), CoreError> {
-    positive(g.h_min, &format!("{path}/h_min"), K::Mesh, "h_min")?;
-    if g.h_min > size {
-        return Err(invalid(
-            K::Mesh,
-            format!("{path}/h_min"),
-            format!("h_min ({}) exceeds the element size ({size})", g.h_min),
-        ));
-    }
-    finite(g.ratio, &format!("{path}/ratio"), K::Mesh)?;
-    if !(g.ratio >= 1.0 && g.ratio <= 2.0) {
-        return Err(invalid(
-            K::Mesh,
-            format!("{path}/ratio"),
-            format!("ratio must be in [1, 2], got {}", g.ratio),
-        ));
-    }
-    if !(g.extent.is_finite() && g.extent >= 0.0) {
-        return Err(invalid(
-            K::Mesh,
-            format!("{path}/extent"),
-            format!("extent must be a finite non-negative length, got {}", g.extent),
-        ));
-    }
+    check_grading_values(g.h_min, g.ratio, g.extent, size, path)?;
     if let Some(f) = g.focus {
         finite(f[0], &format!("{path}/focus/0"), K::Mesh)?;
         finite(f[1], &format!("{path}/focus/1"), K::Mesh)?;
+    }
+    Ok(())
+}
+
+/// A grading's `h_min` (at most the mesh's `size`), `ratio` and `extent`
+/// (2D and 3D alike).
+pub(super) fn check_grading_values(
+    h_min: f64,
+    ratio: f64,
+    extent: f64,
+    size: f64,
+    path: &str,
+) -> Result<(), CoreError> {
+    positive(h_min, &format!("{path}/h_min"), K::Mesh, "h_min")?;
+    if h_min > size {
+        return Err(invalid(
+            K::Mesh,
+            format!("{path}/h_min"),
+            format!("h_min ({h_min}) exceeds the element size ({size})"),
+        ));
+    }
+    finite(ratio, &format!("{path}/ratio"), K::Mesh)?;
+    if !(1.0..=2.0).contains(&ratio) {
+        return Err(invalid(
+            K::Mesh,
+            format!("{path}/ratio"),
+            format!("ratio must be in [1, 2], got {ratio}"),
+        ));
+    }
+    if !(extent.is_finite() && extent >= 0.0) {
+        return Err(invalid(
+            K::Mesh,
+            format!("{path}/extent"),
+            format!("extent must be a finite non-negative length, got {extent}"),
+        ));
     }
     Ok(())
 }

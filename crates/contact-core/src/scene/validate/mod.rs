@@ -10,6 +10,9 @@ mod load_path;
 mod obstacles;
 mod pairs;
 mod settings;
+mod solid;
+
+pub use solid::solid_scene;
 
 use contact_proto::{self as proto, SolveRequest};
 
@@ -83,6 +86,22 @@ pub(super) fn positive(v: f64, path: &str, kind: InvalidKind, what: &str) -> Res
     }
 }
 
+/// The protocol version every request carries.
+pub(super) fn version(req: &SolveRequest) -> Result<(), CoreError> {
+    if req.version != proto::PROTOCOL_VERSION {
+        return Err(invalid(
+            InvalidKind::Version,
+            "/version",
+            format!(
+                "version '{}' is not supported; this service speaks '{}'",
+                req.version,
+                proto::PROTOCOL_VERSION
+            ),
+        ));
+    }
+    Ok(())
+}
+
 impl Scene {
     /// Validates `req` against the deployment's `limits` and builds the scene
     /// in nondimensional form. The checks run in a fixed order, so the same
@@ -90,19 +109,29 @@ impl Scene {
     pub fn try_new(req: &SolveRequest, limits: &Limits) -> Result<Scene, CoreError> {
         use InvalidKind as K;
         let time_limit = settings::time_limit(req)?;
-        if req.version != proto::PROTOCOL_VERSION {
+        version(req)?;
+        if req.analysis == proto::Analysis::Solid {
             return Err(invalid(
-                K::Version,
-                "/version",
-                format!(
-                    "version '{}' is not supported; this service speaks '{}'",
-                    req.version,
-                    proto::PROTOCOL_VERSION
-                ),
+                K::Request,
+                "/analysis",
+                "a 3D solid is not a 2D scene: its door is `scene::validate::solid_scene`",
+            ));
+        }
+        if req.solid.is_some() {
+            return Err(invalid(
+                K::Request,
+                "/solid",
+                "`solid` describes a 3D body: give it with `analysis: \"solid\"`",
             ));
         }
         if req.bodies.is_empty() {
-            return Err(invalid(K::Request, "/bodies", "at least one body is required"));
+            // At the request itself: an absent `bodies` reads as empty, and
+            // its pointer would not resolve.
+            return Err(invalid(
+                K::Request,
+                "",
+                "at least one body is required in `bodies` (or, for a 3D solid, `analysis: \"solid\"`)",
+            ));
         }
         let survey = bodies::survey(req, limits)?;
         let scales = survey.scales;

@@ -84,7 +84,8 @@ pub fn pairs(req: &SolveRequest, survey: &Survey, n: &Names) -> Result<(Vec<Pair
         let stiffness = |b: usize| {
             let m = &req.bodies[b].material;
             match req.analysis {
-                proto::Analysis::PlaneStrain | proto::Analysis::Axisymmetric => {
+                // A 3D solid never reaches the pairs (`Scene::try_new`); its E* is plane strain's.
+                proto::Analysis::PlaneStrain | proto::Analysis::Axisymmetric | proto::Analysis::Solid => {
                     m.youngs_modulus / (1.0 - m.poisson_ratio * m.poisson_ratio)
                 }
                 proto::Analysis::PlaneStress => m.youngs_modulus,

@@ -38,15 +38,8 @@ pub fn time_limit(req: &SolveRequest) -> Result<Option<f64>, CoreError> {
     Ok(req.time_limit)
 }
 
-/// The solver settings, nondimensional; the load factors and the reply's size
-/// are judged here too, in the order the checks have always run.
-pub fn settings(
-    req: &SolveRequest,
-    scales: Scales,
-    bodies: &[Body],
-    nodes: f64,
-    limits: &Limits,
-) -> Result<Settings, CoreError> {
+/// The tolerance and the iteration cap (2D and 3D alike).
+pub fn iteration(req: &SolveRequest) -> Result<(f64, usize), CoreError> {
     let s = &req.settings;
     let tol = positive(s.tolerance, "/settings/tolerance", K::Request, "tolerance")?;
     if tol >= 1e-2 {
@@ -63,6 +56,20 @@ pub fn settings(
             "max_iterations must be between 1 and 100000",
         ));
     }
+    Ok((tol, s.max_iterations))
+}
+
+/// The solver settings, nondimensional; the load factors and the reply's size
+/// are judged here too, in the order the checks have always run.
+pub fn settings(
+    req: &SolveRequest,
+    scales: Scales,
+    bodies: &[Body],
+    nodes: f64,
+    limits: &Limits,
+) -> Result<Settings, CoreError> {
+    let s = &req.settings;
+    let (tol, _) = iteration(req)?;
     positive(
         s.prune_gap_ratio,
         "/settings/prune_gap_ratio",
@@ -176,6 +183,7 @@ pub fn analysis(req: &SolveRequest) -> Analysis {
         proto::Analysis::PlaneStrain => Analysis::PlaneStrain,
         proto::Analysis::PlaneStress => Analysis::PlaneStress,
         proto::Analysis::Axisymmetric => Analysis::Axisymmetric,
+        proto::Analysis::Solid => unreachable!("`Scene::try_new` refuses a 3D solid before it reads the analysis"),
     }
 }
 

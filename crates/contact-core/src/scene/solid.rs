@@ -1,0 +1,156 @@
+//! A validated 3D request (`analysis: "solid"`), nondimensional: what the
+//! door (`scene::validate::solid`) makes of the wire's `solid` section. Its
+//! given mesh (inline or Gmsh) is built and checked by `solid::door`, in
+//! the solid room (the scene knows no tetrahedra: `mesh3d` and `solid`
+//! build on `fem`, which reads the scene); the route `solve::solid`
+//! solves it. No wire types.
+//!
+//! Scales: lengths are divided by `length` (the body's size, the largest
+//! side of its bounding box), moduli, pressures and tractions by `modulus`
+//! (Young's modulus), so the numerics see E = 1 and a body of size 1 as the
+//! 2D scene does. Forces come back times `modulus · length²` (totals: a
+//! solid has no thickness), moments times `modulus · length³`.
+
+use std::collections::BTreeMap;
+
+use crate::error::{CoreError, InvalidKind};
+use crate::mesh::generate::Grading;
+use crate::scene::Settings;
+
+/// Where the body's mesh comes from: the door's data, in nondimensional
+/// coordinates, with the JSON pointer its faults are reported at.
+#[derive(Debug, Clone)]
+pub enum SolidMesh {
+    /// A generated box (`mesh3d::generate::box_mesh`), built in the route's
+    /// mesh stage.
+    Box {
+        lo: [f64; 3],
+        hi: [f64; 3],
+        size: f64,
+        grading: Option<([f64; 3], Grading)>,
+        t10: bool,
+    },
+    /// Inline nodes, tetrahedra (`ends[e]` is where element e's nodes end in
+    /// `elements`) and face sets.
+    Inline {
+        nodes: Vec<[f64; 3]>,
+        elements: Vec<usize>,
+        ends: Vec<usize>,
+        face_sets: BTreeMap<String, Vec<[usize; 3]>>,
+        path: String,
+    },
+    /// Gmsh MSH 4.1 text and the physical volumes of the body (its
+    /// coordinates divided by `SolidScene::length` when read).
+    Gmsh {
+        msh: String,
+        volumes: Vec<String>,
+        path: String,
+    },
+}
+
+/// Components held on a face set: `fix[c] = Some(v)` prescribes u_c = v on
+/// every node of the set (a roller or symmetry plane fixes one component).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Support {
+    pub faces: String,
+    pub fix: [Option<f64>; 3],
+}
+
+impl Support {
+    /// A roller (or symmetry plane) on `faces`: u_c = 0, the other two
+    /// components free.
+    pub fn roller(faces: &str, c: usize) -> Self {
+        let mut fix = [None; 3];
+        fix[c] = Some(0.0);
+        Self {
+            faces: faces.into(),
+            fix,
+        }
+    }
+}
+
+/// A load on a face set, per unit area of the deformed-free (reference)
+/// surface.
+#[derive(Debug, Clone, PartialEq)]
+pub enum FaceLoad {
+    /// Pressure p acting against the outward normal (p > 0 pushes in).
+    Pressure { faces: String, p: f64 },
+    /// A traction vector t.
+    Traction { faces: String, t: [f64; 3] },
+}
+
+impl FaceLoad {
+    pub fn faces(&self) -> &str {
+        match self {
+            FaceLoad::Pressure { faces, .. } | FaceLoad::Traction { faces, .. } => faces,
+        }
+    }
+}
+
+/// A rigid plane: a point on it and its unit normal, out of the obstacle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Plane {
+    pub point: [f64; 3],
+    pub normal: [f64; 3],
+}
+
+impl Plane {
+    /// The plane through `point` with normal along `normal` (any length > 0).
+    pub fn try_new(point: [f64; 3], normal: [f64; 3]) -> Result<Self, CoreError> {
+        let l = normal.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if !(l > 0.0 && l.is_finite()) || point.iter().any(|v| !v.is_finite()) {
+            return Err(CoreError::invalid(
+                InvalidKind::Geometry,
+                "obstacle",
+                format!("a plane needs a finite point and a nonzero normal, got {point:?} and {normal:?}"),
+            ));
+        }
+        Ok(Self {
+            point,
+            normal: normal.map(|v| v / l),
+        })
+    }
+
+    /// d(x) = (x − p)·n.
+    pub fn distance(&self, x: [f64; 3]) -> f64 {
+        (0..3).map(|c| (x[c] - self.point[c]) * self.normal[c]).sum()
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct SolidScene {
+    pub length: f64,
+    pub modulus: f64,
+    pub body: String,
+    pub obstacle: String,
+    pub mesh: SolidMesh,
+    pub poisson_ratio: f64,
+    pub supports: Vec<Support>,
+    pub loads: Vec<FaceLoad>,
+    pub body_force: [f64; 3],
+    pub plane: Plane,
+    /// The contact face set.
+    pub faces: String,
+    /// Hertz's paraboloid (apex, radius) added to the gap, if given.
+    pub paraboloid: Option<([f64; 3], f64)>,
+    pub settings: Settings,
+    pub client_id: Option<String>,
+    pub time_limit: Option<f64>,
+    /// Nodes of the mesh, as counted at the door (for a Gmsh text, all of
+    /// its nodes).
+    pub estimated_nodes: f64,
+}
+
+impl SolidScene {
+    /// The initial gap profile added to the distance to the plane at x:
+    /// r² / 2R with r the distance from the apex across the plane's normal.
+    pub fn extra_gap(&self, x: [f64; 3]) -> f64 {
+        let Some((apex, radius)) = self.paraboloid else {
+            return 0.0;
+        };
+        let d: [f64; 3] = std::array::from_fn(|c| x[c] - apex[c]);
+        let along: f64 = (0..3).map(|c| d[c] * self.plane.normal[c]).sum();
+        let r2 = (0..3).map(|c| d[c] * d[c]).sum::<f64>() - along * along;
+        r2.max(0.0) / (2.0 * radius)
+    }
+}

@@ -1,0 +1,71 @@
+//! The 3D answer in the request's units: the report of `report`, scaled
+//! back (`scene` module doc: positions and gaps times the length, pressures
+//! times the modulus, forces times modulus · length², moments times
+//! modulus · length³; areas times length²), with the solve's status and
+//! sizes. No wire types: the `contact` crate writes it as the reply.
+
+use super::report::SolidContactReport;
+use crate::mesh3d::Order;
+use crate::observer::Timings;
+use crate::outcome::Status;
+use crate::scene::solid::SolidScene;
+
+#[derive(Debug, Clone)]
+pub struct SolidAnswer {
+    pub body: String,
+    pub obstacle: String,
+    pub faces: String,
+    pub order: Order,
+    pub status: Status,
+    pub report: SolidContactReport,
+    /// Largest penetration of a row, max(−gap, 0).
+    pub max_penetration: f64,
+    /// Free DOFs, rows, rows in contact.
+    pub dofs: usize,
+    pub candidates: usize,
+    pub active: usize,
+    /// Contact-force refinement steps on the final active set.
+    pub refinements: usize,
+    pub timings: Timings,
+    pub client_id: Option<String>,
+}
+
+/// The status of a solve: solved when it converged with a certificate
+/// within the tolerance (the 2D rule for exact methods).
+pub fn status(report: &SolidContactReport, tolerance: f64) -> Status {
+    let worst = report.certificate.worst();
+    if !worst.is_finite() {
+        Status::NumericalError
+    } else if !report.converged {
+        Status::MaxIterations
+    } else if worst > tolerance {
+        Status::NumericalError
+    } else {
+        Status::Solved
+    }
+}
+
+/// `report` in the request's units.
+pub fn dimensional(mut report: SolidContactReport, scene: &SolidScene) -> SolidContactReport {
+    let (l, e) = (scene.length, scene.modulus);
+    let at = |x: [f64; 3]| x.map(|c| c * l);
+    for p in &mut report.points {
+        p.position = at(p.position);
+        p.pressure *= e;
+        p.gap *= l;
+    }
+    for p in &mut report.patches {
+        p.area *= l * l;
+        p.tributary_area *= l * l;
+        p.force *= e * l * l;
+        p.centre_of_pressure = at(p.centre_of_pressure);
+        p.peak_pressure *= e;
+        p.peak_at = at(p.peak_at);
+        for ring in &mut p.outline {
+            ring.iter_mut().for_each(|x| *x = at(*x));
+        }
+    }
+    report.resultant.force = report.resultant.force.map(|f| f * e * l * l);
+    report.resultant.moment = report.resultant.moment.map(|m| m * e * l * l * l);
+    report
+}

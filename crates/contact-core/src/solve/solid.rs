@@ -1,0 +1,146 @@
+//! The 3D route: a `SolidScene` (`analysis: "solid"`) solved stage by stage
+//! as the 2D routes are, with the same deadline, cancellation and progress:
+//!
+//! ```text
+//! SolidScene ─mesh→ Mesh3d ─admit→ ─rows→ PlaneRows
+//!   ─assemble, factor (nested dissection, admitted by predicted time),
+//!    condense, LCP→ Contact (`solid::signorini`) ─report→ SolidAnswer
+//! ```
+//!
+//! The dimension lives in the `mesh3d` and `solid` rooms; this file only
+//! orders their stages and times them.
+
+use crate::error::CoreError;
+use crate::mesh3d::generate::box_mesh;
+use crate::mesh3d::Order;
+use crate::observer::{self, Observer, Stage};
+use crate::outcome::ProgressStage;
+use crate::scene::solid::SolidMesh;
+use crate::scene::Limits;
+use crate::solid::answer::{dimensional, status, SolidAnswer};
+use crate::solid::door::SolidProblem;
+use crate::solid::obstacle::rows_with;
+use crate::solid::report::report;
+use crate::solid::{signorini, SolidBody};
+
+/// Solves the 3D problem within its time limit, if it has one.
+pub fn solve_solid(problem: &SolidProblem, limits: &Limits) -> Result<SolidAnswer, CoreError> {
+    let scene = &problem.scene;
+    let _deadline = scene
+        .time_limit
+        .map(|s| crate::cancel::Deadline::install(std::time::Duration::from_secs_f64(s.min(1e9))));
+    // The 2D plan counts 2 DOFs per node: 3D's are 1.5 times as many per
+    // node. Its factorization is revised from the symbolic analysis.
+    let t10 = problem.t10();
+    crate::progress::plan(observer::predicted(1.5 * scene.estimated_nodes, t10));
+    let mut obs = Observer::new();
+    obs.enter(Stage::Mesh);
+    let generated;
+    let mesh = match (&problem.mesh, &scene.mesh) {
+        (Some(m), _) => m,
+        (
+            None,
+            SolidMesh::Box {
+                lo,
+                hi,
+                size,
+                grading,
+                t10,
+            },
+        ) => {
+            let order = if *t10 { Order::T10 } else { Order::T4 };
+            generated = box_mesh(*lo, *hi, *size, *grading, order);
+            &generated
+        }
+        (None, _) => unreachable!("`solid::door::admit` builds every given mesh"),
+    };
+    obs.leave(Stage::Mesh)?;
+    if 3 * mesh.nodes.len() > limits.max_dofs {
+        return Err(CoreError::TooLarge {
+            path: "/solid/body/mesh".into(),
+            reason: format!(
+                "the mesh has {} degrees of freedom; this service solves at most {}",
+                3 * mesh.nodes.len(),
+                limits.max_dofs
+            ),
+        });
+    }
+    obs.enter(Stage::Assembly);
+    let body = SolidBody {
+        mesh,
+        youngs_modulus: 1.0,
+        poisson_ratio: scene.poisson_ratio,
+        supports: scene.supports.clone(),
+        loads: scene.loads.clone(),
+        body_force: scene.body_force,
+    };
+    let t_rows = std::time::Instant::now();
+    let rows = rows_with(&body, &scene.faces, scene.plane, &|x| scene.extra_gap(x)).map_err(located)?;
+    if rows.len() > limits.max_candidates {
+        // The condensed operator is dense in the rows (`Limits::max_candidates`).
+        return Err(CoreError::TooLarge {
+            path: "/solid/contact/faces".into(),
+            reason: format!(
+                "face set '{}' has {} contact rows; this service condenses at most {} (coarsen the mesh there)",
+                scene.faces,
+                rows.len(),
+                limits.max_candidates
+            ),
+        });
+    }
+    let contact = signorini::solve(&body, &rows, &scene.settings).map_err(located)?;
+    // The stages inside the Signorini solve time themselves.
+    obs.timings.assembly = t_rows.elapsed().as_secs_f64() - contact.seconds[1] - contact.seconds[2];
+    obs.timings.factorization = contact.seconds[1];
+    obs.timings.contact_solve = contact.seconds[2];
+    obs.check(Stage::ContactSolve)?;
+    obs.enter(Stage::Post);
+    let rep = report(&body, &rows, &contact).map_err(located)?;
+    obs.leave(Stage::Post)?;
+    let max_penetration = contact.gap.iter().fold(0.0f64, |a, g| a.max(-g)) * scene.length;
+    let active = contact.lambda.iter().filter(|&&l| l > 0.0).count();
+    let status = status(&rep, scene.settings.tolerance);
+    crate::progress::stage(ProgressStage::Post);
+    Ok(SolidAnswer {
+        body: scene.body.clone(),
+        obstacle: scene.obstacle.clone(),
+        faces: scene.faces.clone(),
+        order: mesh.order,
+        status,
+        report: dimensional(rep, scene),
+        max_penetration,
+        dofs: contact.dofs.n_free,
+        candidates: rows.len(),
+        active,
+        refinements: contact.refinements,
+        timings: obs.finish(),
+        client_id: scene.client_id.clone(),
+    })
+}
+
+/// A refusal of the `solid` room, whose paths name the body's fields
+/// (`supports`, `loads`, `contact/faces`), at its place in the request.
+fn located(e: CoreError) -> CoreError {
+    match e {
+        CoreError::Invalid {
+            kind,
+            path,
+            reason,
+            loads,
+        } if !path.starts_with('/') => {
+            let path = match path.as_str() {
+                "loads" => "/solid/body/tractions".to_string(),
+                "contact/faces" => "/solid/contact/faces".to_string(),
+                "obstacle" => "/solid/obstacle".to_string(),
+                p => format!("/solid/body/{p}"),
+            };
+            CoreError::Invalid {
+                kind,
+                path,
+                reason,
+                loads,
+            }
+        }
+        other => other,
+    }
+}

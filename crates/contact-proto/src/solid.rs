@@ -1,0 +1,288 @@
+//! The 3D solid's sections of the request (`analysis: "solid"`, the
+//! request's `solid`) and of the reply (`solid`): one elastic body of
+//! tetrahedra against one rigid plane, frictionless. Lengths, forces and
+//! pressures are the caller's units (consistent, e.g. mm, N, MPa); forces
+//! are totals, not per unit thickness.
+
+use std::collections::BTreeMap;
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::{ElementLists, MaterialSpec};
+
+/// A 3D contact problem: one body of tetrahedra whose face set `contact.faces`
+/// may touch one rigid obstacle (a plane), frictionless, small strain.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SolidSpec {
+    pub body: SolidBodySpec,
+    pub obstacle: SolidObstacleSpec,
+    pub contact: SolidContactSpec,
+}
+
+/// The elastic body (isotropic, linear, small strain).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SolidBodySpec {
+    /// Name used in the reply; defaults to "body0".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    pub material: MaterialSpec,
+    pub mesh: SolidMeshSpec,
+    /// Displacement constraints on named face sets (fixed supports, rollers,
+    /// symmetry planes, prescribed motion).
+    #[serde(default)]
+    pub supports: Vec<SolidSupportSpec>,
+    /// Surface loads on named face sets.
+    #[serde(default)]
+    pub tractions: Vec<SolidTractionSpec>,
+    /// Body force per unit volume [force/length³], e.g. weight density.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub body_force: Option<[f64; 3]>,
+}
+
+/// Tetrahedron order.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum SolidElementKind {
+    /// Linear 4-node tetrahedron.
+    #[default]
+    T4,
+    /// Quadratic 10-node tetrahedron (isoparametric): corners, then the
+    /// midsides of edges 0-1, 1-2, 2-0, 3-0, 3-2, 3-1 (Gmsh's order).
+    T10,
+}
+
+/// A body's tetrahedral mesh: generated, given inline, or made with Gmsh.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum SolidMeshSpec {
+    /// The box [x0, x0+lx] × [y0, y0+ly] × [z0, z0+lz], each cell cut into six
+    /// tetrahedra; face sets "x_min", "x_max", "y_min", "y_max", "z_min",
+    /// "z_max". A quarter model of a body symmetric about two planes is the box
+    /// with its focus on their common edge and rollers on their face sets.
+    Box(BoxSpec),
+    /// Explicit nodes, tetrahedra and named face sets.
+    Inline(InlineSolidMeshSpec),
+    /// A Gmsh MSH 4.1 ASCII mesh: tetrahedra (types 4, 11) make the body, the
+    /// triangles (types 2, 9) of each physical surface group the face set of
+    /// that name.
+    Gmsh(GmshSolidMeshSpec),
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BoxSpec {
+    /// The corner of least coordinates [x0, y0, z0].
+    pub corner: [f64; 3],
+    /// Side lengths [lx, ly, lz] [length], each positive.
+    pub lengths: [f64; 3],
+    /// Cell size away from the focus (uniform mesh without grading) [length].
+    pub size: f64,
+    #[serde(default)]
+    pub element: SolidElementKind,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grading: Option<SolidGradingSpec>,
+}
+
+/// Refinement toward a focus point, axis by axis: cell sides `h_min` within
+/// `extent` of the focus's coordinate, growing geometrically by `ratio` per
+/// cell up to the mesh's `size` (cells far from the focus along one axis and
+/// near it along another are slabs).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SolidGradingSpec {
+    /// Point where the mesh is finest [x, y, z].
+    pub focus: [f64; 3],
+    /// Cell side at the focus [length].
+    pub h_min: f64,
+    /// Growth factor of neighbouring cell sides, 1 ≤ ratio ≤ 2.
+    #[serde(default = "default_ratio")]
+    pub ratio: f64,
+    /// Half-width of the zone around the focus meshed uniformly at `h_min`
+    /// (make it cover the expected contact patch) [length].
+    #[serde(default)]
+    pub extent: f64,
+}
+
+fn default_ratio() -> f64 {
+    1.1
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct InlineSolidMeshSpec {
+    /// Node coordinates [[x, y, z], ...].
+    pub nodes: Vec<[f64; 3]>,
+    /// Tetrahedra as 0-based node indices, 4 per T4, 10 per T10 (corners,
+    /// then the midsides of edges 0-1, 1-2, 2-0, 3-0, 3-2, 3-1), each of
+    /// positive volume: corner 3 on the side of (p1 − p0) × (p2 − p0). All
+    /// elements of one order.
+    pub elements: ElementLists,
+    /// Named boundary face sets: each face as its three corner node indices,
+    /// in any order (each takes its element's outward orientation).
+    pub face_sets: BTreeMap<String, Vec<[usize; 3]>>,
+}
+
+/// A 3D mesh made with Gmsh, as MSH 4.1 ASCII text.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GmshSolidMeshSpec {
+    /// The content of a `.msh` file (format 4.1, ASCII).
+    pub msh: String,
+    /// Physical volume groups that make up the body (default: every
+    /// tetrahedron in the file).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub volumes: Vec<String>,
+}
+
+/// Prescribed displacement components on a face set. A component set to 0
+/// is a support (one: a roller or symmetry plane; three: fixed); a nonzero
+/// value prescribes motion.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SolidSupportSpec {
+    /// Name of the face set.
+    pub faces: String,
+    /// Prescribed x displacement [length]; absent = free.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ux: Option<f64>,
+    /// Prescribed y displacement [length]; absent = free.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uy: Option<f64>,
+    /// Prescribed z displacement [length]; absent = free.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uz: Option<f64>,
+}
+
+/// A surface load on a face set: a traction vector, or a normal pressure, not both.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SolidTractionSpec {
+    pub faces: String,
+    /// Traction vector [tx, ty, tz] [force/length²].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub traction: Option<[f64; 3]>,
+    /// Normal pressure, positive pushing into the body [force/length²].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pressure: Option<f64>,
+}
+
+/// The rigid obstacle (fixed).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SolidObstacleSpec {
+    /// Name used in the reply; defaults to "obstacle0".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    pub shape: SolidObstacleShape,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum SolidObstacleShape {
+    /// The plane through `point`; the rigid half-space lies on the side
+    /// opposite to `normal` (the normal points out of the obstacle, toward
+    /// the body; any nonzero length).
+    Plane { point: [f64; 3], normal: [f64; 3] },
+}
+
+/// Which face set of the body may touch the obstacle.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SolidContactSpec {
+    /// Name of the body's face set whose points are contact candidates: one
+    /// row per node on T4 faces, one dual mortar row per corner on T10 faces.
+    pub faces: String,
+    /// A shape added to the gap of the flat face set, so that a flat-faced
+    /// body stands for a curved one (absent: the gap is the distance to the
+    /// plane).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub initial_gap: Option<InitialGapSpec>,
+}
+
+/// An initial gap profile added to the distance to the obstacle.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum InitialGapSpec {
+    /// Hertz's gap of a sphere of radius `radius` touching at `apex`: each
+    /// point of the face set is r² / (2 radius) farther from the obstacle,
+    /// r its distance from `apex` across the plane's normal. The
+    /// flat-faced body then stands for a ball pressed on the plane, within
+    /// Hertz's own assumptions (contact radius small against the radius and
+    /// the body; the body's far field that of a half-space).
+    Paraboloid { apex: [f64; 3], radius: f64 },
+}
+
+/// The 3D answer (`analysis: "solid"`), in the request's units.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SolidResult {
+    pub body: String,
+    pub obstacle: String,
+    /// The contact face set.
+    pub faces: String,
+    pub element: SolidElementKind,
+    /// The connected patches of contact, in the order of their first point.
+    /// A point is in contact when its force is positive; a face is in
+    /// contact when all its corners are, so a patch's faces are the inner
+    /// bound of the contact (about half an element inside its edge).
+    pub patches: Vec<ContactPatch>,
+    /// Every candidate point, in the order of the rows.
+    pub points: Vec<SolidContactPoint>,
+    /// Total contact force on the body and its moment about the origin.
+    pub resultant: SolidResultant,
+    /// Largest penetration of a row (its gap below 0) [length].
+    pub max_penetration: f64,
+}
+
+/// A connected region of contact.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ContactPatch {
+    /// Area of its faces in contact (curved faces on T10) [length²].
+    pub area: f64,
+    /// Sum of its points' tributary areas [length²]: a third of each face at
+    /// an edge point is counted, so this overestimates where `area`
+    /// underestimates.
+    pub tributary_area: f64,
+    /// Contact force on the body, along the obstacle's normal [force].
+    pub force: f64,
+    /// Where the patch's force acts [x, y, z].
+    pub centre_of_pressure: [f64; 3],
+    /// Largest pressure of its points [force/length²].
+    pub peak_pressure: f64,
+    /// The point of the peak [x, y, z].
+    pub peak_at: [f64; 3],
+    /// The boundary of its faces, as closed polygons (the last point joins
+    /// the first; T10 midsides included), counter-clockwise seen from the
+    /// obstacle; a hole's loop runs the other way. Empty when the patch holds
+    /// no whole face (contact narrower than the mesh resolves).
+    pub outline: Vec<Vec<[f64; 3]>>,
+}
+
+/// A contact candidate: a node of the face set (T4) or a corner (T10).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SolidContactPoint {
+    /// Reference position [x, y, z].
+    pub at: [f64; 3],
+    /// Contact pressure: the point's force over its tributary area
+    /// [force/length²].
+    pub pressure: f64,
+    /// Gap after deformation (T10: its dual-weighted mean over the corner's
+    /// faces) [length].
+    pub gap: f64,
+    pub in_contact: bool,
+}
+
+/// A force and its moment about the origin.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SolidResultant {
+    /// [fx, fy, fz] [force].
+    pub force: [f64; 3],
+    /// [mx, my, mz] [force × length].
+    pub moment: [f64; 3],
+}

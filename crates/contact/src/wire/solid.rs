@@ -1,0 +1,95 @@
+//! `SolidAnswer` → reply: the 3D answer written as the wire message. The
+//! top-level fields the 2D reply always carries are filled from the 3D
+//! answer (no pairs; the resultant's x, y force and moment about z); the
+//! answer itself is the reply's `solid` section.
+
+use contact_core::mesh3d::Order;
+use contact_core::solid::answer::SolidAnswer;
+use contact_core::solid::report::{ContactPoint, Patch};
+use contact_proto as p;
+
+use super::reply::{status, timings};
+
+pub fn reply(a: SolidAnswer) -> p::SolveReply {
+    let r = a.report;
+    let (force, moment) = (r.resultant.force, r.resultant.moment);
+    let c = r.certificate;
+    p::SolveReply {
+        version: p::PROTOCOL_VERSION.to_string(),
+        client_id: a.client_id,
+        request_id: None,
+        status: status(a.status),
+        method: p::MethodRan::ActiveSet,
+        iterations: r.iterations,
+        pairs: Vec::new(),
+        resultant: p::Resultant {
+            fx: force[0],
+            fy: force[1],
+            m: moment[2],
+        },
+        certificate: p::Certificate {
+            primal: c.primal,
+            dual: c.dual,
+            complementarity: c.complementarity,
+            equilibrium: c.equilibrium,
+            friction: None,
+        },
+        size: p::ProblemSize {
+            dofs: a.dofs,
+            candidates: a.candidates,
+            active: a.active,
+        },
+        diagnostics: p::Diagnostics {
+            condition_estimate: None,
+            refinements: a.refinements,
+            factorization_predicted: None,
+        },
+        timings: timings(a.timings),
+        cache: p::CacheState::Off,
+        punches: Vec::new(),
+        couplings: Vec::new(),
+        steps: None,
+        bodies: None,
+        foundations: Vec::new(),
+        notes: Vec::new(),
+        note_kinds: Vec::new(),
+        warnings: Vec::new(),
+        vtu: None,
+        units: None,
+        refinement: None,
+        solid: Some(p::SolidResult {
+            body: a.body,
+            obstacle: a.obstacle,
+            faces: a.faces,
+            element: match a.order {
+                Order::T4 => p::SolidElementKind::T4,
+                Order::T10 => p::SolidElementKind::T10,
+            },
+            patches: r.patches.into_iter().map(patch).collect(),
+            points: r.points.into_iter().map(point).collect(),
+            resultant: p::SolidResultant { force, moment },
+            max_penetration: a.max_penetration,
+        }),
+    }
+}
+
+fn patch(q: Patch) -> p::ContactPatch {
+    p::ContactPatch {
+        area: q.area,
+        tributary_area: q.tributary_area,
+        force: q.force,
+        centre_of_pressure: q.centre_of_pressure,
+        peak_pressure: q.peak_pressure,
+        peak_at: q.peak_at,
+        outline: q.outline,
+    }
+}
+
+fn point(q: ContactPoint) -> p::SolidContactPoint {
+    p::SolidContactPoint {
+        at: q.position,
+        pressure: q.pressure,
+        gap: q.gap,
+        in_contact: q.in_contact,
+    }
+}
