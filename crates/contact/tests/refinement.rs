@@ -370,6 +370,36 @@ fn a_users_graded_mesh_has_its_far_field_error_estimated() {
     assert!(e.l2 <= 0.003, "true error {:.3e} above the target reached", e.l2);
 }
 
+/// A quarter disk on a flat meshed by another package and given inline
+/// (`data/inline_disk_on_flat_graded_L3.json`, 7.7k DOF): its axis node reads
+/// 2.3 % above the trend of its neighbours, an error its coarser companion
+/// shares (4.4 %) and Richardson's scaling divided away: the peak's estimate
+/// read 0.87 % for a true 2.50 % (0.35) on the mesh, 0.205 % for 0.600 %
+/// refined to 0.3 %. With the axis node's own deviation (`peak_spike`) it
+/// reads 2.22 % and 0.584 % (0.88 and 0.97), asserted within [0.5, 2], the
+/// error bar's band, against the disk's overkill table.
+#[test]
+fn a_peak_standing_off_its_neighbours_at_an_axis_is_estimated() {
+    let path = format!(
+        "{}/tests/data/inline_disk_on_flat_graded_L3.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let req: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let table = contact_verify::overkill::reference("disk_on_flat").unwrap();
+    let mut refined = req.clone();
+    refined["settings"] = json!({"accuracy": {"pressure_l2": 0.003}});
+    for (what, req) in [("own mesh", req), ("refined", refined)] {
+        let r = solve(&req);
+        let est = r.pairs[0].accuracy.as_ref().unwrap().peak.unwrap();
+        let peak = r.pairs[0].points.iter().map(|q| q.pressure).fold(0.0, f64::max);
+        let err = (peak / table.pressure(0.0) - 1.0).abs();
+        assert!(
+            (0.5..=2.0).contains(&(est / err)),
+            "{what}: peak estimate {est:.3e}, true {err:.3e}"
+        );
+    }
+}
+
 /// The Gmsh example (the Hertz block meshed by Gmsh, 8.4k DOF) carries its
 /// pressure's, peak's and resultant's estimates, each within [0.5, 2] of its
 /// true error against the block's overkill table (measured 0.372 % against
