@@ -4,6 +4,11 @@
 //! error beside it. One estimator in one file: a second one (an
 //! equilibrated-flux bound, say) would sit beside it and fill the same
 //! `PairAccuracy`.
+//!
+//! Length: about 510 lines, the two levels' differences and the answer's own
+//! nodal terms each estimate keeps the largest of (zone ends, edge placement,
+//! spacing steps, an axis peak, the resultant's floor), each with the
+//! measurement that made it: one estimate read as a whole.
 
 use crate::outcome::EstimateBasis;
 use crate::solution::accuracy;
