@@ -130,6 +130,38 @@ fn the_relative_bound_does_not_depend_on_the_units() {
     assert!((a - b).abs() <= 1e-9 * a, "{a} against {b}");
 }
 
+/// A stepped solve's answer is its last step's, and so is its bound: the
+/// clamped block above under `load_factors: [0.5]` is bounded exactly as the
+/// same block given half its traction and weight (to round-off). Bounded
+/// against the request's own loads, it read a bound for twice its load.
+#[test]
+fn a_stepped_answer_is_bounded_with_its_own_loads() {
+    let scene = |k: f64| {
+        let block = body("block", 100.0, 0.3, rectangle([0.0, 0.0], 2.0, 1.0, 0.2, "t3"))
+            .fixed("bottom")
+            .traction("top", [0.3 * k, -k])
+            .body_force([0.0, -0.5 * k]);
+        request(vec![block], vec![pair("block", "top").obstacle("far")])
+            .with_obstacle(obstacle("far", line([0.0, 1.2], [0.0, -1.0])))
+            .to_value()
+    };
+    let mut stepped = scene(1.0);
+    stepped["load_factors"] = json!([0.5]);
+    let bound = |r: &Value| {
+        contact_verify::run::solve(r, &Limits::default())
+            .expect("solve")
+            .energy
+            .expect("bound")
+    };
+    let (a, b) = (bound(&stepped), bound(&scene(0.5)));
+    assert!(
+        (a.absolute - b.absolute).abs() <= 1e-9 * b.absolute,
+        "{} against {}",
+        a.absolute,
+        b.absolute
+    );
+}
+
 /// Outside the bound's reach the reply carries none rather than a number that
 /// is not a bound: quadratic elements, friction, and a sharp punch corner in
 /// contact (the normal of the continuous model is not defined there), which

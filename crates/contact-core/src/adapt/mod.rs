@@ -196,6 +196,11 @@ fn bound_energy(est: &dyn Estimator, scene: &Scene, report: &mut Report) {
         return;
     };
     let t = Instant::now();
+    // A stepped solve's answer is its last step's: bounded against the
+    // request's own loads, the circular punch at load factor 0.5 read a bound
+    // for twice its load.
+    let step = scene.last_step();
+    let scene = step.as_ref().unwrap_or(scene);
     match est.energy(scene, &answer) {
         Ok(b) => report.energy = Some(b),
         Err(why) => report.notes.push(Note::new(

@@ -85,6 +85,15 @@ pub enum LoadRef {
 }
 
 impl Scene {
+    /// The scene of the last load step (a stepped solve's report answers
+    /// it), or None for a scene without steps.
+    pub fn last_step(&self) -> Option<Scene> {
+        match self.load_path.last() {
+            Some(st) => Some(self.at_step(st)),
+            None => self.load_factors.last().map(|&k| self.scaled(k)),
+        }
+    }
+
     /// The same scene with every load and prescribed displacement times `k`.
     pub fn scaled(&self, k: f64) -> Scene {
         let mut s = self.clone();
