@@ -2,6 +2,9 @@
 //! support, a load range that loads nothing, a mesh too coarse for its contact
 //! zone, numbers that overflow; and the warnings fire only where their
 //! assumption really fails.
+//!
+//! Length: about 670 lines, one test per mistake, each with the request that
+//! makes it and what its reply must name.
 
 mod common;
 use common::*;

@@ -331,6 +331,19 @@ fn mistakes_are_refused_with_their_place() {
             "invalid_mesh",
             "/solid/body/mesh/box/grading/ratio",
         ),
+        // A generated box too thin to mesh, or too far from the origin for
+        // its sides to be distinct once scaled: refused at the door, as a 2D
+        // rectangle is, before any sliver is made.
+        (
+            change("/solid/body/mesh/box/lengths/0", json!(1e-12)),
+            "invalid_mesh",
+            "/solid/body/mesh/box/lengths/0",
+        ),
+        (
+            change("/solid/body/mesh/box/corner/0", json!(1e300)),
+            "invalid_mesh",
+            "/solid/body/mesh/box/corner/0",
+        ),
         (inverted, "invalid_mesh", "/solid/body/mesh/inline/elements/0"),
         (flat, "invalid_mesh", "/solid/body/mesh/inline/elements/0"),
         (unsupported, "no_support", "/solid/body/supports"),
@@ -355,6 +368,21 @@ fn mistakes_are_refused_with_their_place() {
     let e = solve_with(&good, &limits).expect_err("too large");
     assert_eq!(serde_json::to_value(e.code).unwrap(), json!("too_large"));
     assert_eq!(e.path, "/solid/body/mesh/box");
+    // Within the DOF limit, but a 3D factor fills far more per DOF than the
+    // 2D rate the limit was set from (the ball's: 0.28 GB at 35k DOF, 8 kB
+    // per DOF, against 1.5 kB for a whole 2D solve): at twice its DOF it is
+    // refused from the symbolic analysis, before the factor's memory is
+    // taken.
+    let ball: Value = serde_json::from_str(include_str!("../../../proto/examples/solid_ball_on_flat.json")).unwrap();
+    let dofs = solve(&ball).expect("the example solves").size.dofs;
+    let tight = contact::scene::Limits {
+        max_dofs: 2 * dofs,
+        ..Default::default()
+    };
+    let e = solve_with(&ball, &tight).expect_err("its factor is too large");
+    assert_eq!(serde_json::to_value(e.code).unwrap(), json!("too_large"), "{e:?}");
+    assert_eq!(e.path, "/solid/body/mesh");
+    assert!(e.message.contains("factor"), "{}", e.message);
     // Grid lines are bounded before they are made: an h_min at the least
     // double would ask for 1e323 of them, a side of 1e308 for as many cells.
     for (pointer, v) in [

@@ -196,9 +196,8 @@ fn bound_energy(est: &dyn Estimator, scene: &Scene, report: &mut Report) {
         return;
     };
     let t = Instant::now();
-    // A stepped solve's answer is its last step's: bounded against the
-    // request's own loads, the circular punch at load factor 0.5 read a bound
-    // for twice its load.
+    // A stepped solve's answer is its last step's (with the request's own
+    // loads, a block at load factor 0.5 was bounded for twice its load).
     let step = scene.last_step();
     let scene = step.as_ref().unwrap_or(scene);
     match est.energy(scene, &answer) {
@@ -303,11 +302,9 @@ pub fn refine_by(
                 }
                 .expect("refining always succeeds");
                 crate::progress::round(rounds.len() + 1);
-                // The last round's factor goes before this round's is made:
-                // kept, it would sit beside the new one (a quarter of it on a
-                // given mesh, more on a generated one's smaller steps), past
-                // the memory the request was admitted for. Should this round
-                // fail, the last one stands without its energy bound.
+                // The last round's factor goes before this round's is made,
+                // not beside it past the memory the request was admitted for;
+                // should this round fail, the last stands without a bound.
                 let released = report.pending_energy.take().is_some();
                 let unbounded = |report: &mut Report| {
                     if released {

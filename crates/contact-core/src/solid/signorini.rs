@@ -134,6 +134,21 @@ fn free_rows(body: &SolidBody, rows: &PlaneRows, dofs: &SolidDofs) -> FreeRows {
 
 /// Solves the contact of `body` with the plane of `rows`.
 pub fn solve(body: &SolidBody, rows: &PlaneRows, settings: &Settings) -> Result<Contact, CoreError> {
+    solve_within(body, rows, settings, f64::INFINITY)
+}
+
+/// `solve`, refused (`too_large` at the body's mesh) when the factor of K
+/// would hold more than `max_bytes`: a 3D factor fills far more per unknown
+/// than a 2D one (the T10 ball example, 35k DOF, took 344 MB where 2D
+/// solves take 1.3–1.5 kB per DOF), so a DOF limit set from the memory at 2D
+/// rates does not bound it. Judged from the symbolic analysis, before the
+/// factor's memory is taken.
+pub fn solve_within(
+    body: &SolidBody,
+    rows: &PlaneRows,
+    settings: &Settings,
+    max_bytes: f64,
+) -> Result<Contact, CoreError> {
     let t0 = std::time::Instant::now();
     let touching: Vec<usize> = rows.terms.iter().flatten().map(|t| t.0).collect();
     let dofs = dof_map(body, Some(&touching))?;
@@ -164,6 +179,18 @@ pub fn solve(body: &SolidBody, rows: &PlaneRows, settings: &Settings) -> Result<
     let refs: Vec<&[(usize, f64)]> = fr.rows.iter().map(|r| r.as_slice()).collect();
     let (fwd, inv) = ordering::nested_dissection(body.mesh, &dofs)?;
     let symbolic = Arc::new(SymbolicFactor::try_new_ordered(&k.k, &fwd, &inv)?);
+    let factor_bytes = 8.0 * symbolic.cost().nnz as f64;
+    if factor_bytes > max_bytes {
+        return Err(CoreError::TooLarge {
+            path: "/solid/body/mesh".into(),
+            reason: format!(
+                "the factor of the stiffness would hold {:.2} GB, past the {:.2} GB this service gives a request: \
+                 coarsen the mesh (size or grading/h_min)",
+                factor_bytes / 1e9,
+                max_bytes / 1e9
+            ),
+        });
+    }
     let op = condensed::prepare_on(k.clone(), &refs, symbolic, t1)?;
     let t2 = std::time::Instant::now();
     crate::progress::stage(crate::progress::ProgressStage::ContactSolve);

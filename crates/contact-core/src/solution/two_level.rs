@@ -317,8 +317,9 @@ fn peak_difference(answer: &PairReport, other: &PairReport, counted: &dyn Fn(f64
     Some(largest(answer, pa, other).max(largest(other, po, answer)) / pa)
 }
 
-/// Where the answer's peak is the first or last of its candidates (a
-/// symmetry axis), that node's own deviation from the trend of its next
+/// Where the answer's peak is the first or last of its candidates in their
+/// order along x (a symmetry axis at the surface's end), that node's own
+/// deviation from the trend of its next
 /// `SPIKE_FIT` nodes, relative to the peak; 0 elsewhere. The trend is the
 /// even quadratic p0 − c s² (s along the surface) or the full quadratic,
 /// whichever the node is nearer (an axis peak has zero slope), and only

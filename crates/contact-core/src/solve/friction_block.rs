@@ -82,8 +82,9 @@ impl StepModel {
 /// the block, pressed by 10 and pushed by 1 at μ = 0.3, was refused as if it
 /// had to slide ("the horizontal load must lie in [0, 0]"); a circular one
 /// ran to the iteration cap with α1 = 5.7e14 and θ = 7.2e13 rad, pushed or
-/// not. Not refused: a held point under a punch whose loaded components along
-/// its slip are all 0 (it sticks, α1 = 0, as answered).
+/// not. Not refused: a held point (no tangential row) under a punch whose
+/// loaded components along its slip are all 0 (it sticks, α1 = 0, as
+/// answered); a tied one is refused for any load there, 0 included.
 fn held_under_loaded_punch(scene: &Scene, model: &Model, tangents: &Tangents) -> Result<(), CoreError> {
     let tied_rows = (0..tangents.len()).filter_map(|k| tangents.tied(k).map(|r| (tangents.of[k], Some(r))));
     let held = tangents.held.iter().map(|h| (h.candidate, None));

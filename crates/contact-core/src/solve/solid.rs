@@ -88,7 +88,7 @@ pub fn solve_solid(problem: &SolidProblem, limits: &Limits) -> Result<SolidAnswe
             ),
         });
     }
-    let contact = signorini::solve(&body, &rows, &scene.settings).map_err(located)?;
+    let contact = signorini::solve_within(&body, &rows, &scene.settings, limits.memory_bytes()).map_err(located)?;
     // The stages inside the Signorini solve time themselves.
     obs.timings.assembly = t_rows.elapsed().as_secs_f64() - contact.seconds[1] - contact.seconds[2];
     obs.timings.factorization = contact.seconds[1];

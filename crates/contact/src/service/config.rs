@@ -96,10 +96,7 @@ impl Tls {
 
 pub const DEFAULT_LISTEN: &str = "tcp/127.0.0.1:7447";
 
-/// Peak memory of a solve per degree of freedom: 1.34–1.46 kB measured
-/// (`/usr/bin/time`, maximum resident set) on the Hertz block at 138k, 428k
-/// and 1.29M DOF, factor, condensation and estimate included.
-pub const BYTES_PER_DOF: usize = 1500;
+pub use contact_core::scene::BYTES_PER_DOF;
 
 /// The degrees of freedom a request may have within `bytes` of memory.
 pub fn dofs_within(bytes: usize) -> usize {

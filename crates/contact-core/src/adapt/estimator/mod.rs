@@ -3,9 +3,10 @@
 //! makes each pair's `accuracy` from the answer and that companion, and the
 //! guaranteed energy bound of the answer returned (once per reply, from what
 //! its solve kept: `solution::energy::Pending`); `adapt::estimate` and the
-//! refinement rounds call it and nothing else of it. A second estimator is one file in this folder plus one arm in `of`
-//! (the test `a_trial_estimator_through_the_seam_needs_no_companion` defines
-//! one inside the test alone).
+//! refinement rounds call it and nothing else of it. A second estimator is
+//! one file in this folder plus one arm in `of` (the test
+//! `a_trial_estimator_through_the_seam_needs_no_companion` defines one inside
+//! the test alone).
 
 mod two_level;
 

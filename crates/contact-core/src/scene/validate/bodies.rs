@@ -340,7 +340,7 @@ pub(super) fn check_grading_values(
 /// distinct in double precision once scaled (the thin-strip tests run at
 /// 1/500). Checked after the size limit, which a thin rectangle of a sensible
 /// element size exceeds first.
-const MIN_ASPECT: f64 = 1e-6;
+pub(super) const MIN_ASPECT: f64 = 1e-6;
 
 fn check_aspect(m: &MeshSpec, path: &str) -> Result<(), CoreError> {
     let MeshSpec::Rectangle(r) = m else { return Ok(()) };

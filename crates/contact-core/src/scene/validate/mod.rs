@@ -38,6 +38,20 @@ pub struct Limits {
     pub max_output_values: usize,
 }
 
+/// Peak memory of a 2D solve per degree of freedom: 1.34–1.46 kB measured
+/// (`/usr/bin/time`, maximum resident set) on the Hertz block at 138k, 428k
+/// and 1.29M DOF, factor, condensation and estimate included. A service
+/// bounded in memory sets `max_dofs` from it.
+pub const BYTES_PER_DOF: usize = 1500;
+
+impl Limits {
+    /// The memory a request at the DOF limit is admitted for (`max_dofs` at
+    /// 2D rates): what a 3D factor, which fills far more per DOF, must fit.
+    pub fn memory_bytes(&self) -> f64 {
+        self.max_dofs as f64 * BYTES_PER_DOF as f64
+    }
+}
+
 impl Default for Limits {
     fn default() -> Self {
         Self {

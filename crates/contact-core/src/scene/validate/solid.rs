@@ -196,6 +196,23 @@ fn mesh(m: &SolidMeshSpec, limits: &Limits, path: &str) -> Result<(f64, f64, Sol
             let size = positive(b.size, &format!("{p}/size"), K::Mesh, "size")?;
             let lo = b.corner.map(|x| x / length);
             let hi: [f64; 3] = std::array::from_fn(|c| (b.corner[c] + b.lengths[c]) / length);
+            // A corner so far off that the scaled sides are not the given
+            // ones in double precision would make flat cells, which the
+            // checks of a given mesh never see.
+            for c in 0..3 {
+                let side = b.lengths[c] / length;
+                if (hi[c] - lo[c] - side).abs() > 1e-9 * side {
+                    return Err(invalid(
+                        K::Mesh,
+                        format!("{p}/corner/{c}"),
+                        format!(
+                            "the box's corner {} is so far from its sides' length {} that the sides are not distinct \
+                             in double precision: move the origin near the body",
+                            b.corner[c], b.lengths[c]
+                        ),
+                    ));
+                }
+            }
             let grading = match &b.grading {
                 None => None,
                 Some(g) => {
@@ -214,6 +231,22 @@ fn mesh(m: &SolidMeshSpec, limits: &Limits, path: &str) -> Result<(f64, f64, Sol
             };
             let t10 = b.element == proto::SolidElementKind::T10;
             let nodes = box_nodes(lo, hi, size / length, grading, t10, limits, &p)?;
+            // As for a 2D rectangle (`bodies::MIN_ASPECT`), after the size
+            // limit, which a thin box of a sensible element size passes first:
+            // a side too thin makes slivers.
+            for c in 0..3 {
+                if b.lengths[c] < super::bodies::MIN_ASPECT * length {
+                    return Err(invalid(
+                        K::Mesh,
+                        format!("{p}/lengths/{c}"),
+                        format!(
+                            "the box is too thin to mesh: side {} is less than {:e} of its longest",
+                            b.lengths[c],
+                            super::bodies::MIN_ASPECT
+                        ),
+                    ));
+                }
+            }
             let mesh = SolidMesh::Box {
                 lo,
                 hi,

@@ -1,7 +1,7 @@
 //! What the energy bound needs of a solved answer, kept with its report until
 //! the answer is known to be the one returned: with `settings.accuracy` a
 //! round is final only once its own estimate is read, after its solve, and a
-//! bound made with every round (15–32 % of each round's solve) was thrown
+//! bound made with every round (12–32 % of each round's solve, two measurements at load 5–7) was thrown
 //! away with every round but the last. `adapt` makes the bound from this
 //! (`Estimator::energy`) for the answer it returns, and for no other.
 
