@@ -18,6 +18,10 @@ use crate::solution::accuracy::{
 use crate::solution::corners;
 use crate::solution::report::{PairAccuracy, PairReport, SingularEnd};
 
+/// A node of a pair's surface: (x, y, pressure, tributary weight), in the
+/// order of `accuracy::weighted_field`.
+type Node = (f64, f64, f64, f64);
+
 /// The two-level estimate of the error of a pair's answer: the same pair
 /// solved on meshes whose every element is `ratio` times as large (`other`;
 /// `ratio` = 2: a coarser companion of a generated mesh, ½: a given mesh
@@ -83,11 +87,17 @@ pub fn two_level(answer: &PairReport, other: &PairReport, ratio: f64) -> PairAcc
         .filter(|q| counted(q.x, q.y))
         .map(|q| q.weight * q.pressure * q.pressure)
         .sum();
-    let edge = if den > 0.0 { edge_deviation(answer) / den } else { 0.0 };
+    // The answer's nodes in surface order, read by its own nodal terms.
+    let nodes = accuracy::weighted_field(answer);
+    let edge = if den > 0.0 {
+        edge_deviation(answer, &nodes) / den
+    } else {
+        0.0
+    };
     // Where neighbouring spacings differ, each node's own error (which the
     // two levels, graded alike, do not see).
     let grading = if den > 0.0 {
-        grading_deviation(answer, &counted) / den
+        grading_deviation(&nodes, &counted) / den
     } else {
         0.0
     };
@@ -120,7 +130,7 @@ pub fn two_level(answer: &PairReport, other: &PairReport, ratio: f64) -> PairAcc
             EstimateBasis::TwoLevel
         },
         pressure_l2: l2.map(|v| (v / scale).max(edge.sqrt()).max(placement).max(grading.sqrt())),
-        peak: d.peak.map(|v| (v / scale).max(peak_spike(answer, &counted))),
+        peak: d.peak.map(|v| (v / scale).max(peak_spike(&nodes, &counted))),
         resultant: d.resultant.map(|v| resultant(v, scale)),
         zone_edges: answer.zones_along.iter().map(|z| z.uncertainty).collect(),
         fitted_edges: fitted_edges(answer, other, scale),
@@ -129,13 +139,11 @@ pub fn two_level(answer: &PairReport, other: &PairReport, ratio: f64) -> PairAcc
 }
 
 /// Below this the two levels cannot tell a resultant's error (relative).
-/// T6 resultants converge fast and change sign from level to level: against
-/// the overkill tables at four levels each (4k–72k DOF), the disk's read
-/// −5.4e-5, +2.6e-5, +1.0e-5, −1.6e-6, the block's −1.9e-4, +1.5e-4,
-/// +9.8e-6, +1.4e-5 and the ball's +2.0e-5, +8.1e-5, +5.2e-5, +1.0e-5, so two
-/// levels can agree by chance: the two-level estimate read 0.02–0.34 of the
-/// true error on the finest level of every T6 scene of the effectivity table.
-/// 1e-4 is above every such error but the block's two coarser ones.
+/// T6 resultants converge fast and their error changes sign from level to
+/// level, so two levels can agree by chance (the two-level difference read
+/// 0.02–0.34 of the true error on the finest T6 levels); 1e-4 is above the
+/// errors measured there. The measurements: docs/verification/accuracy.md,
+/// "Resultant".
 const RESULTANT_FLOOR: f64 = 1e-4;
 
 /// Two levels whose resultants agree to round-off carry a resultant the loads
@@ -247,8 +255,7 @@ fn order(singular: &[SingularEnd]) -> f64 {
 /// Hertz block, T6, 23k–62k DOF), and this term 0.92–0.97 of the nodal error
 /// (the spikes at the steps: 0.3–1.0 % of p0, each within 0.8–1.2 of
 /// |p′| |h₊ − h₋| / 3). p′ is the central difference of the neighbours.
-fn grading_deviation(pair: &PairReport, counted: &dyn Fn(f64, f64) -> bool) -> f64 {
-    let pts = accuracy::weighted_field(pair);
+fn grading_deviation(pts: &[Node], counted: &dyn Fn(f64, f64) -> bool) -> f64 {
     let dist = |a: (f64, f64, f64, f64), b: (f64, f64, f64, f64)| (a.0 - b.0).hypot(a.1 - b.1);
     pts.windows(3)
         .filter(|w| w.iter().all(|q| q.2 > 0.0) && counted(w[1].0, w[1].1))
@@ -319,24 +326,20 @@ fn peak_difference(answer: &PairReport, other: &PairReport, counted: &dyn Fn(f64
 
 /// Where the answer's peak is the first or last of its candidates in their
 /// order along x (a symmetry axis at the surface's end), that node's own
-/// deviation from the trend of its next
-/// `SPIKE_FIT` nodes, relative to the peak; 0 elsewhere. The trend is the
-/// even quadratic p0 − c s² (s along the surface) or the full quadratic,
-/// whichever the node is nearer (an axis peak has zero slope), and only
-/// where the neighbours follow the even one to `SPIKE_EVEN` of their spread:
-/// a pressure that rises toward an end (a press fit's hub edge, a Pasternak
-/// footing's edge: 12 % and 95 % above a fit through their neighbours) is
-/// the physics there, not a node's error.
-/// An axis node that stands off its neighbours carries an error the two
-/// levels share and Richardson's scaling divides away: a user's quarter-disk
-/// mesh (`inline_disk_on_flat_graded_L3`, 7.7k DOF) put its axis node 2.3 %
-/// above its neighbours' trend, the companion's 4.4 %, and the two-level
-/// peak estimate read 0.87 % for a true 2.50 % (0.35). Interior peaks are
-/// left to the two levels: there a T6 surface's corner and midside values
-/// alternate (the two cylinders), which a neighbours' fit reads as a spike
-/// at every level.
-fn peak_spike(pair: &PairReport, counted: &dyn Fn(f64, f64) -> bool) -> f64 {
-    let pts = accuracy::weighted_field(pair);
+/// deviation from the trend of its next `SPIKE_FIT` nodes, relative to the
+/// peak; 0 elsewhere. An axis node that stands off its neighbours carries an
+/// error the two levels share and Richardson's scaling divides away (a user's
+/// quarter disk, estimated at a third of its true peak error without this).
+/// The trend is the even quadratic p0 − c s² (s along the surface) or the
+/// full quadratic, whichever the node is nearer (an axis peak has zero
+/// slope), and only where the neighbours follow the even one to `SPIKE_EVEN`
+/// of their spread: a pressure that rises toward an end (a press fit's hub
+/// edge, a Pasternak footing's edge) is the physics there, not a node's
+/// error. Interior peaks are left to the two levels: there a T6 surface's
+/// corner and midside values alternate (the two cylinders), which a
+/// neighbours' fit reads as a spike at every level. The measurements:
+/// docs/verification/accuracy.md, "A peak node standing off its neighbours".
+fn peak_spike(pts: &[Node], counted: &dyn Fn(f64, f64) -> bool) -> f64 {
     let Some(m) = (0..pts.len())
         .filter(|&i| counted(pts[i].0, pts[i].1))
         .max_by(|&a, &b| pts[a].2.total_cmp(&pts[b].2))
@@ -394,10 +397,9 @@ fn peak_spike(pair: &PairReport, counted: &dyn Fn(f64, f64) -> bool) -> f64 {
 const SPIKE_FIT: usize = 4;
 
 /// How closely those nodes must follow the even fit, as a share of their
-/// spread, for the end to read as an axis: measured 0.03 on the user's
-/// quarter disk, 0.31–0.39 at the press fit's and the Pasternak footing's
-/// edges and at the axisymmetric ball's axis (whose neighbours' ring
-/// weights make them uneven), which the two levels are left to estimate.
+/// spread, for the end to read as an axis; the readings that place it
+/// (a user's axis against press-fit and footing edges) are with
+/// `peak_spike`'s measurements.
 const SPIKE_EVEN: f64 = 0.1;
 
 /// ∫ (f_D − f_D')² ds over each described square-root facet (`described`):
@@ -462,8 +464,7 @@ const PLACEMENT_SAMPLES: usize = 64;
 /// below the profile on the T3 disk at h_min = 0.00125 R, 97 % of that
 /// solution's squared L2 error), which neither level of `two_level` sees when
 /// both ends fall alike; the nodes further in are off by 20× less.
-fn edge_deviation(pair: &PairReport) -> f64 {
-    let pts = accuracy::weighted_field(pair);
+fn edge_deviation(pair: &PairReport, pts: &[Node]) -> f64 {
     let dist = |a: (f64, f64, f64, f64), b: (f64, f64, f64, f64)| (a.0 - b.0).hypot(a.1 - b.1);
     let mut sum = 0.0;
     for z in &pair.zones_along {
