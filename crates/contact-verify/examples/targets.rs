@@ -91,4 +91,53 @@ fn main() {
             );
         }
     }
+    solved_references(&only);
+}
+
+/// The effectivity scenes without an overkill table (punches, two bodies, a
+/// footing), from their coarsest effectivity level, each against its own
+/// scene solved by T6 4× finer than the finest level (`effectivity`): whose
+/// own error bounds what can be told apart, so the targets stop at 0.5 %.
+fn solved_references(only: &[String]) {
+    use contact_verify::effectivity::{compare, scaled, LEVELS, REFERENCE, SCENES};
+    for sc in SCENES
+        .iter()
+        .filter(|s| contact_verify::overkill::reference(contact_verify::effectivity::table_of(s.name)).is_none())
+        .filter(|s| only.is_empty() || only.iter().any(|o| s.name.contains(o.as_str())))
+    {
+        let base = (sc.request)();
+        let mut req = scaled(&base, REFERENCE, "t6");
+        req["settings"] = json!({"estimate": false});
+        let reference = run::solve(&req, &Default::default()).expect("reference solved");
+        for element in ["t3", "t6"] {
+            for target in [0.01, 0.005] {
+                let mut req = scaled(&base, LEVELS[0], element);
+                req["settings"] = json!({"accuracy": {"pressure_l2": target}});
+                let t = std::time::Instant::now();
+                let r = run::solve(&req, &Default::default()).expect("solved");
+                let seconds = t.elapsed().as_secs_f64();
+                let f = r.refinement.as_ref().expect("refined");
+                let row = compare(sc.name, "", LEVELS[0], &r, Some(&reference));
+                let est = r.pairs[0].accuracy.as_ref().and_then(|a| a.pressure_l2);
+                let flag = if f.reached && row.err_curve > target {
+                    "  <-- true error above target"
+                } else {
+                    ""
+                };
+                println!(
+                    "{:<16} {:>7} {:>8} {:>8} {:>8.3}% {:>8.3}% {:>8.3}% {:>8.3}% {:>7} {:>8.3}{flag}",
+                    format!("{} {}", sc.name, element.to_uppercase()),
+                    target,
+                    if f.reached { "yes" } else { f.stopped.as_str() },
+                    r.size.dofs,
+                    100.0 * est.unwrap_or(f64::NAN),
+                    100.0 * row.err_curve,
+                    100.0 * row.err_l2,
+                    100.0 * row.err_resultant,
+                    f.rounds.len(),
+                    seconds
+                );
+            }
+        }
+    }
 }

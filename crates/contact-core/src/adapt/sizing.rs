@@ -3,7 +3,7 @@
 //! its far field, its graded window), every given mesh split uniformly.
 
 use crate::mesh::generate::Grading;
-use crate::scene::{MeshSource, Scene};
+use crate::scene::{MeshSource, Psi, Scene, Shape, Target};
 use crate::solution::report::Report;
 
 /// Growth of the graded window over the farthest zone end it must cover.
@@ -121,7 +121,7 @@ pub(super) fn resized(scene: &Scene, [h, growth, size]: [f64; 3], report: Option
                         };
                         let mut g1 = scaled(g0, [h, growth], new_size);
                         g1.extent = g1.extent.max(MARGIN * reach(focus, &ends));
-                        Some((focus, g1))
+                        Some(on_sharp_ends(focus, g1, &sharp_ends(scene, b), &ends))
                     }
                 };
                 MeshSource::Rectangle {
@@ -138,6 +138,70 @@ pub(super) fn resized(scene: &Scene, [h, growth, size]: [f64; 3], report: Option
     // The node count grows with the refinement; the mesh stage recounts it.
     out.estimated_nodes = scene.estimated_nodes / (h * size);
     Some(out)
+}
+
+/// Where the rigid profiles body `b` may touch end sharply (request units,
+/// along x): a flat punch's corners, a tabulated profile's ends. A rounded
+/// corner is smooth and has none.
+fn sharp_ends(scene: &Scene, b: usize) -> Vec<f64> {
+    let mut xs: Vec<f64> = scene
+        .pairs
+        .iter()
+        .filter(|p| p.body == b)
+        .filter_map(|p| match p.target {
+            Target::Obstacle(o) => Some(&scene.obstacles[o].shape),
+            _ => None,
+        })
+        .flat_map(|shape| match shape {
+            Shape::Profile {
+                psi: Psi::Flat { corner_radius, .. },
+                ..
+            } if *corner_radius > 0.0 => Vec::new(),
+            Shape::Profile {
+                psi: Psi::Circle { .. },
+                ..
+            } => Vec::new(),
+            Shape::Profile { reference, psi } => {
+                let (t0, t1) = psi.extent();
+                vec![reference[0] + t0, reference[0] + t1]
+            }
+            _ => Vec::new(),
+        })
+        .map(|x| x * scene.scales.length)
+        .collect();
+    xs.sort_by(f64::total_cmp);
+    xs
+}
+
+/// A round's graded window with a node on the sharp ends `xs` of the rigid
+/// profiles: centred between the outermost two, its uniform spacing an even
+/// division of their half-distance, so that the companion's spacing (twice
+/// as large) lands on them too. A corner between two nodes narrows or widens
+/// the loaded width by up to a spacing: an error of order h whose size
+/// depends on where the corner falls, which two levels cannot estimate. On a
+/// flat punch under a moment, refined to `pressure_l2` 0.01 with h_min
+/// 0.00646 (corner 0.0057 short of the last node), the pressure inside was
+/// 0.7 % high throughout and the target was reported reached at 1.16 %
+/// against the same scene solved 4× finer by T6. Inner ends of several
+/// profiles land on nodes only where their distances are commensurate.
+fn on_sharp_ends(focus: [f64; 2], g: Grading, xs: &[f64], zone_ends: &[[f64; 2]]) -> ([f64; 2], Grading) {
+    let (Some(&lo), Some(&hi)) = (xs.first(), xs.last()) else {
+        return (focus, g);
+    };
+    let (centre, d) = if hi - lo > 1e-9 * hi.abs().max(lo.abs()) {
+        (0.5 * (lo + hi), 0.5 * (hi - lo))
+    } else {
+        (focus[0], (lo - focus[0]).abs())
+    };
+    if d <= 1e-9 * g.h_min {
+        return (focus, g);
+    }
+    let focus = [centre, focus[1]];
+    let n = 2.0 * (0.5 * d / g.h_min).ceil().max(1.0);
+    let h_min = d / n;
+    // The uniform run reaches the outer ends, and the zones as before.
+    let extent = g.extent.max(d + 0.5 * h_min).max(MARGIN * reach(focus, zone_ends));
+    (focus, Grading { h_min, extent, ..g })
 }
 
 /// The grading with every element `h` times as large: the element size at a
