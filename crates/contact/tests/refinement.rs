@@ -750,3 +750,22 @@ fn a_punchs_corners_are_nodes_of_every_round() {
         100.0 * row.err_curve
     );
 }
+
+/// A target out of reach within `accuracy.max_dofs` ends on the largest round
+/// the budget holds, not on the last round whose full step fitted: the disk
+/// asked for 0.05 % within 60k DOF stops at `max_dofs` with its last round
+/// between half the budget and the budget (aimed at 0.8 of it from the
+/// rounds' growth), and every round within it.
+#[test]
+fn the_last_round_fills_the_budget_it_is_given() {
+    const BUDGET: u64 = 60_000;
+    let mut req = disk_request(0.02, "t3");
+    req["settings"] = json!({"accuracy": {"pressure_l2": 0.0005, "max_dofs": BUDGET}});
+    let r = solve(&req);
+    let f = r.refinement.as_ref().unwrap();
+    assert!(!f.reached, "{f:?}");
+    assert_eq!(f.stopped.as_str(), "max_dofs", "{f:?}");
+    let dofs: Vec<u64> = f.rounds.iter().map(|r| r.dofs as u64).collect();
+    assert!(dofs.iter().all(|&d| d <= BUDGET), "{dofs:?}");
+    assert!(*dofs.last().unwrap() >= BUDGET / 2, "{dofs:?}");
+}
