@@ -398,3 +398,81 @@ fn malformed_obstacles_are_refused_at_their_fields() {
     println!("unknown field: {}", e.message);
     assert!(e.message.contains("axis"), "{e:?}");
 }
+
+/// The curved obstacles are scaled with the scene: a coarse T4 block (nodal
+/// rows, each along its own node's normal) pressed on a cylinder lying
+/// across it and then on a sphere, in mm, N, MPa and in m, N, Pa (lengths
+/// ×1e-3, stresses ×1e6, forces as they are, moments ×1e-3). The door
+/// scales both to the same nondimensional scene up to the scaling's
+/// round-off, so every number agrees to 1e-9 of its key's largest
+/// magnitude, as the plane's does (`solid.rs`).
+#[test]
+fn curved_obstacles_do_not_depend_on_the_units() {
+    let mm = |shape: Value| {
+        json!({
+            "version": "1",
+            "analysis": "solid",
+            "solid": {
+                "body": {
+                    "material": {"youngs_modulus": 210000.0, "poisson_ratio": 0.3},
+                    "mesh": {"box": {"corner": [0.0, 0.0, -8.0], "lengths": [10.0, 10.0, 8.0], "size": 5.0,
+                        "grading": {"focus": [0.0, 0.0, 0.0], "h_min": 0.4, "ratio": 2.0, "extent": 1.2}}},
+                    "supports": [{"faces": "x_min", "ux": 0.0}, {"faces": "y_min", "uy": 0.0}],
+                    "tractions": [{"faces": "z_min", "pressure": 15.0}]
+                },
+                "obstacle": {"shape": shape},
+                "contact": {"faces": "z_max"}
+            }
+        })
+    };
+    let metres = |req: &Value| {
+        let mut m = req.clone();
+        let b = &mut m["solid"]["body"];
+        b["material"]["youngs_modulus"] = json!(210000.0e6);
+        b["mesh"]["box"] = json!({"corner": [0.0, 0.0, -0.008], "lengths": [0.01, 0.01, 0.008], "size": 0.005,
+            "grading": {"focus": [0.0, 0.0, 0.0], "h_min": 0.0004, "ratio": 2.0, "extent": 0.0012}});
+        b["tractions"][0]["pressure"] = json!(15.0e6);
+        m
+    };
+    let shapes = [
+        (
+            json!({"cylinder": {"point": [0.0, 0.0, 40.001], "axis": [1.0, 0.0, 0.0], "radius": 40.0}}),
+            json!({"cylinder": {"point": [0.0, 0.0, 0.040001], "axis": [1.0, 0.0, 0.0], "radius": 0.04}}),
+        ),
+        (
+            json!({"sphere": {"centre": [0.0, 0.0, 50.0], "radius": 50.0}}),
+            json!({"sphere": {"centre": [0.0, 0.0, 0.05], "radius": 0.05}}),
+        ),
+    ];
+    for (in_mm, in_m) in shapes {
+        let a_req = mm(in_mm);
+        let mut b_req = metres(&a_req);
+        b_req["solid"]["obstacle"]["shape"] = in_m;
+        let (a, b) = (solved(&a_req), solved(&b_req));
+        let (sa, sb) = (a.solid.unwrap(), b.solid.unwrap());
+        let active = sa.points.iter().filter(|q| q.in_contact).count();
+        println!("{active} of {} points in contact", sa.points.len());
+        assert!(active > 3 && active < sa.points.len(), "a patch inside the face set");
+        assert_complementary(&sa, 1e-3);
+        let close = |x: &[f64], y: &[f64], unit: f64, what: &str| {
+            let scale = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for (u, v) in x.iter().zip(y) {
+                assert!((u - v / unit).abs() <= 1e-9 * scale, "{what}: {u} against {}", v / unit);
+            }
+        };
+        let field = |s: &SolidResult, f: fn(&contact::proto::SolidContactPoint) -> f64| -> Vec<f64> {
+            s.points.iter().map(f).collect()
+        };
+        close(
+            &field(&sa, |q| q.pressure),
+            &field(&sb, |q| q.pressure),
+            1e6,
+            "pressure",
+        );
+        close(&field(&sa, |q| q.gap), &field(&sb, |q| q.gap), 1e-3, "gap");
+        close(&sa.resultant.force, &sb.resultant.force, 1.0, "force");
+        close(&sa.resultant.moment, &sb.resultant.moment, 1e-3, "moment");
+        let load = 15.0 * 100.0;
+        assert!((sa.resultant.force[2] + load).abs() < 1e-9 * load, "{:?}", sa.resultant);
+    }
+}
