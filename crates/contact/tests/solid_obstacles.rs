@@ -73,7 +73,8 @@ fn ellipse_fit(s: &SolidResult) -> (f64, f64, f64) {
 /// cells a/5 at the apex. The sphere's gap to the flat face is its exact
 /// distance, r²/2R + O(r⁴/R³): at r = a that is 1e-4 of the paraboloid's,
 /// so the answer is the flat-faced ball's (`solid.rs`, which measured
-/// 1.006 a and 1.6 % on the peak) to that: a within 3 % (the cell a/5
+/// 1.006 a and 1.6 % on the peak) to that (measured here: 1.006 a, the peak
+/// 1.3 % low): a within 3 % (the cell a/5
 /// places the patch's edge, and the fit of p² over the 28 pressed points
 /// averages it), p₀ within 5 % (the corner row's pressure is the
 /// dual-weighted mean of p over its faces, which lowers a concave maximum

@@ -45,7 +45,7 @@
 //! point's own direction inside the integral instead, ∫ Ψ_i n(x)·u; the two
 //! differ by ∫ Ψ_i (n(x) − n_i)·u, where |n(x) − n_i| is at most the
 //! angle the corner's faces subtend on the obstacle, h/R: a fraction h/R of
-//! the tangential displacement (h/R ≤ 1/200 at the patches of the tests).
+//! the tangential displacement (h/R from 1/270 to 1/100 at the patches of the tests).
 //! One direction per row keeps a row's force a force along one normal at
 //! one point (λ_i n_i, whose pressure λ_i / a_i is a normal pressure), the
 //! rows' terms scalar weights summing to 1 (where the force acts:
