@@ -60,6 +60,7 @@ __all__ = [
     "effective_modulus",
     "ball_on_flat",
     "ball_on_flat_3d",
+    "sphere_into_block_3d",
     "hertz_sphere_reference",
     "flat_punch_of_revolution",
     "boussinesq_pressure",
@@ -753,22 +754,64 @@ def ball_on_flat_3d(
         "description": f"ball R={radius} pressed by {load} on a rigid flat (3D, quarter model)",
         "analysis": "solid",
         "solid": {
-            "body": {
-                "name": "ball",
-                "material": {"youngs_modulus": youngs_modulus, "poisson_ratio": poisson_ratio},
-                "mesh": {"box": {
-                    "corner": [0.0, 0.0, 0.0], "lengths": [side, side, side], "size": side / 2.0,
-                    "element": element,
-                    "grading": {"focus": [0.0, 0.0, 0.0], "h_min": h_min, "ratio": 2.0, "extent": extent},
-                }},
-                "supports": [{"faces": "x_min", "ux": 0.0}, {"faces": "y_min", "uy": 0.0}],
-                "tractions": [{"faces": "z_max", "pressure": load / 4.0 / (side * side)}],
-            },
+            "body": _quarter_cube_3d("ball", 0.0, "z_max", load, youngs_modulus, poisson_ratio, side, h_min, extent,
+                                     element),
             "obstacle": {"name": "flat", "shape": {"plane": {"point": [0.0, 0.0, 0.0], "normal": [0.0, 0.0, 1.0]}}},
             "contact": {
                 "faces": "z_min",
                 "initial_gap": {"paraboloid": {"apex": [0.0, 0.0, 0.0], "radius": radius}},
             },
+        },
+    }
+
+
+def _quarter_cube_3d(name: str, z0: float, loaded: str, load: float, youngs_modulus: float, poisson_ratio: float,
+                     side: float, h_min: float, extent: float, element: str) -> dict:
+    """The body of the 3D Hertz quarter models: a cube of ``side`` from z = ``z0`` with
+    rollers on x = 0 and y = 0, graded by 2 from ``h_min`` within ``extent`` of the
+    origin up to ``side`` / 2, its face ``loaded`` pressed by load / 4."""
+    return {
+        "name": name,
+        "material": {"youngs_modulus": youngs_modulus, "poisson_ratio": poisson_ratio},
+        "mesh": {"box": {
+            "corner": [0.0, 0.0, z0], "lengths": [side, side, side], "size": side / 2.0,
+            "element": element,
+            "grading": {"focus": [0.0, 0.0, 0.0], "h_min": h_min, "ratio": 2.0, "extent": extent},
+        }},
+        "supports": [{"faces": "x_min", "ux": 0.0}, {"faces": "y_min", "uy": 0.0}],
+        "tractions": [{"faces": loaded, "pressure": load / 4.0 / (side * side)}],
+    }
+
+
+def sphere_into_block_3d(
+    load: float = 6153.846153846154,
+    radius: float = 50.0,
+    youngs_modulus: float = 210000.0,
+    poisson_ratio: float = 0.3,
+    side: float = 10.0,
+    h_min: float = 0.2,
+    extent: float = 1.2,
+    element: str = "t10",
+) -> dict:
+    """A rigid sphere of ``radius`` pressed into an elastic block by the total ``load``, in
+    3D (proto/examples/solid_sphere_into_block.json, its defaults).
+
+    The block is a quarter of a cube of ``side`` below z = 0 (rollers on the symmetry
+    planes x = 0 and y = 0), touched at the origin by the sphere (``obstacle.shape.sphere``,
+    its own distance as the gap); the quarter's bottom carries load / 4 as a uniform
+    pressure pushing it up. Cells of ``h_min`` within ``extent`` of the apex, graded by 2
+    up to ``side`` / 2. Reference: ``hertz_sphere_reference(load, radius, ...)``; the
+    reply's ``solid.resultant.force[2]`` is -load / 4 (the sphere pushes down).
+    """
+    return {
+        "version": "1",
+        "description": f"rigid sphere R={radius} pressed by {load} into a block (3D, quarter model)",
+        "analysis": "solid",
+        "solid": {
+            "body": _quarter_cube_3d("block", -side, "z_min", load, youngs_modulus, poisson_ratio, side, h_min, extent,
+                                     element),
+            "obstacle": {"name": "sphere", "shape": {"sphere": {"centre": [0.0, 0.0, radius], "radius": radius}}},
+            "contact": {"faces": "z_max"},
         },
     }
 

@@ -137,6 +137,16 @@ def test_ball_on_flat_takes_an_accuracy_and_meets_it():
     assert _hertz_l2(reply, a, p0) < 0.01
 
 
+def _contact_radius(solid: dict) -> float:
+    """a from a least-squares line of p^2 against r^2 over the points in contact
+    (Hertz's p^2 = p0^2 (1 - r^2/a^2) is one): a^2 = -intercept / slope."""
+    pts = [(q["at"][0] ** 2 + q["at"][1] ** 2, q["pressure"] ** 2) for q in solid["points"] if q["in_contact"]]
+    mx = sum(x for x, _ in pts) / len(pts)
+    my = sum(y for _, y in pts) / len(pts)
+    slope = sum((x - mx) * (y - my) for x, y in pts) / sum((x - mx) ** 2 for x, _ in pts)
+    return math.sqrt((slope * mx - my) / slope)
+
+
 def test_ball_on_flat_3d_matches_hertz():
     """The 3D quarter model (T10, cells a/5 at the apex): the apex pressure within
     3 % of p0 (0.984 measured: a corner row's pressure is a weighted mean over its
@@ -153,9 +163,24 @@ def test_ball_on_flat_3d_matches_hertz():
     a, p0 = hertz_sphere_reference(load, radius, 210000.0, 0.3)
     (patch,) = solid["patches"]
     assert abs(patch["peak_pressure"] / p0 - 1) < 0.03
-    pts = [(q["at"][0] ** 2 + q["at"][1] ** 2, q["pressure"] ** 2) for q in solid["points"] if q["in_contact"]]
-    mx = sum(x for x, _ in pts) / len(pts)
-    my = sum(y for _, y in pts) / len(pts)
-    slope = sum((x - mx) * (y - my) for x, y in pts) / sum((x - mx) ** 2 for x, _ in pts)
-    a_h = math.sqrt((slope * mx - my) / slope)
+    a_h = _contact_radius(solid)
     assert abs(a_h / a - 1) < 0.02
+
+
+def test_sphere_into_block_3d_matches_hertz(client):
+    """A rigid sphere pressed into a block (3D quarter, T10, cells a/5 at the apex),
+    solved by the service: the quarter's force -load / 4 to round-off, the apex
+    pressure within 5 % of p0 (0.987 measured) and a from the line of p^2 against
+    r^2 within 3 % (1.006 measured), the bounds of crates/contact/tests/solid_obstacles.rs."""
+    from contact_client.scenes import sphere_into_block_3d
+
+    load, radius = 6153.846153846154, 50.0
+    reply = client.solve(sphere_into_block_3d(load=load, radius=radius))
+    assert reply["status"] == "solved"
+    solid = reply["solid"]
+    assert abs(solid["resultant"]["force"][2] + load / 4) < 1e-9 * load
+    a, p0 = hertz_sphere_reference(load, radius, 210000.0, 0.3)
+    (patch,) = solid["patches"]
+    assert abs(patch["peak_pressure"] / p0 - 1) < 0.05
+    a_h = _contact_radius(solid)
+    assert abs(a_h / a - 1) < 0.03

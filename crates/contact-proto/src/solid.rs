@@ -1,6 +1,6 @@
 //! The 3D solid's sections of the request (`analysis: "solid"`, the
 //! request's `solid`) and of the reply (`solid`): one elastic body of
-//! tetrahedra against one rigid plane, frictionless. Lengths, forces and
+//! tetrahedra against one rigid obstacle, frictionless. Lengths, forces and
 //! pressures are the caller's units (consistent, e.g. mm, N, MPa); forces
 //! are totals, not per unit thickness.
 
@@ -12,7 +12,8 @@ use serde::{Deserialize, Serialize};
 use crate::{ElementLists, MaterialSpec};
 
 /// A 3D contact problem: one body of tetrahedra whose face set `contact.faces`
-/// may touch one rigid obstacle (a plane), frictionless, small strain.
+/// may touch one rigid obstacle (a plane, a sphere, a cylinder or a
+/// paraboloid), frictionless, small strain.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SolidSpec {
@@ -179,6 +180,10 @@ pub struct SolidObstacleSpec {
     pub shape: SolidObstacleShape,
 }
 
+/// The obstacle's shape. The gap of a contact point is its distance to the
+/// closest point of the obstacle, and the point is pushed along the
+/// obstacle's normal there; a body point inside the obstacle at the start is
+/// the obstacle pressed in by that depth (a prescribed interference).
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum SolidObstacleShape {
@@ -186,6 +191,41 @@ pub enum SolidObstacleShape {
     /// opposite to `normal` (the normal points out of the obstacle, toward
     /// the body; any nonzero length).
     Plane { point: [f64; 3], normal: [f64; 3] },
+    /// A rigid ball; the body lies outside it.
+    Sphere {
+        /// Its centre [x, y, z].
+        centre: [f64; 3],
+        /// Its radius [length], positive.
+        radius: f64,
+    },
+    /// An infinitely long rigid cylinder; the body lies outside it.
+    Cylinder {
+        /// A point of its axis [x, y, z].
+        point: [f64; 3],
+        /// The axis's direction (any nonzero length).
+        axis: [f64; 3],
+        /// Its radius [length], positive.
+        radius: f64,
+    },
+    /// A rigid body whose surface near its apex is the paraboloid of two
+    /// principal radii (Hertz's local shape of a body of two curvatures):
+    /// at distances ξ along `axis` and η across it from the apex, the
+    /// surface lies ξ²/2R₁ + η²/2R₂ behind the apex's tangent plane, away
+    /// from the body. The gap is the surface's height over the point
+    /// divided by the length of its gradient: the distance to first order,
+    /// exact on the surface.
+    Paraboloid {
+        /// The point of the obstacle nearest the body [x, y, z].
+        apex: [f64; 3],
+        /// The normal at the apex, out of the obstacle toward the body (any
+        /// nonzero length).
+        normal: [f64; 3],
+        /// The direction of the principal section of radius `radii[0]`
+        /// (its part across `normal` is used; not along `normal`).
+        axis: [f64; 3],
+        /// Principal radii [R₁, R₂] [length], each positive.
+        radii: [f64; 2],
+    },
 }
 
 /// Which face set of the body may touch the obstacle.
@@ -197,7 +237,7 @@ pub struct SolidContactSpec {
     pub faces: String,
     /// A shape added to the gap of the flat face set, so that a flat-faced
     /// body stands for a curved one (absent: the gap is the distance to the
-    /// plane).
+    /// obstacle). With a plane obstacle only.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub initial_gap: Option<InitialGapSpec>,
 }
@@ -247,7 +287,9 @@ pub struct ContactPatch {
     /// an edge point is counted, so this overestimates where `area`
     /// underestimates.
     pub tributary_area: f64,
-    /// Contact force on the body, along the obstacle's normal [force].
+    /// Sum of its points' normal contact forces [force] (against a curved
+    /// obstacle each acts along the normal at its point: `resultant` is
+    /// their vector sum).
     pub force: f64,
     /// Where the patch's force acts [x, y, z].
     pub centre_of_pressure: [f64; 3],

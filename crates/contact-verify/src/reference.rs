@@ -14,6 +14,86 @@ pub fn hertz_sphere(p: f64, radius: f64, e_star: f64) -> (f64, f64) {
     (a, 3.0 * p / (2.0 * std::f64::consts::PI * a * a))
 }
 
+/// Complete elliptic integrals of the first and second kinds, K(k) and E(k),
+/// of modulus k ∈ [0, 1), by the arithmetic–geometric mean: with a₀ = 1,
+/// b₀ = √(1 − k²), c₀ = k and a_{n+1} = (a_n + b_n)/2,
+/// b_{n+1} = √(a_n b_n), c_{n+1} = (a_n − b_n)/2, K = π / (2 a_∞) and
+/// E = K (1 − Σ 2^{n−1} c_n²) (Abramowitz & Stegun 17.6). The mean
+/// converges quadratically: a few steps reach round-off.
+pub fn elliptic_ke(k: f64) -> (f64, f64) {
+    let (mut a, mut b, mut c) = (1.0f64, (1.0 - k * k).sqrt(), k);
+    let (mut sum, mut pow) = (0.5 * c * c, 0.5);
+    while c.abs() > 1e-16 * a {
+        let next = (0.5 * (a + b), (a * b).sqrt(), 0.5 * (a - b));
+        (a, b, c) = next;
+        pow *= 2.0;
+        sum += pow * c * c;
+    }
+    let big_k = std::f64::consts::PI / (2.0 * a);
+    (big_k, big_k * (1.0 - sum))
+}
+
+/// Hertz's elliptical contact (Johnson, Contact Mechanics §4.2): a rigid
+/// body of principal relative radii R₁ ≥ R₂ (gap h = x²/2R₁ + y²/2R₂)
+/// pressed by P on an elastic half-space of modulus E*.
+#[derive(Debug, Clone, Copy)]
+pub struct HertzEllipse {
+    /// Semi-axis along the R₁ direction (the larger).
+    pub a: f64,
+    /// Semi-axis along the R₂ direction.
+    pub b: f64,
+    /// Peak pressure 3P / (2π a b).
+    pub p0: f64,
+    /// Eccentricity e = √(1 − b²/a²).
+    pub e: f64,
+}
+
+/// Hertz's ellipse for the load P. With A = 1/2R₁ ≤ B = 1/2R₂ the
+/// eccentricity solves (Johnson eqs. 4.39–4.40, with K, E of modulus e)
+///
+/// ```text
+/// B/A = ((a/b)² E − K) / (K − E),   (a/b)² = 1 / (1 − e²),
+/// ```
+///
+/// whose right side grows from 1 at e = 0 without bound as e → 1, so it is
+/// found by bisection; then A = p₀ b (K − E) / (E* a² e²) with
+/// P = (2/3) π a b p₀ gives a³ = 3 P (K − E) / (2π A E* e²). A circle
+/// (R₁ = R₂) is `hertz_sphere`'s.
+pub fn hertz_ellipse(p: f64, radii: [f64; 2], e_star: f64) -> HertzEllipse {
+    let (r1, r2) = (radii[0].max(radii[1]), radii[0].min(radii[1]));
+    if r1 == r2 {
+        let (a, p0) = hertz_sphere(p, r1, e_star);
+        return HertzEllipse { a, b: a, p0, e: 0.0 };
+    }
+    let (big_a, big_b) = (0.5 / r1, 0.5 / r2);
+    let ratio = |e: f64| {
+        let (k, ee) = elliptic_ke(e);
+        (ee / (1.0 - e * e) - k) / (k - ee)
+    };
+    let (mut lo, mut hi) = (0.0f64, 1.0f64);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid == lo || mid == hi {
+            break;
+        }
+        if ratio(mid) < big_b / big_a {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let e = 0.5 * (lo + hi);
+    let (k, ee) = elliptic_ke(e);
+    let a = (3.0 * p * (k - ee) / (2.0 * std::f64::consts::PI * big_a * e_star * e * e)).cbrt();
+    let b = a * (1.0 - e * e).sqrt();
+    HertzEllipse {
+        a,
+        b,
+        p0: 3.0 * p / (2.0 * std::f64::consts::PI * a * b),
+        e,
+    }
+}
+
 /// A rigid flat punch of half-width 1 pressed by P = 1 (no tangential load, no
 /// moment) into an elastic half-plane with Coulomb friction μ, the dissimilar
 /// materials coupled by the second Dundurs constant β (Spence 1973's problem):
@@ -180,6 +260,27 @@ fn gauss(mut a: Vec<f64>, mut b: Vec<f64>, m: usize) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// K and E at k² = ½ (the lemniscatic case: K = Γ(¼)²/(4√π),
+    /// E = K/2 + π/(4K)), and the ellipse's limits: R₁ → R₂ gives the
+    /// circle, and its semi-axes satisfy Johnson's B relation too,
+    /// B = p₀ b ((a/b)² E − K) / (E* a² e²), to round-off.
+    #[test]
+    fn elliptic_integrals_and_hertz_ellipse() {
+        let (k, e) = elliptic_ke(0.5f64.sqrt());
+        let k_ref = 1.854_074_677_301_372;
+        assert!((k - k_ref).abs() < 1e-14 && (e - (k_ref / 2.0 + std::f64::consts::PI / (4.0 * k_ref))).abs() < 1e-14);
+        let near = hertz_ellipse(1.0, [1.0 + 1e-9, 1.0], 1.0);
+        let (a, p0) = hertz_sphere(1.0, 1.0, 1.0);
+        assert!(
+            (near.a / a - 1.0).abs() < 1e-4 && (near.b / a - 1.0).abs() < 1e-4 && (near.p0 / p0 - 1.0).abs() < 1e-4
+        );
+        let h = hertz_ellipse(2.0, [3.0, 1.0], 5.0);
+        let (kk, ee) = elliptic_ke(h.e);
+        let big_b = h.p0 * h.b * (h.a * h.a / (h.b * h.b) * ee - kk) / (5.0 * h.a * h.a * h.e * h.e);
+        assert!((big_b - 0.5).abs() < 1e-9, "B = {big_b}");
+        assert!(h.b < h.a);
+    }
 
     /// The panel solution of Spence's punch is symmetric (p even, q odd: no
     /// tangential load), inside the cone where it sticks and on it where it

@@ -10,6 +10,7 @@ pub mod scaling;
 pub mod settings;
 mod size_limit;
 pub mod solid;
+pub mod solid_obstacle;
 pub mod validate;
 
 pub use scaling::Scales;

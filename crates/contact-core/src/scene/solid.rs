@@ -13,9 +13,10 @@
 
 use std::collections::BTreeMap;
 
-use crate::error::{CoreError, InvalidKind};
 use crate::mesh::generate::Grading;
 use crate::scene::Settings;
+
+pub use super::solid_obstacle::{Obstacle, Plane};
 
 /// Where the body's mesh comes from: the door's data, in nondimensional
 /// coordinates, with the JSON pointer its faults are reported at.
@@ -87,36 +88,6 @@ impl FaceLoad {
     }
 }
 
-/// A rigid plane: a point on it and its unit normal, out of the obstacle.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Plane {
-    pub point: [f64; 3],
-    pub normal: [f64; 3],
-}
-
-impl Plane {
-    /// The plane through `point` with normal along `normal` (any length > 0).
-    pub fn try_new(point: [f64; 3], normal: [f64; 3]) -> Result<Self, CoreError> {
-        let l = normal.iter().map(|v| v * v).sum::<f64>().sqrt();
-        if !(l > 0.0 && l.is_finite()) || point.iter().any(|v| !v.is_finite()) {
-            return Err(CoreError::invalid(
-                InvalidKind::Geometry,
-                "obstacle",
-                format!("a plane needs a finite point and a nonzero normal, got {point:?} and {normal:?}"),
-            ));
-        }
-        Ok(Self {
-            point,
-            normal: normal.map(|v| v / l),
-        })
-    }
-
-    /// d(x) = (x − p)·n.
-    pub fn distance(&self, x: [f64; 3]) -> f64 {
-        (0..3).map(|c| (x[c] - self.point[c]) * self.normal[c]).sum()
-    }
-}
-
 #[derive(Debug, Clone)]
 pub struct SolidScene {
     pub length: f64,
@@ -128,10 +99,12 @@ pub struct SolidScene {
     pub supports: Vec<Support>,
     pub loads: Vec<FaceLoad>,
     pub body_force: [f64; 3],
-    pub plane: Plane,
+    /// The rigid obstacle (`scene::solid_obstacle`).
+    pub shape: Obstacle,
     /// The contact face set.
     pub faces: String,
-    /// Hertz's paraboloid (apex, radius) added to the gap, if given.
+    /// Hertz's paraboloid (apex, radius) added to the gap, if given (with
+    /// a plane only: the door refuses it on a curved obstacle).
     pub paraboloid: Option<([f64; 3], f64)>,
     pub settings: Settings,
     pub client_id: Option<String>,
@@ -145,11 +118,11 @@ impl SolidScene {
     /// The initial gap profile added to the distance to the plane at x:
     /// r² / 2R with r the distance from the apex across the plane's normal.
     pub fn extra_gap(&self, x: [f64; 3]) -> f64 {
-        let Some((apex, radius)) = self.paraboloid else {
+        let (Some((apex, radius)), Obstacle::Plane(plane)) = (self.paraboloid, self.shape) else {
             return 0.0;
         };
         let d: [f64; 3] = std::array::from_fn(|c| x[c] - apex[c]);
-        let along: f64 = (0..3).map(|c| d[c] * self.plane.normal[c]).sum();
+        let along: f64 = (0..3).map(|c| d[c] * plane.normal[c]).sum();
         let r2 = (0..3).map(|c| d[c] * d[c]).sum::<f64>() - along * along;
         r2.max(0.0) / (2.0 * radius)
     }

@@ -1,5 +1,6 @@
 //! The 3D solid: linear elasticity of a tetrahedral body (`mesh3d`, T4 or
-//! T10) and its frictionless contact with a rigid plane, with the answer's
+//! T10) and its frictionless contact with a rigid obstacle (a plane, a
+//! sphere, a cylinder, a paraboloid), with the answer's
 //! contact patches. A request reaches it with `analysis: "solid"`: the
 //! door makes a `scene::solid::SolidScene`, `door` builds and checks its
 //! given mesh, the route `solve::solid` solves it.
@@ -13,7 +14,7 @@
 //! active_set}`, which never knew the dimension. What is here is what a
 //! body of tetrahedra adds: 3 DOFs per node (`dofs`, DOF 3·node + c), its
 //! assembly and loads on face sets (`stiffness`, `loads`), a linear solve
-//! (`linear`), rows against a plane (`obstacle`), the Signorini solve with
+//! (`linear`), rows against the obstacle (`obstacle`), the Signorini solve with
 //! its KKT certificate (`signorini`), the answer as contact patches (area,
 //! force, centre of pressure, peak, outline polygons), points and the
 //! resultant (`report`), and a nested-dissection order of the DOFs for the

@@ -28,18 +28,19 @@
 //!
 //! **Per patch.** Area: the sum of its faces' areas, the flat triangle's
 //! on T4, the curved 6-node face's on T10 (`obstacle::face_area`: the area
-//! the rows' a_i share). Force: Σ λ_i over its rows (along the plane's
-//! normal). Centre of pressure: Σ λ_i x̄_i / Σ λ_i, with x̄_i = Σ_j c_ij x_j
+//! the rows' a_i share). Force: Σ λ_i over its rows (each along its
+//! row's normal: the plane's, or on a curved obstacle the normal at the
+//! row's closest obstacle point). Centre of pressure: Σ λ_i x̄_i / Σ λ_i, with x̄_i = Σ_j c_ij x_j
 //! the point where row i's force acts (the row's terms, summing to 1: the
 //! node itself on T4 and, by biorthogonality, on flat T10 faces). Peak:
 //! the largest pressure λ_i / a_i and its row's node. Outline: the edges
 //! used by one face of the patch only, chained into closed polygons (with
 //! the midside nodes on T10, so a curved edge is followed to second
-//! order); each loop runs counter-clockwise seen from the plane (the faces'
+//! order); each loop runs counter-clockwise seen from the obstacle (the faces'
 //! outward orientation), so a hole's loop runs the other way. Where two
 //! loops meet at one vertex the walk may join them into one.
 //!
-//! **Resultant.** F = Σ λ_i n and M = Σ x̄_i × λ_i n about the origin, in
+//! **Resultant.** F = Σ λ_i n_i and M = Σ x̄_i × λ_i n_i about the origin, in
 //! the reference configuration (small strain): with the applied loads and
 //! the support reactions, F and M balance to the certificate's equilibrium.
 //!
@@ -48,7 +49,7 @@
 
 use std::collections::HashMap;
 
-use super::obstacle::{face_area, PlaneRows};
+use super::obstacle::{face_area, ObstacleRows};
 use super::signorini::{Certificate, Contact};
 use super::SolidBody;
 use crate::error::CoreError;
@@ -80,7 +81,9 @@ pub struct Patch {
     pub area: f64,
     /// Σ a_i over its rows.
     pub tributary_area: f64,
-    /// Σ λ_i over its rows, along the plane's normal.
+    /// Σ λ_i over its rows: their normal forces' sum (against a plane,
+    /// along its normal; against a curved obstacle, each along its row's
+    /// normal, so a little more than the patch's resultant).
     pub force: f64,
     pub centre_of_pressure: [f64; 3],
     pub peak_pressure: f64,
@@ -99,7 +102,7 @@ pub struct Resultant {
     pub moment: [f64; 3],
 }
 
-/// The contact answer of a solid on a plane (module doc).
+/// The contact answer of a solid on an obstacle (module doc).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SolidContactReport {
     /// In the order of their first row.
@@ -114,11 +117,10 @@ pub struct SolidContactReport {
 
 /// The report of `contact`, solved on `rows` for `body`; an error only if
 /// the rows' face set is not the body's.
-pub fn report(body: &SolidBody, rows: &PlaneRows, contact: &Contact) -> Result<SolidContactReport, CoreError> {
+pub fn report(body: &SolidBody, rows: &ObstacleRows, contact: &Contact) -> Result<SolidContactReport, CoreError> {
     let mesh = body.mesh;
     let set = body.face_set(&rows.faces, "contact/faces")?;
     debug_assert_eq!(contact.lambda.len(), rows.len(), "the contact was solved on these rows");
-    let n = rows.plane.normal;
     let row_of: HashMap<usize, usize> = rows.nodes.iter().enumerate().map(|(i, &v)| (v, i)).collect();
     let pressed = |i: usize| contact.lambda[i] > 0.0;
     let points: Vec<ContactPoint> = (0..rows.len())
@@ -180,18 +182,17 @@ pub fn report(body: &SolidBody, rows: &PlaneRows, contact: &Contact) -> Result<S
         patch.centre_of_pressure = patch.centre_of_pressure.map(|v| v / patch.force);
         patch.outline = outline(&patch.faces, &mesh.nodes);
     }
-    let total: f64 = contact.lambda.iter().sum();
+    let force = (0..rows.len()).fold([0.0; 3], |f, i| {
+        std::array::from_fn(|c| f[c] + contact.lambda[i] * rows.normal[i][c])
+    });
     let moment = (0..rows.len()).fold([0.0; 3], |m, i| {
-        let t = cross(acts[i], n.map(|c| contact.lambda[i] * c));
+        let t = cross(acts[i], rows.normal[i].map(|c| contact.lambda[i] * c));
         [m[0] + t[0], m[1] + t[1], m[2] + t[2]]
     });
     Ok(SolidContactReport {
         patches,
         points,
-        resultant: Resultant {
-            force: n.map(|c| total * c),
-            moment,
-        },
+        resultant: Resultant { force, moment },
         certificate: contact.certificate,
         iterations: contact.iterations,
         converged: contact.converged,

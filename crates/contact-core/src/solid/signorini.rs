@@ -1,4 +1,4 @@
-//! Frictionless Signorini contact of a body of tetrahedra with a rigid plane,
+//! Frictionless Signorini contact of a body of tetrahedra with a rigid obstacle,
 //! on the condensed path the 2D solve takes:
 //!
 //! ```text
@@ -37,7 +37,7 @@ use faer::Mat;
 
 use super::dofs::{dof_map, SolidDofs};
 use super::linear::inf_norm;
-use super::obstacle::PlaneRows;
+use super::obstacle::ObstacleRows;
 use super::{loads, ordering, stiffness, SolidBody};
 use crate::contact::fichera;
 use crate::error::{CoreError, InvalidKind};
@@ -75,7 +75,7 @@ pub struct Contact {
     pub lambda: Vec<f64>,
     /// λ_i / a_i.
     pub pressure: Vec<f64>,
-    /// The rows' gaps after deformation (`PlaneRows::gaps_after`).
+    /// The rows' gaps after deformation (`ObstacleRows::gaps_after`).
     pub gap: Vec<f64>,
     /// Support reactions on every DOF (0 off the supports).
     pub reactions: Vec<f64>,
@@ -100,8 +100,7 @@ struct FreeRows {
     d: Mat<f64>,
 }
 
-fn free_rows(body: &SolidBody, rows: &PlaneRows, dofs: &SolidDofs) -> FreeRows {
-    let n = rows.plane.normal;
+fn free_rows(body: &SolidBody, rows: &ObstacleRows, dofs: &SolidDofs) -> FreeRows {
     let k = dofs.modes.len();
     let mut out = FreeRows {
         rows: Vec::with_capacity(rows.len()),
@@ -110,7 +109,7 @@ fn free_rows(body: &SolidBody, rows: &PlaneRows, dofs: &SolidDofs) -> FreeRows {
     };
     for (i, terms) in rows.terms.iter().enumerate() {
         let mut row = Vec::with_capacity(3 * terms.len());
-        let mut g = rows.gap[i];
+        let (mut g, n) = (rows.gap[i], rows.normal[i]);
         for &(node, cn) in terms {
             for (c, nc) in n.iter().enumerate() {
                 let (dof, coef) = (3 * node + c, -nc * cn);
@@ -132,8 +131,8 @@ fn free_rows(body: &SolidBody, rows: &PlaneRows, dofs: &SolidDofs) -> FreeRows {
     out
 }
 
-/// Solves the contact of `body` with the plane of `rows`.
-pub fn solve(body: &SolidBody, rows: &PlaneRows, settings: &Settings) -> Result<Contact, CoreError> {
+/// Solves the contact of `body` with the obstacle of `rows`.
+pub fn solve(body: &SolidBody, rows: &ObstacleRows, settings: &Settings) -> Result<Contact, CoreError> {
     solve_within(body, rows, settings, f64::INFINITY)
 }
 
@@ -145,7 +144,7 @@ pub fn solve(body: &SolidBody, rows: &PlaneRows, settings: &Settings) -> Result<
 /// factor's memory is taken.
 pub fn solve_within(
     body: &SolidBody,
-    rows: &PlaneRows,
+    rows: &ObstacleRows,
     settings: &Settings,
     max_bytes: f64,
 ) -> Result<Contact, CoreError> {
@@ -165,8 +164,8 @@ pub fn solve_within(
             InvalidKind::NoSupport,
             "supports",
             format!(
-                "the supports leave the {} free, which the plane cannot resist (a frictionless plane pushes only \
-                    along its normal)",
+                "the supports leave the {} free, which the obstacle cannot resist (a frictionless obstacle pushes \
+                    only along its normals)",
                 super::dofs::describe(&b)
             ),
         ));
@@ -248,10 +247,10 @@ pub fn solve_within(
     let (ku, abs) = stiffness::internal_forces(body, &u);
     let mut residual = ku;
     residual.iter_mut().zip(&f_ext).for_each(|(r, f)| *r -= f);
-    for (terms, l) in rows.terms.iter().zip(&lambda) {
+    for ((terms, l), n) in rows.terms.iter().zip(&lambda).zip(&rows.normal) {
         for &(node, cn) in terms {
             for cc in 0..3 {
-                residual[3 * node + cc] -= l * cn * rows.plane.normal[cc];
+                residual[3 * node + cc] -= l * cn * n[cc];
             }
         }
     }
@@ -323,16 +322,16 @@ fn compatible(c: &Mat<f64>, r: &[f64]) -> Result<(), CoreError> {
         return Err(CoreError::invalid(
             InvalidKind::IncompatibleLoads,
             "loads",
-            "no contact pressure on the plane (λ ≥ 0) balances the loads along the rigid motions the supports leave \
-                free: the loads pull the body off the plane or push it along it",
+            "no contact pressure on the obstacle (λ ≥ 0) balances the loads along the rigid motions the supports \
+                leave free: the loads pull the body off the obstacle or push it along it",
         ));
     }
     if fichera::escape(c, r).is_some() {
         return Err(CoreError::invalid(
             InvalidKind::NoSupport,
             "supports",
-            "a rigid motion the supports leave free lifts the body off the plane without work against the loads: \
-                nothing decides where it rests (a support is missing, or the loads do not press it on the plane)",
+            "a rigid motion the supports leave free lifts the body off the obstacle without work against the loads: \
+                nothing decides where it rests (a support is missing, or the loads do not press it on the obstacle)",
         ));
     }
     Ok(())

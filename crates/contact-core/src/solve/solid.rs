@@ -2,7 +2,7 @@
 //! as the 2D routes are, with the same deadline, cancellation and progress:
 //!
 //! ```text
-//! SolidScene ─mesh→ Mesh3d ─admit→ ─rows→ PlaneRows
+//! SolidScene ─mesh→ Mesh3d ─admit→ ─rows→ ObstacleRows
 //!   ─assemble, factor (nested dissection, admitted by predicted time),
 //!    condense, LCP→ Contact (`solid::signorini`) ─report→ SolidAnswer
 //! ```
@@ -75,7 +75,7 @@ pub fn solve_solid(problem: &SolidProblem, limits: &Limits) -> Result<SolidAnswe
         body_force: scene.body_force,
     };
     let t_rows = std::time::Instant::now();
-    let rows = rows_with(&body, &scene.faces, scene.plane, &|x| scene.extra_gap(x)).map_err(located)?;
+    let rows = rows_with(&body, &scene.faces, scene.shape, &|x| scene.extra_gap(x)).map_err(located)?;
     if rows.len() > limits.max_candidates {
         // The condensed operator is dense in the rows (`Limits::max_candidates`).
         return Err(CoreError::TooLarge {

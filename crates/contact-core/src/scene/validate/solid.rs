@@ -13,7 +13,7 @@ use contact_proto::{self as proto, InitialGapSpec, SolidMeshSpec, SolidObstacleS
 use super::{finite, invalid, poisson, positive, settings as wire_settings, Limits};
 use crate::error::{CoreError, InvalidKind as K};
 use crate::mesh::generate::{graded_points, Grading};
-use crate::scene::solid::{FaceLoad, Plane, SolidMesh, SolidScene, Support};
+use crate::scene::solid::{FaceLoad, Obstacle, Plane, SolidMesh, SolidScene, Support};
 use crate::scene::{Method, Settings};
 
 /// The solid scene of `req`, whose `analysis` is `solid`.
@@ -96,11 +96,19 @@ pub fn solid_scene(req: &SolveRequest, limits: &Limits) -> Result<SolidScene, Co
             body_force[c] = finite(*x, &format!("{bp}/body_force/{c}"), K::Request)? * length / e;
         }
     }
-    let plane = plane(spec, length)?;
+    let shape = obstacle(spec, length)?;
     // The face-set names are checked against the mesh by `solid::door`.
     let faces = spec.contact.faces.clone();
     let paraboloid = match &spec.contact.initial_gap {
         None => None,
+        Some(_) if !matches!(shape, Obstacle::Plane(_)) => {
+            return Err(invalid(
+                K::Request,
+                "/solid/contact/initial_gap",
+                "an initial gap profile stands a flat face for a curved one against a plane: give the obstacle's \
+                    own shape (sphere, cylinder, paraboloid) instead",
+            ));
+        }
         Some(InitialGapSpec::Paraboloid { apex, radius }) => {
             let gp = "/solid/contact/initial_gap/paraboloid";
             for (c, x) in apex.iter().enumerate() {
@@ -120,7 +128,7 @@ pub fn solid_scene(req: &SolveRequest, limits: &Limits) -> Result<SolidScene, Co
         supports,
         loads,
         body_force,
-        plane,
+        shape,
         faces,
         paraboloid,
         settings,
@@ -365,18 +373,65 @@ pub fn too_many(nodes: f64, limits: &Limits, path: &str) -> Result<(), CoreError
     Ok(())
 }
 
-fn plane(spec: &SolidSpec, length: f64) -> Result<Plane, CoreError> {
-    let SolidObstacleShape::Plane { point, normal } = spec.obstacle.shape;
-    let p = "/solid/obstacle/shape/plane";
-    for c in 0..3 {
-        finite(point[c], &format!("{p}/point/{c}"), K::Geometry)?;
-        finite(normal[c], &format!("{p}/normal/{c}"), K::Geometry)?;
-    }
-    Plane::try_new(point.map(|x| x / length), normal).map_err(|_| {
-        invalid(
-            K::Geometry,
-            format!("{p}/normal"),
-            format!("the plane's normal must be nonzero, got {normal:?}"),
-        )
-    })
+/// The obstacle, its lengths over `length`; each field finite, radii
+/// positive, directions nonzero, at their pointers.
+fn obstacle(spec: &SolidSpec, length: f64) -> Result<Obstacle, CoreError> {
+    let p = "/solid/obstacle/shape";
+    let point = |x: &[f64; 3], at: &str| -> Result<[f64; 3], CoreError> {
+        for (c, v) in x.iter().enumerate() {
+            finite(*v, &format!("{p}/{at}/{c}"), K::Geometry)?;
+        }
+        Ok(*x)
+    };
+    let radius = |r: f64, at: &str| positive(r, &format!("{p}/{at}"), K::Geometry, "a radius");
+    let nonzero = |x: &[f64; 3], at: &str| -> Result<[f64; 3], CoreError> {
+        point(x, at)?;
+        if x.iter().all(|v| *v == 0.0) {
+            return Err(invalid(
+                K::Geometry,
+                format!("{p}/{at}"),
+                format!("must be nonzero, got {x:?}"),
+            ));
+        }
+        Ok(*x)
+    };
+    let shape = match &spec.obstacle.shape {
+        SolidObstacleShape::Plane { point: at, normal } => Obstacle::Plane(Plane::try_new(
+            point(at, "plane/point")?,
+            nonzero(normal, "plane/normal")?,
+        )?),
+        SolidObstacleShape::Sphere { centre, radius: r } => Obstacle::Sphere {
+            centre: point(centre, "sphere/centre")?,
+            radius: radius(*r, "sphere/radius")?,
+        },
+        SolidObstacleShape::Cylinder {
+            point: at,
+            axis,
+            radius: r,
+        } => Obstacle::try_cylinder(
+            point(at, "cylinder/point")?,
+            nonzero(axis, "cylinder/axis")?,
+            radius(*r, "cylinder/radius")?,
+        )?,
+        SolidObstacleShape::Paraboloid {
+            apex,
+            normal,
+            axis,
+            radii,
+        } => {
+            let (apex, normal) = (point(apex, "paraboloid/apex")?, nonzero(normal, "paraboloid/normal")?);
+            let radii = [
+                radius(radii[0], "paraboloid/radii/0")?,
+                radius(radii[1], "paraboloid/radii/1")?,
+            ];
+            Obstacle::try_paraboloid(apex, normal, nonzero(axis, "paraboloid/axis")?, radii).map_err(|_| {
+                invalid(
+                    K::Geometry,
+                    format!("{p}/paraboloid/axis"),
+                    "must not lie along the normal",
+                )
+            })?
+        }
+    };
+    Ok(shape.scaled(length))
 }
