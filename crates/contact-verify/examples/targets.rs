@@ -96,17 +96,22 @@ fn main() {
 
 /// The effectivity scenes without an overkill table (punches, two bodies, a
 /// footing), from their coarsest effectivity level, each against its own
-/// scene solved by T6 4× finer than the finest level (`effectivity`): whose
-/// own error bounds what can be told apart, so the targets stop at 0.5 %.
+/// scene solved by T6 8× finer than the effectivity table's finest level
+/// (420k to 1.29M DOF, beyond the rounds' 400k), the footing 32× (its
+/// levels are clamped to a quarter of its height: 8× finer is 13k DOF, and
+/// against the table's own 3.4k reference the footing's T6 rounds read
+/// 0.635 % for a true 0.110 %). The references' own error bounds what can
+/// be told apart, so the targets stop at 0.5 %.
 fn solved_references(only: &[String]) {
-    use contact_verify::effectivity::{compare, scaled, LEVELS, REFERENCE, SCENES};
+    use contact_verify::effectivity::{compare, scaled, LEVELS, SCENES};
     for sc in SCENES
         .iter()
         .filter(|s| contact_verify::overkill::reference(contact_verify::effectivity::table_of(s.name)).is_none())
         .filter(|s| only.is_empty() || only.iter().any(|o| s.name.contains(o.as_str())))
     {
         let base = (sc.request)();
-        let mut req = scaled(&base, REFERENCE, "t6");
+        let factor = if sc.name == "winkler_footing" { 0.0625 } else { 0.25 };
+        let mut req = scaled(&base, factor, "t6");
         req["settings"] = json!({"estimate": false});
         let reference = run::solve(&req, &Default::default()).expect("reference solved");
         for element in ["t3", "t6"] {
