@@ -81,7 +81,8 @@ type Node = (f64, f64, f64, f64);
 /// estimate (`peak_fit::fitted_peak_error`) is kept: each errs high where
 /// the other does not (the nodal difference where the other level's nodes
 /// scatter near the peak, the fitted one where the answer's own do), and
-/// neither read below 0.5 of the true error on the effectivity scenes.
+/// neither read below 0.5 of the true error where it is read, on the
+/// effectivity scenes (docs/verification/accuracy.md, "Peak").
 pub fn two_level(answer: &PairReport, other: &PairReport, ratio: f64) -> PairAccuracy {
     let singular = corners::singular_ends(answer);
     let counted = |x: f64, y: f64| !corners::in_band(&singular, x, y);
