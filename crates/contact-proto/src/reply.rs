@@ -150,7 +150,9 @@ pub struct PairAccuracy {
     /// last node in contact past its fitted edge reads 0 in that field: its
     /// value is a weighted mean over its facets, not the pressure there.
     pub pressure_l2: Option<f64>,
-    /// Estimated relative error of the peak pressure.
+    /// Estimated relative error of the peak pressure: of the largest nodal
+    /// pressure (`points[].pressure`) outside the bands of `singular_ends`,
+    /// against the converged peak.
     pub peak: Option<f64>,
     /// Estimated relative error of the pair's resultant force.
     pub resultant: Option<f64>,

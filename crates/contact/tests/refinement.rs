@@ -1,7 +1,7 @@
 //! Tolerance-driven refinement (`settings.accuracy`) and the error estimate
 //! every reply carries (`pairs[].accuracy`).
 //!
-//! Length: about 720 lines, one test per scene or defect the error bar was
+//! Length: about 750 lines, one test per scene or defect the error bar was
 //! measured on, each stating the figures its tolerance rests on.
 
 use contact::wire;
@@ -229,13 +229,14 @@ fn the_estimate_is_optional_and_the_targets_are_checked() {
 /// (0.84–1.09 and 0.92–1.26). At a flat punch's corners the order
 /// assumed is 1 (`two_level::two_level`), which errs on the safe side: the
 /// punches' pressure reads 2.5–4.9 of the true error at this level, tested
-/// within [0.5, 5]. The peak's within [0.5, 3] (1.19–2.74 here) except on
-/// the two cylinders, whose T3 peak at this level is 0.018 % off between
-/// levels 0.48 % and 0.054 % off (a crossing no estimate can foresee), and
-/// on the T3 meshes given inline, within [0.5, 10]: their companion, the
-/// region meshed again, has nodal pressures a few % apart near the peak
-/// where the given mesh's are smooth (measured 6.96 on the disk and 2.56 on
-/// the block here; docs/verification/accuracy.md has all levels). The
+/// within [0.5, 5]. The peak's within [0.5, 2] (0.82–1.83 here), the
+/// punches' within [0.5, 3] (0.86–2.74: the largest value outside the
+/// corner's band is where the pressure rises to it), except on the two
+/// cylinders: their T3 peak at this level is 0.018 % off between levels
+/// 0.48 % and 0.054 % off (a crossing no estimate can foresee), and their T6
+/// peak, 0.043 % off, is estimated at 4.10× (its nodes next to the peak
+/// alternate by more than that error, which both of the peak's estimates
+/// see; `two_level::two_level`), tested within [0.5, 5]. The
 /// T6 resultant, 0.002–0.24 % off, is estimated 0.65–42× (its own test
 /// below, at the finest level). At
 /// a flat punch's corners the pressure is unbounded: both the estimate and
@@ -280,11 +281,11 @@ fn the_estimates_are_the_size_of_the_true_errors() {
                 (0.5..=most).contains(&eff),
                 "{name} {label}: pressure effectivity {eff:.3}"
             );
-            if let Some(eff) = row.eff_peak().filter(|_| name != "two_cylinders") {
-                let most = if name.ends_with("_inline") && element == "t3" {
-                    10.0
-                } else {
-                    3.0
+            if let Some(eff) = row.eff_peak().filter(|_| !(name == "two_cylinders" && element == "t3")) {
+                let most = match name {
+                    "two_cylinders" => 5.0,
+                    _ if name.starts_with("punch") => 3.0,
+                    _ => 2.0,
                 };
                 assert!((0.5..=most).contains(&eff), "{name} {label}: peak effectivity {eff:.3}");
             }
@@ -403,10 +404,42 @@ fn a_peak_standing_off_its_neighbours_at_an_axis_is_estimated() {
     }
 }
 
+/// The peak of a T3 mesh given inline, whose companion is its region meshed
+/// again (`mesh::coarsen`): the companion's nodal pressures scatter by a few
+/// % near the peak where the given mesh's are smooth, and the nodal
+/// difference read that scatter as the answer's error (the disk's peak
+/// estimated at 6.96× and 8.19× its true error at these two levels, the
+/// block's at 2.56× and 0.60×). Against the companion's fitted peak
+/// (`peak_fit`) they read 1.83, 0.94, 0.82 and 0.60 (the block's finest level
+/// keeps the nodal difference, the smaller there), asserted within [0.5, 2],
+/// the error bar's band, against the overkill tables of the generated scenes
+/// (their own L2 uncertainty 1.4e-5 and 3.3e-4, under a tenth of these
+/// true peak errors: 0.08–0.72 %).
+#[test]
+fn the_peak_of_a_given_t3_mesh_is_read_against_its_companions_fitted_peak() {
+    use contact_verify::effectivity::{compare, level, SCENES};
+    for sc in SCENES.iter().filter(|s| s.name.ends_with("_inline")) {
+        let base = (sc.request)();
+        for factor in [4.0, 2.0] {
+            let r = solve(&level(sc, &base, factor, "t3"));
+            let row = compare(sc.name, "T3", factor, &r, None);
+            let eff = row.eff_peak().unwrap();
+            assert!(
+                (0.5..=2.0).contains(&eff),
+                "{} at {factor}: peak estimate {:?}, true {:.3e}",
+                sc.name,
+                row.est_peak,
+                row.err_peak
+            );
+        }
+    }
+}
+
 /// The Gmsh example (the Hertz block meshed by Gmsh, 8.4k DOF) carries its
 /// pressure's, peak's and resultant's estimates, each within [0.5, 2] of its
 /// true error against the block's overkill table (measured 0.372 % against
-/// 0.417 %, 0.669 % against 0.390 %, 0.278 % against 0.298 %).
+/// 0.417 %, 0.382 % against 0.390 % (0.669 % before the fitted peaks,
+/// `peak_fit`), 0.278 % against 0.298 %).
 #[test]
 fn the_gmsh_example_has_its_error_estimated() {
     let r = solve(&example("signorini_hertz_cylinder_gmsh.json"));

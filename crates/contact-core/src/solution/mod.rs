@@ -7,6 +7,7 @@ pub mod corners;
 pub mod couplings;
 pub mod energy;
 pub mod friction;
+pub mod peak_fit;
 pub mod post;
 pub mod prescribed_slip;
 pub mod report;
