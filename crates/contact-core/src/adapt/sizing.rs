@@ -121,7 +121,15 @@ pub(super) fn resized(scene: &Scene, [h, growth, size]: [f64; 3], report: Option
                         };
                         let mut g1 = scaled(g0, [h, growth], new_size);
                         g1.extent = g1.extent.max(MARGIN * reach(focus, &ends));
-                        Some(on_sharp_ends(focus, g1, &sharp_ends(scene, b), &ends))
+                        // Only ends over the body can be its nodes (a punch
+                        // wider than a footing ends beyond it).
+                        let (x0, x1) = (corner[0], corner[0] + width);
+                        let slack = 1e-9 * width;
+                        let over: Vec<f64> = sharp_ends(scene, b)
+                            .into_iter()
+                            .filter(|x| (x0 - slack..=x1 + slack).contains(x))
+                            .collect();
+                        Some(on_sharp_ends(focus, g1, &over, &ends))
                     }
                 };
                 MeshSource::Rectangle {
