@@ -23,7 +23,13 @@ pub fn hertz_sphere(p: f64, radius: f64, e_star: f64) -> (f64, f64) {
 pub fn elliptic_ke(k: f64) -> (f64, f64) {
     let (mut a, mut b, mut c) = (1.0f64, (1.0 - k * k).sqrt(), k);
     let (mut sum, mut pow) = (0.5 * c * c, 0.5);
-    while c.abs() > 1e-16 * a {
+    // Near convergence the two means can settle an ulp apart and swap
+    // forever (k = 0.984375: |c| stays 1.1e-16 a): stop at 4 ulps, or after
+    // 40 steps, far past the 5–6 quadratic convergence needs.
+    for _ in 0..40 {
+        if c.abs() <= 4.0 * f64::EPSILON * a {
+            break;
+        }
         let next = (0.5 * (a + b), (a * b).sqrt(), 0.5 * (a - b));
         (a, b, c) = next;
         pow *= 2.0;
@@ -280,6 +286,20 @@ mod tests {
         let big_b = h.p0 * h.b * (h.a * h.a / (h.b * h.b) * ee - kk) / (5.0 * h.a * h.a * h.e * h.e);
         assert!((big_b - 0.5).abs() < 1e-9, "B = {big_b}");
         assert!(h.b < h.a);
+        // Legendre's relation E K' + E' K − K K' = π/2 (K', E' of the
+        // complementary modulus), at moduli where the means once swapped an
+        // ulp apart forever (0.984375), and a ratio of radii of 10 whose
+        // bisection passes there.
+        for m in [0.3, 0.984375, 0.999] {
+            let ((k, e), (k1, e1)) = (elliptic_ke(m), elliptic_ke((1.0f64 - m * m).sqrt()));
+            let legendre = e * k1 + e1 * k - k * k1;
+            assert!(
+                (legendre - std::f64::consts::FRAC_PI_2).abs() < 1e-12,
+                "{m}: {legendre}"
+            );
+        }
+        let far = hertz_ellipse(1.0, [10.0, 1.0], 1.0);
+        assert!(far.b < far.a && far.p0.is_finite());
     }
 
     /// The panel solution of Spence's punch is symmetric (p even, q odd: no

@@ -758,7 +758,7 @@ fn refinement_bounds_the_energy_of_the_returned_round_alone() {
 /// 0.7 % high throughout, and 1 % was reported reached at 1.16 %; with the
 /// corners on nodes, measured 0.49 % estimated for 0.32 % true.
 #[test]
-fn a_punchs_corners_are_nodes_of_every_round() {
+fn a_punchs_corners_are_nodes_of_the_returned_round() {
     use contact_verify::effectivity::{compare, scaled, LEVELS, REFERENCE, SCENES};
     let sc = SCENES.iter().find(|s| s.name == "punch_under_moment").unwrap();
     let base = (sc.request)();

@@ -477,3 +477,27 @@ fn curved_obstacles_do_not_depend_on_the_units() {
         assert!((sa.resultant.force[2] + load).abs() < 1e-9 * load, "{:?}", sa.resultant);
     }
 }
+
+/// A direction is a direction at any magnitude: a cylinder's axis and a
+/// plane's normal given as 1e200 or 1e-170 times a unit vector (whose norms
+/// overflow or underflow when squared) give the answer of the unit vector to
+/// the last bit, the door dividing each by its largest component first.
+#[test]
+fn directions_of_any_magnitude_are_the_same_direction() {
+    let base = example("solid_sphere_into_block.json");
+    let with = |shape: Value| {
+        let mut r = base.clone();
+        r["solid"]["obstacle"]["shape"] = shape;
+        solved(&r).solid.unwrap()
+    };
+    for s in [1e200, 1e-170] {
+        let cyl =
+            |k: f64| with(json!({"cylinder": {"point": [0.0, 0.0, 50.0], "axis": [k, 0.0, 0.0], "radius": 50.0}}));
+        let plane = |k: f64| with(json!({"plane": {"point": [0.0, 0.0, 0.001], "normal": [0.0, 0.0, -k]}}));
+        for (a, b) in [(cyl(1.0), cyl(s)), (plane(1.0), plane(s))] {
+            assert_eq!(a.resultant.force, b.resultant.force, "axis or normal scaled by {s}");
+            let p = |r: &SolidResult| r.points.iter().map(|q| q.pressure).collect::<Vec<_>>();
+            assert_eq!(p(&a), p(&b), "axis or normal scaled by {s}");
+        }
+    }
+}

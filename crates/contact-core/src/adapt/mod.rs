@@ -43,7 +43,9 @@
 //! is the second round, solved once). The rounds stop
 //! when every estimate meets its target, when nothing is in contact (no
 //! contact error to reduce), or at `max_rounds`, at `max_dofs` (predicted
-//! from the step and the growth of the last round), at the service's size or time limit,
+//! from the step and the growth of the last round; a step past it becomes
+//! the largest round it holds, where that is still a step), at the
+//! service's size or time limit,
 //! when two rounds in a row do not improve the estimate, or when a round
 //! fails (its mesh, its numerics): the answer is then the last round that
 //! solved, `solved` with a `tolerance_not_reached` warning. A target is
@@ -319,6 +321,12 @@ pub fn refine_by(
                     resized(&current, [f, field_step(f), field_step(f)], Some(&report))
                 }
                 .expect("refining always succeeds");
+                // The round as built, whose spacing a punch's corners may have
+                // moved (`sizing`), against the budget once more.
+                let built = smallest_size(&next) / smallest_size(&current);
+                if !uniform && built > 0.0 && report.size.dofs as f64 * built.powf(-k) > target.max_dofs as f64 {
+                    break StopReason::MaxDofs;
+                }
                 crate::progress::round(rounds.len() + 1);
                 // The last round's factor goes before this round's is made,
                 // not beside it past the memory the request was admitted for;

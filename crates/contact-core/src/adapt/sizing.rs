@@ -121,15 +121,17 @@ pub(super) fn resized(scene: &Scene, [h, growth, size]: [f64; 3], report: Option
                         };
                         let mut g1 = scaled(g0, [h, growth], new_size);
                         g1.extent = g1.extent.max(MARGIN * reach(focus, &ends));
-                        // Only ends over the body can be its nodes (a punch
-                        // wider than a footing ends beyond it).
+                        // Only the ends the contact reaches, within a
+                        // spacing and a half of a zone end (a lifted corner
+                        // is not singular; a tabulated profile's far end
+                        // would widen the window to it), and over the body.
                         let (x0, x1) = (corner[0], corner[0] + width);
-                        let slack = 1e-9 * width;
-                        let over: Vec<f64> = sharp_ends(scene, b)
+                        let near = 1.5 * g0.h_min;
+                        let reached: Vec<f64> = sharp_ends(scene, b)
                             .into_iter()
-                            .filter(|x| (x0 - slack..=x1 + slack).contains(x))
+                            .filter(|x| (x0..=x1).contains(x) && ends.iter().any(|e| (e[0] - x).abs() <= near))
                             .collect();
-                        Some(on_sharp_ends(focus, g1, &over, &ends))
+                        Some(on_sharp_ends(focus, g1, &reached, &ends, [x0, x1]))
                     }
                 };
                 MeshSource::Rectangle {
@@ -191,8 +193,19 @@ fn sharp_ends(scene: &Scene, b: usize) -> Vec<f64> {
 /// 0.00646 (corner 0.0057 short of the last node), the pressure inside was
 /// 0.7 % high throughout and the target was reported reached at 1.16 %
 /// against the same scene solved 4× finer by T6. Inner ends of several
-/// profiles land on nodes only where their distances are commensurate.
-fn on_sharp_ends(focus: [f64; 2], g: Grading, xs: &[f64], zone_ends: &[[f64; 2]]) -> ([f64; 2], Grading) {
+/// profiles land on nodes only where their distances are commensurate. The
+/// spacing is the even division nearest to the asked one (within ±25 % from
+/// four spacings on), so that the round's size stays what its budget
+/// predicted. A window that would reach the body's side `[x0, x1]` is left
+/// as it was: the side's nodes are then marched from its end, not from the
+/// focus, and would miss the corners anyway.
+fn on_sharp_ends(
+    focus: [f64; 2],
+    g: Grading,
+    xs: &[f64],
+    zone_ends: &[[f64; 2]],
+    [x0, x1]: [f64; 2],
+) -> ([f64; 2], Grading) {
     let (Some(&lo), Some(&hi)) = (xs.first(), xs.last()) else {
         return (focus, g);
     };
@@ -204,12 +217,21 @@ fn on_sharp_ends(focus: [f64; 2], g: Grading, xs: &[f64], zone_ends: &[[f64; 2]]
     if d <= 1e-9 * g.h_min {
         return (focus, g);
     }
-    let focus = [centre, focus[1]];
-    let n = 2.0 * (0.5 * d / g.h_min).ceil().max(1.0);
+    let centred = [centre, focus[1]];
+    let n = 2.0 * (0.5 * d / g.h_min).round().max(1.0);
     let h_min = d / n;
     // The uniform run reaches the outer ends, and the zones as before.
-    let extent = g.extent.max(d + 0.5 * h_min).max(MARGIN * reach(focus, zone_ends));
-    (focus, Grading { h_min, extent, ..g })
+    let extent = g.extent.max(d + 0.5 * h_min).max(MARGIN * reach(centred, zone_ends));
+    // A focus on the body's end (an axis of revolution) has no side there.
+    let tie = 1e-9 * (x1 - x0);
+    let room = [centre - x0, x1 - centre]
+        .into_iter()
+        .filter(|&l| l > tie)
+        .fold(f64::INFINITY, f64::min);
+    if extent >= room - h_min {
+        return (focus, g);
+    }
+    (centred, Grading { h_min, extent, ..g })
 }
 
 /// The grading with every element `h` times as large: the element size at a

@@ -393,13 +393,16 @@ fn obstacle(spec: &SolidSpec, length: f64) -> Result<Obstacle, CoreError> {
                 format!("must be nonzero, got {x:?}"),
             ));
         }
-        Ok(*x)
+        // A direction divided by its largest component: its norm can then
+        // neither overflow ([0, 0, 1e200]) nor underflow ([1e-170, 0, 0]).
+        let largest = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        Ok(x.map(|v| v / largest))
     };
     let shape = match &spec.obstacle.shape {
-        SolidObstacleShape::Plane { point: at, normal } => Obstacle::Plane(Plane::try_new(
-            point(at, "plane/point")?,
-            nonzero(normal, "plane/normal")?,
-        )?),
+        SolidObstacleShape::Plane { point: at, normal } => Obstacle::Plane(
+            Plane::try_new(point(at, "plane/point")?, nonzero(normal, "plane/normal")?)
+                .map_err(|e| invalid(K::Geometry, format!("{p}/plane/normal"), e.to_string()))?,
+        ),
         SolidObstacleShape::Sphere { centre, radius: r } => Obstacle::Sphere {
             centre: point(centre, "sphere/centre")?,
             radius: radius(*r, "sphere/radius")?,
@@ -412,7 +415,8 @@ fn obstacle(spec: &SolidSpec, length: f64) -> Result<Obstacle, CoreError> {
             point(at, "cylinder/point")?,
             nonzero(axis, "cylinder/axis")?,
             radius(*r, "cylinder/radius")?,
-        )?,
+        )
+        .map_err(|e| invalid(K::Geometry, format!("{p}/cylinder/axis"), e.to_string()))?,
         SolidObstacleShape::Paraboloid {
             apex,
             normal,
