@@ -7,6 +7,9 @@
 //! `stiffness::integration`) the stiffness carries the volumetric part on
 //! the mean dilatation θ̄, so the stress does too: σ = D ε − λ (tr ε − θ̄) m,
 //! the mixed element's constant pressure rather than the locked pointwise one.
+//! On a straight-sided T10 the two agree (u quadratic, ε linear, whose mean
+//! is its centroid value), so the term acts on curved (Gmsh order-2) elements
+//! only; the test below checks the straight case, where it must vanish.
 
 use super::stiffness::{integration, law};
 use super::SolidBody;
