@@ -61,6 +61,7 @@ __all__ = [
     "ball_on_flat",
     "ball_on_flat_3d",
     "sphere_into_block_3d",
+    "block_on_plane_3d",
     "hertz_sphere_reference",
     "flat_punch_of_revolution",
     "boussinesq_pressure",
@@ -814,6 +815,52 @@ def sphere_into_block_3d(
             "contact": {"faces": "z_max"},
         },
     }
+
+
+def block_on_plane_3d(
+    pressure: float = 2.0,
+    lengths: tuple[float, float, float] = (40.0, 40.0, 20.0),
+    size: float = 10.0,
+    h_min: float | None = None,
+    youngs_modulus: float = 210000.0,
+    poisson_ratio: float = 0.3,
+    element: str = "t4",
+    outputs: list[str] | None = None,
+) -> dict:
+    """A box of ``lengths`` resting on a rigid plane z = 0 under a uniform ``pressure`` on
+    its top, its four sides on rollers: the 3D contact patch test. The state is
+    oedometric (a strain in T4's space), so every contact point's pressure is
+    ``pressure`` on any mesh, T4 (nodal rows) or T10 (dual mortar rows).
+
+    Cells of ``size``; with ``h_min``, graded from ``h_min`` at the corner (0.3, 0.6, 0)
+    of the base's unit square by 1.5 up to ``size`` (a mesh with no symmetry, to show the
+    answer does not depend on it). ``outputs`` (e.g. ``["vtu"]``) is the request's.
+    """
+    box = {"corner": [0.0, 0.0, 0.0], "lengths": list(lengths), "size": size, "element": element}
+    if h_min is not None:
+        box["grading"] = {"focus": [0.3, 0.6, 0.0], "h_min": h_min, "ratio": 1.5, "extent": 0.0}
+    request = {
+        "version": "1",
+        "description": f"box {lengths} pressed by {pressure} on a rigid plane (3D patch test)",
+        "analysis": "solid",
+        "solid": {
+            "body": {
+                "name": "block",
+                "material": {"youngs_modulus": youngs_modulus, "poisson_ratio": poisson_ratio},
+                "mesh": {"box": box},
+                "supports": [
+                    {"faces": "x_min", "ux": 0.0}, {"faces": "x_max", "ux": 0.0},
+                    {"faces": "y_min", "uy": 0.0}, {"faces": "y_max", "uy": 0.0},
+                ],
+                "tractions": [{"faces": "z_max", "pressure": pressure}],
+            },
+            "obstacle": {"name": "plane", "shape": {"plane": {"point": [0.0, 0.0, 0.0], "normal": [0.0, 0.0, 1.0]}}},
+            "contact": {"faces": "z_min"},
+        },
+    }
+    if outputs:
+        request["outputs"] = list(outputs)
+    return request
 
 
 def flat_punch_of_revolution(

@@ -78,7 +78,9 @@ pub struct SolveReply {
     /// (point data `displacement`, `contact_pressure`; cell data `stress`,
     /// `stress_tensor` (XX, YY, ZZ, XY, YZ, XZ), `von_mises`,
     /// `principal_stress`, `body`), base64-encoded; decode and save as `.vtu`
-    /// for ParaView.
+    /// for ParaView. For a 3D solid: its tetrahedra (VTK types 10 and 24),
+    /// point data `displacement` (ux, uy, uz) and `contact_pressure`, cell
+    /// data `stress_tensor` and `von_mises`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub vtu: Option<String>,
     /// Echo of the request's `units` (names only: the numbers are in the

@@ -275,6 +275,24 @@ pub struct SolidResult {
     pub resultant: SolidResultant,
     /// Largest penetration of a row (its gap below 0) [length].
     pub max_penetration: f64,
+    /// With `outputs` listing `mesh`: the body's nodes [x, y, z] as meshed
+    /// (a generated box's or a Gmsh file's, in the request's units).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nodes: Option<Vec<[f64; 3]>>,
+    /// With `mesh`: the tetrahedra as 0-based indices into `nodes`, 4 per T4,
+    /// 10 per T10 (corners, then the midsides of edges 0-1, 1-2, 2-0, 3-0,
+    /// 3-2, 3-1: Gmsh's order, as in the request).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub elements: Option<Vec<Vec<usize>>>,
+    /// With `displacement`: each node's [ux, uy, uz] [length].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub displacement: Option<Vec<[f64; 3]>>,
+    /// With `stress`: each element's stress at its centroid [σxx, σyy, σzz,
+    /// σxy, σyz, σxz] (ParaView's tensor order) [force/length²]. On
+    /// nearly incompressible T10 (ν ≥ 0.45, the mean-dilatation element)
+    /// its mean part is the element's constant pressure.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stress: Option<Vec<[f64; 6]>>,
 }
 
 /// A connected region of contact.

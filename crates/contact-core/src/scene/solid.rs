@@ -14,7 +14,7 @@
 use std::collections::BTreeMap;
 
 use crate::mesh::generate::Grading;
-use crate::scene::Settings;
+use crate::scene::{Outputs, Settings};
 
 pub use super::solid_obstacle::{Obstacle, Plane};
 
@@ -107,6 +107,9 @@ pub struct SolidScene {
     /// a plane only: the door refuses it on a curved obstacle).
     pub paraboloid: Option<([f64; 3], f64)>,
     pub settings: Settings,
+    /// What the reply carries besides the contact answer (`stress` and
+    /// `vtu` are computed on request only).
+    pub outputs: Outputs,
     pub client_id: Option<String>,
     pub time_limit: Option<f64>,
     /// Nodes of the mesh, as counted at the door (for a Gmsh text, all of

@@ -9,6 +9,7 @@ use crate::mesh3d::Order;
 use crate::observer::Timings;
 use crate::outcome::Status;
 use crate::scene::solid::SolidScene;
+use crate::scene::Outputs;
 
 #[derive(Debug, Clone)]
 pub struct SolidAnswer {
@@ -28,6 +29,43 @@ pub struct SolidAnswer {
     pub refinements: usize,
     pub timings: Timings,
     pub client_id: Option<String>,
+    /// What the request's `outputs` asked for.
+    pub outputs: Outputs,
+    /// The body's fields, when `outputs` asks for any of them.
+    pub fields: Option<BodyFields>,
+}
+
+/// The body as solved, in the request's units: what `outputs` (mesh,
+/// displacement, stress, vtu) reads.
+#[derive(Debug, Clone)]
+pub struct BodyFields {
+    pub nodes: Vec<[f64; 3]>,
+    /// Connectivity, `order.nodes_per_element()` per element (Gmsh's order).
+    pub elems: Vec<usize>,
+    pub displacement: Vec<[f64; 3]>,
+    /// Centroid stress per element, Voigt (xx, yy, zz, yz, xz, xy); empty
+    /// unless `stress` or `vtu` is asked for.
+    pub stress: Vec<[f64; 6]>,
+}
+
+impl BodyFields {
+    /// Nondimensional fields scaled back: positions and displacements times
+    /// the length, stresses times the modulus.
+    pub fn dimensional(
+        nodes: &[[f64; 3]],
+        elems: &[usize],
+        u: &[[f64; 3]],
+        s: &[[f64; 6]],
+        scene: &SolidScene,
+    ) -> Self {
+        let (l, e) = (scene.length, scene.modulus);
+        BodyFields {
+            nodes: nodes.iter().map(|x| x.map(|c| c * l)).collect(),
+            elems: elems.to_vec(),
+            displacement: u.iter().map(|x| x.map(|c| c * l)).collect(),
+            stress: s.iter().map(|x| x.map(|c| c * e)).collect(),
+        }
+    }
 }
 
 /// The status of a solve: solved when it converged with a certificate

@@ -17,7 +17,8 @@
 //! (`linear`), rows against the obstacle (`obstacle`), the Signorini solve with
 //! its KKT certificate (`signorini`), the answer as contact patches (area,
 //! force, centre of pressure, peak, outline polygons), points and the
-//! resultant (`report`), and a nested-dissection order of the DOFs for the
+//! resultant (`report`), the displacement and stress `outputs` asks for
+//! (`fields`), and a nested-dissection order of the DOFs for the
 //! factorization (`ordering`: AMD fills 3D factors 2–4 times more; it polls
 //! the request's deadline as the other stages do).
 //!
@@ -27,6 +28,7 @@
 pub mod answer;
 pub mod dofs;
 pub mod door;
+pub mod fields;
 pub mod linear;
 pub mod loads;
 pub mod obstacle;

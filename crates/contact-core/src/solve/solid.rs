@@ -17,11 +17,11 @@ use crate::observer::{self, Observer, Stage};
 use crate::outcome::ProgressStage;
 use crate::scene::solid::SolidMesh;
 use crate::scene::Limits;
-use crate::solid::answer::{dimensional, status, SolidAnswer};
+use crate::solid::answer::{dimensional, status, BodyFields, SolidAnswer};
 use crate::solid::door::SolidProblem;
 use crate::solid::obstacle::rows_with;
 use crate::solid::report::report;
-use crate::solid::{signorini, SolidBody};
+use crate::solid::{fields, signorini, SolidBody};
 
 /// Solves the 3D problem within its time limit, if it has one.
 pub fn solve_solid(problem: &SolidProblem, limits: &Limits) -> Result<SolidAnswer, CoreError> {
@@ -96,6 +96,15 @@ pub fn solve_solid(problem: &SolidProblem, limits: &Limits) -> Result<SolidAnswe
     obs.check(Stage::ContactSolve)?;
     obs.enter(Stage::Post);
     let rep = report(&body, &rows, &contact).map_err(located)?;
+    let o = scene.outputs;
+    let fields = (o.mesh || o.displacement || o.stress || o.vtu).then(|| {
+        let s = if o.stress || o.vtu {
+            fields::stress(&body, &contact.u)
+        } else {
+            Vec::new()
+        };
+        BodyFields::dimensional(&mesh.nodes, &mesh.elems, &fields::displacement(&contact.u), &s, scene)
+    });
     obs.leave(Stage::Post)?;
     let max_penetration = contact.gap.iter().fold(0.0f64, |a, g| a.max(-g)) * scene.length;
     let active = contact.lambda.iter().filter(|&&l| l > 0.0).count();
@@ -115,6 +124,8 @@ pub fn solve_solid(problem: &SolidProblem, limits: &Limits) -> Result<SolidAnswe
         refinements: contact.refinements,
         timings: obs.finish(),
         client_id: scene.client_id.clone(),
+        outputs: o,
+        fields,
     })
 }
 

@@ -3,6 +3,7 @@
 
 pub mod csv;
 pub mod vtu;
+pub mod vtu_solid;
 
 use base64::Engine;
 

@@ -25,15 +25,21 @@ use crate::proto::SolveReply;
 const VTK_TRIANGLE: u8 = 5;
 const VTK_QUADRATIC_TRIANGLE: u8 = 22;
 
+/// The von Mises stress of a symmetric tensor (XX, YY, ZZ, XY, YZ, XZ).
+pub(super) fn von_mises(t: &[f64; 6]) -> f64 {
+    let [xx, yy, zz, xy, yz, xz] = *t;
+    (0.5 * ((xx - yy).powi(2) + (yy - zz).powi(2) + (zz - xx).powi(2)) + 3.0 * (xy * xy + yz * yz + xz * xz)).sqrt()
+}
+
 /// The symmetric tensor (XX, YY, ZZ, XY, YZ, XZ), the von Mises stress and
 /// the principal stresses (descending) of an in-plane stress with its σzz.
 fn invariants(s: [f64; 3], zz: f64) -> ([f64; 6], f64, [f64; 3]) {
     let [xx, yy, xy] = s;
-    let von_mises = (0.5 * ((xx - yy).powi(2) + (yy - zz).powi(2) + (zz - xx).powi(2)) + 3.0 * xy * xy).sqrt();
+    let tensor = [xx, yy, zz, xy, 0.0, 0.0];
     let (c, r) = (0.5 * (xx + yy), (0.25 * (xx - yy).powi(2) + xy * xy).sqrt());
     let mut p = [c + r, c - r, zz];
     p.sort_by(|a, b| b.total_cmp(a));
-    ([xx, yy, zz, xy, 0.0, 0.0], von_mises, p)
+    (tensor, von_mises(&tensor), p)
 }
 
 /// The VTU file of a reply whose `bodies` carry nodes, elements, displacement
@@ -114,12 +120,7 @@ pub fn vtu(reply: &SolveReply, stress_zz: &[Vec<f64>], axisymmetric: bool) -> Ve
 
     let n_points = points.len() / 3;
     let n_cells = types.len();
-    let mut x = String::new();
-    x.push_str("<?xml version=\"1.0\"?>\n");
-    x.push_str(
-        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n",
-    );
-    x.push_str("<UnstructuredGrid>\n");
+    let mut x = header();
     if axisymmetric {
         // The section of a body of revolution: the axis is the y axis through
         // the origin (a point and a direction); zz of the tensors is the hoop.
@@ -143,18 +144,35 @@ pub fn vtu(reply: &SolveReply, stress_zz: &[Vec<f64>], axisymmetric: bool) -> Ve
     array(&mut x, "Float64", "von_mises", 1, &le(&von_mises));
     array(&mut x, "Float64", "principal_stress", 3, &le(&principal));
     array(&mut x, "Int32", "body", 1, &le(&body_id));
+    geometry(x, &points, &conn, &offsets, &types)
+}
+
+/// The file's start, up to its piece.
+pub(super) fn header() -> String {
+    let mut x = String::new();
+    x.push_str("<?xml version=\"1.0\"?>\n");
+    x.push_str(
+        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n",
+    );
+    x.push_str("<UnstructuredGrid>\n");
+    x
+}
+
+/// Closes the cell data and writes the points (x, y, z flat) and cells
+/// after it, ending the file.
+pub(super) fn geometry(mut x: String, points: &[f64], conn: &[i64], offsets: &[i64], types: &[u8]) -> Vec<u8> {
     x.push_str("</CellData>\n<Points>\n");
-    array(&mut x, "Float64", "Points", 3, &le(&points));
+    array(&mut x, "Float64", "Points", 3, &le(points));
     x.push_str("</Points>\n<Cells>\n");
-    array(&mut x, "Int64", "connectivity", 1, &le(&conn));
-    array(&mut x, "Int64", "offsets", 1, &le(&offsets));
-    array(&mut x, "UInt8", "types", 1, &types);
+    array(&mut x, "Int64", "connectivity", 1, &le(conn));
+    array(&mut x, "Int64", "offsets", 1, &le(offsets));
+    array(&mut x, "UInt8", "types", 1, types);
     x.push_str("</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
     x.into_bytes()
 }
 
 /// Little-endian bytes of numbers.
-fn le<T: Copy + ToLe>(v: &[T]) -> Vec<u8> {
+pub(super) fn le<T: Copy + ToLe>(v: &[T]) -> Vec<u8> {
     let mut out = Vec::with_capacity(std::mem::size_of_val(v));
     for a in v {
         a.put(&mut out);
@@ -162,7 +180,7 @@ fn le<T: Copy + ToLe>(v: &[T]) -> Vec<u8> {
     out
 }
 
-trait ToLe {
+pub(super) trait ToLe {
     fn put(self, out: &mut Vec<u8>);
 }
 impl ToLe for f64 {
@@ -182,7 +200,7 @@ impl ToLe for i32 {
 }
 
 /// One inline binary DataArray: base64 of (byte count as UInt64, data).
-fn array(x: &mut String, ty: &str, name: &str, components: usize, data: &[u8]) {
+pub(super) fn array(x: &mut String, ty: &str, name: &str, components: usize, data: &[u8]) {
     let mut block = Vec::with_capacity(8 + data.len());
     block.extend_from_slice(&(data.len() as u64).to_le_bytes());
     block.extend_from_slice(data);

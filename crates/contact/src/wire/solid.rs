@@ -1,16 +1,37 @@
 //! `SolidAnswer` → reply: the 3D answer written as the wire message. The
 //! top-level fields the 2D reply always carries are filled from the 3D
 //! answer (no pairs; the resultant's x, y force and moment about z); the
-//! answer itself is the reply's `solid` section.
+//! answer itself is the reply's `solid` section, with the body's fields and
+//! the VTU file as `outputs` asks.
 
+use base64::Engine;
 use contact_core::mesh3d::Order;
 use contact_core::solid::answer::SolidAnswer;
 use contact_core::solid::report::{ContactPoint, Patch};
 use contact_proto as p;
 
 use super::reply::{status, timings};
+use crate::output::vtu_solid::{paraview_order, solid_vtu};
 
 pub fn reply(a: SolidAnswer) -> p::SolveReply {
+    let o = a.outputs;
+    let vtu = a.fields.as_ref().filter(|_| o.vtu).map(|f| {
+        let pressure: Vec<(usize, f64)> = a.report.points.iter().map(|q| (q.node, q.pressure)).collect();
+        base64::engine::general_purpose::STANDARD.encode(solid_vtu(f, a.order, &pressure))
+    });
+    let f = a.fields.filter(|_| o.mesh || o.displacement || o.stress);
+    let (nodes, elements, displacement, stress) = match f {
+        None => (None, None, None, None),
+        Some(f) => {
+            let k = a.order.nodes_per_element();
+            (
+                o.mesh.then_some(f.nodes),
+                o.mesh.then(|| f.elems.chunks_exact(k).map(<[usize]>::to_vec).collect()),
+                o.displacement.then_some(f.displacement),
+                o.stress.then(|| f.stress.iter().map(paraview_order).collect()),
+            )
+        }
+    };
     let r = a.report;
     let (force, moment) = (r.resultant.force, r.resultant.moment);
     let c = r.certificate;
@@ -54,7 +75,7 @@ pub fn reply(a: SolidAnswer) -> p::SolveReply {
         notes: Vec::new(),
         note_kinds: Vec::new(),
         warnings: Vec::new(),
-        vtu: None,
+        vtu,
         units: None,
         refinement: None,
         solid: Some(p::SolidResult {
@@ -69,6 +90,10 @@ pub fn reply(a: SolidAnswer) -> p::SolveReply {
             points: r.points.into_iter().map(point).collect(),
             resultant: p::SolidResultant { force, moment },
             max_penetration: a.max_penetration,
+            nodes,
+            elements,
+            displacement,
+            stress,
         }),
     }
 }

@@ -132,6 +132,7 @@ pub fn solid_scene(req: &SolveRequest, limits: &Limits) -> Result<SolidScene, Co
         faces,
         paraboloid,
         settings,
+        outputs: wire_settings::outputs(req),
         client_id: req.client_id.clone(),
         time_limit,
         estimated_nodes,
@@ -158,14 +159,13 @@ fn not_2d(req: &SolveRequest) -> Result<(), CoreError> {
     let not_yet = [
         ("/load_factors", req.load_factors.is_empty()),
         ("/load_path", req.load_path.is_empty()),
-        ("/outputs", req.outputs.is_empty()),
         ("/settings/accuracy", req.settings.accuracy.is_none()),
     ];
     if let Some((path, _)) = not_yet.iter().find(|u| !u.1) {
         return Err(invalid(
             K::Request,
             *path,
-            "not available for a 3D solid yet (one load, the contact answer only, no refinement)",
+            "not available for a 3D solid yet (one load, no refinement)",
         ));
     }
     if req.settings.formulation == proto::Formulation::Full {
