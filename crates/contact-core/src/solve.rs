@@ -67,9 +67,7 @@ pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
         return solve_steps(scene, limits, cache);
     }
     let answer = || solve_steps(scene, limits, cache);
-    let (mut report, ahead) = crate::adapt::overlap::solve_beside(scene, limits, answer, &uncached)?;
-    crate::adapt::estimate(scene, &mut report, &uncached, limits.max_dofs, ahead);
-    Ok(report)
+    crate::adapt::overlap::solve_estimated(scene, limits, answer, &uncached)
 }
 
 /// The scene once per load factor or load path step, without the error

@@ -5,11 +5,12 @@
 
 mod common;
 
+use std::sync::Mutex;
 use std::time::Duration;
 
 use common::{example, solve_with};
 use contact::scene::{Limits, Overlap};
-use contact_core::adapt::{self, overlap};
+use contact_core::adapt::overlap;
 use contact_core::solution::report::Report;
 use contact_core::{CoreError, Scene};
 use serde_json::Value;
@@ -88,21 +89,23 @@ fn a_companion_failing_beside_the_answer_gives_the_same_reply() {
     let scene = scene("signorini_hertz_cylinder.json");
     let lim = Limits::default();
     let answer = || contact_core::solve::solve_steps(&scene, &lim, None);
+    let threads = Mutex::new(Vec::new());
     let failing = |_: &Scene| -> Result<Report, CoreError> {
+        threads.lock().unwrap().push(std::thread::current().id());
         Err(CoreError::from(contact_core::cancel::Timeout {
             stage: contact_core::outcome::ProgressStage::Assembly,
             limit_s: 1.0,
             predicted: None,
         }))
     };
-    let mut apart = answer().unwrap();
-    adapt::estimate(&scene, &mut apart, &failing, lim.max_dofs, None);
-    let (mut beside, ahead) = overlap::solve_beside(&scene, &limits(Overlap::Always), answer, &failing).unwrap();
+    let apart = overlap::solve_estimated(&scene, &limits(Overlap::Off), answer, &failing).unwrap();
+    let beside = overlap::solve_estimated(&scene, &limits(Overlap::Always), answer, &failing).unwrap();
+    let here = std::thread::current().id();
+    let threads = threads.into_inner().unwrap();
     assert!(
-        ahead.as_ref().is_some_and(|a| a.solved.is_err()),
-        "the companion ran beside"
+        threads[0] == here && threads[1] != here,
+        "the second ran beside: {threads:?}"
     );
-    adapt::estimate(&scene, &mut beside, &failing, lim.max_dofs, ahead);
     assert_eq!(apart.notes, beside.notes);
     assert!(
         apart.notes.iter().any(|n| n.text.contains("coarser solve")),
@@ -140,7 +143,7 @@ fn an_answer_failing_beside_its_companion_returns_its_own_error() {
         }
         Err(CoreError::from(timeout))
     };
-    let r = overlap::solve_beside(&scene, &limits(Overlap::Always), answer, &waiting);
+    let r = overlap::solve_estimated(&scene, &limits(Overlap::Always), answer, &waiting);
     assert_eq!(
         r.err().map(|e| e.to_string()),
         Some(CoreError::from(timeout).to_string())

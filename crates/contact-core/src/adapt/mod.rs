@@ -114,8 +114,15 @@ pub type Solver<'a> = dyn Fn(&Scene) -> Result<Report, CoreError> + 'a;
 /// `max_dofs`: the deployment's size limit (`Limits::max_dofs`, which the
 /// service also bounds by its memory per request), which a finer companion
 /// may not pass.
-/// `ahead`: the companion already solved beside the answer (`overlap`).
-pub fn estimate(scene: &Scene, report: &mut Report, solve: &Solver, max_dofs: usize, ahead: Option<overlap::Ahead>) {
+/// `ahead`: the companion solved beside the answer (`overlap`), asked for
+/// after the energy bound, which is made meanwhile.
+pub fn estimate(
+    scene: &Scene,
+    report: &mut Report,
+    solve: &Solver,
+    max_dofs: usize,
+    ahead: impl FnOnce() -> Option<overlap::Ahead>,
+) {
     let est = estimator::of(scene);
     // The bound first: the answer's factor it solves with is then released
     // before the companion's is made (when it is not made already).
@@ -138,7 +145,7 @@ pub fn estimate_by(
     solve: &Solver,
     max_dofs: usize,
 ) -> Option<(Scene, Report)> {
-    estimate_from(est, scene, report, solve, max_dofs, None)
+    estimate_from(est, scene, report, solve, max_dofs, || None)
 }
 
 /// `estimate_by`, with the companion solved `ahead` or solved here.
@@ -148,7 +155,7 @@ fn estimate_from(
     report: &mut Report,
     solve: &Solver,
     max_dofs: usize,
-    ahead: Option<overlap::Ahead>,
+    ahead: impl FnOnce() -> Option<overlap::Ahead>,
 ) -> Option<(Scene, Report)> {
     let t = Instant::now();
     let mut finer = None;
@@ -156,7 +163,7 @@ fn estimate_from(
         if report.status != Status::Solved {
             return Err(None);
         }
-        let (companion, solved) = match ahead {
+        let (companion, solved) = match ahead() {
             Some(a) => {
                 crate::progress::stage(crate::progress::ESTIMATE);
                 (a.companion, a.solved)

@@ -11,8 +11,10 @@
 //! no progress sink: the client's bar is the answer's stages, then the
 //! `estimate` stage while the companion is awaited, never the companion's
 //! own stages as if they were the answer's. A companion that fails gives the
-//! same note as after the answer. The finer fallback of a region that cannot
-//! be meshed again needs the answer's size and stays after it.
+//! same note as after the answer. The answer's energy bound is made while the
+//! companion ends (a Gmsh mesh's companion, its region meshed again, can take
+//! longer than the answer). The finer fallback of a region that cannot be
+//! meshed again needs the answer's size and stays after it.
 //!
 //! **Memory.** The two solves are now simultaneous: the companion (a quarter
 //! of the unknowns, so about a quarter of the answer's 1.34–1.46 kB per DOF,
@@ -84,16 +86,16 @@ pub fn bare(mut companion: Companion) -> Companion {
     companion
 }
 
-/// `answer()` (the scene's solve), with the scene's coarser companion solved
-/// by `companion` on a second thread when `limits.overlap` allows it (module
-/// doc); None beside the answer when it was not, and the estimate then makes
-/// it itself.
-pub fn solve_beside(
+/// `answer()` (the scene's solve) and its estimate (`adapt::estimate`), the
+/// coarser companion solved by `companion` on a second thread beside the
+/// answer when `limits.overlap` allows it (module doc): the answer's energy
+/// bound is made while the companion ends, and the estimate waits for it.
+pub fn solve_estimated(
     scene: &Scene,
     limits: &Limits,
     answer: impl FnOnce() -> Result<Report, CoreError>,
     companion: &Companions,
-) -> Result<(Report, Option<Ahead>), CoreError> {
+) -> Result<Report, CoreError> {
     let core = match limits.overlap {
         Overlap::Off => None,
         Overlap::Always => Some(busy()),
@@ -103,7 +105,9 @@ pub fn solve_beside(
         Overlap::Auto => None,
     };
     let Some(_core) = core else {
-        return answer().map(|r| (r, None));
+        let mut report = answer()?;
+        super::estimate(scene, &mut report, companion, limits.max_dofs, || None);
+        return Ok(report);
     };
     let est = estimator::of(scene);
     let handoff = crate::cancel::handoff();
@@ -115,11 +119,14 @@ pub fn solve_beside(
             let solved = companion(&c.scene);
             Some(Ahead { companion: c, solved })
         });
-        let answer = answer();
-        if !matches!(&answer, Ok(r) if r.status == Status::Solved) {
+        // The scope waits for the helper on every way out: a stopped one
+        // ends at its next check.
+        let mut report = answer().inspect_err(|_| stopper.stop())?;
+        if report.status != Status::Solved {
             stopper.stop();
         }
-        let ahead = helper.join().unwrap_or_else(|p| std::panic::resume_unwind(p));
-        answer.map(|r| (r, ahead))
+        let ahead = || helper.join().unwrap_or_else(|p| std::panic::resume_unwind(p));
+        super::estimate(scene, &mut report, companion, limits.max_dofs, ahead);
+        Ok(report)
     })
 }
