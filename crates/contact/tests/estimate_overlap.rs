@@ -181,3 +181,29 @@ fn the_bar_reads_the_answer_then_the_estimate() {
     let done: Vec<f64> = seen.iter().map(|p| p.1 / p.2).collect();
     assert!(done.windows(2).all(|w| w[0] <= w[1]), "{done:?}");
 }
+
+/// A request over half the DOF limit solves its companion after the answer,
+/// on the solving thread: both at once could pass the memory it was admitted
+/// for (`adapt::overlap`'s module doc).
+#[test]
+fn a_request_over_half_the_dof_limit_is_not_overlapped() {
+    let scene = scene("signorini_hertz_cylinder.json");
+    let lim = Limits::default();
+    let answer = || contact_core::solve::solve_steps(&scene, &lim, None);
+    let dofs = answer().unwrap().size.dofs;
+    let threads = Mutex::new(Vec::new());
+    let companion = |s: &Scene| {
+        threads.lock().unwrap().push(std::thread::current().id());
+        contact_core::solve::solve_steps(s, &lim, None)
+    };
+    let tight = Limits {
+        max_dofs: dofs * 3 / 2,
+        ..limits(Overlap::Auto)
+    };
+    let r = overlap::solve_estimated(&scene, &tight, answer, &companion).unwrap();
+    assert_eq!(*threads.lock().unwrap(), vec![std::thread::current().id()]);
+    assert!(r
+        .pairs
+        .iter()
+        .all(|p| p.accuracy.as_ref().unwrap().pressure_l2.is_some()));
+}
