@@ -164,10 +164,8 @@ fn estimate_from(
             return Err(None);
         }
         let (companion, solved) = match ahead() {
-            Some(a) => {
-                crate::progress::stage(crate::progress::ESTIMATE);
-                (a.companion, a.solved)
-            }
+            // The bar entered `estimate` before the wait (`overlap`).
+            Some(a) => (a.companion, a.solved),
             None => {
                 let Some(companion) = est.companion(scene, report, max_dofs).map_err(Some)? else {
                     for p in report.pairs.iter_mut() {

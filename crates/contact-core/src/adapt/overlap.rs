@@ -125,7 +125,11 @@ pub fn solve_estimated(
         if report.status != Status::Solved {
             stopper.stop();
         }
-        let ahead = || helper.join().unwrap_or_else(|p| std::panic::resume_unwind(p));
+        // The bar reads `estimate` while the companion is awaited.
+        let ahead = || {
+            crate::progress::stage(crate::progress::ESTIMATE);
+            helper.join().unwrap_or_else(|p| std::panic::resume_unwind(p))
+        };
         super::estimate(scene, &mut report, companion, limits.max_dofs, ahead);
         Ok(report)
     })
