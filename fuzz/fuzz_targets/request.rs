@@ -13,6 +13,7 @@ fuzz_target!(|data: &[u8]| {
         max_candidates: 400,
         max_load_steps: 10,
         max_output_values: 2_000_000,
+        overlap: contact::scene::Overlap::Auto,
     };
     let start = Instant::now();
     let _deadline = contact::cancel::Deadline::install(Duration::from_millis(250));

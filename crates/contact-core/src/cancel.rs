@@ -16,8 +16,16 @@
 //! service concerns; the guard restores the previous deadline on drop (also when
 //! unwinding), so a reused worker thread never inherits a stale one. Without a
 //! deadline (the CLI, the library) every check is a no-op.
+//!
+//! A helper thread that solves part of the same request (the estimate's
+//! companion, `adapt::overlap`) takes the solving thread's clock with it
+//! ([`handoff`]) and a stop flag the solving thread raises when its own solve
+//! fails: the helper's checks then answer as if its time were up, so it ends
+//! at its next check instead of solving for a reply that is already an error.
 
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 pub use crate::outcome::ProgressStage;
@@ -41,6 +49,76 @@ struct Limit {
 
 thread_local! {
     static DEADLINE: Cell<Option<Limit>> = const { Cell::new(None) };
+    /// The flag of a helper thread (`handoff`); None on a solving thread.
+    static STOP: RefCell<Option<Arc<AtomicBool>>> = const { RefCell::new(None) };
+}
+
+/// This thread's deadline and a fresh stop flag, for a helper thread
+/// (`Handoff::install` there).
+pub fn handoff() -> Handoff {
+    Handoff {
+        limit: DEADLINE.with(|d| d.get()),
+        stop: Arc::new(AtomicBool::new(false)),
+    }
+}
+
+/// A deadline and a stop flag on their way to a helper thread.
+pub struct Handoff {
+    limit: Option<Limit>,
+    stop: Arc<AtomicBool>,
+}
+
+/// Raises a helper thread's stop flag.
+pub struct Stopper(Arc<AtomicBool>);
+
+impl Stopper {
+    /// The helper's next check fails as if its deadline had passed.
+    pub fn stop(&self) {
+        self.0.store(true, Ordering::Relaxed);
+    }
+}
+
+impl Handoff {
+    /// What raises the flag, kept by the thread that hands off.
+    pub fn stopper(&self) -> Stopper {
+        Stopper(self.stop.clone())
+    }
+
+    /// On the helper thread: the same clock (an earlier deadline already
+    /// installed there wins, as with `Deadline::install`) and the flag, until
+    /// the guard drops.
+    pub fn install(self) -> Helper {
+        let previous = DEADLINE.with(|d| d.get());
+        let kept = match (previous, self.limit) {
+            (Some(p), Some(l)) if p.at <= l.at => Some(p),
+            (p, None) => p,
+            (_, l) => l,
+        };
+        DEADLINE.with(|d| d.set(kept));
+        Helper {
+            previous,
+            previous_stop: STOP.with(|s| s.replace(Some(self.stop))),
+        }
+    }
+}
+
+/// While alive, this thread keeps the clock and the flag it was handed.
+#[must_use = "the deadline and the flag are lifted when the guard is dropped"]
+pub struct Helper {
+    previous: Option<Limit>,
+    previous_stop: Option<Arc<AtomicBool>>,
+}
+
+impl Drop for Helper {
+    fn drop(&mut self) {
+        DEADLINE.with(|d| d.set(self.previous));
+        STOP.with(|s| *s.borrow_mut() = self.previous_stop.take());
+    }
+}
+
+/// Whether this helper thread was told to stop.
+fn stopped() -> bool {
+    STOP.with(|s| s.borrow().as_ref().is_some_and(|f| f.load(Ordering::Relaxed)))
 }
 
 /// While alive, solves on this thread are limited to `limit` from its creation
@@ -82,15 +160,22 @@ impl Drop for Deadline {
 
 /// Whether this thread's deadline has passed (false without one).
 pub fn expired() -> bool {
-    DEADLINE.with(|d| d.get()).is_some_and(|l| Instant::now() >= l.at)
+    stopped() || DEADLINE.with(|d| d.get()).is_some_and(|l| Instant::now() >= l.at)
 }
 
 /// `Err(Timeout)` naming `stage` (the one just finished or cut) once the deadline has passed.
 pub fn check(stage: ProgressStage) -> Result<(), Timeout> {
-    match DEADLINE.with(|d| d.get()) {
+    let limit = DEADLINE.with(|d| d.get());
+    match limit {
         Some(l) if Instant::now() >= l.at => Err(Timeout {
             stage,
             limit_s: l.limit.as_secs_f64(),
+            predicted: None,
+        }),
+        // A stopped helper's result is thrown away: the error only ends it.
+        _ if stopped() => Err(Timeout {
+            stage,
+            limit_s: limit.map_or(0.0, |l| l.limit.as_secs_f64()),
             predicted: None,
         }),
         _ => Ok(()),
@@ -100,6 +185,9 @@ pub fn check(stage: ProgressStage) -> Result<(), Timeout> {
 /// `Err(Timeout)` naming `stage` when less than `secs` are left: work known
 /// to take that long, and that does not poll, cannot end in time.
 pub fn check_room(stage: ProgressStage, secs: f64) -> Result<(), Timeout> {
+    if stopped() {
+        return check(stage);
+    }
     match DEADLINE.with(|d| d.get()) {
         Some(l) if remaining_secs() < secs => Err(Timeout {
             stage,
@@ -112,6 +200,9 @@ pub fn check_room(stage: ProgressStage, secs: f64) -> Result<(), Timeout> {
 
 /// Seconds left (infinite without a deadline; never negative).
 pub fn remaining_secs() -> f64 {
+    if stopped() {
+        return 0.0;
+    }
     match DEADLINE.with(|d| d.get()) {
         Some(l) => l.at.saturating_duration_since(Instant::now()).as_secs_f64(),
         None => f64::INFINITY,
@@ -160,6 +251,32 @@ mod tests {
         assert!(needed == 7200.0 && left > 3500.0 && left <= 3600.0, "{needed} {left}");
         let e = crate::error::CoreError::from(t).to_string();
         assert!(e.contains("was not started") && !e.contains("exceeded"), "{e}");
+    }
+
+    /// A helper thread keeps the solving thread's clock, stops when told,
+    /// and leaves its thread as it found it.
+    #[test]
+    fn a_helper_keeps_the_clock_and_stops_when_told() {
+        let _d = Deadline::install(Duration::from_secs(3600));
+        let handoff = handoff();
+        let stopper = handoff.stopper();
+        std::thread::scope(|s| {
+            s.spawn(move || {
+                {
+                    let _h = handoff.install();
+                    let left = remaining_secs();
+                    assert!(left > 3500.0 && left <= 3600.0, "{left}");
+                    assert!(check(ProgressStage::Mesh).is_ok() && !expired());
+                    stopper.stop();
+                    assert!(expired() && remaining_secs() == 0.0);
+                    let t = check(ProgressStage::Assembly).unwrap_err();
+                    assert_eq!((t.stage, t.limit_s), (ProgressStage::Assembly, 3600.0));
+                    assert!(check_room(ProgressStage::Factorization, 0.0).is_err());
+                }
+                assert!(!expired() && remaining_secs() == f64::INFINITY);
+            });
+        });
+        assert!(!expired(), "the solving thread's own checks are not stopped");
     }
 
     #[test]

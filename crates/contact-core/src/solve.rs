@@ -46,7 +46,8 @@ pub use solid::solve_solid;
 /// state the previous one left (`solve_frictional`). Within the scene's own
 /// time limit, if it has one. With `settings.accuracy`, round after round on
 /// finer meshes; with `settings.estimate`, every pair's error estimated
-/// (`adapt`).
+/// (`adapt`), its companion solved beside the answer when a core is free
+/// (`adapt::overlap`).
 pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> Result<Report, CoreError> {
     let _deadline = scene
         .time_limit
@@ -55,17 +56,18 @@ pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
     // of their own: they bypass the service's operator cache (which would
     // keep operators no later request asks for).
     let uncached = |s: &Scene| solve_steps(s, limits, None);
+    let _busy = crate::adapt::overlap::busy();
     if scene.settings.estimate || scene.settings.accuracy.is_some() {
         crate::progress::expect_estimate(crate::adapt::estimate_share(scene));
     }
     if let Some(target) = scene.settings.accuracy {
         return crate::adapt::refine(scene, target, &uncached, limits.max_dofs);
     }
-    let mut report = solve_steps(scene, limits, cache)?;
-    if scene.settings.estimate {
-        crate::adapt::estimate(scene, &mut report, &uncached, limits.max_dofs);
+    if !scene.settings.estimate {
+        return solve_steps(scene, limits, cache);
     }
-    Ok(report)
+    let answer = || solve_steps(scene, limits, cache);
+    crate::adapt::overlap::solve_estimated(scene, limits, answer, &uncached)
 }
 
 /// The scene once per load factor or load path step, without the error

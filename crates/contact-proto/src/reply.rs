@@ -696,8 +696,10 @@ pub struct Timings {
     pub condensation: f64,
     pub contact_solve: f64,
     pub post: f64,
-    /// The error estimate's coarser solve (and, with `settings.accuracy`, the
-    /// refinement rounds before the last).
+    /// What the error estimate adds after the answer's solve: its energy
+    /// bound and its coarser solve, or, when that solve ran beside the
+    /// answer's on a second thread, the wait for its end (with
+    /// `settings.accuracy`, also the refinement rounds before the last).
     #[serde(default)]
     pub estimate: f64,
     pub total: f64,

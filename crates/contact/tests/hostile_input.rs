@@ -22,6 +22,7 @@ const LIMITS: Limits = Limits {
     max_candidates: 400,
     max_load_steps: 10,
     max_output_values: 2_000_000,
+    overlap: contact::scene::Overlap::Auto,
 };
 const DEADLINE: Duration = Duration::from_millis(250);
 /// Deadline plus the longest stage that does not poll it, with room for a loaded machine.

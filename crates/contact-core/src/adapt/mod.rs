@@ -22,7 +22,9 @@
 //! basis `zone_edges`). A companion that only refined around the zones would not
 //! see the far field's error: on a user's disk mesh with far field R/8 it
 //! said 0.30 % where the true error was 0.73 %, and 0.0003 % for a
-//! resultant 0.59 % off.
+//! resultant 0.59 % off. The coarser companion depends on the scene alone, so
+//! on the default path it is solved on a second thread beside the answer
+//! when a core is free (`overlap`).
 //!
 //! **Energy bound** (`solution::energy`): made by the estimator
 //! (`Estimator::energy`) once per reply, for the answer returned, from what
@@ -51,12 +53,14 @@
 //! solved, `solved` with a `tolerance_not_reached` warning. A target is
 //! only reached by a two-level estimate, never by the zone ends alone.
 //!
-//! Length: about 510 lines, the estimate of one answer and the rounds that
-//! refine it share their limits (size, time, the budget a last round may
-//! fill) and their stop reasons, read as one loop.
+//! Length: about 560 lines: the estimate, where the energy bound and a
+//! companion solved ahead enter it, and the rounds that reuse it, sharing
+//! their limits (size, time, the budget a last round may fill) and their
+//! stop reasons, read as one schedule.
 
 mod cost;
 pub mod estimator;
+pub mod overlap;
 mod sizing;
 
 use crate::outcome::{EstimateBasis, Note, NoteKind, StopReason, WarningCode};
@@ -116,12 +120,20 @@ pub type Solver<'a> = dyn Fn(&Scene) -> Result<Report, CoreError> + 'a;
 /// `max_dofs`: the deployment's size limit (`Limits::max_dofs`, which the
 /// service also bounds by its memory per request), which a finer companion
 /// may not pass.
-pub fn estimate(scene: &Scene, report: &mut Report, solve: &Solver, max_dofs: usize) {
+/// `ahead`: the companion solved beside the answer (`overlap`), asked for
+/// after the energy bound, which is made meanwhile.
+pub fn estimate(
+    scene: &Scene,
+    report: &mut Report,
+    solve: &Solver,
+    max_dofs: usize,
+    ahead: impl FnOnce() -> Option<overlap::Ahead>,
+) {
     let est = estimator::of(scene);
     // The bound first: the answer's factor it solves with is then released
-    // before the companion's is made.
+    // before the companion's is made (when it is not made already).
     bound_energy(est, scene, report);
-    estimate_by(est, scene, report, solve, max_dofs);
+    estimate_from(est, scene, report, solve, max_dofs, ahead);
 }
 
 /// The estimate's time over the solve's own, for the progress plan (the
@@ -139,31 +151,45 @@ pub fn estimate_by(
     solve: &Solver,
     max_dofs: usize,
 ) -> Option<(Scene, Report)> {
+    estimate_from(est, scene, report, solve, max_dofs, || None)
+}
+
+/// `estimate_by`, with the companion solved `ahead` or solved here.
+fn estimate_from(
+    est: &dyn Estimator,
+    scene: &Scene,
+    report: &mut Report,
+    solve: &Solver,
+    max_dofs: usize,
+    ahead: impl FnOnce() -> Option<overlap::Ahead>,
+) -> Option<(Scene, Report)> {
     let t = Instant::now();
     let mut finer = None;
     let outcome: Result<(), Option<String>> = (|| {
         if report.status != Status::Solved {
             return Err(None);
         }
-        let Some(mut companion) = est.companion(scene, report, max_dofs).map_err(Some)? else {
-            for p in report.pairs.iter_mut() {
-                p.accuracy = Some(est.pair(p, None));
+        let (companion, solved) = match ahead() {
+            // The bar entered `estimate` before the wait (`overlap`).
+            Some(a) => (a.companion, a.solved),
+            None => {
+                let Some(companion) = est.companion(scene, report, max_dofs).map_err(Some)? else {
+                    for p in report.pairs.iter_mut() {
+                        p.accuracy = Some(est.pair(p, None));
+                    }
+                    return Ok(());
+                };
+                let companion = overlap::bare(companion);
+                // The companion's own stages would restart the caller's bar:
+                // they move it across the estimate's share instead.
+                crate::progress::stage(crate::progress::ESTIMATE);
+                let _nested = crate::progress::Sink::nested();
+                let solved = solve(&companion.scene);
+                (companion, solved)
             }
-            return Ok(());
         };
-        // The companion's own stages would restart the caller's bar: they
-        // move it across the estimate's share instead.
-        crate::progress::stage(crate::progress::ESTIMATE);
-        let _nested = crate::progress::Sink::nested();
         let what = companion.what;
-        // A companion that is not the next round is never returned: it keeps
-        // nothing for an energy bound (`compose` keeps it only for an
-        // estimated answer).
-        if !companion.next_round {
-            companion.scene.settings.estimate = false;
-            companion.scene.settings.accuracy = None;
-        }
-        match solve(&companion.scene) {
+        match solved {
             Ok(c) if c.status == Status::Solved && c.pairs.len() == report.pairs.len() => {
                 for (f, cp) in report.pairs.iter_mut().zip(&c.pairs) {
                     f.accuracy = Some(est.pair(f, Some((cp, companion.ratio))));

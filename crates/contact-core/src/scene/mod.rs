@@ -17,7 +17,7 @@ pub use scaling::Scales;
 pub use settings::{
     AccuracyTarget, Analysis, Control, Discretization, Formulation, GapMeasure, Method, Settings, T6Multipliers,
 };
-pub use validate::{Limits, BYTES_PER_DOF};
+pub use validate::{Limits, Overlap, BYTES_PER_DOF};
 
 use crate::mesh::{generate::Grading, Mesh2d, Order};
 

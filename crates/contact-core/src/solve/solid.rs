@@ -29,6 +29,8 @@ pub fn solve_solid(problem: &SolidProblem, limits: &Limits) -> Result<SolidAnswe
     let _deadline = scene
         .time_limit
         .map(|s| crate::cancel::Deadline::install(std::time::Duration::from_secs_f64(s.min(1e9))));
+    // A core this solve keeps busy is not free for a 2D estimate's companion.
+    let _busy = crate::adapt::overlap::busy();
     // The 2D plan counts 2 DOFs per node: 3D's are 1.5 times as many per
     // node. Its factorization is revised from the symbolic analysis.
     let t10 = problem.t10();

@@ -34,6 +34,11 @@ pub trait Estimator {
     /// cannot be afforded within `max_dofs` and the time left (the reply then
     /// carries the zone ends alone, with that note).
     fn companion(&self, scene: &Scene, report: &Report, max_dofs: usize) -> Result<Option<Companion>, String>;
+    /// The companion when it depends on the scene alone, so it can be solved
+    /// beside the answer (`adapt::overlap`); None: only after the answer.
+    fn ahead(&self, _scene: &Scene) -> Option<Companion> {
+        None
+    }
     /// One pair's accuracy, from the answer's pair and, when a companion
     /// solved, its pair and `ratio`.
     fn pair(&self, answer: &PairReport, companion: Option<(&PairReport, f64)>) -> PairAccuracy;
@@ -51,6 +56,6 @@ pub trait Estimator {
 
 /// The estimator of a scene: the registration a second estimator adds its
 /// arm to.
-pub fn of(_scene: &Scene) -> &'static dyn Estimator {
+pub fn of(_scene: &Scene) -> &'static (dyn Estimator + Sync) {
     &TwoLevel
 }

@@ -27,17 +27,8 @@ impl Estimator for TwoLevel {
         // (`mesh::coarsen`) costs a fraction of the finer companion's four
         // times the unknowns; the finer one stays where the region cannot be
         // (a hole, a boundary that is not one loop).
-        if let Some(coarser) = resized(scene, [RATIO; 3], None) {
-            return Ok(Some(Companion {
-                scene: coarser,
-                ratio: RATIO,
-                what: if given(scene) {
-                    "coarser solve (the given mesh's region meshed again, elements twice as large)"
-                } else {
-                    "coarser solve (elements twice as large)"
-                },
-                next_round: false,
-            }));
+        if let Some(coarser) = self.ahead(scene) {
+            return Ok(Some(coarser));
         }
         // Only a given mesh whose region cannot be meshed again is left.
         let predicted = report.size.dofs as f64 * (RATIO * RATIO);
@@ -63,6 +54,21 @@ impl Estimator for TwoLevel {
             what: "finer solve (every triangle split in four)",
             next_round: true,
         }))
+    }
+
+    /// The coarser companion reads the scene alone (its sizing, or its given
+    /// mesh's region); the finer fallback needs the answer's size and time.
+    fn ahead(&self, scene: &Scene) -> Option<Companion> {
+        resized(scene, [RATIO; 3], None).map(|coarser| Companion {
+            scene: coarser,
+            ratio: RATIO,
+            what: if given(scene) {
+                "coarser solve (the given mesh's region meshed again, elements twice as large)"
+            } else {
+                "coarser solve (elements twice as large)"
+            },
+            next_round: false,
+        })
     }
 
     fn pair(&self, answer: &PairReport, companion: Option<(&PairReport, f64)>) -> PairAccuracy {

@@ -36,6 +36,21 @@ pub struct Limits {
     /// steps (estimated from the mesh size before meshing): a displacement
     /// field is 2 per node and step, stresses 4, VTU about 8.
     pub max_output_values: usize,
+    /// Whether the error estimate's coarser companion may be solved on a
+    /// second thread beside the answer (`adapt::overlap`).
+    pub overlap: Overlap,
+}
+
+/// When the estimate's companion runs beside the answer's solve
+/// (`adapt::overlap`); the reply is the same either way.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Overlap {
+    /// When a core is free and the request is at most half the DOF limit.
+    Auto,
+    /// Never: the companion after the answer, on the solving thread.
+    Off,
+    /// Whenever the companion can be made from the scene alone (tests).
+    Always,
 }
 
 /// Peak memory of a 2D solve per degree of freedom: 1.34–1.46 kB measured
@@ -61,6 +76,7 @@ impl Default for Limits {
             // 2e7 numbers are about 400 MB of JSON: ten full-field steps of
             // a 500k-node mesh.
             max_output_values: 20_000_000,
+            overlap: Overlap::Auto,
         }
     }
 }

@@ -1,0 +1,136 @@
+//! The estimate's coarser companion solved on a second thread beside the
+//! answer's solve. It reads the scene alone (`Estimator::ahead`: the sizing
+//! ×2, or the given mesh's region meshed again), so it need not wait for the
+//! answer; the arithmetic of both solves is unchanged, only their schedule,
+//! and the reply is the same (the recorded replies, and a test comparing both
+//! schedules).
+//!
+//! What the helper thread keeps: the request's clock (`cancel::handoff`), and
+//! a stop flag raised when the answer's solve fails or does not solve (the
+//! companion's result is then dropped and the answer's error stands). It has
+//! no progress sink: the client's bar is the answer's stages, then the
+//! `estimate` stage while the companion is awaited, never the companion's
+//! own stages as if they were the answer's. A companion that fails gives the
+//! same note as after the answer. The answer's energy bound is made while the
+//! companion ends (a Gmsh mesh's companion, its region meshed again, can take
+//! longer than the answer). The finer fallback of a region that cannot be
+//! meshed again needs the answer's size and stays after it.
+//!
+//! **Memory.** The two solves are now simultaneous: the companion (a quarter
+//! of the unknowns, so about a quarter of the answer's 1.34–1.46 kB per DOF,
+//! `BYTES_PER_DOF`) adds about 0.35 kB per DOF of the request to its peak. In
+//! `Overlap::Auto` a request overlaps only when its predicted DOFs are at
+//! most half of `max_dofs`, so the two together stay within about 0.63 of the
+//! memory a request at the limit is admitted for (`Limits::memory_bytes`),
+//! with room for a prediction off by half; a larger request runs them one
+//! after the other as before.
+//!
+//! **Cores.** The factorization is sequential by default (`linalg::threads`,
+//! 1: the service runs its workers side by side), so on this 2-core machine
+//! one core is idle during a CLI solve. `Auto` overlaps only while the
+//! solving threads of this process (answers and companions) are fewer than
+//! its cores and the factorization is single-threaded: a service whose
+//! workers already keep every core busy gains nothing from a third thread.
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use super::estimator::{self, Companion};
+use crate::error::CoreError;
+use crate::scene::{Limits, Overlap, Scene};
+use crate::solution::report::{Report, Status};
+
+/// A companion solved beside the answer, for `adapt::estimate`.
+pub struct Ahead {
+    pub companion: Companion,
+    pub solved: Result<Report, CoreError>,
+}
+
+/// A solve of a companion scene, callable from the helper thread.
+pub type Companions<'a> = dyn Fn(&Scene) -> Result<Report, CoreError> + Sync + 'a;
+
+/// Threads of this process solving now: answers (`busy`) and companions.
+static SOLVING: AtomicUsize = AtomicUsize::new(0);
+
+/// Counts a solving thread while alive.
+pub struct Busy(());
+
+impl Drop for Busy {
+    fn drop(&mut self) {
+        SOLVING.fetch_sub(1, Ordering::Relaxed);
+    }
+}
+
+/// The calling thread solves (a request) until the guard drops.
+pub fn busy() -> Busy {
+    SOLVING.fetch_add(1, Ordering::Relaxed);
+    Busy(())
+}
+
+/// A core for the companion, if one is free (counted as solving).
+fn free_core() -> Option<Busy> {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    SOLVING
+        .fetch_update(Ordering::Relaxed, Ordering::Relaxed, |n| (n < cores).then_some(n + 1))
+        .ok()
+        .map(|_| Busy(()))
+}
+
+/// The companion as the estimate solves it: one that is not the next
+/// refinement round is never returned, so it keeps nothing for an energy
+/// bound (`compose` keeps it only for an estimated answer).
+pub fn bare(mut companion: Companion) -> Companion {
+    if !companion.next_round {
+        companion.scene.settings.estimate = false;
+        companion.scene.settings.accuracy = None;
+    }
+    companion
+}
+
+/// `answer()` (the scene's solve) and its estimate (`adapt::estimate`), the
+/// coarser companion solved by `companion` on a second thread beside the
+/// answer when `limits.overlap` allows it (module doc): the answer's energy
+/// bound is made while the companion ends, and the estimate waits for it.
+pub fn solve_estimated(
+    scene: &Scene,
+    limits: &Limits,
+    answer: impl FnOnce() -> Result<Report, CoreError>,
+    companion: &Companions,
+) -> Result<Report, CoreError> {
+    let core = match limits.overlap {
+        Overlap::Off => None,
+        Overlap::Always => Some(busy()),
+        Overlap::Auto if 2.0 * (2.0 * scene.estimated_nodes) <= limits.max_dofs as f64 => {
+            (crate::linalg::threads() == 1).then(free_core).flatten()
+        }
+        Overlap::Auto => None,
+    };
+    let Some(_core) = core else {
+        let mut report = answer()?;
+        super::estimate(scene, &mut report, companion, limits.max_dofs, || None);
+        return Ok(report);
+    };
+    let est = estimator::of(scene);
+    let handoff = crate::cancel::handoff();
+    let stopper = handoff.stopper();
+    std::thread::scope(|s| {
+        let helper = s.spawn(move || {
+            let _clock = handoff.install();
+            let c = bare(est.ahead(scene)?);
+            let solved = companion(&c.scene);
+            Some(Ahead { companion: c, solved })
+        });
+        // The scope waits for the helper on every way out: a stopped one
+        // ends at its next check.
+        let mut report = answer().inspect_err(|_| stopper.stop())?;
+        if report.status != Status::Solved {
+            stopper.stop();
+        }
+        // The bar reads `estimate` while the companion is awaited.
+        let ahead = || {
+            crate::progress::stage(crate::progress::ESTIMATE);
+            helper.join().unwrap_or_else(|p| std::panic::resume_unwind(p))
+        };
+        super::estimate(scene, &mut report, companion, limits.max_dofs, ahead);
+        Ok(report)
+    })
+}
