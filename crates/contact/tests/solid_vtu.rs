@@ -188,3 +188,26 @@ fn the_cli_writes_a_solids_vtu() {
     assert!(printed.get("vtu").is_none());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A solid's outputs are bounded like 2D's (`max_output_values`): the ball
+/// example (T10, about 12k nodes, 8k tetrahedra) asking every output comes to
+/// about 3e5 numbers, refused at `/outputs` under a limit of 1e5 before
+/// anything is meshed, and admitted under the default 2e7.
+#[test]
+fn a_solids_outputs_are_bounded() {
+    let mut req = example("solid_ball_on_flat.json");
+    req["outputs"] = json!(["mesh", "displacement", "stress", "vtu"]);
+    let run =
+        |limits: &contact::scene::Limits| contact::check_bytes(serde_json::to_string(&req).unwrap().as_bytes(), limits);
+    let small = contact::scene::Limits {
+        max_output_values: 100_000,
+        ..Default::default()
+    };
+    let e = run(&small).unwrap_err();
+    assert_eq!(
+        (e.code, e.path.as_str()),
+        (contact::proto::ErrorCode::TooLarge, "/outputs"),
+        "{e:?}"
+    );
+    assert!(run(&Default::default()).is_ok());
+}

@@ -39,6 +39,15 @@ use crate::error::CoreError;
 use crate::scene::{Limits, Overlap, Scene};
 use crate::solution::report::{Report, Status};
 
+/// Stops the helper when dropped: after the estimate has joined it, a no-op.
+struct StopOnDrop<'a>(&'a crate::cancel::Stopper);
+
+impl Drop for StopOnDrop<'_> {
+    fn drop(&mut self) {
+        self.0.stop();
+    }
+}
+
 /// A companion solved beside the answer, for `adapt::estimate`.
 pub struct Ahead {
     pub companion: Companion,
@@ -99,6 +108,10 @@ pub fn solve_estimated(
     let core = match limits.overlap {
         Overlap::Off => None,
         Overlap::Always => Some(busy()),
+        // A given mesh's companion is its region meshed again, which does
+        // not look at the clock: an answer that fails or times out would
+        // wait for it, past its limit (review).
+        Overlap::Auto if super::sizing::given(scene) => None,
         Overlap::Auto if 2.0 * (2.0 * scene.estimated_nodes) <= limits.max_dofs as f64 => {
             (crate::linalg::threads() == 1).then(free_core).flatten()
         }
@@ -113,22 +126,34 @@ pub fn solve_estimated(
     let handoff = crate::cancel::handoff();
     let stopper = handoff.stopper();
     std::thread::scope(|s| {
-        let helper = s.spawn(move || {
-            let _clock = handoff.install();
-            let c = bare(est.ahead(scene)?);
-            let solved = companion(&c.scene);
-            Some(Ahead { companion: c, solved })
-        });
-        // The scope waits for the helper on every way out: a stopped one
-        // ends at its next check.
-        let mut report = answer().inspect_err(|_| stopper.stop())?;
+        // A helper that panics gives no companion (the estimate then solves
+        // it after the answer, as without the overlap), never a panic of the
+        // scope that would replace the answer's own error; a thread the
+        // system refuses is the same.
+        let helper = std::thread::Builder::new()
+            .spawn_scoped(s, move || {
+                std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                    let _clock = handoff.install();
+                    let c = bare(est.ahead(scene)?);
+                    let solved = companion(&c.scene);
+                    Some(Ahead { companion: c, solved })
+                }))
+                .ok()
+                .flatten()
+            })
+            .ok();
+        // The scope waits for the helper on every way out: the guard stops
+        // it on each (an error, a panic of the answer or of its bound), and
+        // a stopped one ends at its next check.
+        let _stop = StopOnDrop(&stopper);
+        let mut report = answer()?;
         if report.status != Status::Solved {
             stopper.stop();
         }
         // The bar reads `estimate` while the companion is awaited.
         let ahead = || {
             crate::progress::stage(crate::progress::ESTIMATE);
-            helper.join().unwrap_or_else(|p| std::panic::resume_unwind(p))
+            helper.and_then(|h| h.join().ok().flatten())
         };
         super::estimate(scene, &mut report, companion, limits.max_dofs, ahead);
         Ok(report)

@@ -8,7 +8,9 @@
 //! lines (`box_nodes`), an inline mesh's is its own (a Gmsh text's is
 //! judged once read).
 
-use contact_proto::{self as proto, InitialGapSpec, SolidMeshSpec, SolidObstacleShape, SolidSpec, SolveRequest};
+use contact_proto::{
+    self as proto, InitialGapSpec, OutputKind, SolidMeshSpec, SolidObstacleShape, SolidSpec, SolveRequest,
+};
 
 use super::{finite, invalid, poisson, positive, settings as wire_settings, Limits};
 use crate::error::{CoreError, InvalidKind as K};
@@ -48,6 +50,7 @@ pub fn solid_scene(req: &SolveRequest, limits: &Limits) -> Result<SolidScene, Co
     )?;
     let nu = poisson(b.material.poisson_ratio, &format!("{bp}/material/poisson_ratio"))?;
     let (length, estimated_nodes, mesh) = mesh(&b.mesh, limits, &format!("{bp}/mesh"))?;
+    output_size(&req.outputs, estimated_nodes, &mesh, limits)?;
     let mut supports = Vec::with_capacity(b.supports.len());
     for (k, s) in b.supports.iter().enumerate() {
         let sp = format!("{bp}/supports/{k}");
@@ -180,6 +183,48 @@ fn not_2d(req: &SolveRequest) -> Result<(), CoreError> {
 
 /// The settings the 3D route reads: tolerance and iteration cap, checked as
 /// in 2D.
+/// The outputs of a solid against the numbers a reply may carry
+/// (`max_output_values`, as 2D's `check_output_size`): per node its
+/// coordinates and displacement, per tetrahedron its nodes, stress tensor and
+/// the VTU's cell arrays. A linear tetrahedral mesh has about 5.5 tetrahedra
+/// per node (Euler's relation for a mesh of good quality), a quadratic one
+/// about 0.75 (each tetrahedron adds its six edges' midsides, shared by about
+/// five); an inline mesh counts its own.
+fn output_size(outputs: &[OutputKind], nodes: f64, mesh: &SolidMesh, limits: &Limits) -> Result<(), CoreError> {
+    if outputs.is_empty() {
+        return Ok(());
+    }
+    let (tets, k) = match mesh {
+        SolidMesh::Box { t10: true, .. } => (0.75 * nodes, 10.0),
+        SolidMesh::Inline { ends, elements, .. } if !ends.is_empty() => {
+            (ends.len() as f64, elements.len() as f64 / ends.len() as f64)
+        }
+        _ => (5.5 * nodes, 4.0),
+    };
+    let values: f64 = outputs
+        .iter()
+        .map(|o| match o {
+            OutputKind::Displacement => 3.0 * nodes,
+            OutputKind::Mesh => 3.0 * nodes + k * tets,
+            OutputKind::Stress => 6.0 * tets,
+            // Points, displacement, pressure; connectivity, offsets, types,
+            // the tensor, von Mises and the principal stresses.
+            OutputKind::Vtu => 7.0 * nodes + (k + 12.0) * tets,
+        })
+        .sum();
+    if values <= limits.max_output_values as f64 {
+        return Ok(());
+    }
+    Err(CoreError::TooLarge {
+        path: "/outputs".into(),
+        reason: format!(
+            "the requested outputs come to about {values:.3e} numbers; this service returns at most {} per reply \
+                (fewer outputs, or a coarser mesh)",
+            limits.max_output_values
+        ),
+    })
+}
+
 fn settings(req: &SolveRequest) -> Result<Settings, CoreError> {
     let (tolerance, max_iterations) = wire_settings::iteration(req)?;
     Ok(Settings {
