@@ -226,3 +226,18 @@ pub fn spence_block(nu: f64, mu: f64, h: f64, scale: f64) -> Value {
     r["contacts"][0]["friction"] = serde_json::json!({"coefficient": mu});
     r
 }
+
+/// Two answers of one scene posed in two systems of units: every number of
+/// `x` equals `y`'s read in `x`'s units (`y / unit`) to 1e-9 of `x`'s largest
+/// magnitude, the round-off of scaling both to the same nondimensional scene.
+pub fn assert_same_in_units(x: &[f64], y: &[f64], unit: f64, what: &str) {
+    let scale = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for (u, v) in x.iter().zip(y) {
+        assert!((u - v / unit).abs() <= 1e-9 * scale, "{what}: {u} against {}", v / unit);
+    }
+}
+
+/// One number of every contact point of a solid's reply.
+pub fn point_values(s: &contact::proto::SolidResult, f: fn(&contact::proto::SolidContactPoint) -> f64) -> Vec<f64> {
+    s.points.iter().map(f).collect()
+}

@@ -252,30 +252,31 @@ fn the_answer_does_not_depend_on_the_units() {
     let active = sa.points.iter().filter(|q| q.in_contact).count();
     println!("{active} of {} points in contact", sa.points.len());
     assert!(active > 3 && active < sa.points.len(), "a patch inside the face set");
-    let close = |x: &[f64], y: &[f64], unit: f64, what: &str| {
-        let scale = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        for (u, v) in x.iter().zip(y) {
-            assert!((u - v / unit).abs() <= 1e-9 * scale, "{what}: {u} against {}", v / unit);
-        }
-    };
-    let field = |s: &contact::proto::SolidResult, f: fn(&contact::proto::SolidContactPoint) -> f64| -> Vec<f64> {
-        s.points.iter().map(f).collect()
-    };
-    close(
-        &field(&sa, |q| q.pressure),
-        &field(&sb, |q| q.pressure),
+    assert_same_in_units(
+        &point_values(&sa, |q| q.pressure),
+        &point_values(&sb, |q| q.pressure),
         1e6,
         "pressure",
     );
-    close(&field(&sa, |q| q.gap), &field(&sb, |q| q.gap), 1e-3, "gap");
-    close(&field(&sa, |q| q.at[0]), &field(&sb, |q| q.at[0]), 1e-3, "x");
-    assert_eq!(
-        field(&sa, |q| q.in_contact as u8 as f64),
-        field(&sb, |q| q.in_contact as u8 as f64)
+    assert_same_in_units(
+        &point_values(&sa, |q| q.gap),
+        &point_values(&sb, |q| q.gap),
+        1e-3,
+        "gap",
     );
-    close(&sa.resultant.force, &sb.resultant.force, 1.0, "force");
-    close(&sa.resultant.moment, &sb.resultant.moment, 1e-3, "moment");
-    close(&[sa.patches[0].area], &[sb.patches[0].area], 1e-6, "area");
+    assert_same_in_units(
+        &point_values(&sa, |q| q.at[0]),
+        &point_values(&sb, |q| q.at[0]),
+        1e-3,
+        "x",
+    );
+    assert_eq!(
+        point_values(&sa, |q| q.in_contact as u8 as f64),
+        point_values(&sb, |q| q.in_contact as u8 as f64)
+    );
+    assert_same_in_units(&sa.resultant.force, &sb.resultant.force, 1.0, "force");
+    assert_same_in_units(&sa.resultant.moment, &sb.resultant.moment, 1e-3, "moment");
+    assert_same_in_units(&[sa.patches[0].area], &[sb.patches[0].area], 1e-6, "area");
 }
 
 /// Refused requests: the code, and a pointer that resolves in the request.

@@ -455,24 +455,20 @@ fn curved_obstacles_do_not_depend_on_the_units() {
         println!("{active} of {} points in contact", sa.points.len());
         assert!(active > 3 && active < sa.points.len(), "a patch inside the face set");
         assert_complementary(&sa, 1e-3);
-        let close = |x: &[f64], y: &[f64], unit: f64, what: &str| {
-            let scale = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            for (u, v) in x.iter().zip(y) {
-                assert!((u - v / unit).abs() <= 1e-9 * scale, "{what}: {u} against {}", v / unit);
-            }
-        };
-        let field = |s: &SolidResult, f: fn(&contact::proto::SolidContactPoint) -> f64| -> Vec<f64> {
-            s.points.iter().map(f).collect()
-        };
-        close(
-            &field(&sa, |q| q.pressure),
-            &field(&sb, |q| q.pressure),
+        assert_same_in_units(
+            &point_values(&sa, |q| q.pressure),
+            &point_values(&sb, |q| q.pressure),
             1e6,
             "pressure",
         );
-        close(&field(&sa, |q| q.gap), &field(&sb, |q| q.gap), 1e-3, "gap");
-        close(&sa.resultant.force, &sb.resultant.force, 1.0, "force");
-        close(&sa.resultant.moment, &sb.resultant.moment, 1e-3, "moment");
+        assert_same_in_units(
+            &point_values(&sa, |q| q.gap),
+            &point_values(&sb, |q| q.gap),
+            1e-3,
+            "gap",
+        );
+        assert_same_in_units(&sa.resultant.force, &sb.resultant.force, 1.0, "force");
+        assert_same_in_units(&sa.resultant.moment, &sb.resultant.moment, 1e-3, "moment");
         let load = 15.0 * 100.0;
         assert!((sa.resultant.force[2] + load).abs() < 1e-9 * load, "{:?}", sa.resultant);
     }
