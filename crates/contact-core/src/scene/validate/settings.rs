@@ -239,16 +239,25 @@ fn check_output_size(outputs: &[OutputKind], steps: usize, nodes: f64, limits: &
         0.0
     };
     let values = per_node * nodes * steps.max(1) as f64 + once;
+    within_output_limit(
+        values,
+        &format!(" over {} load step(s)", steps.max(1)),
+        "load steps or ",
+        limits,
+    )
+}
+
+/// `values` numbers of requested outputs against `max_output_values`, 2D and
+/// 3D alike: refused at `/outputs`, saying what would bring them under it.
+pub(super) fn within_output_limit(values: f64, over: &str, fewer: &str, limits: &Limits) -> Result<(), CoreError> {
     if values <= limits.max_output_values as f64 {
         return Ok(());
     }
     Err(CoreError::TooLarge {
         path: "/outputs".into(),
         reason: format!(
-            "the requested outputs over {} load step(s) come to about {:.3e} numbers; this service returns at most {} \
-                per reply (fewer load steps or outputs, or a coarser mesh)",
-            steps.max(1),
-            values,
+            "the requested outputs{over} come to about {values:.3e} numbers; this service returns at most {} per \
+                reply (fewer {fewer}outputs, or a coarser mesh)",
             limits.max_output_values
         ),
     })

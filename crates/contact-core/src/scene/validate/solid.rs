@@ -212,17 +212,7 @@ fn output_size(outputs: &[OutputKind], nodes: f64, mesh: &SolidMesh, limits: &Li
             OutputKind::Vtu => 7.0 * nodes + (k + 12.0) * tets,
         })
         .sum();
-    if values <= limits.max_output_values as f64 {
-        return Ok(());
-    }
-    Err(CoreError::TooLarge {
-        path: "/outputs".into(),
-        reason: format!(
-            "the requested outputs come to about {values:.3e} numbers; this service returns at most {} per reply \
-                (fewer outputs, or a coarser mesh)",
-            limits.max_output_values
-        ),
-    })
+    wire_settings::within_output_limit(values, "", "", limits)
 }
 
 fn settings(req: &SolveRequest) -> Result<Settings, CoreError> {
