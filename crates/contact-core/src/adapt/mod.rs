@@ -324,10 +324,9 @@ pub fn refine_by(
                 let mut g = (1.0 / f).powf(k);
                 if report.size.dofs as f64 * g > target.max_dofs as f64 {
                     // A step the budget cannot hold becomes the largest round
-                    // it can, where that is still a round's worth: asked for
-                    // a zone end to 3e-3 of the disk's half-width, T6 stopped
-                    // at 54k DOF (4.3e-4 estimated) where a step to 300k was
-                    // allowed.
+                    // it can, where that is still a round's worth: stopping
+                    // there left a tight target's answer at a fraction of the
+                    // unknowns the user allowed (docs/verification/accuracy.md).
                     let room = BUDGET_FILL * target.max_dofs as f64 / report.size.dofs as f64;
                     let fits = room.powf(-1.0 / k);
                     if uniform || fits > STEP_MAX {

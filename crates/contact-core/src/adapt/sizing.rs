@@ -188,11 +188,10 @@ fn sharp_ends(scene: &Scene, b: usize) -> Vec<f64> {
 /// division of their half-distance, so that the companion's spacing (twice
 /// as large) lands on them too. A corner between two nodes narrows or widens
 /// the loaded width by up to a spacing: an error of order h whose size
-/// depends on where the corner falls, which two levels cannot estimate. On a
-/// flat punch under a moment, refined to `pressure_l2` 0.01 with h_min
-/// 0.00646 (corner 0.0057 short of the last node), the pressure inside was
-/// 0.7 % high throughout and the target was reported reached at 1.16 %
-/// against the same scene solved 4× finer by T6. Inner ends of several
+/// depends on where the corner falls, which two levels cannot estimate (a
+/// flat punch under a moment was reported within 1 % while 1.16 % off: the
+/// figures are in docs/verification/accuracy.md, Tolerance-driven
+/// refinement). Inner ends of several
 /// profiles land on nodes only where their distances are commensurate. The
 /// spacing is the even division nearest to the asked one (within ±25 % from
 /// four spacings on), so that the round's size stays what its budget
