@@ -12,9 +12,11 @@
 //! `estimate` stage while the companion is awaited, never the companion's
 //! own stages as if they were the answer's. A companion that fails gives the
 //! same note as after the answer. The answer's energy bound is made while the
-//! companion ends (a Gmsh mesh's companion, its region meshed again, can take
-//! longer than the answer). The finer fallback of a region that cannot be
-//! meshed again needs the answer's size and stays after it.
+//! companion ends. A given (inline or Gmsh) mesh's companion, its region
+//! meshed again, does not look at the clock, so `Auto` solves it after the
+//! answer: a failing or timed-out answer would otherwise wait for it. The
+//! finer fallback of a region that cannot be meshed again needs the answer's
+//! size and stays after it.
 //!
 //! **Memory.** The two solves are now simultaneous: the companion (a quarter
 //! of the unknowns, so about a quarter of the answer's 1.34–1.46 kB per DOF,
