@@ -77,9 +77,9 @@ pub fn fitted_peak(pts: &[Node], counted: &dyn Fn(f64, f64) -> bool, region: f64
 /// fitted peak rather than its nodes: a given mesh's companion, its region
 /// meshed again, has nodal pressures a few % apart near the peak where the
 /// answer's are smooth, which the nodal difference read as the answer's error
-/// (the inline T3 disk's peak estimated at 7.0× and 8.2× its true error on two
-/// levels, 1.83× and 0.94× against the fitted peak). None where
-/// either level's peak is not a smooth maximum.
+/// several times over (the effectivities before and after are in
+/// docs/verification/accuracy.md, "Peak"). None where either level's peak is
+/// not a smooth maximum.
 pub fn fitted_peak_error(
     answer: &[Node],
     other: &[Node],
