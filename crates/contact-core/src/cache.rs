@@ -28,10 +28,15 @@ use crate::scene::Scene;
 
 pub struct Prepared {
     pub stiffness: Arc<Stiffness>,
-    pub chol: Cholesky,
+    /// Shared by the condensations of a screened solve (`solve::screen`),
+    /// each over the rows it holds.
+    pub chol: Arc<Cholesky>,
     /// W and the blocks of X = L⁻¹ P Bᵀ: one forward and one backward sweep
     /// then make a whole solve.
     pub condensed: Condensed,
+    /// The candidates W is over, by index, when a screened solve condensed
+    /// only some (None: every candidate, in order).
+    pub rows: Option<Vec<usize>>,
     /// `Cholesky::pivot_ratio` of the factor.
     pub pivot_ratio: f64,
     pub t_factorization: f64,

@@ -27,7 +27,7 @@ use crate::cache::{self, OperatorCache};
 use crate::error::CoreError;
 use crate::fem::assembly::{assemble_loads, assemble_stiffness};
 use crate::mesh::Mesh2d;
-use crate::methods::{self, full, FreeBlock, Problem};
+use crate::methods::{self, full};
 use crate::model::Model;
 use crate::observer::{self, Observer, Stage};
 use crate::scene::{Limits, Method, Scene};
@@ -37,6 +37,7 @@ use crate::solution::report::{with_steps, CacheState, LoadStep, Report, Timings}
 mod friction_block;
 mod frictional;
 mod notes;
+mod screen;
 mod solid;
 use frictional::solve_frictional;
 pub use solid::solve_solid;
@@ -153,6 +154,7 @@ fn solve_condensed(
 ) -> Result<Report, CoreError> {
     let key = cache::key(scene, &model.meshes, &model.dofs, &model.cons);
     let model_ref: &Model = &model;
+    let screened = screen::applies(scene, model_ref);
     let (op, cache_state) = match cache.and_then(|c| c.get(key)) {
         Some(op) => {
             crate::progress::revise(crate::outcome::ProgressStage::Factorization, 0.0);
@@ -163,30 +165,28 @@ fn solve_condensed(
             let stiffness = Arc::new(assemble_stiffness(scene, &model.meshes, &model.dofs)?);
             obs.leave(Stage::Assembly)?;
             obs.enter(Stage::Factorization);
-            let op = Arc::new(methods::condensed::prepare(stiffness, &model.cons, cache)?);
+            let op = match screened {
+                true => methods::condensed::prepare_factor(stiffness, cache)?,
+                false => methods::condensed::prepare(stiffness, &model.cons, cache)?,
+            };
             obs.timings.factorization = op.t_factorization;
             obs.timings.condensation = op.t_condensation;
-            if let Some(c) = cache {
-                c.insert(key, op.clone());
-            }
-            (op, cache.map_or(CacheState::Off, |_| CacheState::Miss))
+            (Arc::new(op), cache.map_or(CacheState::Off, |_| CacheState::Miss))
         }
     };
     obs.check(Stage::Factorization)?;
     let f = assemble_loads(&model.external, &model.dofs, &op.stiffness);
     let compliance = (!model.foundations.is_empty()).then(|| model.foundations.compliance(&model.cons));
-    let problem = Problem {
-        op: &op,
-        f: &f,
-        cons: &model.cons,
-        settings: &scene.settings,
-        punch: (!model.free.is_empty()).then(|| FreeBlock::frictionless(&model.free)),
-        compliance: compliance.as_ref(),
-    };
     obs.enter(Stage::ContactSolve);
-    let sol = methods::solve(&problem, scene.method)?;
+    let fresh = op.clone();
+    let s = screen::solve_rows(scene, model_ref, op, &f, compliance.as_ref(), screened)?;
     obs.leave(Stage::ContactSolve)?;
+    let (op, sol) = (s.op, s.sol);
     obs.timings.contact_solve = sol.t_contact;
+    obs.timings.condensation += s.t_condensation;
+    if let Some(c) = cache.filter(|_| cache_state != CacheState::Hit || !Arc::ptr_eq(&op, &fresh)) {
+        c.insert(key, op.clone());
+    }
     let solved = Solved {
         model: model_ref,
         k: &op.stiffness.k,
@@ -198,7 +198,9 @@ fn solve_condensed(
         friction: &[],
         operator: Some((model.clone(), op.clone())),
     };
-    Ok(compose::report(scene, &solved, sol, obs, cache_state))
+    let mut report = compose::report(scene, &solved, sol, obs, cache_state);
+    report.diagnostics.condensed_rows = op.rows.as_ref().map(Vec::len);
+    Ok(report)
 }
 
 /// The energy bound solves with the condensed route's operator

@@ -758,6 +758,12 @@ pub struct Diagnostics {
     /// a factor from the cache gives its own; absent for the full formulation).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub factorization_predicted: Option<f64>,
+    /// How many contact rows the condensed operator W = B K⁻¹ Bᵀ was formed
+    /// over, when the solve screened them (large scenes: only the rows the
+    /// loads press, every other row checked open after the solve); absent
+    /// when every candidate was condensed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub condensed_rows: Option<usize>,
 }
 
 /// Display as the wire's own name (`active_set`, `max_dofs`, ...): the text a

@@ -66,10 +66,40 @@ pub fn prepare_on(
         symbolic.cost().predicted_secs(),
         reach.flops(),
     );
-    let chol = Cholesky::with_symbolic(symbolic, &stiffness.k)?;
+    let chol = Arc::new(Cholesky::with_symbolic(symbolic, &stiffness.k)?);
     let t_factorization = t0.elapsed().as_secs_f64();
     crate::cancel::check(crate::outcome::ProgressStage::Factorization)?;
     crate::progress::stage(crate::outcome::ProgressStage::Condensation);
+    condense_on(stiffness, chol, reach, None, t_factorization)
+}
+
+/// The factor of K with no row condensed yet, for a solve that chooses its
+/// rows from the loads (`solve::screen`), which calls `condense_subset`.
+pub fn prepare_factor(stiffness: Arc<Stiffness>, cache: Option<&OperatorCache>) -> Result<Prepared, CoreError> {
+    let mut op = prepare_rows(stiffness, &[], cache)?;
+    op.rows = Some(Vec::new());
+    Ok(op)
+}
+
+/// W over the candidates `subset` (by index, increasing; None: every one)
+/// on the factor of `op`: within the contact stage of a screened solve, so
+/// it announces no stage of its own.
+pub fn condense_subset(op: &Prepared, cons: &ConstraintSet, subset: Option<Vec<usize>>) -> Result<Prepared, CoreError> {
+    let rows: Vec<&[(usize, f64)]> = match &subset {
+        Some(s) => s.iter().map(|&i| cons.candidates[i].row.as_slice()).collect(),
+        None => cons.candidates.iter().map(|c| c.row.as_slice()).collect(),
+    };
+    let reach = Reach::new(op.chol.analysis(), &rows);
+    condense_on(op.stiffness.clone(), op.chol.clone(), reach, subset, op.t_factorization)
+}
+
+fn condense_on(
+    stiffness: Arc<Stiffness>,
+    chol: Arc<Cholesky>,
+    reach: Reach,
+    rows: Option<Vec<usize>>,
+    t_factorization: f64,
+) -> Result<Prepared, CoreError> {
     let t1 = Instant::now();
     let condensed = reach.condense(&chol)?;
     Ok(Prepared {
@@ -77,6 +107,7 @@ pub fn prepare_on(
         stiffness,
         chol,
         condensed,
+        rows,
         t_factorization,
         t_condensation: t1.elapsed().as_secs_f64(),
     })

@@ -168,6 +168,7 @@ pub fn report(scene: &Scene, st: &Solved, sol: methods::Solution, mut obs: Obser
             condition_estimate: st.pivot_ratio,
             refinements: sol.refinements,
             factorization_predicted: st.predicted,
+            condensed_rows: None,
         },
         timings: obs.finish(),
         cache,

@@ -477,6 +477,9 @@ pub struct Diagnostics {
     pub condition_estimate: Option<f64>,
     pub refinements: usize,
     pub factorization_predicted: Option<f64>,
+    /// The contact rows W was formed over when screening left some out
+    /// (`solve::screen`); None: every candidate.
+    pub condensed_rows: Option<usize>,
 }
 
 /// Per-body fields (each present when asked for).

@@ -43,6 +43,7 @@ pub fn reply(mut report: Report) -> p::SolveReply {
             condition_estimate: report.diagnostics.condition_estimate,
             refinements: report.diagnostics.refinements,
             factorization_predicted: report.diagnostics.factorization_predicted,
+            condensed_rows: report.diagnostics.condensed_rows,
         },
         timings: timings(report.timings),
         cache: match report.cache {

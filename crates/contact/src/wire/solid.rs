@@ -64,6 +64,7 @@ pub fn reply(a: SolidAnswer) -> p::SolveReply {
             condition_estimate: None,
             refinements: a.refinements,
             factorization_predicted: None,
+            condensed_rows: None,
         },
         timings: timings(a.timings),
         cache: p::CacheState::Off,
