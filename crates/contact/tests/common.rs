@@ -243,24 +243,13 @@ pub fn point_values(s: &contact::proto::SolidResult, f: fn(&contact::proto::Soli
 }
 
 /// The radius of a circular Hertz patch centred on the z axis from the
-/// points in contact (`edge_fit` over their r² and p²).
+/// points in contact (`contact_verify::reference::edge_fit` over their r²
+/// and p²).
 pub fn circle_fit(points: &[contact::proto::SolidContactPoint]) -> f64 {
     let pressed: Vec<(f64, f64)> = points
         .iter()
         .filter(|q| q.in_contact)
         .map(|q| (q.at[0].powi(2) + q.at[1].powi(2), q.pressure.powi(2)))
         .collect();
-    edge_fit(&pressed)
-}
-
-/// Hertz's edge from pressed points (r², p²): p² = p0² (1 − r²/a²) is a
-/// straight line in r², so a least-squares line through them meets p² = 0
-/// at r² = a²; a is returned.
-pub fn edge_fit(pressed: &[(f64, f64)]) -> f64 {
-    let n = pressed.len() as f64;
-    let (mx, my) = pressed.iter().fold((0.0, 0.0), |(x, y), q| (x + q.0 / n, y + q.1 / n));
-    let sxy: f64 = pressed.iter().map(|q| (q.0 - mx) * (q.1 - my)).sum();
-    let sxx: f64 = pressed.iter().map(|q| (q.0 - mx).powi(2)).sum();
-    let slope = sxy / sxx;
-    ((slope * mx - my) / slope).sqrt()
+    contact_verify::reference::edge_fit(&pressed)
 }
