@@ -25,6 +25,7 @@ from .client import (
     work_fraction,
 )
 from .outcomes import EstimateBasis, Method, NoteKind, Status, StopReason, WarningCode
+from .patch_map import plot_patch
 from .results import described_pressure, plot_pressure, save_vtu, to_numpy
 
 __version__ = "0.2.0"
@@ -45,6 +46,7 @@ __all__ = [
     "solve",
     "solve_local",
     "plot_pressure",
+    "plot_patch",
     "save_vtu",
     "to_numpy",
     "described_pressure",

@@ -240,7 +240,9 @@ def plot_pressure(result: dict, ax=None, reference: str | bool | Callable[[float
                   request: dict | None = None, pairs: list[int] | None = None, title: str | None = None,
                   zoom: bool | None = None, shear: bool | None = None, shear_ax=None):
     """Contact pressure against x (r in axisymmetry), one line per pair, contact zones
-    shaded; returns the axes (of the pressure).
+    shaded; returns the axes (of the pressure). A 3D solid's reply is drawn as its
+    patches' pressure map instead (:func:`~contact_client.patch_map.plot_patch`, with
+    ``ax``, ``request``, ``reference`` and ``title``).
 
     With friction on a pair drawn (``shear`` None, the default; ``shear=False`` leaves
     it out), a second panel below, sharing x, draws each such pair's tangential
@@ -283,6 +285,11 @@ def plot_pressure(result: dict, ax=None, reference: str | bool | Callable[[float
     import matplotlib.pyplot as plt
     import numpy as np
 
+    if result.get("solid"):
+        # A 3D solid's contact is a patch, not a line: its pressure map.
+        from .patch_map import plot_patch
+
+        return plot_patch(result, ax=ax, request=request, reference=reference, title=title)
     if result.get("status", "solved") != "solved":
         warnings.warn(f"plotting a reply whose status is {result.get('status')!r}: its pressures are not an answer",
                       stacklevel=2)

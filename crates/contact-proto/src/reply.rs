@@ -298,6 +298,10 @@ pub struct LoadStep {
     /// Every coupling at this step (as the reply's `couplings`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub couplings: Vec<CouplingResult>,
+    /// A 3D solid's answer at this factor (`resultant` then holds its x and
+    /// y force and its moment about z, as the reply's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub solid: Option<crate::solid::SolidStepResult>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]

@@ -295,6 +295,18 @@ pub struct SolidResult {
     pub stress: Option<Vec<[f64; 6]>>,
 }
 
+/// A 3D solid's answer at one load factor (a `steps` entry's `solid`): its
+/// patches, points and resultant as in `SolidResult`.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SolidStepResult {
+    pub patches: Vec<ContactPatch>,
+    pub points: Vec<SolidContactPoint>,
+    pub resultant: SolidResultant,
+    /// Largest penetration of a row [length].
+    pub max_penetration: f64,
+}
+
 /// A connected region of contact.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]

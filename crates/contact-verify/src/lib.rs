@@ -2,7 +2,7 @@
 //!
 //! Analytic references (`reference`: Hertz), overkill references of the
 //! convergence scenes (`overkill`, tables in `data/`), typed request builders (`build`),
-//! the time-against-error benchmark (`bench`),
+//! the time-against-error benchmark (`bench`; its 3D rows `solid_bench`),
 //! convergence under refinement (`convergence`; with friction: `friction`,
 //! the Cattaneo–Mindlin stick zone), the error estimate against
 //! the true error (`effectivity`), time to a tolerance with and
@@ -17,5 +17,6 @@ pub mod friction;
 pub mod overkill;
 pub mod reference;
 pub mod run;
+pub mod solid_bench;
 pub mod stability;
 pub mod tolerance;

@@ -14,6 +14,18 @@ pub fn hertz_sphere(p: f64, radius: f64, e_star: f64) -> (f64, f64) {
     (a, 3.0 * p / (2.0 * std::f64::consts::PI * a * a))
 }
 
+/// Hertz's contact radius from pressed points (r², p²): p² = p0² (1 − r²/a²)
+/// is a straight line in r², so the least-squares line through them meets
+/// p² = 0 at r² = a²; a is returned (NaN with fewer than two points).
+pub fn edge_fit(pressed: &[(f64, f64)]) -> f64 {
+    let n = pressed.len() as f64;
+    let (mx, my) = pressed.iter().fold((0.0, 0.0), |(x, y), q| (x + q.0 / n, y + q.1 / n));
+    let sxy: f64 = pressed.iter().map(|q| (q.0 - mx) * (q.1 - my)).sum();
+    let sxx: f64 = pressed.iter().map(|q| (q.0 - mx).powi(2)).sum();
+    let slope = sxy / sxx;
+    ((slope * mx - my) / slope).sqrt()
+}
+
 /// Complete elliptic integrals of the first and second kinds, K(k) and E(k),
 /// of modulus k ∈ [0, 1), by the arithmetic–geometric mean: with a₀ = 1,
 /// b₀ = √(1 − k²), c₀ = k and a_{n+1} = (a_n + b_n)/2,

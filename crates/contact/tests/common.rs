@@ -241,3 +241,15 @@ pub fn assert_same_in_units(x: &[f64], y: &[f64], unit: f64, what: &str) {
 pub fn point_values(s: &contact::proto::SolidResult, f: fn(&contact::proto::SolidContactPoint) -> f64) -> Vec<f64> {
     s.points.iter().map(f).collect()
 }
+
+/// The radius of a circular Hertz patch centred on the z axis from the
+/// points in contact (`contact_verify::reference::edge_fit` over their r²
+/// and p²).
+pub fn circle_fit(points: &[contact::proto::SolidContactPoint]) -> f64 {
+    let pressed: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|q| q.in_contact)
+        .map(|q| (q.at[0].powi(2) + q.at[1].powi(2), q.pressure.powi(2)))
+        .collect();
+    contact_verify::reference::edge_fit(&pressed)
+}

@@ -178,18 +178,7 @@ fn a_ball_on_a_flat_matches_hertz() {
         s.resultant
     );
     assert_eq!(s.patches.len(), 1, "one patch");
-    let pressed: Vec<(f64, f64)> = s
-        .points
-        .iter()
-        .filter(|q| q.in_contact)
-        .map(|q| (q.at[0].powi(2) + q.at[1].powi(2), q.pressure.powi(2)))
-        .collect();
-    let n = pressed.len() as f64;
-    let (mx, my) = pressed.iter().fold((0.0, 0.0), |(x, y), q| (x + q.0 / n, y + q.1 / n));
-    let sxy: f64 = pressed.iter().map(|q| (q.0 - mx) * (q.1 - my)).sum();
-    let sxx: f64 = pressed.iter().map(|q| (q.0 - mx).powi(2)).sum();
-    let slope = sxy / sxx;
-    let a_h = ((slope * mx - my) / slope).sqrt();
+    let a_h = circle_fit(&s.points);
     let peak = s.patches[0].peak_pressure;
     // The relative L2 error of the pressure at the points (Hertz's p, 0
     // outside the circle), reported, not asserted: the points are no
@@ -202,7 +191,7 @@ fn a_ball_on_a_flat_matches_hertz() {
     println!(
         "{} DOFs, {} points in contact: a_h / a = {:.4}, peak / p0 = {:.4} at {:?}, pointwise L2 error {:.3}",
         r.size.dofs,
-        pressed.len(),
+        s.points.iter().filter(|q| q.in_contact).count(),
         a_h / a,
         peak / p0,
         s.patches[0].peak_at,

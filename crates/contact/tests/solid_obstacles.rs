@@ -221,13 +221,10 @@ fn a_cylinder_between_end_walls_is_plane_strain() {
             .filter(|q| q.1 > 0.0)
             .map(|q| (q.0 * q.0, q.1 * q.1))
             .collect();
-        let n = pressed.len() as f64;
-        let (mx, my) = pressed.iter().fold((0.0, 0.0), |(x, y), q| (x + q.0 / n, y + q.1 / n));
-        let sxy: f64 = pressed.iter().map(|q| (q.0 - mx) * (q.1 - my)).sum();
-        let sxx: f64 = pressed.iter().map(|q| (q.0 - mx).powi(2)).sum();
-        let slope = sxy / sxx;
-        let b = ((slope * mx - my) / slope).sqrt();
-        (b, pts.iter().map(|q| q.1).fold(0.0, f64::max))
+        (
+            contact_verify::reference::edge_fit(&pressed),
+            pts.iter().map(|q| q.1).fold(0.0, f64::max),
+        )
     };
     let p2: Vec<(f64, f64)> = two.pairs[0].points.iter().map(|q| (q.x, q.pressure)).collect();
     let ((b2, peak2), (b3, peak3), (b_end, peak_end)) = (line(&p2), line(&mid), line(&ends));

@@ -115,6 +115,9 @@ pub struct SolidScene {
     /// Nodes of the mesh, as counted at the door (for a Gmsh text, all of
     /// its nodes).
     pub estimated_nodes: f64,
+    /// Load multipliers to solve for (empty: the loads as given): every
+    /// load and prescribed motion times each, the gaps as given.
+    pub load_factors: Vec<f64>,
 }
 
 impl SolidScene {

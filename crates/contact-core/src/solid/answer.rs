@@ -33,6 +33,18 @@ pub struct SolidAnswer {
     pub outputs: Outputs,
     /// The body's fields, when `outputs` asks for any of them.
     pub fields: Option<BodyFields>,
+    /// One per load factor when the request lists `load_factors` (the rest
+    /// of the answer is the last factor's).
+    pub steps: Option<Vec<SolidStep>>,
+}
+
+/// The answer at one load factor, in the request's units.
+#[derive(Debug, Clone)]
+pub struct SolidStep {
+    pub factor: f64,
+    pub status: Status,
+    pub report: SolidContactReport,
+    pub max_penetration: f64,
 }
 
 /// The body as solved, in the request's units: what `outputs` (mesh,

@@ -23,6 +23,10 @@
 //! gain D β with D = B R, and the motions' equilibrium Dᵀλ = Rᵀ f closes
 //! the mixed LCP (`active_set::solve_mlcp`, with C = −D).
 //!
+//! Load factors (`Operator`): scaling every load and prescribed motion by k
+//! scales f, the prescribed part of g and Rᵀ f, while K, B, W and D stay; so
+//! the operator is prepared once and each factor is one LCP on it.
+//!
 //! The answer carries the KKT certificate of the full system, each entry
 //! relative and dimensionless: primal (penetration max(0, −gap) over
 //! ‖u‖∞), dual (max(0, −λ) over ‖λ‖∞), complementarity (max |λ_i gap_i|
@@ -39,6 +43,7 @@ use super::dofs::{dof_map, SolidDofs};
 use super::linear::inf_norm;
 use super::obstacle::ObstacleRows;
 use super::{loads, ordering, stiffness, SolidBody};
+use crate::cache::Prepared;
 use crate::contact::fichera;
 use crate::error::{CoreError, InvalidKind};
 use crate::fem::pattern::FIXED;
@@ -92,11 +97,10 @@ pub struct Contact {
     pub seconds: [f64; 3],
 }
 
-/// The rows on the free DOFs, the gaps less the prescribed motion, and
-/// D = B R (rows × free motions).
+/// The rows on the free DOFs and D = B R (rows × free motions): what the
+/// loads do not change.
 struct FreeRows {
     rows: Vec<Vec<(usize, f64)>>,
-    g: Vec<f64>,
     d: Mat<f64>,
 }
 
@@ -104,21 +108,19 @@ fn free_rows(body: &SolidBody, rows: &ObstacleRows, dofs: &SolidDofs) -> FreeRow
     let k = dofs.modes.len();
     let mut out = FreeRows {
         rows: Vec::with_capacity(rows.len()),
-        g: Vec::with_capacity(rows.len()),
         d: Mat::zeros(rows.len(), k),
     };
     for (i, terms) in rows.terms.iter().enumerate() {
         let mut row = Vec::with_capacity(3 * terms.len());
-        let (mut g, n) = (rows.gap[i], rows.normal[i]);
+        let n = rows.normal[i];
         for &(node, cn) in terms {
             for (c, nc) in n.iter().enumerate() {
                 let (dof, coef) = (3 * node + c, -nc * cn);
                 if coef == 0.0 {
                     continue;
                 }
-                match dofs.free[dof] {
-                    FIXED => g -= coef * dofs.prescribed[dof],
-                    f => row.push((f, coef)),
+                if dofs.free[dof] != FIXED {
+                    row.push((dofs.free[dof], coef));
                 }
                 for j in 0..k {
                     out.d[(i, j)] += coef * dofs.modes.at(j, body.mesh.nodes[node], c);
@@ -126,7 +128,25 @@ fn free_rows(body: &SolidBody, rows: &ObstacleRows, dofs: &SolidDofs) -> FreeRow
             }
         }
         out.rows.push(row);
-        out.g.push(g);
+    }
+    out
+}
+
+/// The rows' gaps less the prescribed motion (`dofs.prescribed`, already
+/// scaled by the load factor).
+fn free_gaps(rows: &ObstacleRows, dofs: &SolidDofs) -> Vec<f64> {
+    let mut out = Vec::with_capacity(rows.len());
+    for (i, terms) in rows.terms.iter().enumerate() {
+        let (mut g, n) = (rows.gap[i], rows.normal[i]);
+        for &(node, cn) in terms {
+            for (c, nc) in n.iter().enumerate() {
+                let (dof, coef) = (3 * node + c, -nc * cn);
+                if coef != 0.0 && dofs.free[dof] == FIXED {
+                    g -= coef * dofs.prescribed[dof];
+                }
+            }
+        }
+        out.push(g);
     }
     out
 }
@@ -137,28 +157,60 @@ pub fn solve(body: &SolidBody, rows: &ObstacleRows, settings: &Settings) -> Resu
 }
 
 /// `solve`, refused (`too_large` at the body's mesh) when the factor of K
-/// would hold more than `max_bytes`: a 3D factor fills far more per unknown
-/// than a 2D one (the T10 ball example, 35k DOF, took 344 MB where 2D
-/// solves take 1.3–1.5 kB per DOF), so a DOF limit set from the memory at 2D
-/// rates does not bound it. Judged from the symbolic analysis, before the
-/// factor's memory is taken.
+/// would hold more than `max_bytes` (`prepare_within`).
 pub fn solve_within(
     body: &SolidBody,
     rows: &ObstacleRows,
     settings: &Settings,
     max_bytes: f64,
 ) -> Result<Contact, CoreError> {
+    let op = prepare_within(body, rows, &[1.0], max_bytes)?;
+    let mut contact = op.solve(body, rows, settings, 1.0)?;
+    contact.seconds[..2].copy_from_slice(&op.seconds);
+    Ok(contact)
+}
+
+/// What every load factor of a frictionless solve shares: K assembled and
+/// factored, the rows condensed into W, the free motions' rows D. The loads
+/// and prescribed motions enter the LCP only through q = g − B K⁻¹ f and the
+/// motions' loads Rᵀ f, linear in the factor, and the rows are those of the
+/// undeformed body (small strain): so each factor is one more LCP on the same
+/// W, one forward and one backward sweep.
+pub struct Operator {
+    dofs: SolidDofs,
+    prepared: Prepared,
+    rows: FreeRows,
+    /// The free motions on every DOF.
+    fields: Vec<Vec<f64>>,
+    /// The external forces at factor 1 on every DOF.
+    f_ext: Vec<f64>,
+    /// Seconds of assembly, and of the factorization with condensation.
+    pub seconds: [f64; 2],
+}
+
+/// The operator of `body` against the rows, for the load `factors` the
+/// caller will solve; refused (`too_large` at the body's mesh) when the
+/// factor of K would hold more than `max_bytes`: a 3D factor fills far more
+/// per unknown than a 2D one (the T10 ball example, 35k DOF, took 344 MB where
+/// 2D solves take 1.3–1.5 kB per DOF), so a DOF limit set from the memory at
+/// 2D rates does not bound it. Judged from the symbolic analysis, before the
+/// factor's memory is taken; and loads that no contact force balances are
+/// refused before it too, for every sign of the factors (Fichera's condition
+/// holds alike for every positive multiple of a load).
+pub fn prepare_within(
+    body: &SolidBody,
+    rows: &ObstacleRows,
+    factors: &[f64],
+    max_bytes: f64,
+) -> Result<Operator, CoreError> {
     let t0 = std::time::Instant::now();
     let touching: Vec<usize> = rows.terms.iter().flatten().map(|t| t.0).collect();
     let dofs = dof_map(body, Some(&touching))?;
     let k = Arc::new(stiffness::assemble(body, &dofs));
     let f_ext = loads::external(body)?;
-    let f = loads::free_rhs(&f_ext, &dofs, &k);
     let fr = free_rows(body, rows, &dofs);
     let nm = dofs.modes.len();
-    // The motions' loads Rᵀ f (on every DOF: a virtual support's share too).
     let fields: Vec<Vec<f64>> = (0..nm).map(|j| dofs.modes.field(j, &body.mesh.nodes)).collect();
-    let rf: Vec<f64> = fields.iter().map(|r| dense::dot(r, &f_ext)).collect();
     if let Some(b) = unresisted(&fr.d, &dofs.modes.basis) {
         return Err(CoreError::invalid(
             InvalidKind::NoSupport,
@@ -171,8 +223,14 @@ pub fn solve_within(
         ));
     }
     let c = -&fr.d;
-    let r: Vec<f64> = rf.iter().map(|v| -v).collect();
-    compatible(&c, &r)?;
+    let mut signs: Vec<f64> = factors
+        .iter()
+        .map(|k| if *k == 0.0 { 0.0 } else { k.signum() })
+        .collect();
+    signs.dedup();
+    for s in signs {
+        compatible(&c, &motion_loads(&fields, &f_ext, s))?;
+    }
     let t1 = std::time::Instant::now();
     crate::progress::stage(crate::progress::ProgressStage::Factorization);
     let refs: Vec<&[(usize, f64)]> = fr.rows.iter().map(|r| r.as_slice()).collect();
@@ -190,104 +248,140 @@ pub fn solve_within(
             ),
         });
     }
-    let op = condensed::prepare_on(k.clone(), &refs, symbolic, t1)?;
-    let t2 = std::time::Instant::now();
-    crate::progress::stage(crate::progress::ProgressStage::ContactSolve);
-    let y = op.chol.forward(&f);
-    let q: Vec<f64> = fr.g.iter().zip(op.condensed.rows_of(&y)).map(|(g, b)| g - b).collect();
-    let (res, mut beta) = if nm == 0 {
-        (active_set::solve_lcp(&op.condensed.w, &q, settings), Vec::new())
-    } else {
-        active_set::solve_mlcp(&op.condensed.w, &q, &c, &r, settings)
-    };
-    let mut lambda = res.lambda;
-    let displacements = |lambda: &[f64], beta: &[f64]| {
-        let mut yz = y.clone();
-        op.condensed.subtract(lambda, &mut yz);
-        let mut u = loads::full_field(&dofs, &op.chol.backward(&yz));
-        for (field, b) in fields.iter().zip(beta) {
-            u.iter_mut().zip(field).for_each(|(u, r)| *u += b * r);
-        }
-        u
-    };
-    let gaps = |u: &[f64]| rows.gaps_after(u);
-    let mut u = displacements(&lambda, &beta);
-    let mut gap = gaps(&u);
-    // Refinement on the final active set: the dense W carries the round-off
-    // of the compliance it was formed from, the sparse u does not; solving
-    // [W_AA C_A; C_Aᵀ 0] δ = −(gap_A, Dᵀλ − Rᵀf) moves the active gaps to 0.
-    let mut refinements = 0;
-    if res.converged {
-        let idx: Vec<usize> = (0..lambda.len()).filter(|&i| lambda[i] > 0.0).collect();
-        let worst = |g: &[f64]| idx.iter().fold(0.0f64, |a, &i| a.max(g[i].abs()));
-        for _ in 0..REFINE_STEPS {
-            let now = worst(&gap);
-            if idx.is_empty() || now <= 1e-3 * settings.tolerance * inf_norm(&u) {
-                break;
-            }
-            let eq: Vec<f64> = (0..nm)
-                .map(|j| r[j] - idx.iter().map(|&i| c[(i, j)] * lambda[i]).sum::<f64>())
-                .collect();
-            let Some((dl, db)) = active_set::saddle(&op.condensed.w, &gap, &c, &eq, &idx) else {
-                break;
-            };
-            let mut l2 = lambda.clone();
-            idx.iter().zip(&dl).for_each(|(&i, d)| l2[i] += d);
-            let b2: Vec<f64> = beta.iter().zip(&db).map(|(b, d)| b + d).collect();
-            let u2 = displacements(&l2, &b2);
-            let g2 = gaps(&u2);
-            if idx.iter().any(|&i| l2[i] < 0.0) || worst(&g2) > 0.5 * now {
-                break;
-            }
-            (lambda, beta, u, gap) = (l2, b2, u2, g2);
-            refinements += 1;
-        }
-    }
-    let t3 = std::time::Instant::now();
-    let (ku, abs) = stiffness::internal_forces(body, &u);
-    let mut residual = ku;
-    residual.iter_mut().zip(&f_ext).for_each(|(r, f)| *r -= f);
-    for ((terms, l), n) in rows.terms.iter().zip(&lambda).zip(&rows.normal) {
-        for &(node, cn) in terms {
-            for cc in 0..3 {
-                residual[3 * node + cc] -= l * cn * n[cc];
-            }
-        }
-    }
-    let mut reactions = vec![0.0; u.len()];
-    let mut off_supports: f64 = 0.0;
-    for (d, &rd) in residual.iter().enumerate() {
-        if dofs.supported[d] {
-            reactions[d] = rd;
-        } else {
-            off_supports = off_supports.max(rd.abs());
-        }
-    }
-    let (lmax, umax) = (
-        inf_norm(&lambda).max(f64::MIN_POSITIVE),
-        inf_norm(&u).max(f64::MIN_POSITIVE),
-    );
-    let certificate = Certificate {
-        primal: gap.iter().fold(0.0f64, |a, g| a.max(-g)) / umax,
-        dual: lambda.iter().fold(0.0f64, |a, l| a.max(-l)) / lmax,
-        complementarity: lambda.iter().zip(&gap).fold(0.0f64, |a, (l, g)| a.max((l * g).abs())) / (lmax * umax),
-        equilibrium: off_supports / inf_norm(&f_ext).max(inf_norm(&abs)).max(lmax),
-    };
-    let pressure = lambda.iter().zip(&rows.area).map(|(l, a)| l / a).collect();
-    Ok(Contact {
-        u,
-        lambda,
-        pressure,
-        gap,
-        reactions,
-        beta,
-        certificate,
-        iterations: res.iterations,
-        converged: res.converged,
-        refinements,
+    let prepared = condensed::prepare_on(k, &refs, symbolic, t1)?;
+    Ok(Operator {
         dofs,
-        seconds: [t1 - t0, t2 - t1, t3 - t2].map(|d| d.as_secs_f64()),
+        prepared,
+        rows: fr,
+        fields,
+        f_ext,
+        seconds: [t1 - t0, t1.elapsed()].map(|d| d.as_secs_f64()),
     })
+}
+
+/// r = −Rᵀ f at load factor `k`, the right-hand side of the motions'
+/// equilibrium Cᵀλ = r (R on every DOF: a virtual support's share too).
+fn motion_loads(fields: &[Vec<f64>], f_ext: &[f64], k: f64) -> Vec<f64> {
+    fields.iter().map(|r| -k * dense::dot(r, f_ext)).collect()
+}
+
+impl Operator {
+    /// The contact at load factor `k`: every load and prescribed motion
+    /// times k, the gaps as given. `body` and `rows` are those the operator
+    /// was prepared for. Its `seconds` hold the contact solve alone.
+    pub fn solve(
+        &self,
+        body: &SolidBody,
+        rows: &ObstacleRows,
+        settings: &Settings,
+        k: f64,
+    ) -> Result<Contact, CoreError> {
+        let t2 = std::time::Instant::now();
+        crate::progress::stage(crate::progress::ProgressStage::ContactSolve);
+        let op = &self.prepared;
+        let mut dofs = self.dofs.clone();
+        dofs.prescribed.iter_mut().for_each(|p| *p *= k);
+        let f_ext: Vec<f64> = self.f_ext.iter().map(|f| k * f).collect();
+        let f = loads::free_rhs(&f_ext, &dofs, &op.stiffness);
+        let g = free_gaps(rows, &dofs);
+        let (c, r) = (-&self.rows.d, motion_loads(&self.fields, &self.f_ext, k));
+        let nm = dofs.modes.len();
+        let y = op.chol.forward(&f);
+        let q: Vec<f64> = g.iter().zip(op.condensed.rows_of(&y)).map(|(g, b)| g - b).collect();
+        let (res, mut beta) = if nm == 0 {
+            (active_set::solve_lcp(&op.condensed.w, &q, settings), Vec::new())
+        } else {
+            active_set::solve_mlcp(&op.condensed.w, &q, &c, &r, settings)
+        };
+        let mut lambda = res.lambda;
+        let displacements = |lambda: &[f64], beta: &[f64]| {
+            let mut yz = y.clone();
+            op.condensed.subtract(lambda, &mut yz);
+            let mut u = loads::full_field(&dofs, &op.chol.backward(&yz));
+            for (field, b) in self.fields.iter().zip(beta) {
+                u.iter_mut().zip(field).for_each(|(u, r)| *u += b * r);
+            }
+            u
+        };
+        let gaps = |u: &[f64]| rows.gaps_after(u);
+        let mut u = displacements(&lambda, &beta);
+        let mut gap = gaps(&u);
+        // Refinement on the final active set: the dense W carries the round-off
+        // of the compliance it was formed from, the sparse u does not; solving
+        // [W_AA C_A; C_Aᵀ 0] δ = −(gap_A, Dᵀλ − Rᵀf) moves the active gaps to 0.
+        let mut refinements = 0;
+        if res.converged {
+            let idx: Vec<usize> = (0..lambda.len()).filter(|&i| lambda[i] > 0.0).collect();
+            let worst = |g: &[f64]| idx.iter().fold(0.0f64, |a, &i| a.max(g[i].abs()));
+            for _ in 0..REFINE_STEPS {
+                let now = worst(&gap);
+                if idx.is_empty() || now <= 1e-3 * settings.tolerance * inf_norm(&u) {
+                    break;
+                }
+                let eq: Vec<f64> = (0..nm)
+                    .map(|j| r[j] - idx.iter().map(|&i| c[(i, j)] * lambda[i]).sum::<f64>())
+                    .collect();
+                let Some((dl, db)) = active_set::saddle(&op.condensed.w, &gap, &c, &eq, &idx) else {
+                    break;
+                };
+                let mut l2 = lambda.clone();
+                idx.iter().zip(&dl).for_each(|(&i, d)| l2[i] += d);
+                let b2: Vec<f64> = beta.iter().zip(&db).map(|(b, d)| b + d).collect();
+                let u2 = displacements(&l2, &b2);
+                let g2 = gaps(&u2);
+                if idx.iter().any(|&i| l2[i] < 0.0) || worst(&g2) > 0.5 * now {
+                    break;
+                }
+                (lambda, beta, u, gap) = (l2, b2, u2, g2);
+                refinements += 1;
+            }
+        }
+        let t3 = std::time::Instant::now();
+        let (ku, abs) = stiffness::internal_forces(body, &u);
+        let mut residual = ku;
+        residual.iter_mut().zip(&f_ext).for_each(|(r, f)| *r -= f);
+        for ((terms, l), n) in rows.terms.iter().zip(&lambda).zip(&rows.normal) {
+            for &(node, cn) in terms {
+                for cc in 0..3 {
+                    residual[3 * node + cc] -= l * cn * n[cc];
+                }
+            }
+        }
+        let mut reactions = vec![0.0; u.len()];
+        let mut off_supports: f64 = 0.0;
+        for (d, &rd) in residual.iter().enumerate() {
+            if dofs.supported[d] {
+                reactions[d] = rd;
+            } else {
+                off_supports = off_supports.max(rd.abs());
+            }
+        }
+        let (lmax, umax) = (
+            inf_norm(&lambda).max(f64::MIN_POSITIVE),
+            inf_norm(&u).max(f64::MIN_POSITIVE),
+        );
+        let certificate = Certificate {
+            primal: gap.iter().fold(0.0f64, |a, g| a.max(-g)) / umax,
+            dual: lambda.iter().fold(0.0f64, |a, l| a.max(-l)) / lmax,
+            complementarity: lambda.iter().zip(&gap).fold(0.0f64, |a, (l, g)| a.max((l * g).abs())) / (lmax * umax),
+            equilibrium: off_supports / inf_norm(&f_ext).max(inf_norm(&abs)).max(lmax),
+        };
+        let pressure = lambda.iter().zip(&rows.area).map(|(l, a)| l / a).collect();
+        Ok(Contact {
+            u,
+            lambda,
+            pressure,
+            gap,
+            reactions,
+            beta,
+            certificate,
+            iterations: res.iterations,
+            converged: res.converged,
+            refinements,
+            dofs,
+            seconds: [0.0, 0.0, (t3 - t2).as_secs_f64()],
+        })
+    }
 }
 
 /// A free motion (in (t, Lω) coordinates) that moves no row: D γ = 0 for

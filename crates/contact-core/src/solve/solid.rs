@@ -4,7 +4,8 @@
 //! ```text
 //! SolidScene ─mesh→ Mesh3d ─admit→ ─rows→ ObstacleRows
 //!   ─assemble, factor (nested dissection, admitted by predicted time),
-//!    condense, LCP→ Contact (`solid::signorini`) ─report→ SolidAnswer
+//!    condense→ Operator ─LCP per load factor→ Contact (`solid::signorini`)
+//!   ─report→ SolidAnswer
 //! ```
 //!
 //! The dimension lives in the `mesh3d` and `solid` rooms; this file only
@@ -15,12 +16,15 @@ use crate::mesh3d::generate::box_mesh;
 use crate::mesh3d::Order;
 use crate::observer::{self, Observer, Stage};
 use crate::outcome::ProgressStage;
+use crate::outcome::Status;
 use crate::scene::solid::SolidMesh;
+use crate::scene::solid::SolidScene;
 use crate::scene::Limits;
-use crate::solid::answer::{dimensional, status, BodyFields, SolidAnswer};
+use crate::solid::answer::{dimensional, status, BodyFields, SolidAnswer, SolidStep};
 use crate::solid::door::SolidProblem;
 use crate::solid::obstacle::rows_with;
 use crate::solid::report::report;
+use crate::solid::signorini::Contact;
 use crate::solid::{fields, signorini, SolidBody};
 
 /// Solves the 3D problem within its time limit, if it has one.
@@ -90,14 +94,32 @@ pub fn solve_solid(problem: &SolidProblem, limits: &Limits) -> Result<SolidAnswe
             ),
         });
     }
-    let contact = signorini::solve_within(&body, &rows, &scene.settings, limits.memory_bytes()).map_err(located)?;
-    // The stages inside the Signorini solve time themselves.
-    obs.timings.assembly = t_rows.elapsed().as_secs_f64() - contact.seconds[1] - contact.seconds[2];
-    obs.timings.factorization = contact.seconds[1];
-    obs.timings.contact_solve = contact.seconds[2];
-    obs.check(Stage::ContactSolve)?;
+    let rows_secs = t_rows.elapsed().as_secs_f64();
+    let stepped = !scene.load_factors.is_empty();
+    let factors = if stepped { scene.load_factors.clone() } else { vec![1.0] };
+    // One operator for every factor: only q and the motions' loads change.
+    let op = signorini::prepare_within(&body, &rows, &factors, limits.memory_bytes()).map_err(located)?;
+    obs.timings.assembly = rows_secs + op.seconds[0];
+    obs.timings.factorization = op.seconds[1];
+    let tol = scene.settings.tolerance;
+    let (mut steps, mut last) = (Vec::new(), None);
+    for &k in &factors {
+        let contact = op.solve(&body, &rows, &scene.settings, k).map_err(located)?;
+        obs.timings.contact_solve += contact.seconds[2];
+        obs.check(Stage::ContactSolve)?;
+        let rep = report(&body, &rows, &contact).map_err(located)?;
+        if stepped {
+            steps.push(SolidStep {
+                factor: k,
+                status: status(&rep, tol),
+                report: dimensional(rep.clone(), scene),
+                max_penetration: max_penetration(&contact, scene),
+            });
+        }
+        last = Some((contact, rep));
+    }
+    let (contact, rep) = last.expect("at least one factor");
     obs.enter(Stage::Post);
-    let rep = report(&body, &rows, &contact).map_err(located)?;
     let o = scene.outputs;
     let fields = (o.mesh || o.displacement || o.stress || o.vtu).then(|| {
         let s = if o.stress || o.vtu {
@@ -108,9 +130,14 @@ pub fn solve_solid(problem: &SolidProblem, limits: &Limits) -> Result<SolidAnswe
         BodyFields::dimensional(&mesh.nodes, &mesh.elems, &fields::displacement(&contact.u), &s, scene)
     });
     obs.leave(Stage::Post)?;
-    let max_penetration = contact.gap.iter().fold(0.0f64, |a, g| a.max(-g)) * scene.length;
+    let max_penetration = max_penetration(&contact, scene);
     let active = contact.lambda.iter().filter(|&&l| l > 0.0).count();
-    let status = status(&rep, scene.settings.tolerance);
+    // Only as good as its worst step, as 2D's `with_steps`.
+    let status = steps
+        .iter()
+        .map(|s| s.status)
+        .find(|s| *s != Status::Solved)
+        .unwrap_or_else(|| status(&rep, tol));
     crate::progress::stage(ProgressStage::Post);
     Ok(SolidAnswer {
         body: scene.body.clone(),
@@ -128,7 +155,13 @@ pub fn solve_solid(problem: &SolidProblem, limits: &Limits) -> Result<SolidAnswe
         client_id: scene.client_id.clone(),
         outputs: o,
         fields,
+        steps: stepped.then_some(steps),
     })
+}
+
+/// The largest penetration of a row, in the request's length.
+fn max_penetration(contact: &Contact, scene: &SolidScene) -> f64 {
+    contact.gap.iter().fold(0.0f64, |a, g| a.max(-g)) * scene.length
 }
 
 /// A refusal of the `solid` room, whose paths name the body's fields

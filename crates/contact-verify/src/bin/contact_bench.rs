@@ -19,7 +19,8 @@ use anyhow::Context;
 const DEFAULT_BENCH_CSV: &str = "bench_out/bench.csv";
 
 /// Time-against-error benchmark (Hertz, T3/T6, every method): table on
-/// stdout, CSV file; with --convergence or --stability the other suites.
+/// stdout, CSV file; with --convergence, --stability or --solid the other
+/// suites.
 #[derive(clap::Parser)]
 #[command(name = "contact-bench", version)]
 pub struct Bench {
@@ -53,6 +54,11 @@ pub struct Bench {
     /// beside it.
     #[arg(long, conflicts_with = "stability")]
     convergence: bool,
+    /// The 3D rows instead: Hertz's ball on a flat (the example's quarter
+    /// model), T4 and T10 at four sizes each (`--quick`: two), stage times
+    /// and the errors of a and p0; CSV to --csv, default bench_out/solid.csv.
+    #[arg(long, conflicts_with_all = ["stability", "convergence", "floor"])]
+    solid: bool,
 }
 
 /// Writes a CSV table (header, then one line per row) and says so.
@@ -79,8 +85,18 @@ fn run(opts: Bench) -> anyhow::Result<()> {
         repeat,
         stability,
         convergence,
+        solid,
     } = opts;
-    let (header, lines) = if convergence {
+    let (header, lines) = if solid {
+        contact_core::linalg::set_threads(threads);
+        println!("3D: Hertz's ball on a rigid flat (quarter model, R = 50 mm, P = 6154 N), {threads} thread(s):");
+        println!("{}", contact_verify::solid_bench::SolidRow::table_header());
+        let rows = contact_verify::solid_bench::run(quick, repeat, |r| println!("{}", r.table_line()));
+        (
+            contact_verify::solid_bench::SolidRow::HEADER,
+            rows.iter().map(|r| r.csv()).collect::<Vec<_>>(),
+        )
+    } else if convergence {
         println!("{}", contact_verify::convergence::Row::table_header());
         let rows = contact_verify::convergence::run(quick, |r| println!("{}", r.table_line()));
         println!(
@@ -155,9 +171,11 @@ fn run(opts: Bench) -> anyhow::Result<()> {
             rows.iter().map(|r| r.csv()).collect(),
         )
     };
-    let csv = match (stability, convergence) {
-        (true, _) if csv == Path::new(DEFAULT_BENCH_CSV) => PathBuf::from("bench_out/stability.csv"),
-        (_, true) if csv == Path::new(DEFAULT_BENCH_CSV) => PathBuf::from("bench_out/convergence.csv"),
+    let csv = match (stability, convergence, solid) {
+        _ if csv != Path::new(DEFAULT_BENCH_CSV) => csv,
+        (true, _, _) => PathBuf::from("bench_out/stability.csv"),
+        (_, true, _) => PathBuf::from("bench_out/convergence.csv"),
+        (_, _, true) => PathBuf::from("bench_out/solid.csv"),
         _ => csv,
     };
     write_csv(&csv, header, lines)

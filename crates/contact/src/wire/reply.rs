@@ -214,6 +214,7 @@ fn step(s: LoadStep) -> p::LoadStep {
         resultant: resultant(s.resultant),
         certificate: certificate(s.certificate),
         couplings: s.couplings.into_iter().map(coupling).collect(),
+        solid: None,
     }
 }
 

@@ -6,8 +6,9 @@
 
 use base64::Engine;
 use contact_core::mesh3d::Order;
-use contact_core::solid::answer::SolidAnswer;
-use contact_core::solid::report::{ContactPoint, Patch};
+use contact_core::solid::answer::{SolidAnswer, SolidStep};
+use contact_core::solid::report::{ContactPoint, Patch, Resultant};
+use contact_core::solid::signorini::Certificate;
 use contact_proto as p;
 
 use super::reply::{status, timings};
@@ -34,7 +35,6 @@ pub fn reply(a: SolidAnswer) -> p::SolveReply {
     };
     let r = a.report;
     let (force, moment) = (r.resultant.force, r.resultant.moment);
-    let c = r.certificate;
     p::SolveReply {
         version: p::PROTOCOL_VERSION.to_string(),
         client_id: a.client_id,
@@ -43,18 +43,8 @@ pub fn reply(a: SolidAnswer) -> p::SolveReply {
         method: p::MethodRan::ActiveSet,
         iterations: r.iterations,
         pairs: Vec::new(),
-        resultant: p::Resultant {
-            fx: force[0],
-            fy: force[1],
-            m: moment[2],
-        },
-        certificate: p::Certificate {
-            primal: c.primal,
-            dual: c.dual,
-            complementarity: c.complementarity,
-            equilibrium: c.equilibrium,
-            friction: None,
-        },
+        resultant: plane_resultant(&r.resultant),
+        certificate: certificate(&r.certificate),
         size: p::ProblemSize {
             dofs: a.dofs,
             candidates: a.candidates,
@@ -70,7 +60,7 @@ pub fn reply(a: SolidAnswer) -> p::SolveReply {
         cache: p::CacheState::Off,
         punches: Vec::new(),
         couplings: Vec::new(),
-        steps: None,
+        steps: a.steps.map(|s| s.into_iter().map(step).collect()),
         bodies: None,
         foundations: Vec::new(),
         notes: Vec::new(),
@@ -96,6 +86,51 @@ pub fn reply(a: SolidAnswer) -> p::SolveReply {
             displacement,
             stress,
         }),
+    }
+}
+
+/// A load factor's answer: the top-level fields a 2D step carries, and the
+/// solid's own in `solid`.
+fn step(s: SolidStep) -> p::LoadStep {
+    let r = s.report;
+    p::LoadStep {
+        factor: s.factor,
+        loads: None,
+        status: status(s.status),
+        iterations: r.iterations,
+        pairs: Vec::new(),
+        resultant: plane_resultant(&r.resultant),
+        certificate: certificate(&r.certificate),
+        couplings: Vec::new(),
+        solid: Some(p::SolidStepResult {
+            patches: r.patches.into_iter().map(patch).collect(),
+            points: r.points.into_iter().map(point).collect(),
+            resultant: p::SolidResultant {
+                force: r.resultant.force,
+                moment: r.resultant.moment,
+            },
+            max_penetration: s.max_penetration,
+        }),
+    }
+}
+
+/// The top-level resultant of a solid: its x and y force and its moment
+/// about z.
+fn plane_resultant(r: &Resultant) -> p::Resultant {
+    p::Resultant {
+        fx: r.force[0],
+        fy: r.force[1],
+        m: r.moment[2],
+    }
+}
+
+fn certificate(c: &Certificate) -> p::Certificate {
+    p::Certificate {
+        primal: c.primal,
+        dual: c.dual,
+        complementarity: c.complementarity,
+        equilibrium: c.equilibrium,
+        friction: None,
     }
 }
 

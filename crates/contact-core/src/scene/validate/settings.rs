@@ -286,7 +286,7 @@ fn check_reply_magnitude(size: f64, scales: Scales, path: &str) -> Result<(), Co
 
 /// `load_factors`: a bounded list of finite factors whose scaled loads stay
 /// representable. `size`: the largest nondimensional load or prescribed motion.
-fn check_load_factors(factors: &[f64], size: f64, scales: Scales, limits: &Limits) -> Result<(), CoreError> {
+pub(super) fn check_load_factors(factors: &[f64], size: f64, scales: Scales, limits: &Limits) -> Result<(), CoreError> {
     if factors.len() > limits.max_load_steps {
         return Err(CoreError::TooLarge {
             path: "/load_factors".into(),

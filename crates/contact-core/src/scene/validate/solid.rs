@@ -99,6 +99,26 @@ pub fn solid_scene(req: &SolveRequest, limits: &Limits) -> Result<SolidScene, Co
             body_force[c] = finite(*x, &format!("{bp}/body_force/{c}"), K::Request)? * length / e;
         }
     }
+    if !req.load_factors.is_empty() {
+        // The largest nondimensional load or prescribed motion, as 2D judges
+        // it; a solid's forces are totals (force unit E·L², as a body of
+        // revolution's).
+        let size = supports
+            .iter()
+            .flat_map(|s| s.fix.iter().flatten().copied())
+            .chain(loads.iter().flat_map(|l| match l {
+                FaceLoad::Traction { t, .. } => t.to_vec(),
+                FaceLoad::Pressure { p, .. } => vec![*p],
+            }))
+            .chain(body_force)
+            .fold(0.0f64, |a, v| a.max(v.abs()));
+        let scales = crate::scene::Scales {
+            length,
+            modulus: e,
+            axisymmetric: true,
+        };
+        wire_settings::check_load_factors(&req.load_factors, size, scales, limits)?;
+    }
     let shape = obstacle(spec, length)?;
     // The face-set names are checked against the mesh by `solid::door`.
     let faces = spec.contact.faces.clone();
@@ -139,6 +159,7 @@ pub fn solid_scene(req: &SolveRequest, limits: &Limits) -> Result<SolidScene, Co
         client_id: req.client_id.clone(),
         time_limit,
         estimated_nodes,
+        load_factors: req.load_factors.clone(),
     })
 }
 
@@ -160,7 +181,6 @@ fn not_2d(req: &SolveRequest) -> Result<(), CoreError> {
         ));
     }
     let not_yet = [
-        ("/load_factors", req.load_factors.is_empty()),
         ("/load_path", req.load_path.is_empty()),
         ("/settings/accuracy", req.settings.accuracy.is_none()),
     ];
@@ -168,7 +188,7 @@ fn not_2d(req: &SolveRequest) -> Result<(), CoreError> {
         return Err(invalid(
             K::Request,
             *path,
-            "not available for a 3D solid yet (one load, no refinement)",
+            "not available for a 3D solid yet (no load path, no refinement)",
         ));
     }
     if req.settings.formulation == proto::Formulation::Full {
