@@ -226,6 +226,30 @@ pub enum SolidObstacleShape {
         /// Principal radii [R₁, R₂] [length], each positive.
         radii: [f64; 2],
     },
+    /// A rigid surface given as a table of heights over a regular grid (a
+    /// measured or worn surface, a crowned roller, a groove): the height
+    /// `heights[j][i]` above the reference plane through `origin` (along
+    /// `normal`) at i·spacing[0] along `axis` and j·spacing[1] along
+    /// normal × axis, interpolated by C¹ bicubic pieces (Catmull–Rom,
+    /// exact on quadratics). The obstacle lies below the surface; every
+    /// contact point must lie over the grid. The gap is the height over the
+    /// point divided by the length of its gradient, as the paraboloid's.
+    HeightField {
+        /// The grid's point (0, 0) on the reference plane [x, y, z].
+        origin: [f64; 3],
+        /// The reference plane's normal, out of the obstacle toward the
+        /// body (any nonzero length).
+        normal: [f64; 3],
+        /// The direction of the table's rows (its part across `normal` is
+        /// used; not along `normal`).
+        axis: [f64; 3],
+        /// Grid spacing [along `axis`, across it] [length], each positive.
+        spacing: [f64; 2],
+        /// Rows of heights [length], each row along `axis`, the rows across
+        /// it: at least 2 rows of at least 2 values, every row the same
+        /// length.
+        heights: Vec<Vec<f64>>,
+    },
 }
 
 /// Which face set of the body may touch the obstacle.

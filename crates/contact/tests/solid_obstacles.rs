@@ -494,3 +494,104 @@ fn directions_of_any_magnitude_are_the_same_direction() {
         }
     }
 }
+
+/// The elliptical scene's paraboloid (R₁ = 80 along x, R₂ = 40 along y,
+/// normal −z at the origin) pressed into a quarter block, as a table of
+/// heights: a 21 × 21 grid of spacing 0.5 over the whole contact face, its
+/// origin at (0, 10, 0) so that its rows run along x and across them along
+/// normal × axis = −y. The interpolant reproduces quadratics exactly, so
+/// the table is the paraboloid to round-off and the two answers on the same
+/// T4 mesh agree to 1e-9 of the peak (the LCP's own round-off is ~1e-14).
+fn paraboloid_block(shape: Value) -> Value {
+    json!({
+        "version": "1",
+        "analysis": "solid",
+        "solid": {
+            "body": {
+                "material": {"youngs_modulus": 210000.0, "poisson_ratio": 0.3},
+                "mesh": {"box": {"corner": [0.0, 0.0, -10.0], "lengths": [10.0, 10.0, 10.0], "size": 5.0,
+                    "grading": {"focus": [0.0, 0.0, 0.0], "h_min": 0.25, "ratio": 2.0, "extent": 2.0}}},
+                "supports": [{"faces": "x_min", "ux": 0.0}, {"faces": "y_min", "uy": 0.0}],
+                "tractions": [{"faces": "z_min", "pressure": 1150.0 / 100.0}]
+            },
+            "obstacle": {"shape": shape},
+            "contact": {"faces": "z_max"}
+        }
+    })
+}
+
+fn paraboloid_table(rows: usize, columns: usize, d: f64) -> Vec<Vec<f64>> {
+    (0..rows)
+        .map(|j| {
+            (0..columns)
+                .map(|i| {
+                    let (xi, eta) = (i as f64 * d, j as f64 * d - 10.0);
+                    -(xi * xi / 160.0 + eta * eta / 80.0)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn a_height_field_sampled_from_a_paraboloid_is_that_paraboloid() {
+    let par = solved(&paraboloid_block(json!({"paraboloid": {"apex": [0.0, 0.0, 0.0],
+        "normal": [0.0, 0.0, -1.0], "axis": [1.0, 0.0, 0.0], "radii": [80.0, 40.0]}})));
+    let table = solved(&paraboloid_block(json!({"height_field": {"origin": [0.0, 10.0, 0.0],
+        "normal": [0.0, 0.0, -1.0], "axis": [1.0, 0.0, 0.0], "spacing": [0.5, 0.5],
+        "heights": paraboloid_table(21, 21, 0.5)}})));
+    let (a, b) = (par.solid.as_ref().unwrap(), table.solid.as_ref().unwrap());
+    let peak = a.patches[0].peak_pressure;
+    let pressed = a.points.iter().filter(|q| q.in_contact).count();
+    println!("{} points, {pressed} in contact, peak {peak:.1}", a.points.len());
+    assert!(pressed >= 10, "a patch of several points");
+    assert_eq!(a.points.len(), b.points.len());
+    for (p, q) in a.points.iter().zip(&b.points) {
+        assert_eq!(p.in_contact, q.in_contact, "at {:?}", p.at);
+        assert!((p.pressure - q.pressure).abs() <= 1e-9 * peak, "at {:?}", p.at);
+    }
+    assert_complementary(b, 0.05);
+}
+
+/// A height field is refused at the field at fault: rows of unequal
+/// length, a non-finite height, a grid that does not reach under the whole
+/// contact face (a candidate off the grid has no height), a zero spacing.
+#[test]
+fn malformed_height_fields_are_refused_at_their_fields() {
+    let field = |heights: Value, spacing: Value| {
+        paraboloid_block(
+            json!({"height_field": {"origin": [0.0, 10.0, 0.0], "normal": [0.0, 0.0, -1.0],
+            "axis": [1.0, 0.0, 0.0], "spacing": spacing, "heights": heights}}),
+        )
+    };
+    let mut ragged = paraboloid_table(21, 21, 0.5);
+    ragged[3].pop();
+    let mut nan = json!(paraboloid_table(21, 21, 0.5));
+    nan[4][7] = json!("NaN");
+    let cases = [
+        (
+            field(json!(ragged), json!([0.5, 0.5])),
+            "/solid/obstacle/shape/height_field/heights/3",
+        ),
+        (
+            field(json!(paraboloid_table(11, 11, 0.5)), json!([0.5, 0.5])),
+            "/solid/obstacle",
+        ),
+        (
+            field(json!(paraboloid_table(21, 21, 0.5)), json!([0.5, 0.0])),
+            "/solid/obstacle/shape/height_field/spacing/1",
+        ),
+        (
+            field(json!([[0.0, 0.0]]), json!([0.5, 0.5])),
+            "/solid/obstacle/shape/height_field/heights",
+        ),
+    ];
+    for (req, path) in cases {
+        let e = solve(&req).expect_err(path);
+        println!("{path}: {}", e.message);
+        assert_eq!(e.path, path, "{e:?}");
+        assert!(req.pointer(&e.path).is_some(), "{} resolves in the request", e.path);
+    }
+    // A string where a number belongs is refused by the door's parser.
+    assert!(solve(&field(nan, json!([0.5, 0.5]))).is_err());
+}

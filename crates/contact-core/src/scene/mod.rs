@@ -6,6 +6,7 @@
 //! moduli and stresses by `scales.modulus`, so the numerics see O(1) numbers
 //! whatever the caller's units.
 
+pub mod height_field;
 pub mod scaling;
 pub mod settings;
 mod size_limit;

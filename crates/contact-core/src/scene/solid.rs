@@ -124,7 +124,7 @@ impl SolidScene {
     /// The initial gap profile added to the distance to the plane at x:
     /// r² / 2R with r the distance from the apex across the plane's normal.
     pub fn extra_gap(&self, x: [f64; 3]) -> f64 {
-        let (Some((apex, radius)), Obstacle::Plane(plane)) = (self.paraboloid, self.shape) else {
+        let (Some((apex, radius)), Obstacle::Plane(plane)) = (self.paraboloid, &self.shape) else {
             return 0.0;
         };
         let d: [f64; 3] = std::array::from_fn(|c| x[c] - apex[c]);

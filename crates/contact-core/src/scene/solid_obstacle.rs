@@ -1,5 +1,5 @@
 //! The rigid obstacle of a 3D solid, nondimensional: a plane, a sphere, a
-//! cylinder or a paraboloid, each answering one question for a point x of
+//! cylinder, a paraboloid or a table of heights, each answering one question for a point x of
 //! the body's contact surface: the signed distance d(x) to the obstacle
 //! (positive outside it, where the body is) and the unit normal n(x) out of
 //! the obstacle at the closest obstacle point, the direction along which
@@ -24,13 +24,19 @@
 //!   are the exact ones; away from the surface it differs from the distance
 //!   by O(φ² κ), below the rows' O(h²κ) sampling of the gap where it
 //!   matters.
+//! - **Height field**: a table of heights over a grid in a frame, the
+//!   paraboloid's construction on a C¹ interpolant (`height_field`).
 //!
 //! The sphere's and the cylinder's normals are undefined at the centre and
-//! on the axis: a candidate there is refused (`closest` gives None). A body
+//! on the axis, and a height field has none off its grid: a candidate there
+//! is refused (`closest` gives None). A body
 //! point inside the obstacle has d < 0: an initial penetration is the
 //! obstacle pressed in by that depth (a prescribed interference, as a 2D
 //! rigid obstacle placed into a body is), not an error.
 
+use std::sync::Arc;
+
+pub use super::height_field::HeightField;
 use crate::error::{CoreError, InvalidKind};
 
 /// A rigid plane: a point on it and its unit normal, out of the obstacle.
@@ -64,7 +70,7 @@ impl Plane {
 }
 
 /// A rigid obstacle (module doc), in the scene's nondimensional lengths.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Obstacle {
     Plane(Plane),
     Sphere {
@@ -85,6 +91,8 @@ pub enum Obstacle {
         e1: [f64; 3],
         radii: [f64; 2],
     },
+    /// Shared: every candidate's row reads it.
+    HeightField(Arc<HeightField>),
 }
 
 impl From<Plane> for Obstacle {
@@ -111,6 +119,21 @@ impl Obstacle {
         })
     }
 
+    /// The unit normal and the unit e₁ across it along `axis` (any nonzero
+    /// lengths, not parallel: within 1e-6 rad of the normal an axis has no
+    /// reliable direction across it); None otherwise.
+    pub fn frame(normal: [f64; 3], axis: [f64; 3]) -> Option<([f64; 3], [f64; 3])> {
+        let ln = norm(normal);
+        if !(ln > 0.0 && ln.is_finite()) {
+            return None;
+        }
+        let n = normal.map(|v| v / ln);
+        let along = dot(axis, n);
+        let across: [f64; 3] = std::array::from_fn(|c| axis[c] - along * n[c]);
+        let la = norm(across);
+        (la > 1e-6 * norm(axis) && la.is_finite()).then(|| (n, across.map(|v| v / la)))
+    }
+
     /// A paraboloid with apex normal along `normal` and radius `radii[0]`
     /// in the section along `axis` (its part across `normal` is used; any
     /// nonzero lengths, not parallel).
@@ -120,27 +143,20 @@ impl Obstacle {
         axis: [f64; 3],
         radii: [f64; 2],
     ) -> Result<Self, CoreError> {
-        let ln = norm(normal);
         let bad = |why: &str| Err(CoreError::invalid(InvalidKind::Geometry, "obstacle", why.to_string()));
-        if !(ln > 0.0 && ln.is_finite()) {
+        if !(norm(normal) > 0.0 && norm(normal).is_finite()) {
             return bad("a paraboloid needs a nonzero normal");
         }
-        let n = normal.map(|v| v / ln);
-        let along = dot(axis, n);
-        let across: [f64; 3] = std::array::from_fn(|c| axis[c] - along * n[c]);
-        let la = norm(across);
-        // An axis within 1e-6 rad of the normal has no reliable direction
-        // across it.
-        if !(la > 1e-6 * norm(axis) && la.is_finite()) {
+        let Some((n, e1)) = Self::frame(normal, axis) else {
             return bad("a paraboloid's axis must be nonzero and not along its normal");
-        }
+        };
         if !radii.iter().all(|r| *r > 0.0 && r.is_finite()) {
             return bad("a paraboloid's radii must be positive and finite");
         }
         Ok(Obstacle::Paraboloid {
             apex,
             normal: n,
-            e1: across.map(|v| v / la),
+            e1,
             radii,
         })
     }
@@ -150,6 +166,14 @@ impl Obstacle {
     /// normal is undefined (a sphere's centre, a cylinder's axis).
     pub fn closest(&self, x: [f64; 3]) -> Option<(f64, [f64; 3])> {
         match *self {
+            Obstacle::HeightField(ref f) => {
+                let d = sub(x, f.origin);
+                let e2 = cross(f.normal, f.e1);
+                let (h, h_xi, h_eta) = f.height(dot(d, f.e1), dot(d, e2))?;
+                let grad: [f64; 3] = std::array::from_fn(|c| f.normal[c] - h_xi * f.e1[c] - h_eta * e2[c]);
+                let g = norm(grad);
+                Some(((dot(d, f.normal) - h) / g, grad.map(|v| v / g)))
+            }
             Obstacle::Plane(p) => Some((p.distance(x), p.normal)),
             Obstacle::Sphere { centre, radius } => away(sub(x, centre), radius),
             Obstacle::Cylinder { point, axis, radius } => {
@@ -179,6 +203,12 @@ impl Obstacle {
     pub fn scaled(self, length: f64) -> Self {
         let s = |x: [f64; 3]| x.map(|c| c / length);
         match self {
+            Obstacle::HeightField(f) => Obstacle::HeightField(Arc::new(HeightField {
+                origin: s(f.origin),
+                spacing: f.spacing.map(|d| d / length),
+                heights: f.heights.iter().map(|h| h / length).collect(),
+                ..(*f).clone()
+            })),
             Obstacle::Plane(p) => Obstacle::Plane(Plane {
                 point: s(p.point),
                 normal: p.normal,

@@ -138,8 +138,9 @@ fn closest(obstacle: &Obstacle, x: [f64; 3]) -> Result<(f64, [f64; 3]), CoreErro
             InvalidKind::Geometry,
             "obstacle",
             // x is nondimensional here: the message names no coordinates.
-            "a contact candidate lies on the obstacle's centre or axis, where it has no normal: place the \
-             obstacle outside the body",
+            "a contact candidate lies where the obstacle has no normal (a sphere's centre, a cylinder's axis) or \
+             off a height field's grid: place the obstacle outside the body, and a height field's grid under the \
+             whole contact face set",
         )
     })
 }
@@ -270,7 +271,7 @@ fn mortar(
     for corner in order {
         let a = &acc[&corner];
         out.nodes.push(corner);
-        out.normal.push(closest(&obstacle, mesh.nodes[corner])?.1);
+        out.normal.push(closest(&out.obstacle, mesh.nodes[corner])?.1);
         out.terms.push(a.terms.iter().map(|&(n, c)| (n, c / a.area)).collect());
         out.gap.push(a.gap / a.area);
         out.area.push(a.area);

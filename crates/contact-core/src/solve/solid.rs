@@ -81,7 +81,7 @@ pub fn solve_solid(problem: &SolidProblem, limits: &Limits) -> Result<SolidAnswe
         body_force: scene.body_force,
     };
     let t_rows = std::time::Instant::now();
-    let rows = rows_with(&body, &scene.faces, scene.shape, &|x| scene.extra_gap(x)).map_err(located)?;
+    let rows = rows_with(&body, &scene.faces, scene.shape.clone(), &|x| scene.extra_gap(x)).map_err(located)?;
     if rows.len() > limits.max_candidates {
         // The condensed operator is dense in the rows (`Limits::max_candidates`).
         return Err(CoreError::TooLarge {

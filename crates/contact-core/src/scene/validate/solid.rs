@@ -8,14 +8,12 @@
 //! lines (`box_nodes`), an inline mesh's is its own (a Gmsh text's is
 //! judged once read).
 
-use contact_proto::{
-    self as proto, InitialGapSpec, OutputKind, SolidMeshSpec, SolidObstacleShape, SolidSpec, SolveRequest,
-};
+use contact_proto::{self as proto, InitialGapSpec, OutputKind, SolidMeshSpec, SolveRequest};
 
 use super::{finite, invalid, poisson, positive, settings as wire_settings, Limits};
 use crate::error::{CoreError, InvalidKind as K};
 use crate::mesh::generate::{graded_points, Grading};
-use crate::scene::solid::{FaceLoad, Obstacle, Plane, SolidMesh, SolidScene, Support};
+use crate::scene::solid::{FaceLoad, Obstacle, SolidMesh, SolidScene, Support};
 use crate::scene::{Method, Settings};
 
 /// The solid scene of `req`, whose `analysis` is `solid`.
@@ -119,7 +117,7 @@ pub fn solid_scene(req: &SolveRequest, limits: &Limits) -> Result<SolidScene, Co
         };
         wire_settings::check_load_factors(&req.load_factors, size, scales, limits)?;
     }
-    let shape = obstacle(spec, length)?;
+    let shape = super::solid_obstacle::obstacle(spec, length)?;
     // The face-set names are checked against the mesh by `solid::door`.
     let faces = spec.contact.faces.clone();
     let paraboloid = match &spec.contact.initial_gap {
@@ -426,71 +424,4 @@ pub fn too_many(nodes: f64, limits: &Limits, path: &str) -> Result<(), CoreError
         });
     }
     Ok(())
-}
-
-/// The obstacle, its lengths over `length`; each field finite, radii
-/// positive, directions nonzero, at their pointers.
-fn obstacle(spec: &SolidSpec, length: f64) -> Result<Obstacle, CoreError> {
-    let p = "/solid/obstacle/shape";
-    let point = |x: &[f64; 3], at: &str| -> Result<[f64; 3], CoreError> {
-        for (c, v) in x.iter().enumerate() {
-            finite(*v, &format!("{p}/{at}/{c}"), K::Geometry)?;
-        }
-        Ok(*x)
-    };
-    let radius = |r: f64, at: &str| positive(r, &format!("{p}/{at}"), K::Geometry, "a radius");
-    let nonzero = |x: &[f64; 3], at: &str| -> Result<[f64; 3], CoreError> {
-        point(x, at)?;
-        if x.iter().all(|v| *v == 0.0) {
-            return Err(invalid(
-                K::Geometry,
-                format!("{p}/{at}"),
-                format!("must be nonzero, got {x:?}"),
-            ));
-        }
-        // A direction divided by its largest component: its norm can then
-        // neither overflow ([0, 0, 1e200]) nor underflow ([1e-170, 0, 0]).
-        let largest = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        Ok(x.map(|v| v / largest))
-    };
-    let shape = match &spec.obstacle.shape {
-        SolidObstacleShape::Plane { point: at, normal } => Obstacle::Plane(
-            Plane::try_new(point(at, "plane/point")?, nonzero(normal, "plane/normal")?)
-                .map_err(|e| invalid(K::Geometry, format!("{p}/plane/normal"), e.to_string()))?,
-        ),
-        SolidObstacleShape::Sphere { centre, radius: r } => Obstacle::Sphere {
-            centre: point(centre, "sphere/centre")?,
-            radius: radius(*r, "sphere/radius")?,
-        },
-        SolidObstacleShape::Cylinder {
-            point: at,
-            axis,
-            radius: r,
-        } => Obstacle::try_cylinder(
-            point(at, "cylinder/point")?,
-            nonzero(axis, "cylinder/axis")?,
-            radius(*r, "cylinder/radius")?,
-        )
-        .map_err(|e| invalid(K::Geometry, format!("{p}/cylinder/axis"), e.to_string()))?,
-        SolidObstacleShape::Paraboloid {
-            apex,
-            normal,
-            axis,
-            radii,
-        } => {
-            let (apex, normal) = (point(apex, "paraboloid/apex")?, nonzero(normal, "paraboloid/normal")?);
-            let radii = [
-                radius(radii[0], "paraboloid/radii/0")?,
-                radius(radii[1], "paraboloid/radii/1")?,
-            ];
-            Obstacle::try_paraboloid(apex, normal, nonzero(axis, "paraboloid/axis")?, radii).map_err(|_| {
-                invalid(
-                    K::Geometry,
-                    format!("{p}/paraboloid/axis"),
-                    "must not lie along the normal",
-                )
-            })?
-        }
-    };
-    Ok(shape.scaled(length))
 }
