@@ -252,3 +252,54 @@ pub(super) fn terms(meshes: &[Mesh2d], sides: &[BedSide], v: &[Vec<[f64; 2]>]) -
     }
     (bound, energy)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::Order;
+
+    /// One side along y = 0 from x = 0 to 1 on a bed at y0 = 0 with k = 100.
+    fn side(pressure: [f64; 2]) -> (Vec<Mesh2d>, BedSide) {
+        let mesh = Mesh2d {
+            order: Order::T3,
+            nodes: vec![[0.0, 0.0], [1.0, 0.0]],
+            elems: Vec::new(),
+            edge_sets: Default::default(),
+        };
+        let s = BedSide {
+            body: 0,
+            ends: [0, 1],
+            pressure,
+            slope: 1.0,
+            over: [0.0, 1.0],
+            k: 100.0,
+            y0: 0.0,
+        };
+        (vec![mesh], s)
+    }
+
+    /// The bed's term vanishes where p* = k w (a uniform indentation 0.01
+    /// under p* = 1), and the bed stores ½ k w² per length.
+    #[test]
+    fn the_term_vanishes_where_the_pressure_is_the_springs() {
+        let (meshes, s) = side([1.0, 1.0]);
+        let v = vec![vec![[0.0, -0.01], [0.0, -0.01]]];
+        let (bound, energy) = terms(&meshes, &[s], &v);
+        // Round-off of products of order 1 and 1e-4.
+        assert!(bound.abs() < 1e-15, "{bound}");
+        assert!((energy - 0.5 * 100.0 * 1e-4).abs() < 1e-15, "{energy}");
+    }
+
+    /// Lifting off in the middle of the side (w from 0.01 to −0.01, p* from
+    /// 1 to 0): 2 ∫ [½ k (w⁺)² + p*²/(2k) − p* w] = 2 (1/4800 + 1/4800 +
+    /// 1/2400) = 1/600 and ∫ ½ k (w⁺)² = 1/1200 by hand, on either side of
+    /// the root; the pieces' Gauss points make both exact to round-off.
+    #[test]
+    fn the_term_is_integrated_exactly_across_a_lift_off() {
+        let (meshes, s) = side([1.0, 0.0]);
+        let v = vec![vec![[0.0, -0.01], [0.0, 0.01]]];
+        let (bound, energy) = terms(&meshes, &[s], &v);
+        assert!((bound - 1.0 / 600.0).abs() < 1e-15, "{bound}");
+        assert!((energy - 1.0 / 1200.0).abs() < 1e-15, "{energy}");
+    }
+}
