@@ -36,7 +36,7 @@
 //! equilibrium at every node, the virtual supports' included. Pasternak's
 //! shear layer and the elastic half-plane are not in the bound: their
 //! complementary energies are those of a second (non-local) body, which the
-//! nodal Young inequality above does not carry.
+//! pointwise Young inequality of `foundation` does not carry.
 //!
 //! Length: about 680 lines, the bound's data from the scene (loads,
 //! supports, the contact pressure, the admissibility correction, the contact
