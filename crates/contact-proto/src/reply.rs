@@ -183,12 +183,14 @@ pub struct PairAccuracy {
     /// estimate. Absent where the scene is outside its reach: it covers
     /// frictionless contact of linear triangles (T3) in plane strain or plane
     /// stress against rigid obstacles and punches (under load or motion
-    /// control) whose sides in contact face straight or circular pieces,
+    /// control) whose sides in contact face straight or circular pieces, and
+    /// on tensionless Winkler foundations (a body they alone hold included),
     /// under supports, uniform tractions and pressures, and body forces; not
-    /// T6, axisymmetry, friction, two bodies, foundations, point loads (whose
-    /// energy is infinite), tractions over part of a side, couplings, bodies
-    /// moved by the contact alone, or contact at a sharp corner, a polyline's
-    /// vertex or a spline (a note then says why).
+    /// T6, axisymmetry, friction, two bodies, Pasternak or half-plane
+    /// foundations, point loads (whose energy is infinite), tractions over
+    /// part of a side, couplings, bodies moved by contact with obstacles
+    /// alone, or contact at a sharp corner, a polyline's vertex or a spline
+    /// (a note then says why).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub energy: Option<f64>,
 }

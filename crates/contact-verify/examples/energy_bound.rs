@@ -10,6 +10,14 @@ use contact_core::{Limits, Scene};
 use contact_proto::SolveRequest;
 use serde_json::Value;
 
+fn effectivity_scene(name: &str) -> Value {
+    let scene = contact_verify::effectivity::SCENES
+        .iter()
+        .find(|s| s.name == name)
+        .expect("scene");
+    (scene.request)()
+}
+
 fn main() {
     let scenes: Vec<(&str, Value)> = vec![
         (
@@ -32,11 +40,23 @@ fn main() {
             ))
             .unwrap(),
         ),
+        // The centred footing of the example: uniform stress and pressure,
+        // exact in the model (a bound at round-off).
+        (
+            "winkler_patch",
+            serde_json::from_str(include_str!("../../../proto/examples/foundation_winkler_footing.json")).unwrap(),
+        ),
+        // Loaded off centre: it lifts off the springs (`effectivity`).
+        ("winkler_footing", effectivity_scene("winkler_footing")),
     ];
     let scale: Vec<f64> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();
     let factor = scale.first().copied().unwrap_or(1.0);
     println!("scene          level    dofs   bound_rel  true_rel(J)  effectivity  correction  contact  t_solve");
+    let only: Vec<String> = std::env::args().skip(1).filter(|a| a.parse::<f64>().is_err()).collect();
     for (name, base) in scenes {
+        if !only.is_empty() && !only.iter().any(|o| o == name) {
+            continue;
+        }
         let base = if factor != 1.0 {
             contact_verify::effectivity::scaled(&base, factor, "t3")
         } else {
@@ -51,6 +71,15 @@ fn main() {
             let t = std::time::Instant::now();
             let r = contact_verify::run::solve(&req, &Limits::default()).expect("solve");
             let dt = t.elapsed().as_secs_f64();
+            if r.energy.is_none() {
+                let why: Vec<&str> = r
+                    .notes
+                    .iter()
+                    .filter(|n| n.text.contains("energy bound"))
+                    .map(|n| n.text.as_str())
+                    .collect();
+                println!("{name:14} no bound: {why:?}");
+            }
             levels.push((r.size.dofs, r.energy, dt));
             meshes = meshes.iter().map(refine_uniform).collect();
         }

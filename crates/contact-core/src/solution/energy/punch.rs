@@ -100,29 +100,10 @@ pub(super) fn balance(
     if n == 0 {
         return Ok(());
     }
-    // Σ_j a[k][j] x_j = target[k] − a[k][unscaled] over the pushed k, in
-    // the least norm: x = Aᵀ y, A Aᵀ y = r (a symmetric punch's horizontal
-    // and moment rows are both odd in x, so A may be rank-deficient; the
-    // system is then consistent, or no scaling balances the punch).
+    // Σ_j a[k][j] x_j = target[k] − a[k][unscaled] over the pushed k.
     let rows: Vec<[f64; 4]> = pushed.iter().map(|&k| a[k]).collect();
     let r: Vec<f64> = pushed.iter().map(|&k| target[k] - a[k][unscaled]).collect();
-    let mut m = vec![0.0; n * n];
-    for p in 0..n {
-        for q in 0..n {
-            m[p * n + q] = (0..n).map(|j| rows[p][j] * rows[q][j]).sum();
-        }
-    }
-    let mut y = r.clone();
-    let mut skip = Vec::new();
-    equilibrate::factor_psd(&mut m, n, &mut skip);
-    equilibrate::solve_factored(&m, &skip, &mut y, n);
-    let coef: Vec<f64> = (0..n).map(|j| (0..n).map(|p| rows[p][j] * y[p]).sum()).collect();
-    for (p, rp) in r.iter().enumerate() {
-        let got: f64 = (0..n).map(|j| rows[p][j] * coef[j]).sum();
-        if (got - rp).abs() > 1e-9 * big {
-            return Err("the contact pressure cannot balance a punch's loads with one sign");
-        }
-    }
+    let coef = least_norm(&rows, &r, big).ok_or("the contact pressure cannot balance a punch's loads with one sign")?;
     for s in sides.iter_mut().filter(|s| s.obstacle == o) {
         let mesh = &meshes[s.body];
         let mid = 0.5 * (mesh.nodes[s.ends[0]][0] + mesh.nodes[s.ends[1]][0]);
@@ -140,4 +121,29 @@ pub(super) fn balance(
         }
     }
     Ok(())
+}
+
+/// The least-norm x of Σ_{j < n} rows[p][j] x_j = r[p] (n = rows.len()),
+/// or None where it does not hold to 1e-9 of `big`: x = Aᵀ y, A Aᵀ y = r (a
+/// symmetric punch's horizontal and moment rows are both odd in x, so A may
+/// be rank-deficient; the system is then consistent, or no scaling balances
+/// the loads).
+pub(super) fn least_norm(rows: &[[f64; 4]], r: &[f64], big: f64) -> Option<Vec<f64>> {
+    let n = rows.len();
+    let mut m = vec![0.0; n * n];
+    for p in 0..n {
+        for q in 0..n {
+            m[p * n + q] = (0..n).map(|j| rows[p][j] * rows[q][j]).sum();
+        }
+    }
+    let mut y = r.to_vec();
+    let mut skip = Vec::new();
+    equilibrate::factor_psd(&mut m, n, &mut skip);
+    equilibrate::solve_factored(&m, &skip, &mut y, n);
+    let coef: Vec<f64> = (0..n).map(|j| (0..n).map(|p| rows[p][j] * y[p]).sum()).collect();
+    let holds = r.iter().enumerate().all(|(p, rp)| {
+        let got: f64 = (0..n).map(|j| rows[p][j] * coef[j]).sum();
+        (got - rp).abs() <= 1e-9 * big
+    });
+    holds.then_some(coef)
 }
