@@ -368,6 +368,11 @@ pub enum EstimateBasis {
     TwoLevelFiner,
     /// No companion could be solved: the zone ends only.
     ZoneEdges,
+    /// No estimate at all (3D solids only): a given inline or Gmsh mesh, for
+    /// which no companion is made, or a companion that did not solve; the
+    /// reply's notes say why.
+    #[serde(rename = "none")]
+    NoEstimate,
 }
 
 /// What a warning is about (see `Warning`).
