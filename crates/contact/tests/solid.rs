@@ -420,7 +420,7 @@ fn the_error_bar_is_two_level_on_a_box_and_none_on_a_given_mesh() {
     ] {
         let v = v.unwrap_or_else(|| panic!("{name} estimated"));
         // A relative error of a solve that converged: positive and below 1
-        // at 0.4 a (13 % measured, `solid_effectivity`).
+        // at 0.4 a (0.40 for the pressure, `solid_effectivity`).
         assert!(v > 0.0 && v < 1.0, "{name} {v}");
     }
     // The load is the contact force's whole balance: the two levels agree to

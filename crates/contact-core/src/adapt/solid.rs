@@ -15,7 +15,7 @@
 //! tetrahedra is not built, so the door refuses a given mesh's). As in 2D
 //! (`adapt`'s module doc, whose constants these share): each round's
 //! `h_min` shrinks by f sized from the last estimate (`AIM`, `SAFETY`, the
-//! pressure's order 2, within `STEP_MIN`–`STEP_MAX`), the growth and the far
+//! pressure's order 1, within `STEP_MIN`–`STEP_MAX`), the growth and the far
 //! field by √f, and the graded window widens to cover every point in contact
 //! with a quarter of margin. A box's node count is known exactly before it
 //! is meshed (`scene::solid::grid_nodes`), so a round past `max_dofs` is cut
@@ -37,7 +37,7 @@ use crate::scene::solid::{grid_nodes, SolidMesh};
 use crate::scene::{AccuracyTarget, Outputs};
 use crate::solid::answer::{SolidAccuracy, SolidAnswer};
 use crate::solid::door::SolidProblem;
-use crate::solid::two_level::{two_level, Surface};
+use crate::solid::two_level::{two_level, Surface, PRESSURE_ORDER};
 use crate::solution::report::{Round, Warning};
 
 /// A solve of one 3D problem: its answer and its candidate surface.
@@ -264,10 +264,11 @@ fn estimated(answer: &SolidAnswer) -> Option<f64> {
 }
 
 /// The factor on `h_min` of the next round: the estimate landed at `AIM` of
-/// the target's met value, for an error of order 2 (`solid::two_level`).
+/// the target's met value, for an error of the pressure's order
+/// (`solid::two_level::PRESSURE_ORDER`).
 fn step(answer: &SolidAnswer, target: &AccuracyTarget) -> f64 {
     match (target.pressure_l2, estimated(answer)) {
-        (Some(t), Some(e)) if e > 0.0 && e.is_finite() => (AIM * SAFETY * t / e).sqrt(),
+        (Some(t), Some(e)) if e > 0.0 && e.is_finite() => (AIM * SAFETY * t / e).powf(1.0 / PRESSURE_ORDER),
         _ => 1.0 / RATIO,
     }
     .clamp(STEP_MIN, STEP_MAX)

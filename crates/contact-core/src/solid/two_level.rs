@@ -14,16 +14,23 @@
 //! corners). Faces are found through a uniform grid of their bounding
 //! boxes.
 //!
-//! **Orders.** The pressure and the peak are scaled for q = 2 (2^q − 1 = 3
-//! against the coarser companion), the 2D rule for smooth zone ends on T3
-//! and T6: a 3D patch of a ball or a sphere has a smooth edge all round, and
-//! its nodal pressure converges at that order where the edge does not
-//! dominate; `contact-verify`'s `solid_effectivity` example measures what
-//! this gives against Hertz and a finer solve (docs/verification/accuracy.md,
-//! "A solid in 3D"). The contact area, counted from the rows' tributary
-//! areas, is off by the width of the ring of faces its edge crosses, an error
-//! of order h (q = 1, 2^q − 1 = 1): the difference of the two levels is its
-//! estimate.
+//! **Orders.** The pressure's L2 difference is scaled for q = 1
+//! (2^q − 1 = 1 against the coarser companion): it sits at the patch's
+//! edge, where a row's pressure is a mean over faces the edge crosses, not
+//! the square root's value there, a ring of width h whose error does not
+//! fall with h, so its L2 norm falls like h, not h². On Hertz's ball the
+//! rounds of `settings.accuracy` measured their two-level differences
+//! falling like h^0.70, h^0.83, h^1.06 (T4, h_min 0.17 to 0.066 a), the
+//! effectivity table's T4 levels h^0.78 and h^1.30: scaled for q = 2, an
+//! error falling like h would be read a third of itself once asymptotic.
+//! 2D keeps q = 2 with its own terms for the zone ends' nodes
+//! (`solution::two_level`), which a 3D patch's ring has not. The peak,
+//! at the patch's smooth interior maximum, keeps q = 2 (2^q − 1 = 3), as the
+//! resultant does. The contact area, counted from the rows' tributary
+//! areas, is off by the width of that ring too (q = 1), and is given at
+//! least half of it. `contact-verify`'s `solid_effectivity` example
+//! measures what these give against Hertz and a finer solve
+//! (docs/verification/accuracy.md, "A solid in 3D").
 //!
 //! Pure: the answer's and the companion's `Surface`s in, the estimate out
 //! (nondimensional and relative, so the scales do not enter).
@@ -34,8 +41,11 @@ use super::SolidBody;
 use crate::error::CoreError;
 use crate::solution::two_level::{near_peak, peak_deviation, relative_l2, resultant, richardson};
 
-/// The order of the pressure's and the peak's error (module doc).
-const PRESSURE_ORDER: f64 = 2.0;
+/// The order of the pressure's L2 error (module doc); the rounds size
+/// their steps by it (`adapt::solid`).
+pub const PRESSURE_ORDER: f64 = 1.0;
+/// The order of the peak's and the resultant's error (module doc).
+const PEAK_ORDER: f64 = 2.0;
 /// The order of the contact area's error (module doc).
 const AREA_ORDER: f64 = 1.0;
 /// How far outside a face (in barycentric terms) a point may lie and still
@@ -136,7 +146,7 @@ pub struct Estimate {
 /// companion, the L2 and peak differences are taken both ways (at each
 /// level's points, the other read there) and the larger kept.
 pub fn two_level(answer: &Surface, other: &Surface, ratio: f64) -> Estimate {
-    let scale = richardson(ratio, PRESSURE_ORDER);
+    let scale = richardson(ratio, PEAK_ORDER);
     let (to_other, to_answer) = (Locator::new(other), Locator::new(answer));
     let at = |s: &Surface, loc: &Locator, from: &Surface| -> Vec<f64> {
         s.points.iter().map(|x| loc.pressure(from, *x)).collect()
@@ -170,7 +180,7 @@ pub fn two_level(answer: &Surface, other: &Surface, ratio: f64) -> Estimate {
     // least error the area may be given.
     let ring = 0.5 * (aa - answer.pressed_faces_area()).max(0.0);
     Estimate {
-        pressure_l2: l2.map(|v| v / scale),
+        pressure_l2: l2.map(|v| v / richardson(ratio, PRESSURE_ORDER)),
         peak,
         resultant: (fa > 0.0 && df.is_finite()).then(|| resultant(df / fa, scale)),
         contact_area: (aa > 0.0).then(|| ((aa - ao).abs() / richardson(ratio, AREA_ORDER)).max(ring) / aa),
@@ -324,10 +334,10 @@ mod tests {
         assert_eq!(e.peak, Some(0.0));
         assert_eq!(e.contact_area, Some(0.0));
         // A companion 3 % higher everywhere: the relative difference is
-        // 0.03 / 1.03 both ways (of the larger), over 2² − 1 = 3.
+        // 0.03 / 1.03 both ways (of the larger), over 2¹ − 1 = 1.
         let b = square([1.03, 2.06, 4.12, 3.09], 1.03);
         let e = two_level(&a, &b, 2.0);
-        let want = 0.03 / 1.03 / 3.0;
+        let want = 0.03 / 1.03;
         assert!((e.pressure_l2.unwrap() - want).abs() < 1e-12, "{e:?}");
         // The resultant's: 0.03 of the answer's, over 3.
         assert!((e.resultant.unwrap() - 0.01).abs() < 1e-12, "{e:?}");
