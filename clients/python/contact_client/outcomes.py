@@ -39,11 +39,12 @@ class StopReason(str, enum.Enum):
 
 
 class EstimateBasis(str, enum.Enum):
-    """What a pair's error estimate is based on (``pair["accuracy"]["basis"]``)."""
+    """What an error estimate is based on (``pair["accuracy"]["basis"]``, ``reply["solid"]["accuracy"]["basis"]``)."""
 
     TWO_LEVEL = "two_level"
     TWO_LEVEL_FINER = "two_level_finer"
     ZONE_EDGES = "zone_edges"
+    NONE = "none"
 
 
 class WarningCode(str, enum.Enum):

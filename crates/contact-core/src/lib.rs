@@ -42,4 +42,4 @@ pub mod solve;
 
 pub use error::CoreError;
 pub use scene::{Limits, Scene};
-pub use solve::{solve, solve_solid};
+pub use solve::{solve, solve_solid, solve_solid_once};

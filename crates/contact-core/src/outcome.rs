@@ -130,6 +130,10 @@ named! {
         TwoLevelFiner = "two_level_finer",
         /// No companion could be solved: the zone ends only.
         ZoneEdges = "zone_edges",
+        /// No estimate at all: a 3D solid on a given mesh (no companion is
+        /// made for it), or whose companion did not solve (the notes say
+        /// why).
+        NoEstimate = "none",
     }
 }
 

@@ -40,7 +40,7 @@ mod notes;
 mod screen;
 mod solid;
 use frictional::solve_frictional;
-pub use solid::solve_solid;
+pub use solid::{solve_solid, solve_solid_once};
 
 /// Solves the scene, once per load factor or load path step (one
 /// factorization serves them all); with friction, step after step from the

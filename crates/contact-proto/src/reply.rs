@@ -101,7 +101,8 @@ pub struct SolveReply {
 /// Tolerance-driven refinement: each round halves the generated meshes'
 /// element sizes near the contact zones (and shrinks them by √2 away from
 /// them), or splits every triangle of a given (inline or Gmsh) mesh in four,
-/// and solves again.
+/// and solves again. A 3D solid's rounds shrink its generated box's `h_min`
+/// (a given 3D mesh is not refined).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Refinement {
@@ -125,7 +126,8 @@ pub struct RefinementRound {
     pub h_min: f64,
     /// Largest estimated `pressure_l2` over the pairs (null where not estimated).
     pub pressure_l2: Option<f64>,
-    /// Largest estimated zone-end error over the pairs [length].
+    /// Largest estimated zone-end error over the pairs [length]; 0 for a 3D
+    /// solid, whose patches have no zone ends.
     pub zone_edge: f64,
     /// Wall-clock seconds of the round (its solve and its estimate).
     pub seconds: f64,
@@ -374,6 +376,11 @@ pub enum EstimateBasis {
     TwoLevelFiner,
     /// No companion could be solved: the zone ends only.
     ZoneEdges,
+    /// No estimate at all (3D solids only): a given inline or Gmsh mesh, for
+    /// which no companion is made, or a companion that did not solve; the
+    /// reply's notes say why.
+    #[serde(rename = "none")]
+    NoEstimate,
 }
 
 /// What a warning is about (see `Warning`).

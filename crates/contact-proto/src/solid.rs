@@ -317,6 +317,35 @@ pub struct SolidResult {
     /// its mean part is the element's constant pressure.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stress: Option<Vec<[f64; 6]>>,
+    /// The answer's error estimate, absent with `settings.estimate: false`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accuracy: Option<SolidAccuracy>,
+}
+
+/// A posteriori error estimate of a solid's contact answer, each a relative
+/// error (null where not estimated).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SolidAccuracy {
+    /// `two_level`: a generated box against the same scene with its grading's
+    /// `h_min`, growth (ratio − 1) and far-field `size` doubled, every
+    /// element about twice as large, Richardson-scaled (the 2D estimate's
+    /// design); `none`: no estimate, for a given (inline or Gmsh) mesh, whose
+    /// companion is not made (a finer one would cost several solves), or when
+    /// the companion did not solve (the reply's notes say why).
+    pub basis: crate::EstimateBasis,
+    /// Estimated relative L2 error of the contact pressure over the contact
+    /// face set: of the field the points describe, linear over each face
+    /// between its corners' pressures.
+    pub pressure_l2: Option<f64>,
+    /// Estimated relative error of the largest point pressure.
+    pub peak: Option<f64>,
+    /// Estimated relative error of the contact force (`resultant.force`).
+    pub resultant: Option<f64>,
+    /// Estimated relative error of the contact area, the patches'
+    /// `tributary_area` summed (an error of order h: the ring of faces the
+    /// patch's edge crosses).
+    pub contact_area: Option<f64>,
 }
 
 /// A 3D solid's answer at one load factor (a `steps` entry's `solid`): its

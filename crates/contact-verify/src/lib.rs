@@ -6,7 +6,8 @@
 //! convergence under refinement (`convergence`; with friction: `friction`,
 //! the Cattaneo–Mindlin stick zone), the error estimate against
 //! the true error (`effectivity`), time to a tolerance with and
-//! without refinement (`tolerance`) and the numerical stress suite
+//! without refinement (`tolerance`), the 3D Hertz ball the solid's error
+//! bar is checked against (`solid_ball`) and the numerical stress suite
 //! (`stability`). Used by the tests, the CI smoke run and `contact-bench`.
 
 pub mod bench;
@@ -17,6 +18,7 @@ pub mod friction;
 pub mod overkill;
 pub mod reference;
 pub mod run;
+pub mod solid_ball;
 pub mod solid_bench;
 pub mod stability;
 pub mod tolerance;

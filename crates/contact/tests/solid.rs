@@ -388,3 +388,54 @@ fn mistakes_are_refused_with_their_place() {
         assert_eq!(e.path, "/solid/body/mesh/box");
     }
 }
+
+/// The error bar through the wire (`adapt::solid`; its effectivity against a
+/// finer solve is contact-verify's `solid_error_bar`): a generated box's
+/// reply carries the two-level estimate, a given mesh's says it has none and
+/// why, and `settings.accuracy` is refused on a given mesh and for zone ends,
+/// which a 3D patch has not.
+#[test]
+fn the_error_bar_is_two_level_on_a_box_and_none_on_a_given_mesh() {
+    let mut ball = example("solid_ball_on_flat.json");
+    ball["solid"]["body"]["mesh"]["box"]["element"] = json!("t4");
+    ball["solid"]["body"]["mesh"]["box"]["grading"]["h_min"] = json!(0.4);
+    let r = solved(&ball);
+    let a = r.solid.as_ref().unwrap().accuracy.as_ref().expect("an estimate");
+    assert_eq!(serde_json::to_value(a.basis).unwrap(), json!("two_level"));
+    for (name, v) in [
+        ("pressure_l2", a.pressure_l2),
+        ("peak", a.peak),
+        ("contact_area", a.contact_area),
+    ] {
+        let v = v.unwrap_or_else(|| panic!("{name} estimated"));
+        // A relative error of a solve that converged: positive and below 1
+        // at 0.4 a (0.40 for the pressure, `solid_effectivity`).
+        assert!(v > 0.0 && v < 1.0, "{name} {v}");
+    }
+    // The load is the contact force's whole balance: the two levels agree to
+    // round-off, so the resultant is exact, not estimated at the floor.
+    assert!(a.resultant.unwrap() < 1e-12, "{:?}", a.resultant);
+    assert!(r.timings.estimate > 0.0);
+    ball["settings"] = json!({"estimate": false});
+    assert!(solved(&ball).solid.unwrap().accuracy.is_none());
+
+    let given = example("solid_block_on_flat_gmsh.json");
+    let r = solved(&given);
+    let a = r.solid.as_ref().unwrap().accuracy.as_ref().expect("the basis");
+    assert_eq!(serde_json::to_value(a.basis).unwrap(), json!("none"));
+    assert!(a.pressure_l2.is_none() && a.peak.is_none() && a.resultant.is_none());
+    assert_eq!(
+        note_kind(&r, "no error estimate on a given 3D mesh"),
+        Some(contact::proto::NoteKind::EstimateLimited)
+    );
+    let mut refine = given.clone();
+    refine["settings"] = json!({"accuracy": {"pressure_l2": 0.01}});
+    let e = solve(&refine).expect_err("no bisection of tetrahedra");
+    assert_eq!(e.path, "/settings/accuracy");
+    assert!(e.message.contains("bisection"), "{}", e.message);
+    ball["settings"] = json!({"accuracy": {"zone_edge": 0.1}});
+    assert_eq!(
+        solve(&ball).expect_err("no zone ends").path,
+        "/settings/accuracy/zone_edge"
+    );
+}

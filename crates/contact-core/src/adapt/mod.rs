@@ -26,6 +26,9 @@
 //! on the default path it is solved on a second thread beside the answer
 //! when a core is free (`overlap`).
 //!
+//! A 3D solid's estimate and rounds are `solid`'s, on the same design and
+//! constants.
+//!
 //! **Energy bound** (`solution::energy`): made by the estimator
 //! (`Estimator::energy`) once per reply, for the answer returned, from what
 //! its solve kept (`energy::Pending`); a refinement round keeps it through
@@ -53,15 +56,16 @@
 //! solved, `solved` with a `tolerance_not_reached` warning. A target is
 //! only reached by a two-level estimate, never by the zone ends alone.
 //!
-//! Length: about 560 lines: the estimate, where the energy bound and a
+//! Length: about 580 lines: the estimate, where the energy bound and a
 //! companion solved ahead enter it, and the rounds that reuse it, sharing
 //! their limits (size, time, the budget a last round may fill) and their
-//! stop reasons, read as one schedule.
+//! stop reasons (with a 3D solid's rounds, `solid`), read as one schedule.
 
 mod cost;
 pub mod estimator;
 pub mod overlap;
 mod sizing;
+pub mod solid;
 
 use crate::outcome::{EstimateBasis, Note, NoteKind, StopReason, WarningCode};
 use std::time::Instant;
@@ -426,28 +430,67 @@ pub fn refine_by(
         }
     };
     bound_energy(est, &current, &mut report);
-    let total = started.elapsed().as_secs_f64();
-    // The earlier rounds' time counts as the estimate's.
-    report.timings.estimate += (total - report.timings.total).max(0.0);
-    report.timings.total = total;
-    let reached = stopped == StopReason::Reached;
-    if stopped == StopReason::NoContact {
-        report.notes.push(Note::new(
-            NoteKind::NotRefined,
-            "nothing is in contact: there is no contact error to reduce, so the mesh was not refined \
-             (settings.accuracy)",
-        ));
-    } else if !reached {
-        report
-            .warnings
-            .push(not_reached(&report, &target, stopped, failure.as_deref()));
-    }
-    report.refinement = Some(Refinement {
-        reached,
-        stopped,
-        rounds,
-    });
+    let missed = not_reached(&report, &target, stopped, failure.as_deref());
+    let ends = Ends {
+        timings: &mut report.timings,
+        notes: &mut report.notes,
+        warnings: &mut report.warnings,
+    };
+    report.refinement = Some(ends.close(started, stopped, rounds, missed));
     Ok(report)
+}
+
+/// Where the rounds' end is written in a reply (2D's `Report`, a solid's
+/// answer: `solid`).
+struct Ends<'a> {
+    timings: &'a mut crate::observer::Timings,
+    notes: &'a mut Vec<Note>,
+    warnings: &'a mut Vec<Warning>,
+}
+
+impl Ends<'_> {
+    /// The rounds' end, whatever the dimension: the earlier rounds' time
+    /// counted as the estimate's, a note when nothing touched or the
+    /// `missed` warning when the target was not reached, and their record.
+    fn close(self, started: Instant, stopped: StopReason, rounds: Vec<Round>, missed: Warning) -> Refinement {
+        let total = started.elapsed().as_secs_f64();
+        self.timings.estimate += (total - self.timings.total).max(0.0);
+        self.timings.total = total;
+        let reached = stopped == StopReason::Reached;
+        if stopped == StopReason::NoContact {
+            self.notes.push(Note::new(
+                NoteKind::NotRefined,
+                "nothing is in contact: there is no contact error to reduce, so the mesh was not refined \
+                 (settings.accuracy)",
+            ));
+        } else if !reached {
+            self.warnings.push(missed);
+        }
+        Refinement {
+            reached,
+            stopped,
+            rounds,
+        }
+    }
+}
+
+/// Why the rounds stopped short of the target, for its warning.
+fn stop_why(stopped: StopReason, target: &AccuracyTarget, failure: Option<&str>) -> String {
+    match stopped {
+        StopReason::MaxRounds => format!("after {} rounds (max_rounds)", target.max_rounds),
+        StopReason::MaxDofs => format!(
+            "the next round would exceed max_dofs = {} (the request's, or the service's size or memory limit)",
+            target.max_dofs
+        ),
+        StopReason::SizeLimit => "the next round exceeds the service's size limit".into(),
+        StopReason::TimeLimit => {
+            "the next round would not end within the time limit (predicted from the last round's time and growth)"
+                .into()
+        }
+        StopReason::NotSolved => "a round did not solve".into(),
+        StopReason::RoundFailed => format!("the next round failed: {}", failure.unwrap_or("unknown")),
+        _ => "a round no longer reduced the estimate (a floor the element sizes do not move)".into(),
+    }
 }
 
 /// The factor on `h_min` of a generated mesh's next round (`AIM`).
@@ -512,21 +555,7 @@ fn round(scene: &Scene, report: &Report, seconds: f64) -> Round {
 
 fn not_reached(report: &Report, target: &AccuracyTarget, stopped: StopReason, failure: Option<&str>) -> Warning {
     let (p, z) = worst(report);
-    let why = match stopped {
-        StopReason::MaxRounds => format!("after {} rounds (max_rounds)", target.max_rounds),
-        StopReason::MaxDofs => format!(
-            "the next round would exceed max_dofs = {} (the request's, or the service's size or memory limit)",
-            target.max_dofs
-        ),
-        StopReason::SizeLimit => "the next round exceeds the service's size limit".into(),
-        StopReason::TimeLimit => {
-            "the next round would not end within the time limit (predicted from the last round's time and growth)"
-                .into()
-        }
-        StopReason::NotSolved => "a round did not solve".into(),
-        StopReason::RoundFailed => format!("the next round failed: {}", failure.unwrap_or("unknown")),
-        _ => "a round no longer reduced the estimate (a floor the element sizes do not move)".into(),
-    };
+    let why = stop_why(stopped, target, failure);
     let (value, limit, what) = match (target.pressure_l2, p) {
         (Some(t), Some(p)) if p > t => (p, t, format!("the pressure's estimated relative L2 error is {p:.3e}")),
         (Some(t), None) => (

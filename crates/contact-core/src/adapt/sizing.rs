@@ -7,7 +7,7 @@ use crate::scene::{MeshSource, Psi, Scene, Shape, Target};
 use crate::solution::report::Report;
 
 /// Growth of the graded window over the farthest zone end it must cover.
-const MARGIN: f64 = 1.25;
+pub(super) const MARGIN: f64 = 1.25;
 /// Element size ratio of the estimate's companion and of one round in the
 /// zones.
 pub(super) const RATIO: f64 = 2.0;
@@ -237,7 +237,7 @@ fn on_sharp_ends(
 /// distance d from the focus is about h_min + (ratio − 1) d, so both terms
 /// scale (scaling h_min alone leaves the graded region's error: on the T3
 /// disk the resultant stayed 0.22 % stiff at every h_min with ratio 1.1).
-fn scaled(g: Grading, [h, growth]: [f64; 2], size: f64) -> Grading {
+pub(super) fn scaled(g: Grading, [h, growth]: [f64; 2], size: f64) -> Grading {
     Grading {
         h_min: (g.h_min * h).min(size),
         ratio: (1.0 + (g.ratio - 1.0) * growth).clamp(1.0, 2.0),

@@ -13,7 +13,7 @@
 
 use std::collections::BTreeMap;
 
-use crate::mesh::generate::Grading;
+use crate::mesh::generate::{graded_points, Grading};
 use crate::scene::{Outputs, Settings};
 
 pub use super::solid_obstacle::{Obstacle, Plane};
@@ -118,6 +118,23 @@ pub struct SolidScene {
     /// Load multipliers to solve for (empty: the loads as given): every
     /// load and prescribed motion times each, the gaps as given.
     pub load_factors: Vec<f64>,
+}
+
+/// Nodes of a generated box's grid (`mesh3d::generate::box_mesh`), exact
+/// before it is meshed: T4 nodes are the grid's, T10 adds the midsides of
+/// every cell edge, face diagonal and main diagonal, which are the points of
+/// the grid with each cell halved.
+pub fn grid_nodes(lo: [f64; 3], hi: [f64; 3], size: f64, grading: Option<([f64; 3], Grading)>, t10: bool) -> f64 {
+    let per_cell = if t10 { 2.0 } else { 1.0 };
+    (0..3)
+        .map(|a| {
+            let cells = match grading {
+                Some((focus, g)) => (graded_points(lo[a], hi[a], focus[a], g, size).len() - 1) as f64,
+                None => ((hi[a] - lo[a]) / size).ceil().max(1.0),
+            };
+            per_cell * cells + 1.0
+        })
+        .product()
 }
 
 impl SolidScene {

@@ -5,11 +5,13 @@
 //! sizes. No wire types: the `contact` crate writes it as the reply.
 
 use super::report::SolidContactReport;
+use super::two_level::Estimate;
 use crate::mesh3d::Order;
 use crate::observer::Timings;
-use crate::outcome::Status;
+use crate::outcome::{EstimateBasis, Note, Status};
 use crate::scene::solid::SolidScene;
 use crate::scene::Outputs;
+use crate::solution::report::{Refinement, Warning};
 
 #[derive(Debug, Clone)]
 pub struct SolidAnswer {
@@ -36,6 +38,13 @@ pub struct SolidAnswer {
     /// One per load factor when the request lists `load_factors` (the rest
     /// of the answer is the last factor's).
     pub steps: Option<Vec<SolidStep>>,
+    /// The error estimate (`adapt::solid`), None where `settings.estimate`
+    /// is false.
+    pub accuracy: Option<SolidAccuracy>,
+    /// With `settings.accuracy`: the rounds that led to this answer.
+    pub refinement: Option<Refinement>,
+    pub notes: Vec<Note>,
+    pub warnings: Vec<Warning>,
 }
 
 /// The answer at one load factor, in the request's units.
@@ -45,6 +54,30 @@ pub struct SolidStep {
     pub status: Status,
     pub report: SolidContactReport,
     pub max_penetration: f64,
+}
+
+/// A solid answer's error estimate: how it was made, and the estimated
+/// relative errors (`solid::two_level::Estimate`; all None with
+/// `EstimateBasis::NoEstimate`, the notes saying why).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolidAccuracy {
+    pub basis: EstimateBasis,
+    pub estimate: Estimate,
+}
+
+impl SolidAccuracy {
+    /// No estimate (a given mesh, or a companion that did not solve).
+    pub fn none() -> Self {
+        SolidAccuracy {
+            basis: EstimateBasis::NoEstimate,
+            estimate: Estimate {
+                pressure_l2: None,
+                peak: None,
+                resultant: None,
+                contact_area: None,
+            },
+        }
+    }
 }
 
 /// The body as solved, in the request's units: what `outputs` (mesh,

@@ -36,6 +36,7 @@ pub mod ordering;
 pub mod report;
 pub mod signorini;
 pub mod stiffness;
+pub mod two_level;
 
 use crate::error::{CoreError, InvalidKind};
 use crate::mesh3d::Mesh3d;

@@ -5,10 +5,12 @@
 //! equilibrated-flux bound, say) would sit beside it and fill the same
 //! `PairAccuracy`.
 //!
-//! Length: about 510 lines, the two levels' differences and the answer's own
+//! Length: about 560 lines, the two levels' differences and the answer's own
 //! nodal terms each estimate keeps the largest of (zone ends, edge placement,
 //! spacing steps, an axis peak, the resultant's floor), each with the
-//! measurement that made it: one estimate read as a whole.
+//! measurement that made it: one estimate read as a whole. Its
+//! dimension-free sums (`relative_l2`, `peak_deviation`, `richardson`,
+//! `resultant`) serve the 3D estimate too (`solid::two_level`).
 
 use crate::outcome::EstimateBasis;
 use crate::solution::accuracy;
@@ -87,7 +89,7 @@ pub fn two_level(answer: &PairReport, other: &PairReport, ratio: f64) -> PairAcc
     let singular = corners::singular_ends(answer);
     let counted = |x: f64, y: f64| !corners::in_band(&singular, x, y);
     let d = differences(answer, other, &counted, ratio > 1.0);
-    let scale = (ratio.powf(order(&singular)) - 1.0).abs();
+    let scale = richardson(ratio, order(&singular));
     // The zone ends' own nodal error, which the two levels' steps hide.
     let den: f64 = answer
         .points
@@ -151,13 +153,63 @@ pub fn two_level(answer: &PairReport, other: &PairReport, ratio: f64) -> PairAcc
     }
 }
 
+/// The factor between two levels' difference and the answer's error, for a
+/// companion whose elements are `ratio` times the answer's and an error of
+/// order q in the element size: |ratio^q − 1| (3 against a coarser companion
+/// for q = 2, ¾ against a finer one). Dimension-free: the 3D estimate
+/// (`solid::two_level`) divides by it too.
+pub(crate) fn richardson(ratio: f64, q: f64) -> f64 {
+    (ratio.powf(q) - 1.0).abs()
+}
+
+/// The relative L2 difference √(Σ w (p − p̃)² / Σ w max(p, p̃)²) over the
+/// samples (w, p, p̃) of one level's points (weight, own pressure, the other
+/// level's there) where either presses; None without pressure. Dimension-free:
+/// the samples are points along a 2D surface or on a 3D face set.
+pub(crate) fn relative_l2(samples: impl Iterator<Item = (f64, f64, f64)>) -> Option<f64> {
+    let (mut num, mut den) = (0.0, 0.0);
+    for (w, p, po) in samples {
+        if p > 0.0 || po > 0.0 {
+            num += w * (p - po).powi(2);
+            den += w * p.max(po).powi(2);
+        }
+    }
+    (den > 0.0).then(|| (num / den).sqrt())
+}
+
+/// Whether a point's pressure `p` lies within `PEAK_REGION` of the level's
+/// `peak`: the points whose difference estimates the peak's error.
+pub(crate) fn near_peak(p: f64, peak: f64) -> bool {
+    p >= PEAK_REGION * peak
+}
+
+/// The root mean square of |p − p̃| over samples (w, p, p̃) near the peak
+/// (`near_peak`), or the difference at the peak itself where that is larger
+/// (`peak_difference` says why both). Dimension-free, as `relative_l2`.
+pub(crate) fn peak_deviation(samples: impl Iterator<Item = (f64, f64, f64)>, peak: f64) -> f64 {
+    let (mut num, mut den, mut at_peak) = (0.0, 0.0, 0.0);
+    for (w, p, po) in samples {
+        let d = (p - po).abs();
+        num += w * d * d;
+        den += w;
+        if p == peak {
+            at_peak = d;
+        }
+    }
+    if den > 0.0 {
+        (num / den).sqrt().max(at_peak)
+    } else {
+        at_peak
+    }
+}
+
 /// Below this the two levels cannot tell a resultant's error (relative).
 /// T6 resultants converge fast and their error changes sign from level to
 /// level, so two levels can agree by chance (the two-level difference read
 /// 0.02–0.34 of the true error on the finest T6 levels); 1e-4 is above the
 /// errors measured there. The measurements: docs/verification/accuracy.md,
 /// "Resultant".
-const RESULTANT_FLOOR: f64 = 1e-4;
+pub(crate) const RESULTANT_FLOOR: f64 = 1e-4;
 
 /// Two levels whose resultants agree to round-off carry a resultant the loads
 /// prescribe (a punch, a footing under a force): exact, not estimated.
@@ -165,7 +217,7 @@ const RESULTANT_PRESCRIBED: f64 = 1e-12;
 
 /// The resultant's estimate from its relative two-level difference `diff`:
 /// Richardson-scaled, and not below what two levels can resolve.
-fn resultant(diff: f64, scale: f64) -> f64 {
+pub(crate) fn resultant(diff: f64, scale: f64) -> f64 {
     if diff <= RESULTANT_PRESCRIBED {
         diff / scale
     } else {
@@ -215,15 +267,12 @@ fn differences(answer: &PairReport, other: &PairReport, counted: &dyn Fn(f64, f6
     // field, weighed at `at`'s candidates; None without pressure.
     let relative = |at: &PairReport, other: &PairReport| {
         let (pts, reach) = field_with_reach(other);
-        let (mut num, mut den) = (0.0, 0.0);
-        for q in at.points.iter().filter(|q| counted(q.x, q.y)) {
-            let po = along(&pts, Some(&reach), q.x, q.y);
-            if q.pressure > 0.0 || po > 0.0 {
-                num += q.weight * (q.pressure - po).powi(2);
-                den += q.weight * q.pressure.max(po).powi(2);
-            }
-        }
-        (den > 0.0).then(|| (num / den).sqrt())
+        relative_l2(
+            at.points
+                .iter()
+                .filter(|q| counted(q.x, q.y))
+                .map(|q| (q.weight, q.pressure, along(&pts, Some(&reach), q.x, q.y))),
+        )
     };
     let l2 = match (relative(answer, other), both.then(|| relative(other, answer)).flatten()) {
         (Some(a), Some(b)) => Some(a.max(b)),
@@ -315,24 +364,13 @@ fn peak_difference(answer: &PairReport, other: &PairReport, counted: &dyn Fn(f64
     // p0 over its neighbour, halving with h).
     let largest = |at: &PairReport, peak: f64, from: &PairReport| {
         let pts = field(from);
-        let (mut num, mut den, mut at_peak) = (0.0, 0.0, 0.0);
-        for q in at
-            .points
-            .iter()
-            .filter(|q| counted(q.x, q.y) && q.pressure >= PEAK_REGION * peak)
-        {
-            let d = (q.pressure - along_polyline(&pts, q.x, q.y)).abs();
-            num += q.weight * d * d;
-            den += q.weight;
-            if q.pressure == peak {
-                at_peak = d;
-            }
-        }
-        if den > 0.0 {
-            (num / den).sqrt().max(at_peak)
-        } else {
-            at_peak
-        }
+        peak_deviation(
+            at.points
+                .iter()
+                .filter(|q| counted(q.x, q.y) && near_peak(q.pressure, peak))
+                .map(|q| (q.weight, q.pressure, along_polyline(&pts, q.x, q.y))),
+            peak,
+        )
     };
     Some(largest(answer, pa, other).max(largest(other, po, answer)) / pa)
 }

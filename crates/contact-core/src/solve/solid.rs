@@ -6,7 +6,11 @@
 //!   ─assemble, factor (nested dissection, admitted by predicted time),
 //!    condense→ Operator ─LCP per load factor→ Contact (`solid::signorini`)
 //!   ─report→ SolidAnswer
+//!   ─estimate (a coarser companion, `adapt::solid`)→ SolidAnswer.accuracy
 //! ```
+//!
+//! With `settings.accuracy`, `adapt::solid` runs these stages round by
+//! round.
 //!
 //! The dimension lives in the `mesh3d` and `solid` rooms; this file only
 //! orders their stages and times them.
@@ -25,16 +29,38 @@ use crate::solid::door::SolidProblem;
 use crate::solid::obstacle::rows_with;
 use crate::solid::report::report;
 use crate::solid::signorini::Contact;
+use crate::solid::two_level::Surface;
 use crate::solid::{fields, signorini, SolidBody};
 
-/// Solves the 3D problem within its time limit, if it has one.
+/// Solves the 3D problem within its time limit, if it has one, with its
+/// error estimate, or refined round by round to `settings.accuracy`
+/// (`adapt::solid`).
 pub fn solve_solid(problem: &SolidProblem, limits: &Limits) -> Result<SolidAnswer, CoreError> {
-    let scene = &problem.scene;
-    let _deadline = scene
+    let _deadline = problem
+        .scene
         .time_limit
         .map(|s| crate::cancel::Deadline::install(std::time::Duration::from_secs_f64(s.min(1e9))));
     // A core this solve keeps busy is not free for a 2D estimate's companion.
     let _busy = crate::adapt::overlap::busy();
+    let once = |p: &SolidProblem| solve_solid_once(p, limits);
+    match problem.scene.settings.accuracy {
+        Some(target) => crate::adapt::solid::refine(problem, target, &once, limits.max_dofs),
+        None => {
+            if problem.scene.settings.estimate {
+                crate::progress::expect_estimate(crate::adapt::solid::COMPANION_SHARE);
+            }
+            let (mut answer, surface) = once(problem)?;
+            crate::adapt::solid::estimate(problem, &mut answer, &surface, &once);
+            Ok(answer)
+        }
+    }
+}
+
+/// One solve of the problem on its mesh, without its estimate or rounds
+/// (and without installing its time limit): the answer, and its candidate
+/// surface for the estimate (`adapt::solid`) or a verification's own.
+pub fn solve_solid_once(problem: &SolidProblem, limits: &Limits) -> Result<(SolidAnswer, Surface), CoreError> {
+    let scene = &problem.scene;
     // The 2D plan counts 2 DOFs per node: 3D's are 1.5 times as many per
     // node. Its factorization is revised from the symbolic analysis.
     let t10 = problem.t10();
@@ -120,6 +146,7 @@ pub fn solve_solid(problem: &SolidProblem, limits: &Limits) -> Result<SolidAnswe
     }
     let (contact, rep) = last.expect("at least one factor");
     obs.enter(Stage::Post);
+    let surface = Surface::of(&body, &rows, &contact, rep.resultant.force).map_err(located)?;
     let o = scene.outputs;
     let fields = (o.mesh || o.displacement || o.stress || o.vtu).then(|| {
         let s = if o.stress || o.vtu {
@@ -139,7 +166,7 @@ pub fn solve_solid(problem: &SolidProblem, limits: &Limits) -> Result<SolidAnswe
         .find(|s| *s != Status::Solved)
         .unwrap_or_else(|| status(&rep, tol));
     crate::progress::stage(ProgressStage::Post);
-    Ok(SolidAnswer {
+    let answer = SolidAnswer {
         body: scene.body.clone(),
         obstacle: scene.obstacle.clone(),
         faces: scene.faces.clone(),
@@ -156,7 +183,12 @@ pub fn solve_solid(problem: &SolidProblem, limits: &Limits) -> Result<SolidAnswe
         outputs: o,
         fields,
         steps: stepped.then_some(steps),
-    })
+        accuracy: None,
+        refinement: None,
+        notes: Vec::new(),
+        warnings: Vec::new(),
+    };
+    Ok((answer, surface))
 }
 
 /// The largest penetration of a row, in the request's length.

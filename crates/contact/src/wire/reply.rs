@@ -60,38 +60,44 @@ pub fn reply(mut report: Report) -> p::SolveReply {
         foundations: report.foundations.into_iter().map(foundation).collect(),
         note_kinds: report.notes.iter().map(|n| note_kind(n.kind)).collect(),
         notes: report.notes.into_iter().map(|n| n.text).collect(),
-        warnings: report
-            .warnings
-            .into_iter()
-            .map(|w| p::Warning {
-                code: warning_code(w.code),
-                value: w.value,
-                limit: w.limit,
-                location: w.location,
-                message: w.message,
-            })
-            .collect(),
+        warnings: warnings(report.warnings),
         vtu: None,
         units: None,
-        refinement: report.refinement.map(|r| p::Refinement {
-            reached: r.reached,
-            stopped: stop_reason(r.stopped),
-            rounds: r
-                .rounds
-                .into_iter()
-                .map(|k| p::RefinementRound {
-                    dofs: k.dofs,
-                    h_min: k.h_min,
-                    pressure_l2: k.pressure_l2,
-                    zone_edge: k.zone_edge,
-                    seconds: k.seconds,
-                })
-                .collect(),
-        }),
+        refinement: report.refinement.map(refinement),
         solid: None,
     };
     crate::output::attach_vtu(&mut reply, outputs, &stress_zz, axisymmetric);
     reply
+}
+
+pub(super) fn warnings(w: Vec<r::Warning>) -> Vec<p::Warning> {
+    w.into_iter()
+        .map(|w| p::Warning {
+            code: warning_code(w.code),
+            value: w.value,
+            limit: w.limit,
+            location: w.location,
+            message: w.message,
+        })
+        .collect()
+}
+
+pub(super) fn refinement(r: r::Refinement) -> p::Refinement {
+    p::Refinement {
+        reached: r.reached,
+        stopped: stop_reason(r.stopped),
+        rounds: r
+            .rounds
+            .into_iter()
+            .map(|k| p::RefinementRound {
+                dofs: k.dofs,
+                h_min: k.h_min,
+                pressure_l2: k.pressure_l2,
+                zone_edge: k.zone_edge,
+                seconds: k.seconds,
+            })
+            .collect(),
+    }
 }
 
 // Exhaustive matches: a variant added in the core and not on the wire does
@@ -122,15 +128,16 @@ fn stop_reason(r: StopReason) -> p::StopReason {
     }
 }
 
-fn basis(b: EstimateBasis) -> p::EstimateBasis {
+pub(super) fn basis(b: EstimateBasis) -> p::EstimateBasis {
     match b {
         EstimateBasis::TwoLevel => p::EstimateBasis::TwoLevel,
         EstimateBasis::TwoLevelFiner => p::EstimateBasis::TwoLevelFiner,
         EstimateBasis::ZoneEdges => p::EstimateBasis::ZoneEdges,
+        EstimateBasis::NoEstimate => p::EstimateBasis::NoEstimate,
     }
 }
 
-fn note_kind(k: NoteKind) -> p::NoteKind {
+pub(super) fn note_kind(k: NoteKind) -> p::NoteKind {
     match k {
         NoteKind::PairSwapped => p::NoteKind::PairSwapped,
         NoteKind::NearlyIncompressible => p::NoteKind::NearlyIncompressible,

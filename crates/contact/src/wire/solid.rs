@@ -11,7 +11,7 @@ use contact_core::solid::report::{ContactPoint, Patch, Resultant};
 use contact_core::solid::signorini::Certificate;
 use contact_proto as p;
 
-use super::reply::{status, timings};
+use super::reply::{basis, note_kind, refinement, status, timings, warnings};
 use crate::output::vtu_solid::{paraview_order, solid_vtu};
 
 pub fn reply(a: SolidAnswer) -> p::SolveReply {
@@ -63,12 +63,12 @@ pub fn reply(a: SolidAnswer) -> p::SolveReply {
         steps: a.steps.map(|s| s.into_iter().map(step).collect()),
         bodies: None,
         foundations: Vec::new(),
-        notes: Vec::new(),
-        note_kinds: Vec::new(),
-        warnings: Vec::new(),
+        note_kinds: a.notes.iter().map(|n| note_kind(n.kind)).collect(),
+        notes: a.notes.into_iter().map(|n| n.text).collect(),
+        warnings: warnings(a.warnings),
         vtu,
         units: None,
-        refinement: None,
+        refinement: a.refinement.map(refinement),
         solid: Some(p::SolidResult {
             body: a.body,
             obstacle: a.obstacle,
@@ -85,6 +85,13 @@ pub fn reply(a: SolidAnswer) -> p::SolveReply {
             elements,
             displacement,
             stress,
+            accuracy: a.accuracy.map(|q| p::SolidAccuracy {
+                basis: basis(q.basis),
+                pressure_l2: q.estimate.pressure_l2,
+                peak: q.estimate.peak,
+                resultant: q.estimate.resultant,
+                contact_area: q.estimate.contact_area,
+            }),
         }),
     }
 }

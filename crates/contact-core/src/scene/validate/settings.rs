@@ -134,7 +134,7 @@ pub fn settings(
 /// `settings.accuracy`: at least one target, each positive and finite (the
 /// pressure's a relative error below 1, not so small that the rounds only
 /// chase round-off), one round at least.
-fn accuracy_target(t: &proto::AccuracyTarget) -> Result<AccuracyTarget, CoreError> {
+pub(super) fn accuracy_target(t: &proto::AccuracyTarget) -> Result<AccuracyTarget, CoreError> {
     const AT: &str = "/settings/accuracy";
     if t.pressure_l2.is_none() && t.zone_edge.is_none() {
         return Err(invalid(

@@ -12,8 +12,8 @@ use contact_proto::{self as proto, InitialGapSpec, OutputKind, SolidMeshSpec, So
 
 use super::{finite, invalid, poisson, positive, settings as wire_settings, Limits};
 use crate::error::{CoreError, InvalidKind as K};
-use crate::mesh::generate::{graded_points, Grading};
-use crate::scene::solid::{FaceLoad, Obstacle, SolidMesh, SolidScene, Support};
+use crate::mesh::generate::Grading;
+use crate::scene::solid::{grid_nodes, FaceLoad, Obstacle, SolidMesh, SolidScene, Support};
 use crate::scene::{Method, Settings};
 
 /// The solid scene of `req`, whose `analysis` is `solid`.
@@ -36,7 +36,7 @@ pub fn solid_scene(req: &SolveRequest, limits: &Limits) -> Result<SolidScene, Co
             "a 3D solid is solved by the condensed active set only: give `auto` or `active_set`",
         ));
     }
-    let settings = settings(req)?;
+    let settings = settings(req, &spec.body.mesh)?;
     wire_settings::units(req)?;
     let b = &spec.body;
     let bp = "/solid/body";
@@ -180,13 +180,12 @@ fn not_2d(req: &SolveRequest) -> Result<(), CoreError> {
     }
     let not_yet = [
         ("/load_path", req.load_path.is_empty()),
-        ("/settings/accuracy", req.settings.accuracy.is_none()),
     ];
     if let Some((path, _)) = not_yet.iter().find(|u| !u.1) {
         return Err(invalid(
             K::Request,
             *path,
-            "not available for a 3D solid yet (no load path, no refinement)",
+            "not available for a 3D solid yet (a load path)",
         ));
     }
     if req.settings.formulation == proto::Formulation::Full {
@@ -233,12 +232,32 @@ fn output_size(outputs: &[OutputKind], nodes: f64, mesh: &SolidMesh, limits: &Li
     wire_settings::within_output_limit(values, "", "", limits)
 }
 
-fn settings(req: &SolveRequest) -> Result<Settings, CoreError> {
+fn settings(req: &SolveRequest, mesh: &SolidMeshSpec) -> Result<Settings, CoreError> {
     let (tolerance, max_iterations) = wire_settings::iteration(req)?;
+    let accuracy = match &req.settings.accuracy {
+        None => None,
+        Some(_) if !matches!(mesh, SolidMeshSpec::Box(_)) => {
+            return Err(invalid(
+                K::Request,
+                "/settings/accuracy",
+                "refinement of a given 3D mesh needs bisection of tetrahedra, which is not built: mesh the body as \
+                 a generated box (`mesh.box` with a grading), or refine the mesh yourself",
+            ));
+        }
+        Some(t) if t.zone_edge.is_some() => {
+            return Err(invalid(
+                K::Request,
+                "/settings/accuracy/zone_edge",
+                "a 3D solid's patches have no zone ends: give pressure_l2",
+            ));
+        }
+        Some(t) => Some(wire_settings::accuracy_target(t)?),
+    };
     Ok(Settings {
         tolerance,
         max_iterations,
-        estimate: false,
+        estimate: req.settings.estimate,
+        accuracy,
         ..Settings::default()
     })
 }
@@ -374,6 +393,7 @@ fn box_nodes(
 ) -> Result<f64, CoreError> {
     let per_cell = if t10 { 2.0 } else { 1.0 };
     let nodes = |cells: [f64; 3]| -> f64 { cells.iter().map(|n| per_cell * n + 1.0).product() };
+    // An upper bound first: the exact count (`grid_nodes`) builds the lines.
     // Bounds on the graded cells of each axis before any is made (an h_min
     // of 5e-324 would ask for 1e323 lines): no cell is below h_min, and past
     // the uniform zone (2 extent wide) each side grows by `ratio` to `size`
@@ -402,12 +422,9 @@ fn box_nodes(
         }
         Ok(())
     })?;
-    let cells: [f64; 3] = std::array::from_fn(|a| match grading {
-        Some((focus, g)) => (graded_points(lo[a], hi[a], focus[a], g, size).len() - 1) as f64,
-        None => bound[a],
-    });
-    too_many(nodes(cells), limits, path)?;
-    Ok(nodes(cells))
+    let exact = grid_nodes(lo, hi, size, grading, t10);
+    too_many(exact, limits, path)?;
+    Ok(exact)
 }
 
 /// The size limit on 3 DOFs per node.

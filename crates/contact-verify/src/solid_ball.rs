@@ -1,0 +1,53 @@
+//! Hertz's sphere on a flat in 3D (`proto/examples/solid_ball_on_flat.json`,
+//! a quarter of a 10 mm cube standing for the ball, its gap Hertz's
+//! paraboloid) at any element and `h_min`, solved through the core with its
+//! candidate surface (`solid::two_level::Surface`), and Hertz's pressure in
+//! the surface's nondimensional units: what the 3D error bar is checked
+//! against (`examples/solid_effectivity.rs`, `tests/solid_error_bar.rs`).
+
+use contact_core::solid::door::{admit, SolidProblem};
+use contact_core::Limits;
+use serde_json::{json, Value};
+
+use crate::reference::hertz_sphere;
+
+pub const E: f64 = 210000.0;
+pub const NU: f64 = 0.3;
+pub const R: f64 = 50.0;
+/// The whole ball's load (the quarter carries a fourth).
+pub const P: f64 = 6153.846153846154;
+/// The scene's length scale: the cube's side.
+pub const L: f64 = 10.0;
+
+/// The example's request with its element (`t4`, `t10`) and `h_min` [mm].
+pub fn request(element: &str, h_min: f64) -> Value {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../proto/examples/solid_ball_on_flat.json"
+    );
+    let mut req: Value = serde_json::from_str(&std::fs::read_to_string(path).expect("the example")).unwrap();
+    let b = &mut req["solid"]["body"]["mesh"]["box"];
+    b["element"] = json!(element);
+    b["grading"]["h_min"] = json!(h_min);
+    req
+}
+
+/// The request through the door, as the service admits it.
+pub fn problem(req: &Value, limits: &Limits) -> SolidProblem {
+    let parsed: contact_proto::SolveRequest = serde_json::from_value(req.clone()).expect("a request");
+    let scene = contact_core::scene::validate::solid_scene(&parsed, limits).expect("a valid scene");
+    admit(scene).expect("an admitted problem")
+}
+
+/// Hertz's contact radius and peak over the scene's scales (a / L, p0 / E).
+pub fn hertz() -> (f64, f64) {
+    let (a, p0) = hertz_sphere(P, R, E / (1.0 - NU * NU));
+    (a / L, p0 / E)
+}
+
+/// Hertz's pressure p0 √(1 − r²/a²) at a point of the flat face z = 0, in
+/// the scene's units.
+pub fn hertz_pressure(x: [f64; 3]) -> f64 {
+    let (a, p0) = hertz();
+    p0 * (1.0 - (x[0] * x[0] + x[1] * x[1]) / (a * a)).max(0.0).sqrt()
+}
