@@ -62,7 +62,7 @@ pub fn solve(scene: &Scene, limits: &Limits, cache: Option<&OperatorCache>) -> R
         crate::progress::expect_estimate(crate::adapt::estimate_share(scene));
     }
     if let Some(target) = scene.settings.accuracy {
-        return crate::adapt::refine(scene, target, &uncached, limits.max_dofs);
+        return crate::adapt::refine(scene, target, &uncached, limits);
     }
     if !scene.settings.estimate {
         return solve_steps(scene, limits, cache);

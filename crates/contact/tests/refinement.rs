@@ -726,7 +726,7 @@ fn refinement_bounds_the_energy_of_the_returned_round_alone() {
     let target = scene.settings.accuracy.unwrap();
     let bare = |s: &Scene| contact_core::solve::solve_steps(s, &limits, None);
     let est = Counting(RefCell::new(Vec::new()));
-    let r = contact_core::adapt::refine_by(&est, &scene, target, &bare, limits.max_dofs).unwrap();
+    let r = contact_core::adapt::refine_by(&est, &scene, target, &bare, &limits).unwrap();
     let rounds = &r.refinement.as_ref().unwrap().rounds;
     assert!(rounds.len() >= 2, "{rounds:?}");
     let asked = est.0.into_inner();

@@ -41,7 +41,8 @@
 //! graded window is widened to cover every zone the last round found (with a
 //! quarter of margin); since the far field then shrinks less than the zones,
 //! two rounds are not in Richardson's ratio, and each round is estimated
-//! against its own coarser companion as above. Given meshes: each round
+//! against its own coarser companion as above (solved beside the round when
+//! a core is free: `overlap::round_estimated`). Given meshes: each round
 //! splits every triangle in four (its far field too), and is estimated against
 //! the round before, which is its coarser companion exactly (the first round
 //! against its region meshed again; where that companion is the finer one, it
@@ -71,7 +72,7 @@ use crate::outcome::{EstimateBasis, Note, NoteKind, StopReason, WarningCode};
 use std::time::Instant;
 
 use crate::error::CoreError;
-use crate::scene::{AccuracyTarget, Scene};
+use crate::scene::{AccuracyTarget, Limits, Scene};
 use crate::solution::accuracy;
 use crate::solution::report::{PairAccuracy, Refinement, Report, Round, Status, Warning};
 use cost::{solve_seconds, TIME_GROWTH};
@@ -266,10 +267,17 @@ fn with_energy(report: &mut Report) {
 
 /// Solves, estimates and refines until `target` is met or a limit stops the
 /// rounds (module doc).
-/// `max_dofs`: the deployment's size limit, which no round may pass (its
-/// prediction stops the rounds before the mesh is built).
-pub fn refine(scene: &Scene, target: AccuracyTarget, solve: &Solver, max_dofs: usize) -> Result<Report, CoreError> {
-    refine_by(estimator::of(scene), scene, target, solve, max_dofs)
+/// `limits`: the deployment's, whose `max_dofs` no round may pass (its
+/// prediction stops the rounds before the mesh is built) and whose `overlap`
+/// lets a generated round's companion be solved beside it
+/// (`overlap::round_estimated`).
+pub fn refine(
+    scene: &Scene,
+    target: AccuracyTarget,
+    solve: &overlap::Companions,
+    limits: &Limits,
+) -> Result<Report, CoreError> {
+    refine_by(estimator::of(scene), scene, target, solve, limits)
 }
 
 /// `refine` by `est`. The energy bound is made once, for the round returned
@@ -281,20 +289,26 @@ pub fn refine_by(
     est: &dyn Estimator,
     scene: &Scene,
     target: AccuracyTarget,
-    solve: &Solver,
-    max_dofs: usize,
+    solve: &overlap::Companions,
+    limits: &Limits,
 ) -> Result<Report, CoreError> {
+    let max_dofs = limits.max_dofs;
     let target = AccuracyTarget {
         max_dofs: target.max_dofs.min(max_dofs),
         ..target
     };
     let started = Instant::now();
     crate::progress::round(1);
-    let mut report = solve(scene)?;
-    let mut finer = estimate_by(est, scene, &mut report, solve, max_dofs);
     // Given meshes refine uniformly: each round is the previous one's finer
     // companion (module doc).
     let uniform = given(scene);
+    let (mut report, mut finer) = if uniform {
+        let mut report = solve(scene)?;
+        let finer = estimate_by(est, scene, &mut report, solve, max_dofs);
+        (report, finer)
+    } else {
+        (overlap::round_estimated(est, scene, limits, solve)?, None)
+    };
     let mut current = scene.clone();
     let mut rounds = vec![round(&current, &report, started.elapsed().as_secs_f64())];
     let mut growth = None::<f64>;
@@ -370,7 +384,14 @@ pub fn refine_by(
                         ));
                     }
                 };
-                match solve(&next) {
+                // A generated round is estimated with it (its companion
+                // beside it when a core is free), a given mesh's below.
+                let solved = if uniform {
+                    solve(&next)
+                } else {
+                    overlap::round_estimated(est, &next, limits, solve)
+                };
+                match solved {
                     Ok(r) => (next, r),
                     Err(CoreError::Timeout { .. }) => {
                         unbounded(&mut report);
@@ -403,8 +424,6 @@ pub fn refine_by(
                 }
             }
             with_energy(&mut fine);
-        } else {
-            estimate_by(est, &next, &mut fine, solve, max_dofs);
         }
         let h_step = smallest_size(&next) / smallest_size(&current);
         if h_step > 0.0 && h_step < 1.0 {
