@@ -78,6 +78,7 @@ fn load_factors_grow_the_rows_the_first_factor_screened() {
     req["load_factors"] = json!([0.25, 1.0, 4.0]);
     let r = solved(&req);
     let steps = r.steps.as_ref().expect("three steps");
+    assert_eq!(steps.len(), 3);
     for (step, k) in steps.iter().zip([0.25, 1.0, 4.0]) {
         assert_same_pressures(&step.pairs[0].points, &strip(0.05 * k));
     }

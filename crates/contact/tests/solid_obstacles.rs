@@ -554,8 +554,10 @@ fn a_height_field_sampled_from_a_paraboloid_is_that_paraboloid() {
 }
 
 /// A height field is refused at the field at fault: rows of unequal
-/// length, a non-finite height, a grid that does not reach under the whole
-/// contact face (a candidate off the grid has no height), a zero spacing.
+/// length, a grid that does not reach under the whole contact face (a
+/// candidate off the grid has no height), a zero spacing, a single row. A
+/// height that is no number is refused by the door's parser (JSON carries
+/// no NaN or infinity).
 #[test]
 fn malformed_height_fields_are_refused_at_their_fields() {
     let field = |heights: Value, spacing: Value| {

@@ -358,12 +358,17 @@ pub fn refine_by(
                 if solve_seconds(&report) * g.powf(TIME_GROWTH) * companion > crate::cancel::remaining_secs() {
                     break StopReason::TimeLimit;
                 }
-                let next = if uniform {
+                let mut next = if uniform {
                     resized(&current, [1.0 / RATIO; 3], None)
                 } else {
                     resized(&current, [f, field_step(f), field_step(f)], Some(&report))
                 }
                 .expect("refining always succeeds");
+                // The round's size as the budget predicts it (the unknowns'
+                // measured growth, 2 per node), where the resized scene's own
+                // count, compounded from round to round, reads low: what
+                // `overlap` judges a companion beside it by (review).
+                next.estimated_nodes = next.estimated_nodes.max(report.size.dofs as f64 * g / 2.0);
                 // The round as built, whose spacing a punch's corners may have
                 // moved (`sizing`), against the budget once more.
                 let built = smallest_size(&next) / smallest_size(&current);
@@ -432,6 +437,10 @@ pub fn refine_by(
         let r = round(&next, &fine, t.elapsed().as_secs_f64());
         let last = *rounds.last().expect("one round ran");
         rounds.push(r);
+        if fine.status != Status::Solved {
+            // The answer stays the last round that solved (module doc).
+            break StopReason::NotSolved;
+        }
         let better = |now: f64, before: f64| now <= PROGRESS * before;
         let improving = match (r.pressure_l2, last.pressure_l2) {
             (Some(a), Some(b)) if target.pressure_l2.is_some() => better(a, b),

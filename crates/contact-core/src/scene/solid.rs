@@ -126,15 +126,47 @@ pub struct SolidScene {
 /// the grid with each cell halved.
 pub fn grid_nodes(lo: [f64; 3], hi: [f64; 3], size: f64, grading: Option<([f64; 3], Grading)>, t10: bool) -> f64 {
     let per_cell = if t10 { 2.0 } else { 1.0 };
+    let bound = cells_bound(lo, hi, size, grading);
     (0..3)
         .map(|a| {
             let cells = match grading {
+                // Past a million cells on an axis no mesh is solvable: the
+                // bound answers without making 1e9 lines (an h_min of 1e-8
+                // of the box, a refinement round's window widened).
+                Some(_) if bound[a] > AXIS_CELLS_MADE => bound[a],
                 Some((focus, g)) => (graded_points(lo[a], hi[a], focus[a], g, size).len() - 1) as f64,
                 None => ((hi[a] - lo[a]) / size).ceil().max(1.0),
             };
             per_cell * cells + 1.0
         })
         .product()
+}
+
+/// Cells per axis above which `grid_nodes` counts by `cells_bound`.
+const AXIS_CELLS_MADE: f64 = 1e6;
+
+/// An upper bound of each axis's cells, before any line is made (an h_min
+/// of 5e-324 would ask for 1e323 lines): no cell is below h_min, and past
+/// the uniform zone (2 extent wide) each side grows by `ratio` to `size`
+/// within log(size / h_min) / log(ratio) + 1 cells.
+pub fn cells_bound(lo: [f64; 3], hi: [f64; 3], size: f64, grading: Option<([f64; 3], Grading)>) -> [f64; 3] {
+    std::array::from_fn(|a| {
+        let length = hi[a] - lo[a];
+        let cells = match grading {
+            None => (length / size).ceil().max(1.0),
+            Some((_, g)) => {
+                let growing = if g.ratio > 1.0 {
+                    (size / g.h_min).ln() / g.ratio.ln() + 2.0
+                } else {
+                    f64::INFINITY
+                };
+                (length / g.h_min)
+                    .min(2.0 * (g.extent / g.h_min + 1.0) + 2.0 * growing + length / size + 2.0)
+                    .ceil()
+            }
+        };
+        cells.max(1.0)
+    })
 }
 
 impl SolidScene {

@@ -15,8 +15,9 @@
 //! will push in too), condenses them on the same factor and solves again.
 //! A pass that leaves no row outside it penetrating is the answer of the LCP
 //! over every candidate: its own rows satisfy the LCP, and every other row
-//! has λ = 0 and a gap ≥ 0, so it is complementary; W being positive
-//! definite, that answer is the only one. After `MAX_PASSES`, or once the
+//! has λ = 0 and a gap ≥ 0, so it is complementary (the displacements of
+//! the LCP's answers are one: the potential energy is strictly convex in
+//! u). After `MAX_PASSES`, or once the
 //! rows chosen pass `FULL_SHARE` of the candidates, every row is condensed.
 //!
 //! It holds for exact methods on the plain LCP alone: free motions (their
@@ -112,6 +113,22 @@ fn solve(scene: &Scene, model: &Model, mut op: Arc<Prepared>, f: &[f64]) -> Resu
     let m = cons.len();
     let (mut t_condensation, mut iterations, mut t_contact) = (0.0, 0, 0.0);
     let mut pass = 0;
+    if op.rows.as_ref().is_some_and(Vec::is_empty) && f.iter().all(|v| *v == 0.0) {
+        // No load (the obstacles' places alone press the body): without
+        // contact u = 0, and the first pass reads the gaps as given, with no
+        // sweep. On the Hertz block of `contact-bench --floor` (1.2M DOF)
+        // 1,267 of 1,371 rows overlap past half the deepest, 1,053 press:
+        // every row is condensed at once, and the sweep would have been lost.
+        let g = cons.g();
+        let deepest = g.iter().fold(0.0f64, |a, v| a.max(-v));
+        if deepest > 0.0 {
+            let chosen: Vec<usize> = (0..m).filter(|&i| g[i] < -FIRST * deepest).collect();
+            let full = chosen.len() as f64 > FULL_SHARE * m as f64;
+            op = Arc::new(condensed::condense_subset(&op, cons, (!full).then_some(chosen))?);
+            t_condensation += op.t_condensation;
+            pass = 1;
+        }
+    }
     loop {
         pass += 1;
         let rows: Vec<usize> = op.rows.clone().unwrap_or_else(|| (0..m).collect());
@@ -139,14 +156,14 @@ fn solve(scene: &Scene, model: &Model, mut op: Arc<Prepared>, f: &[f64]) -> Resu
                 t_condensation,
             });
         }
-        // Per unit of the row's weight (a mortar row's gap is ∫ gap φ_i, which
-        // a graded mesh's larger sides scale up): a length on every row. A
-        // penetration within the round-off of g − B u is not a row to press.
+        // A row's g and B are per unit of its weight already (`contact::rows`):
+        // its gap is a length. A penetration within the round-off of
+        // g − B u is not a row to press.
         let bu = cons.apply(&sol.u);
         let (mut gaps, mut noise) = (vec![0.0; m], vec![0.0; m]);
         for (i, c) in cons.candidates.iter().enumerate() {
-            gaps[i] = (c.g - bu[i]) / c.weight;
-            noise[i] = ROUND_OFF * c.g.abs().max(bu[i].abs()) / c.weight;
+            gaps[i] = c.g - bu[i];
+            noise[i] = ROUND_OFF * c.g.abs().max(bu[i].abs());
         }
         let mut taken = vec![false; m];
         rows.iter().for_each(|&i| taken[i] = true);

@@ -13,7 +13,7 @@ use contact_proto::{self as proto, InitialGapSpec, OutputKind, SolidMeshSpec, So
 use super::{finite, invalid, poisson, positive, settings as wire_settings, Limits};
 use crate::error::{CoreError, InvalidKind as K};
 use crate::mesh::generate::Grading;
-use crate::scene::solid::{grid_nodes, FaceLoad, Obstacle, SolidMesh, SolidScene, Support};
+use crate::scene::solid::{cells_bound, grid_nodes, FaceLoad, Obstacle, SolidMesh, SolidScene, Support};
 use crate::scene::{Method, Settings};
 
 /// The solid scene of `req`, whose `analysis` is `solid`.
@@ -48,7 +48,12 @@ pub fn solid_scene(req: &SolveRequest, limits: &Limits) -> Result<SolidScene, Co
     )?;
     let nu = poisson(b.material.poisson_ratio, &format!("{bp}/material/poisson_ratio"))?;
     let (length, estimated_nodes, mesh) = mesh(&b.mesh, limits, &format!("{bp}/mesh"))?;
-    output_size(&req.outputs, estimated_nodes, &mesh, limits)?;
+    // Refined, the fields are the last round's: up to the rounds' budget.
+    let answered_nodes = match &req.settings.accuracy {
+        Some(a) => estimated_nodes.max(a.max_dofs.min(limits.max_dofs) as f64 / 3.0),
+        None => estimated_nodes,
+    };
+    output_size(&req.outputs, answered_nodes, &mesh, limits)?;
     let mut supports = Vec::with_capacity(b.supports.len());
     for (k, s) in b.supports.iter().enumerate() {
         let sp = format!("{bp}/supports/{k}");
@@ -178,9 +183,7 @@ fn not_2d(req: &SolveRequest) -> Result<(), CoreError> {
                 contacts) out",
         ));
     }
-    let not_yet = [
-        ("/load_path", req.load_path.is_empty()),
-    ];
+    let not_yet = [("/load_path", req.load_path.is_empty())];
     if let Some((path, _)) = not_yet.iter().find(|u| !u.1) {
         return Err(invalid(
             K::Request,
@@ -394,26 +397,7 @@ fn box_nodes(
     let per_cell = if t10 { 2.0 } else { 1.0 };
     let nodes = |cells: [f64; 3]| -> f64 { cells.iter().map(|n| per_cell * n + 1.0).product() };
     // An upper bound first: the exact count (`grid_nodes`) builds the lines.
-    // Bounds on the graded cells of each axis before any is made (an h_min
-    // of 5e-324 would ask for 1e323 lines): no cell is below h_min, and past
-    // the uniform zone (2 extent wide) each side grows by `ratio` to `size`
-    // within log(size / h_min) / log(ratio) + 1 cells.
-    let bound: [f64; 3] = std::array::from_fn(|a| {
-        let length = hi[a] - lo[a];
-        match grading {
-            None => (length / size).ceil().max(1.0),
-            Some((_, g)) => {
-                let growing = if g.ratio > 1.0 {
-                    (size / g.h_min).ln() / g.ratio.ln() + 2.0
-                } else {
-                    f64::INFINITY
-                };
-                (length / g.h_min)
-                    .min(2.0 * (g.extent / g.h_min + 1.0) + 2.0 * growing + length / size + 2.0)
-                    .ceil()
-            }
-        }
-    });
+    let bound = cells_bound(lo, hi, size, grading);
     too_many(nodes(bound.map(|b| b.max(1.0))), limits, path).or_else(|e| {
         // Over by the bound: made, the lines tell; a bound past 1e7 cells on
         // one axis is over any limit this service is run with (4e7 nodes).
