@@ -317,7 +317,9 @@ pub struct SolidResult {
     /// its mean part is the element's constant pressure.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stress: Option<Vec<[f64; 6]>>,
-    /// The answer's error estimate, absent with `settings.estimate: false`.
+    /// The answer's error estimate (of the last load factor's answer, with
+    /// `load_factors`), absent with `settings.estimate: false` unless
+    /// `settings.accuracy` asks for rounds, which are always estimated.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub accuracy: Option<SolidAccuracy>,
 }

@@ -84,8 +84,10 @@ pub struct EnergyBound {
     /// ‖u_eq − u_h‖_E: how far the answer moves when its nodal contact
     /// forces become p*'s loads.
     pub shift: f64,
-    /// The potential energy J(u_h) = ½ a(u_h, u_h) − ℓ(u_h) plus the beds'
-    /// ∫ ½ k (w(u_h)⁺)² dx (the continuous springs' energy), for checks:
+    /// The potential energy ½ a(u_h, u_h) − ℓ(u_h) plus the beds'
+    /// ∫ ½ k (w⁺)² dx (the continuous springs' energy), the latter taken at
+    /// the admissible v: J(u_h) wherever v = u_h (no obstacle side's
+    /// correction moved a bed side's node), for checks:
     /// 2 (J(u_h) − J(u)) ≥ ‖u − u_h‖²_E when u_h is admissible.
     pub potential: f64,
 }
