@@ -21,11 +21,9 @@ pub const L: f64 = 10.0;
 
 /// The example's request with its element (`t4`, `t10`) and `h_min` [mm].
 pub fn request(element: &str, h_min: f64) -> Value {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../proto/examples/solid_ball_on_flat.json"
-    );
-    let mut req: Value = serde_json::from_str(&std::fs::read_to_string(path).expect("the example")).unwrap();
+    // Built in: the bench binary runs from anywhere.
+    let mut req: Value =
+        serde_json::from_str(include_str!("../../../proto/examples/solid_ball_on_flat.json")).expect("the example");
     let b = &mut req["solid"]["body"]["mesh"]["box"];
     b["element"] = json!(element);
     b["grading"]["h_min"] = json!(h_min);

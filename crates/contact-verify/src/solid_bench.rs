@@ -11,12 +11,10 @@
 //! (`solid_scene`, `solid::door::admit`, `solve_solid`), in process, on
 //! `--threads` threads (1 by default, the service's). The harness returns rows; the CLI prints and writes them.
 
-use serde_json::json;
-
 use crate::reference::{edge_fit, hertz_sphere};
+use crate::solid_ball::{problem, request};
 use contact_core::solid::answer::SolidAnswer;
 use contact_core::Limits;
-use contact_proto::SolveRequest;
 
 /// h_min at the apex per element [mm]: T10's quadratic cells are as fine as
 /// T4's of half their size, and T10 at 0.1 mm would factor into 4.1 GB
@@ -102,16 +100,6 @@ impl SolidRow {
     }
 }
 
-/// The example's request at `h_min` [mm] with `element` ("t4" or "t10").
-pub fn ball_request(h_min: f64, element: &str) -> serde_json::Value {
-    let mut req: serde_json::Value =
-        serde_json::from_str(include_str!("../../../proto/examples/solid_ball_on_flat.json")).expect("example is JSON");
-    let mesh = &mut req["solid"]["body"]["mesh"]["box"];
-    mesh["element"] = json!(element);
-    mesh["grading"]["h_min"] = json!(h_min);
-    req
-}
-
 /// The example's (load, radius, E, ν): the quarter's top pressure times its
 /// area, four times (the two symmetry planes).
 fn ball_data(req: &serde_json::Value) -> (f64, f64, f64, f64) {
@@ -128,10 +116,8 @@ fn ball_data(req: &serde_json::Value) -> (f64, f64, f64, f64) {
 
 /// Solves `req` (a solid's) as the service does, in process.
 pub fn solve(req: &serde_json::Value, limits: &Limits) -> SolidAnswer {
-    let parsed: SolveRequest = serde_json::from_value(req.clone()).expect("the bench's request parses");
-    let scene = contact_core::scene::validate::solid_scene(&parsed, limits).expect("the bench's scene is valid");
-    let problem = contact_core::solid::door::admit(scene).expect("the bench's mesh is valid");
-    contact_core::solve_solid(&problem, limits).unwrap_or_else(|e| panic!("the bench's ball was refused: {e:?}"))
+    contact_core::solve_solid(&problem(req, limits), limits)
+        .unwrap_or_else(|e| panic!("the bench's ball was refused: {e:?}"))
 }
 
 /// a from the points in contact (`reference::edge_fit`).
@@ -150,13 +136,13 @@ pub fn fitted_radius(a: &SolidAnswer) -> f64 {
 /// each the median-total of `repeat` solves.
 pub fn run(quick: bool, repeat: usize, mut progress: impl FnMut(&SolidRow)) -> Vec<SolidRow> {
     let limits = Limits::default();
-    let (load, radius, e, nu) = ball_data(&ball_request(0.2, "t10"));
+    let (load, radius, e, nu) = ball_data(&request("t10", 0.2));
     let (a, p0) = hertz_sphere(load, radius, e / (1.0 - nu * nu));
     let take = if quick { 2 } else { 4 };
     let mut rows = Vec::new();
     for (element, levels) in [("t4", T4_LEVELS), ("t10", T10_LEVELS)] {
         for &h in &levels[..take] {
-            let req = ball_request(h, element);
+            let req = request(element, h);
             let mut answers: Vec<SolidAnswer> = (0..repeat.max(1)).map(|_| solve(&req, &limits)).collect();
             answers.sort_by(|x, y| x.timings.total.total_cmp(&y.timings.total));
             let r = answers.swap_remove(answers.len() / 2);

@@ -10,7 +10,8 @@
 //! −3.8 % to +1.0 % and from −26 % to −6.5 %: the finer row's errors are
 //! asked to be smaller than the coarser's.
 
-use contact_verify::solid_bench::{ball_request, run};
+use contact_verify::solid_ball::request;
+use contact_verify::solid_bench::run;
 
 #[test]
 fn the_quick_rows_are_certified_and_converge() {
@@ -36,6 +37,6 @@ fn the_quick_rows_are_certified_and_converge() {
 fn the_bench_solves_the_example() {
     let example: serde_json::Value =
         serde_json::from_str(include_str!("../../../proto/examples/solid_ball_on_flat.json")).unwrap();
-    let req = ball_request(0.2, "t10");
+    let req = request("t10", 0.2);
     assert_eq!(req, example, "the example is T10 at h_min 0.2");
 }
