@@ -1,4 +1,4 @@
-//! Curved rigid obstacles of a 3D solid (sphere, cylinder, paraboloid)
+//! Curved rigid obstacles of a 3D solid (sphere, cylinder, paraboloid, height field)
 //! through the wire, against closed forms and against our own 2D answer:
 //!
 //! - a rigid sphere pressed into a block (the example

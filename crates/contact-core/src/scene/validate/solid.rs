@@ -132,7 +132,7 @@ pub fn solid_scene(req: &SolveRequest, limits: &Limits) -> Result<SolidScene, Co
                 K::Request,
                 "/solid/contact/initial_gap",
                 "an initial gap profile stands a flat face for a curved one against a plane: give the obstacle's \
-                    own shape (sphere, cylinder, paraboloid) instead",
+                    own shape (sphere, cylinder, paraboloid, height field) instead",
             ));
         }
         Some(InitialGapSpec::Paraboloid { apex, radius }) => {
