@@ -279,6 +279,27 @@ fn bad_meshes_are_refused_naming_the_item() {
             n.push([5.0, 5.0, 5.0]);
             (n, elems.clone(), vec![], "/m/nodes/5", "used by no element")
         },
+        // The first tetrahedron listed again (its corners rotated): every
+        // face of it is used twice on the same side.
+        (
+            nodes.clone(),
+            vec![0, 1, 2, 3, 0, 2, 4, 3, 1, 2, 0, 3],
+            vec![],
+            "/m/elements/2",
+            "same side",
+        ),
+        // A third tetrahedron on the shared face 0-2-3, on the second's side.
+        {
+            let mut n = nodes.clone();
+            n.push([-1.0, 0.5, 0.5]);
+            (
+                n,
+                vec![0, 1, 2, 3, 0, 2, 4, 3, 0, 2, 5, 3],
+                vec![],
+                "/m/elements/2",
+                "shared by elements 0, 1, 2",
+            )
+        },
         (
             nodes.clone(),
             elems.clone(),

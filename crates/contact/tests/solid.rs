@@ -202,6 +202,47 @@ fn a_ball_on_a_flat_matches_hertz() {
     assert_eq!(s.patches[0].peak_at, [0.0; 3], "the peak at the apex");
 }
 
+/// A patch narrower than the mesh resolves is never answered without a
+/// warning. The Hertz ball on T4 at h_min 0.2 mm (a / h = 5: a 1.4 %, p0
+/// 1.0 % off Hertz in `contact-bench --solid`) is not warned; the same scene
+/// with E read in Pa as if in MPa (10⁶ too stiff, a 100 times smaller: the
+/// unit slip) presses a patch of one node and is `solved` with
+/// `coarse_contact_zone`, its count of face spacings across below 1 (the
+/// diameter of a disk of one node's tributary area, a third of its six
+/// faces: 2 √(h²/π) / h = 1.13 h on a grid of right triangles; measured
+/// below), the limit 4 and a size to refine to.
+#[test]
+fn a_patch_the_mesh_does_not_resolve_is_warned() {
+    let ball = |stiffer: f64| {
+        let mut req = example("solid_ball_on_flat.json");
+        let body = &mut req["solid"]["body"];
+        body["mesh"]["box"]["element"] = json!("t4");
+        body["mesh"]["box"]["grading"]["h_min"] = json!(0.2);
+        let e = body["material"]["youngs_modulus"].as_f64().unwrap();
+        body["material"]["youngs_modulus"] = json!(e * stiffer);
+        solved(&req)
+    };
+    let resolved = ball(1.0);
+    let coarse = |r: &contact::proto::SolveReply| {
+        r.warnings
+            .iter()
+            .find(|w| w.code == "coarse_contact_zone")
+            .cloned()
+    };
+    assert!(coarse(&resolved).is_none(), "{:?}", resolved.warnings);
+    // `solved` checks the status.
+    let slipped = ball(1e6);
+    let w = coarse(&slipped).unwrap_or_else(|| panic!("no coarse_contact_zone: {:?}", slipped.warnings));
+    println!("{w:?}");
+    assert_eq!((w.location.as_str(), w.limit), ("/solid/contact", 4.0), "{w:?}");
+    assert!(w.value < 1.5, "one node's patch: {w:?}");
+    assert!(
+        w.message.contains("unit slip") && w.message.contains("Refine"),
+        "{}",
+        w.message
+    );
+}
+
 /// A coarse Hertz ball on T4 (nonuniform pressure, a patch edge inside the
 /// mesh) in mm, N, MPa and in m, N, Pa: lengths ×1e-3, stresses ×1e6,
 /// forces as they are, moments ×1e-3. The door scales both to the same

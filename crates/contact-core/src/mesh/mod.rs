@@ -16,6 +16,7 @@ pub mod estimate;
 pub mod generate;
 pub mod gmsh;
 pub(crate) mod msh;
+pub mod overlap;
 pub mod quality;
 pub mod refine;
 pub mod uniform;

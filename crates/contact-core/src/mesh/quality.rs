@@ -6,7 +6,7 @@
 
 use std::collections::{BTreeMap, HashMap};
 
-use super::{signed_area, Edge, Mesh2d, Order};
+use super::{overlap, signed_area, Edge, Mesh2d, Order};
 use crate::error::{CoreError, InvalidKind};
 
 /// Smallest admissible ratio of an element's area to its longest edge squared
@@ -197,6 +197,15 @@ pub fn try_build(
             }
         }
         elems.extend_from_slice(el);
+    }
+    let edges = |e: usize| {
+        let c = &elems[npe * e..];
+        [(0, 1), (1, 2), (2, 0)].map(|(i, j)| overlap::side_key([c[i], c[j]]))
+    };
+    if let Some(key) = overlap::overlapped_side(elements.len(), nodes.len(), edges) {
+        let users = overlap::users(elements.len(), key, edges);
+        let at = users.last().map_or(Item::Elements, |&e| Item::Element(e));
+        return Err(bad(at, overlap::why("edge", key, &users)));
     }
     check_nodes(&nodes, elements, &bad)?;
     // Only the edge sets' edges are looked up, so only they are kept: by

@@ -23,6 +23,7 @@ use std::collections::{BTreeMap, HashMap};
 use super::{signed_volume, sub, Face, Mesh3d, Order, EDGES, FACES};
 use crate::error::{CoreError, InvalidKind};
 use crate::fem::reference::{physical_gradients, ReferenceElement, T10};
+use crate::mesh::overlap;
 pub use crate::mesh::quality::Item;
 use crate::mesh::quality::{check_used_and_connected, index_fault, inline_locate, Conn};
 
@@ -93,6 +94,15 @@ pub fn try_build(
         elems.extend_from_slice(el);
     }
     check_used_and_connected(nodes.len(), elements, &bad)?;
+    let faces = |e: usize| {
+        let t = &elems[npe * e..];
+        FACES.map(|[p, q, r]| overlap::side_key([t[p], t[q], t[r]]))
+    };
+    if let Some(key) = overlap::overlapped_side(elements.len(), nodes.len(), faces) {
+        let users = overlap::users(elements.len(), key, faces);
+        let at = users.last().map_or(Item::Elements, |&e| Item::Element(e));
+        return Err(bad(at, overlap::why("face", key, &users)));
+    }
     if order == Order::T10 {
         check_shared_midsides(&elems, &bad)?;
     }

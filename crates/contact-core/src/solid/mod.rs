@@ -37,6 +37,7 @@ pub mod report;
 pub mod signorini;
 pub mod stiffness;
 pub mod two_level;
+pub mod validity;
 
 use crate::error::{CoreError, InvalidKind};
 use crate::mesh3d::Mesh3d;

@@ -30,6 +30,7 @@ use crate::solid::obstacle::rows_with;
 use crate::solid::report::report;
 use crate::solid::signorini::Contact;
 use crate::solid::two_level::Surface;
+use crate::solid::validity::coarse_patches;
 use crate::solid::{fields, signorini, SolidBody};
 
 /// Solves the 3D problem within its time limit, if it has one, with its
@@ -166,6 +167,7 @@ pub fn solve_solid_once(problem: &SolidProblem, limits: &Limits) -> Result<(Soli
         .find(|s| *s != Status::Solved)
         .unwrap_or_else(|| status(&rep, tol));
     crate::progress::stage(ProgressStage::Post);
+    let warnings = coarse_patches(&body, &rows, &rep, scene.length);
     let answer = SolidAnswer {
         body: scene.body.clone(),
         obstacle: scene.obstacle.clone(),
@@ -186,7 +188,7 @@ pub fn solve_solid_once(problem: &SolidProblem, limits: &Limits) -> Result<(Soli
         accuracy: None,
         refinement: None,
         notes: Vec::new(),
-        warnings: Vec::new(),
+        warnings,
     };
     Ok((answer, surface))
 }
