@@ -70,10 +70,8 @@ fn children(diagonal: usize) -> [[usize; 4]; 8] {
     let ring = [p[0], q[0], p[1], q[1]];
     let corner = |i: usize| {
         let mut c = [i; 4];
-        let mut k = 1;
-        for j in (0..4).filter(|&j| j != i) {
+        for (k, j) in (1..).zip((0..4).filter(|&j| j != i)) {
             c[k] = mid(i, j);
-            k += 1;
         }
         c
     };
