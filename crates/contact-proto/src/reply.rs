@@ -122,7 +122,8 @@ pub struct Refinement {
 #[serde(deny_unknown_fields)]
 pub struct RefinementRound {
     pub dofs: usize,
-    /// Smallest element size asked of the generators in this round [length].
+    /// Smallest element size asked of the generators in this round (a given
+    /// 3D mesh refined in rounds: its shortest element edge) [length].
     pub h_min: f64,
     /// Largest estimated `pressure_l2` over the pairs (null where not estimated).
     pub pressure_l2: Option<f64>,

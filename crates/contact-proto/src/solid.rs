@@ -332,9 +332,12 @@ pub struct SolidAccuracy {
     /// `two_level`: a generated box against the same scene with its grading's
     /// `h_min`, growth (ratio − 1) and far-field `size` doubled, every
     /// element about twice as large, Richardson-scaled (the 2D estimate's
-    /// design); `none`: no estimate, for a given (inline or Gmsh) mesh, whose
-    /// companion is not made (a finer one would cost several solves), or when
-    /// the companion did not solve (the reply's notes say why).
+    /// design), or with `settings.accuracy` a given mesh's refinement round
+    /// against the round before (every tetrahedron split in eight); `none`:
+    /// no estimate, for a given (inline or Gmsh) mesh without
+    /// `settings.accuracy`, whose companion is not made (a finer one would
+    /// cost several solves), or when the companion did not solve (the
+    /// reply's notes say why).
     pub basis: crate::EstimateBasis,
     /// Estimated relative L2 error of the contact pressure over the contact
     /// face set: of the field the points describe, linear over each face

@@ -30,6 +30,41 @@ pub fn request(element: &str, h_min: f64) -> Value {
     req
 }
 
+/// The same request with the box meshed here and handed over as a given
+/// inline mesh (nodes, tetrahedra and face sets, in mm), as a user's own mesh
+/// comes: the core's generator (`mesh3d::generate::box_mesh`) with the
+/// example's box and grading, `h_min` [mm].
+pub fn given(element: &str, h_min: f64) -> Value {
+    use contact_core::mesh::generate::Grading;
+    use contact_core::mesh3d::{generate::box_mesh, Order};
+    let mut req = request(element, h_min);
+    let b = req["solid"]["body"]["mesh"]["box"].clone();
+    let three = |v: &Value| -> [f64; 3] { std::array::from_fn(|c| v[c].as_f64().expect("a number")) };
+    let (lo, lengths) = (three(&b["corner"]), three(&b["lengths"]));
+    let g = &b["grading"];
+    let grading = Grading {
+        h_min,
+        ratio: g["ratio"].as_f64().expect("ratio"),
+        extent: g["extent"].as_f64().expect("extent"),
+    };
+    let order = if element == "t10" { Order::T10 } else { Order::T4 };
+    let hi = std::array::from_fn(|c| lo[c] + lengths[c]);
+    let size = b["size"].as_f64().expect("size");
+    let mesh = box_mesh(lo, hi, size, Some((three(&g["focus"]), grading)), order);
+    let elements: Vec<&[usize]> = (0..mesh.n_elems()).map(|e| mesh.elem(e)).collect();
+    let face_sets: serde_json::Map<String, Value> = mesh
+        .face_sets
+        .iter()
+        .map(|(name, faces)| (name.clone(), json!(faces.iter().map(|f| f.corners).collect::<Vec<_>>())))
+        .collect();
+    req["solid"]["body"]["mesh"] = json!({"inline": {
+        "nodes": mesh.nodes,
+        "elements": elements,
+        "face_sets": face_sets,
+    }});
+    req
+}
+
 /// The request through the door, as the service admits it.
 pub fn problem(req: &Value, limits: &Limits) -> SolidProblem {
     let parsed: contact_proto::SolveRequest = serde_json::from_value(req.clone()).expect("a request");

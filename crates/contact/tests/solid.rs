@@ -432,11 +432,12 @@ fn mistakes_are_refused_with_their_place() {
 
 /// The error bar through the wire (`adapt::solid`; its effectivity against a
 /// finer solve is contact-verify's `solid_error_bar`): a generated box's
-/// reply carries the two-level estimate, a given mesh's says it has none and
-/// why, and `settings.accuracy` is refused on a given mesh and for zone ends,
+/// reply carries the two-level estimate, a given mesh's says it has none, why
+/// and how to get one; `settings.accuracy` refines a given mesh in rounds
+/// (each estimated against the one before) and is refused for zone ends,
 /// which a 3D patch has not.
 #[test]
-fn the_error_bar_is_two_level_on_a_box_and_none_on_a_given_mesh() {
+fn the_error_bar_is_two_level_on_a_box_and_by_refinement_on_a_given_mesh() {
     let mut ball = example("solid_ball_on_flat.json");
     ball["solid"]["body"]["mesh"]["box"]["element"] = json!("t4");
     ball["solid"]["body"]["mesh"]["box"]["grading"]["h_min"] = json!(0.4);
@@ -469,11 +470,29 @@ fn the_error_bar_is_two_level_on_a_box_and_none_on_a_given_mesh() {
         note_kind(&r, "no error estimate on a given 3D mesh"),
         Some(contact::proto::NoteKind::EstimateLimited)
     );
+    assert!(
+        r.notes.iter().any(|n| n.contains("settings.accuracy")),
+        "the note says how to get an estimate: {:?}",
+        r.notes
+    );
+    let given_dofs = r.size.dofs;
     let mut refine = given.clone();
     refine["settings"] = json!({"accuracy": {"pressure_l2": 0.01}});
-    let e = solve(&refine).expect_err("no bisection of tetrahedra");
-    assert_eq!(e.path, "/settings/accuracy");
-    assert!(e.message.contains("bisection"), "{}", e.message);
+    let r = solved(&refine);
+    let s = r.solid.as_ref().unwrap();
+    let rounds = r.refinement.as_ref().expect("rounds");
+    // The block's oedometric state is exact on T4 at every level: the first
+    // refinement agrees with the given mesh to round-off, and meets the
+    // target in the second round, the first that has an estimate.
+    assert!(rounds.reached, "{rounds:?}");
+    assert_eq!(rounds.rounds.len(), 2, "{rounds:?}");
+    assert!(rounds.rounds[0].pressure_l2.is_none());
+    let a = s.accuracy.as_ref().expect("an estimate");
+    assert_eq!(serde_json::to_value(a.basis).unwrap(), json!("two_level"));
+    assert!(a.pressure_l2.unwrap() < 1e-9, "{:?}", a.pressure_l2);
+    // Every tetrahedron in eight: the free DOFs grow about eightfold on a
+    // mesh this coarse (its many boundary nodes held by the rollers).
+    assert!(r.size.dofs > 4 * given_dofs, "{} from {given_dofs}", r.size.dofs);
     ball["settings"] = json!({"accuracy": {"zone_edge": 0.1}});
     assert_eq!(
         solve(&ball).expect_err("no zone ends").path,

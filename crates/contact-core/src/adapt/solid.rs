@@ -6,24 +6,42 @@
 //! rule), every element about twice as large, far field included, at about
 //! an eighth of the unknowns. The two answers are compared on the candidate
 //! face set (`solid::two_level`). A given (inline or Gmsh) mesh gets no
-//! estimate (basis `none`, with a note): it cannot be coarsened without a 3D
-//! remesher, and its finer companion (every tetrahedron split in eight) has
-//! eight times the unknowns, whose factor fills faster than linearly, several
-//! solves' time where the coarser one costs a fraction of one.
+//! estimate by default (basis `none`, with a note saying how to get one): it
+//! cannot be coarsened without a 3D remesher, and its finer companion (every
+//! tetrahedron split in eight, `mesh3d::refine`) has eight times the
+//! unknowns, whose factor fills faster than linearly, several solves' time
+//! where the coarser one costs a fraction of one. `settings.accuracy` pays
+//! that price knowingly (below).
 //!
-//! **Rounds** (`settings.accuracy`, generated boxes only: bisection of
-//! tetrahedra is not built, so the door refuses a given mesh's). As in 2D
-//! (`adapt`'s module doc, whose constants these share): each round's
-//! `h_min` shrinks by f sized from the last estimate (`AIM`, `SAFETY`, the
-//! pressure's order 1, within `STEP_MIN`–`STEP_MAX`), the growth and the far
-//! field by √f, and the graded window widens to cover every point in contact
-//! with a quarter of margin. A box's node count is known exactly before it
-//! is meshed (`scene::solid::grid_nodes`), so a round past `max_dofs` is cut
-//! to the largest that fits, where that is still a round's step. The rounds
-//! stop when the estimate meets its target (with `SAFETY`), when nothing is
-//! in contact, at `max_rounds`, `max_dofs`, the time limit, when two rounds
-//! do not improve the estimate, or when a round fails; the last round that
-//! solved is the answer, with `tolerance_not_reached` unless it met.
+//! **Rounds** (`settings.accuracy`). As in 2D (`adapt`'s module doc, whose
+//! constants these share), one loop for both kinds of mesh ([`Rounds`]),
+//! which differ in how the next mesh is made and what it is compared with:
+//!
+//! - *a generated box*: each round's `h_min` shrinks by f sized from the
+//!   last estimate (`AIM`, `SAFETY`, the pressure's order 1, within
+//!   `STEP_MIN`–`STEP_MAX`), the growth and the far field by √f, and the
+//!   graded window widens to cover every point in contact with a quarter of
+//!   margin. A box's node count is known exactly before it is meshed
+//!   (`scene::solid::grid_nodes`), so a round past `max_dofs` is cut to the
+//!   largest that fits, where that is still a round's step. Each round is
+//!   estimated against its own coarser companion;
+//! - *a given mesh*: round 0 is the mesh as given, round k + 1 round k with
+//!   every tetrahedron split in eight (`mesh3d::refine`, T10 children on the
+//!   parent's curved map), its node count exact before it is made
+//!   (`refined_nodes`). Round k ≥ 1 is estimated against round k − 1, which
+//!   is its coarser companion exactly as a box's is (every element twice as
+//!   large, far field included), already solved: the estimate costs the
+//!   comparison only. Round 0 has no estimate, so a given mesh's rounds
+//!   solve at least two meshes, the second with eight times the unknowns.
+//!
+//! The rounds stop when the estimate meets its target (with `SAFETY`), when
+//! nothing is in contact, at `max_rounds`, `max_dofs`, the time limit (a
+//! round's time predicted as t ∝ n², `SOLID_TIME_GROWTH`), when two rounds
+//! do not improve the estimate, or when a round fails or is refused by the
+//! size, candidate or memory limits `solve` applies to every mesh
+//! (`solid::signorini::prepare_within` judges the factor from its symbolic
+//! analysis before taking its memory); the last round that solved is the
+//! answer, with `tolerance_not_reached` unless it met.
 
 use std::time::Instant;
 
@@ -31,6 +49,8 @@ use super::sizing::{scaled, MARGIN, RATIO};
 use super::{field_step, stop_why, Ends, AIM, PROGRESS, SAFETY, STEP_MAX, STEP_MIN};
 use crate::error::CoreError;
 use crate::mesh::generate::Grading;
+use crate::mesh3d::refine::{refine as split, refined_nodes};
+use crate::mesh3d::{Mesh3d, EDGES};
 use crate::outcome::{EstimateBasis, Note, NoteKind, Status, StopReason, WarningCode};
 use crate::scene::solid::{grid_nodes, SolidMesh};
 use crate::scene::{AccuracyTarget, Outputs};
@@ -114,6 +134,14 @@ pub fn estimate(problem: &SolidProblem, answer: &mut SolidAnswer, surface: &Surf
     }
 }
 
+/// Why a given 3D mesh's answer has no estimate by default, and how to get
+/// one (module doc).
+const GIVEN_NOTE: &str = "no error estimate on a given 3D mesh by default: it cannot be coarsened, and its finer \
+     companion (every tetrahedron split in eight) has 8 times the unknowns, several solves' time; give \
+     `settings.accuracy` (e.g. {\"pressure_l2\": 0.1}) to refine it uniformly in rounds, each estimated against \
+     the one before (the answer is then the refined mesh's), or mesh the body as a generated box (`mesh.box`), \
+     which carries one";
+
 fn estimate_always(problem: &SolidProblem, answer: &mut SolidAnswer, surface: &Surface, solve: &SolidSolver) {
     let t = Instant::now();
     let limited = |answer: &mut SolidAnswer, why: String| {
@@ -122,12 +150,7 @@ fn estimate_always(problem: &SolidProblem, answer: &mut SolidAnswer, surface: &S
     };
     let accuracy = match companion(problem) {
         _ if answer.status != Status::Solved => SolidAccuracy::none(),
-        None => limited(
-            answer,
-            "no error estimate on a given 3D mesh: it cannot be coarsened, and its finer companion (every \
-             tetrahedron split in eight) would cost several solves; a generated box (`mesh.box`) carries one"
-                .into(),
-        ),
+        None => limited(answer, GIVEN_NOTE.into()),
         Some(c) => {
             // The companion's own stages would restart the caller's bar.
             crate::progress::stage(crate::progress::ESTIMATE);
@@ -160,9 +183,122 @@ fn estimate_always(problem: &SolidProblem, answer: &mut SolidAnswer, surface: &S
 /// 2.0–2.4, loaded machine, docs/verification/accuracy.md).
 const SOLID_TIME_GROWTH: f64 = 2.0;
 
-/// Solves, estimates and refines a generated box until `target` is met or
-/// a limit stops the rounds (module doc). `max_dofs`: the deployment's size
-/// limit, which no round may pass.
+/// How the rounds make their next mesh and estimate each answer (module
+/// doc): the loop of [`refine`] is the same for both.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Rounds {
+    /// A generated box, regraded from the last estimate.
+    Regraded,
+    /// A given mesh, every tetrahedron split in eight.
+    Split,
+}
+
+impl Rounds {
+    fn of(problem: &SolidProblem) -> Self {
+        match problem.mesh {
+            Some(_) => Rounds::Split,
+            None => Rounds::Regraded,
+        }
+    }
+
+    /// The round after `current`, or why there is none.
+    fn next(
+        self,
+        current: &SolidProblem,
+        answer: &SolidAnswer,
+        pressed: &[[f64; 3]],
+        target: &AccuracyTarget,
+    ) -> Result<SolidProblem, StopReason> {
+        let fits = |nodes: f64| 3.0 * nodes <= target.max_dofs as f64;
+        if self == Rounds::Split {
+            let mesh = current.mesh.as_ref().expect("a given mesh");
+            // Counted before it is made: eight times a mesh at the limit
+            // would be made for nothing.
+            let nodes = refined_nodes(mesh) as f64;
+            if !fits(nodes) {
+                return Err(StopReason::MaxDofs);
+            }
+            let mut scene = current.scene.clone();
+            scene.estimated_nodes = nodes;
+            return Ok(SolidProblem {
+                scene,
+                mesh: Some(split(mesh)),
+            });
+        }
+        let nodes =
+            |f: f64| resized(current, [f, field_step(f), field_step(f)], pressed).expect("a generated box is resized");
+        let next = nodes(step(answer, target));
+        if fits(next.scene.estimated_nodes) {
+            return Ok(next);
+        }
+        // The largest round the budget holds, where that is still a step
+        // (bisection on f: the node count falls as f grows).
+        let widest = nodes(STEP_MAX);
+        if !fits(widest.scene.estimated_nodes) {
+            return Err(StopReason::MaxDofs);
+        }
+        let (mut lo, mut hi, mut next) = (step(answer, target), STEP_MAX, widest);
+        for _ in 0..20 {
+            let mid = 0.5 * (lo + hi);
+            let p = nodes(mid);
+            if fits(p.scene.estimated_nodes) {
+                (hi, next) = (mid, p);
+            } else {
+                lo = mid;
+            }
+        }
+        Ok(next)
+    }
+
+    /// Fills `answer.accuracy`: a box against its coarser companion, solved
+    /// now; a given mesh's round against the round before (`coarser`), None
+    /// for round 0.
+    fn estimate(
+        self,
+        problem: &SolidProblem,
+        answer: &mut SolidAnswer,
+        surface: &Surface,
+        coarser: Option<&Surface>,
+        solve: &SolidSolver,
+    ) {
+        if self == Rounds::Regraded {
+            return estimate_always(problem, answer, surface, solve);
+        }
+        let t = Instant::now();
+        answer.accuracy = Some(match coarser {
+            Some(c) if answer.status == Status::Solved => SolidAccuracy {
+                basis: EstimateBasis::TwoLevel,
+                estimate: two_level(surface, c, RATIO),
+            },
+            Some(_) => SolidAccuracy::none(),
+            None => {
+                answer.notes.push(Note::new(
+                    NoteKind::EstimateLimited,
+                    "the given 3D mesh's own answer has no estimate: the first refinement round (every tetrahedron \
+                     split in eight) is estimated against it"
+                        .to_string(),
+                ));
+                SolidAccuracy::none()
+            }
+        });
+        let dt = t.elapsed().as_secs_f64();
+        answer.timings.estimate += dt;
+        answer.timings.total += dt;
+    }
+
+    /// The estimate's share of a round's solve time (`COMPANION_SHARE`; a
+    /// given mesh's comparison is a few milliseconds).
+    fn companion_share(self) -> f64 {
+        match self {
+            Rounds::Regraded => COMPANION_SHARE,
+            Rounds::Split => 0.0,
+        }
+    }
+}
+
+/// Solves, estimates and refines the problem's mesh until `target` is met
+/// or a limit stops the rounds (module doc). `max_dofs`: the deployment's
+/// size limit, which no round may pass.
 pub fn refine(
     problem: &SolidProblem,
     target: AccuracyTarget,
@@ -173,11 +309,12 @@ pub fn refine(
         max_dofs: target.max_dofs.min(max_dofs),
         ..target
     };
+    let kind = Rounds::of(problem);
     let started = Instant::now();
     crate::progress::round(1);
     let mut current = problem.clone();
     let (mut answer, mut surface) = solve(&current)?;
-    estimate_always(&current, &mut answer, &surface, solve);
+    kind.estimate(&current, &mut answer, &surface, None, solve);
     let mut rounds = vec![round(&current, &answer, started.elapsed().as_secs_f64())];
     let (mut stalled, mut failure) = (0, None::<String>);
     let stopped = loop {
@@ -198,33 +335,14 @@ pub fn refine(
             break StopReason::MaxRounds;
         }
         let t = Instant::now();
-        let nodes = |f: f64| {
-            resized(&current, [f, field_step(f), field_step(f)], &pressed).expect("a generated box is resized")
+        let next = match kind.next(&current, &answer, &pressed, &target) {
+            Ok(next) => next,
+            Err(stop) => break stop,
         };
-        let mut next = nodes(step(&answer, &target));
-        if 3.0 * next.scene.estimated_nodes > target.max_dofs as f64 {
-            // The largest round the budget holds, where that is still a
-            // step (bisection on f: the node count falls as f grows).
-            let fits = |p: &SolidProblem| 3.0 * p.scene.estimated_nodes <= target.max_dofs as f64;
-            let widest = nodes(STEP_MAX);
-            if !fits(&widest) {
-                break StopReason::MaxDofs;
-            }
-            let (mut lo, mut hi) = (step(&answer, &target), STEP_MAX);
-            next = widest;
-            for _ in 0..20 {
-                let mid = 0.5 * (lo + hi);
-                let p = nodes(mid);
-                if fits(&p) {
-                    (hi, next) = (mid, p);
-                } else {
-                    lo = mid;
-                }
-            }
-        }
         let growth = next.scene.estimated_nodes / current.scene.estimated_nodes;
         let seconds = (answer.timings.total - answer.timings.estimate).max(0.0);
-        if seconds * growth.powf(SOLID_TIME_GROWTH) * (1.0 + COMPANION_SHARE) > crate::cancel::remaining_secs() {
+        let predicted = seconds * growth.powf(SOLID_TIME_GROWTH) * (1.0 + kind.companion_share());
+        if predicted > crate::cancel::remaining_secs() {
             break StopReason::TimeLimit;
         }
         crate::progress::round(rounds.len() + 1);
@@ -237,7 +355,7 @@ pub fn refine(
                 break StopReason::RoundFailed;
             }
         };
-        estimate_always(&next, &mut fine, &fine_surface, solve);
+        kind.estimate(&next, &mut fine, &fine_surface, Some(&surface), solve);
         let r = round(&next, &fine, t.elapsed().as_secs_f64());
         let last = *rounds.last().expect("one round ran");
         rounds.push(r);
@@ -247,6 +365,9 @@ pub fn refine(
         }
         let improving = match (r.pressure_l2, last.pressure_l2) {
             (Some(a), Some(b)) => a <= PROGRESS * b,
+            // The first estimate of a given mesh's rounds: nothing before
+            // it to improve on.
+            (Some(_), None) => kind == Rounds::Split,
             _ => false,
         };
         (answer, surface, current) = (fine, fine_surface, next);
@@ -291,8 +412,9 @@ fn met(answer: &SolidAnswer, target: &AccuracyTarget) -> bool {
 }
 
 fn round(problem: &SolidProblem, answer: &SolidAnswer, seconds: f64) -> Round {
-    let h_min = match &problem.scene.mesh {
-        SolidMesh::Box { size, grading, .. } => grading.map_or(*size, |(_, g)| g.h_min.min(*size)),
+    let h_min = match (&problem.scene.mesh, &problem.mesh) {
+        (SolidMesh::Box { size, grading, .. }, _) => grading.map_or(*size, |(_, g)| g.h_min.min(*size)),
+        (_, Some(mesh)) => shortest_edge(mesh),
         _ => f64::NAN,
     };
     Round {
@@ -319,6 +441,19 @@ fn not_reached(answer: &SolidAnswer, target: &AccuracyTarget, stopped: StopReaso
         location: "/settings/accuracy".into(),
         message: format!("{what}, above the target {limit:.3e}: refinement stopped because {why}"),
     }
+}
+
+/// The shortest element edge of a given mesh (its corners'): its `h_min`.
+fn shortest_edge(mesh: &Mesh3d) -> f64 {
+    (0..mesh.n_elems())
+        .flat_map(|e| {
+            let c = mesh.elem(e);
+            EDGES.map(|[i, j]| {
+                let d = crate::mesh3d::sub(mesh.nodes[c[i]], mesh.nodes[c[j]]);
+                crate::mesh3d::dot(d, d).sqrt()
+            })
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// The farthest of `points` from `from`.

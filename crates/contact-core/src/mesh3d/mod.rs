@@ -23,6 +23,7 @@
 pub mod generate;
 pub mod gmsh;
 pub mod quality;
+pub mod refine;
 
 use std::collections::{BTreeMap, HashMap};
 

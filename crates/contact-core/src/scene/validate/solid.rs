@@ -36,7 +36,7 @@ pub fn solid_scene(req: &SolveRequest, limits: &Limits) -> Result<SolidScene, Co
             "a 3D solid is solved by the condensed active set only: give `auto` or `active_set`",
         ));
     }
-    let settings = settings(req, &spec.body.mesh)?;
+    let settings = settings(req)?;
     wire_settings::units(req)?;
     let b = &spec.body;
     let bp = "/solid/body";
@@ -216,9 +216,18 @@ fn output_size(outputs: &[OutputKind], nodes: f64, mesh: &SolidMesh, limits: &Li
     }
     let (tets, k) = match mesh {
         SolidMesh::Box { t10: true, .. } => (0.75 * nodes, 10.0),
-        SolidMesh::Inline { ends, elements, .. } if !ends.is_empty() => {
-            (ends.len() as f64, elements.len() as f64 / ends.len() as f64)
-        }
+        // Refined in rounds (`settings.accuracy`), the mesh keeps its
+        // tetrahedra per node: eight times the tetrahedra, about as many
+        // times the nodes.
+        SolidMesh::Inline {
+            ends,
+            elements,
+            nodes: given,
+            ..
+        } if !ends.is_empty() => (
+            ends.len() as f64 * nodes / given.len().max(1) as f64,
+            elements.len() as f64 / ends.len() as f64,
+        ),
         _ => (5.5 * nodes, 4.0),
     };
     let values: f64 = outputs
@@ -235,18 +244,12 @@ fn output_size(outputs: &[OutputKind], nodes: f64, mesh: &SolidMesh, limits: &Li
     wire_settings::within_output_limit(values, "", "", limits)
 }
 
-fn settings(req: &SolveRequest, mesh: &SolidMeshSpec) -> Result<Settings, CoreError> {
+/// A given mesh's `settings.accuracy` refines it uniformly (`adapt::solid`),
+/// a box's regrades it: both take the same target.
+fn settings(req: &SolveRequest) -> Result<Settings, CoreError> {
     let (tolerance, max_iterations) = wire_settings::iteration(req)?;
     let accuracy = match &req.settings.accuracy {
         None => None,
-        Some(_) if !matches!(mesh, SolidMeshSpec::Box(_)) => {
-            return Err(invalid(
-                K::Request,
-                "/settings/accuracy",
-                "refinement of a given 3D mesh needs bisection of tetrahedra, which is not built: mesh the body as \
-                 a generated box (`mesh.box` with a grading), or refine the mesh yourself",
-            ));
-        }
         Some(t) if t.zone_edge.is_some() => {
             return Err(invalid(
                 K::Request,
