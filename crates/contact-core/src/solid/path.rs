@@ -7,7 +7,7 @@
 
 use super::dofs::dof_map;
 use super::obstacle::ObstacleRows;
-use super::signorini::{compatible, motion_loads, prepare_checked, Operator};
+use super::signorini::{compatible, motion_loads, prepare_checked, Operator, StepLoads};
 use super::{loads, SolidBody};
 use crate::error::CoreError;
 use crate::scene::solid::SolidLoads;
@@ -18,7 +18,7 @@ use crate::scene::solid::SolidLoads;
 /// factorization (a path's steps are not multiples of one load, so every
 /// step is judged, not every sign), a step that fails refused at
 /// `/load_path/<i>`. Each step's loads are made again when it is solved
-/// (`StepLoads::of`, O(elements)) rather than kept: 100 steps of a
+/// (`step_loads`, O(elements)) rather than kept: 100 steps of a
 /// million-DOF body would hold 1.6 GB of them.
 pub fn prepare_path(
     body: &SolidBody,
@@ -28,7 +28,7 @@ pub fn prepare_path(
 ) -> Result<Operator, CoreError> {
     prepare_checked(body, rows, max_bytes, |c, fields, _| {
         for (i, s) in steps.iter().enumerate() {
-            let l = StepLoads::of(&step_body(body, s), rows).map_err(|e| at_step(e, i))?;
+            let l = step_loads(&step_body(body, s), rows).map_err(|e| at_step(e, i))?;
             compatible(c, &motion_loads(fields, &l.f_ext, 1.0)).map_err(|e| at_step(e, i))?;
         }
         Ok(())
@@ -61,23 +61,12 @@ pub fn at_step(e: CoreError, i: usize) -> CoreError {
     }
 }
 
-/// The loads of one solve on an `Operator`: external forces and prescribed
-/// values on every DOF (`dofs::dof_map`'s; its supports hold the same
-/// components as the operator's).
-#[derive(Debug, Clone)]
-pub struct StepLoads {
-    pub f_ext: Vec<f64>,
-    pub prescribed: Vec<f64>,
-}
-
-impl StepLoads {
-    /// The loads of `body` (a load path step's supports, face loads and
-    /// body force on the operator's mesh) against the rows.
-    pub fn of(body: &SolidBody, rows: &ObstacleRows) -> Result<Self, CoreError> {
-        let touching: Vec<usize> = rows.terms.iter().flatten().map(|t| t.0).collect();
-        Ok(Self {
-            f_ext: loads::external(body)?,
-            prescribed: dof_map(body, Some(&touching))?.prescribed,
-        })
-    }
+/// The loads of `body` (a load path step's supports, face loads and body
+/// force on the operator's mesh) against the rows.
+pub fn step_loads(body: &SolidBody, rows: &ObstacleRows) -> Result<StepLoads, CoreError> {
+    let touching: Vec<usize> = rows.terms.iter().flatten().map(|t| t.0).collect();
+    Ok(StepLoads {
+        f_ext: loads::external(body)?,
+        prescribed: dof_map(body, Some(&touching))?.prescribed,
+    })
 }

@@ -45,7 +45,6 @@ use faer::Mat;
 use super::dofs::{dof_map, SolidDofs};
 use super::linear::inf_norm;
 use super::obstacle::ObstacleRows;
-use super::path::StepLoads;
 use super::{loads, ordering, stiffness, SolidBody};
 use crate::cache::Prepared;
 use crate::contact::fichera;
@@ -218,6 +217,15 @@ pub fn prepare_within(
         }
         Ok(())
     })
+}
+
+/// The loads of one solve on an `Operator`: external forces and prescribed
+/// values on every DOF (`dofs::dof_map`'s; its supports hold the same
+/// components as the operator's).
+#[derive(Debug, Clone)]
+pub struct StepLoads {
+    pub f_ext: Vec<f64>,
+    pub prescribed: Vec<f64>,
 }
 
 /// `prepare_within` with the loads' balance judged by `check(C, R, f_ext)`

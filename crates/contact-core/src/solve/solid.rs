@@ -28,7 +28,7 @@ use crate::scene::Limits;
 use crate::solid::answer::{dimensional, status, BodyFields, SolidAnswer, SolidStep};
 use crate::solid::door::SolidProblem;
 use crate::solid::obstacle::rows_with;
-use crate::solid::path::{self as solid_path, StepLoads};
+use crate::solid::path as solid_path;
 use crate::solid::report::report;
 use crate::solid::signorini::Contact;
 use crate::solid::two_level::Surface;
@@ -149,7 +149,7 @@ pub fn solve_solid_once(problem: &SolidProblem, limits: &Limits) -> Result<(Soli
             Some(step) => {
                 // A load path step's answer echoes its loads, with factor 1 (2D's).
                 let b = solid_path::step_body(&body, step);
-                let l = StepLoads::of(&b, &rows).map_err(|e| solid_path::at_step(e, i))?;
+                let l = solid_path::step_loads(&b, &rows).map_err(|e| solid_path::at_step(e, i))?;
                 let given = scene.load_path[i].given.clone();
                 (op.solve_loads(&b, &rows, &scene.settings, &l), 1.0, Some(given))
             }
