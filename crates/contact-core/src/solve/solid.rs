@@ -142,16 +142,21 @@ pub fn solve_solid_once(problem: &SolidProblem, limits: &Limits) -> Result<(Soli
     obs.timings.factorization = op.seconds[1];
     let tol = scene.settings.tolerance;
     let (mut steps, mut last) = (Vec::new(), None);
-    let runs = if path.is_empty() { factors.len() } else { path.len() };
-    for i in 0..runs {
-        let (contact, factor, loads) = match path.get(i) {
-            None => (op.solve(&body, &rows, &scene.settings, factors[i]), factors[i], None),
-            Some(step) => {
-                // A load path step's answer echoes its loads, with factor 1 (2D's).
-                let b = solid_path::step_body(&body, step);
+    // (factor, load path step): a path's steps answer with factor 1 (2D's).
+    let runs: Vec<(f64, Option<usize>)> = if path.is_empty() {
+        factors.iter().map(|&k| (k, None)).collect()
+    } else {
+        (0..path.len()).map(|i| (1.0, Some(i))).collect()
+    };
+    for (factor, at) in runs {
+        let (contact, loads) = match at {
+            None => (op.solve(&body, &rows, &scene.settings, factor), None),
+            Some(i) => {
+                // A load path step's answer echoes its loads.
+                let b = solid_path::step_body(&body, &path[i]);
                 let l = solid_path::step_loads(&b, &rows).map_err(|e| solid_path::at_step(e, i))?;
                 let given = scene.load_path[i].given.clone();
-                (op.solve_loads(&b, &rows, &scene.settings, &l), 1.0, Some(given))
+                (op.solve_loads(&b, &rows, &scene.settings, &l), Some(given))
             }
         };
         let contact = contact.map_err(located)?;
