@@ -124,7 +124,8 @@ def accuracy(
 def load_step(factors: dict[str, float] | None = None) -> dict:
     """One load path step: the factor of each named load or prescribed motion by its
     JSON pointer in the request (``"/bodies/0/supports/1"``,
-    ``"/obstacles/0/punch/horizontal"``, ...); those not named keep factor 1."""
+    ``"/obstacles/0/punch/horizontal"``, a 3D solid's ``"/solid/body/tractions/0"``,
+    ...); those not named keep factor 1."""
     return {"loads": dict(factors or {})}
 
 

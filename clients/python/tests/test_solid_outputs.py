@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import pytest
 
+from contact_client import request as rq
 from contact_client import save_vtu, scenes
 
 
@@ -28,6 +29,24 @@ def test_block_on_plane_3d_presses_uniformly(client, element):
     # The whole 40 x 40 base carries the load: p times its area.
     assert abs(patch["force"] - p * 1600.0) < 1e-9 * p * 1600.0
 
+
+
+def test_block_on_plane_3d_along_a_load_path(client):
+    """A load path on a solid, built with ``request.load_step``: each step scales the
+    top's pressure (``/solid/body/tractions/0``) and is the patch test at that
+    pressure, to the same round-off; each step echoes its loads with factor 1."""
+    p, factors = 2.0, [0.5, 2.0]
+    req = scenes.block_on_plane_3d(pressure=p, h_min=3.0, element="t4")
+    req["load_path"] = [rq.load_step({"/solid/body/tractions/0": k}) for k in factors]
+    reply = client.solve(req)
+    assert reply["status"] == "solved"
+    assert len(reply["steps"]) == len(factors)
+    for step, k in zip(reply["steps"], factors):
+        assert step["factor"] == 1.0 and step["loads"] == {"/solid/body/tractions/0": k}
+        worst = max(abs(q["pressure"] - k * p) for q in step["solid"]["points"]) / (k * p)
+        assert worst < 1e-9, f"step {k}: pressure off k p by {worst:e}"
+    # The top level answers the last step.
+    assert reply["solid"]["resultant"] == reply["steps"][-1]["solid"]["resultant"]
 
 def test_solid_vtu_opens_with_meshio(client, tmp_path):
     """meshio reads the T10 file as tetra10 (VTK type 24, VTK's node order): its

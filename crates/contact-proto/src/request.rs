@@ -101,9 +101,11 @@ pub struct LoadPathStep {
     /// values), `/bodies/0/body_force`, a coupling's component
     /// `/bodies/0/couplings/0/vertical` (`horizontal`, `rotation`), and a punch's motion
     /// `/obstacles/0/punch/horizontal` (`vertical`, `rotation`: its load or
-    /// displacement). Those not named keep factor 1 (as
+    /// displacement); a 3D solid's `/solid/body/tractions/0`,
+    /// `/solid/body/supports/1` (its prescribed values) and
+    /// `/solid/body/body_force`. Those not named keep factor 1 (as
     /// given). To move one component of a support separately, give it its own
-    /// support entry on the same edge set.
+    /// support entry on the same edge (or face) set.
     #[serde(default)]
     pub loads: std::collections::BTreeMap<String, f64>,
 }

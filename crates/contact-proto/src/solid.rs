@@ -317,8 +317,8 @@ pub struct SolidResult {
     /// its mean part is the element's constant pressure.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stress: Option<Vec<[f64; 6]>>,
-    /// The answer's error estimate (of the last load factor's answer, with
-    /// `load_factors`), absent with `settings.estimate: false` unless
+    /// The answer's error estimate (of the last load factor's or step's
+    /// answer, with `load_factors` or `load_path`), absent with `settings.estimate: false` unless
     /// `settings.accuracy` asks for rounds, which are always estimated.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub accuracy: Option<SolidAccuracy>,
@@ -353,8 +353,8 @@ pub struct SolidAccuracy {
     pub contact_area: Option<f64>,
 }
 
-/// A 3D solid's answer at one load factor (a `steps` entry's `solid`): its
-/// patches, points and resultant as in `SolidResult`.
+/// A 3D solid's answer at one load factor or load path step (a `steps`
+/// entry's `solid`): its patches, points and resultant as in `SolidResult`.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SolidStepResult {

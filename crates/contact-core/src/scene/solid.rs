@@ -118,6 +118,29 @@ pub struct SolidScene {
     /// Load multipliers to solve for (empty: the loads as given): every
     /// load and prescribed motion times each, the gaps as given.
     pub load_factors: Vec<f64>,
+    /// Load path steps (empty: none; never with `load_factors`): each
+    /// scales the tractions, supports and body force separately.
+    pub load_path: Vec<SolidPathStep>,
+}
+
+/// One load path step of a solid: the factor of each traction and support
+/// (its prescribed values) and of the body force, 1 where the step does not
+/// name it, and the names as the request gave them (echoed in the reply).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SolidPathStep {
+    pub tractions: Vec<f64>,
+    pub supports: Vec<f64>,
+    pub body_force: f64,
+    pub given: BTreeMap<String, f64>,
+}
+
+/// A solid's supports, face loads and body force: the scene's, or a load
+/// path step's (`SolidScene::at_step`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SolidLoads {
+    pub supports: Vec<Support>,
+    pub loads: Vec<FaceLoad>,
+    pub body_force: [f64; 3],
 }
 
 /// Nodes of a generated box's grid (`mesh3d::generate::box_mesh`), exact
@@ -170,6 +193,41 @@ pub fn cells_bound(lo: [f64; 3], hi: [f64; 3], size: f64, grading: Option<([f64;
 }
 
 impl SolidScene {
+    /// The supports, face loads and body force at load path step `step`:
+    /// each as given times its factor (a support's prescribed values, not
+    /// which components it holds).
+    pub fn at_step(&self, step: &SolidPathStep) -> SolidLoads {
+        let supports = self
+            .supports
+            .iter()
+            .zip(&step.supports)
+            .map(|(s, f)| Support {
+                faces: s.faces.clone(),
+                fix: s.fix.map(|v| v.map(|v| f * v)),
+            })
+            .collect();
+        let loads = self
+            .loads
+            .iter()
+            .zip(&step.tractions)
+            .map(|(l, f)| match l {
+                FaceLoad::Pressure { faces, p } => FaceLoad::Pressure {
+                    faces: faces.clone(),
+                    p: f * p,
+                },
+                FaceLoad::Traction { faces, t } => FaceLoad::Traction {
+                    faces: faces.clone(),
+                    t: t.map(|v| f * v),
+                },
+            })
+            .collect();
+        SolidLoads {
+            supports,
+            loads,
+            body_force: self.body_force.map(|v| step.body_force * v),
+        }
+    }
+
     /// The initial gap profile added to the distance to the plane at x:
     /// r² / 2R with r the distance from the apex across the plane's normal.
     pub fn extra_gap(&self, x: [f64; 3]) -> f64 {

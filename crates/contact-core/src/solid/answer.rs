@@ -35,8 +35,9 @@ pub struct SolidAnswer {
     pub outputs: Outputs,
     /// The body's fields, when `outputs` asks for any of them.
     pub fields: Option<BodyFields>,
-    /// One per load factor when the request lists `load_factors` (the rest
-    /// of the answer is the last factor's).
+    /// One per load factor or load path step when the request lists
+    /// `load_factors` or `load_path` (the rest of the answer is the last
+    /// one's).
     pub steps: Option<Vec<SolidStep>>,
     /// The error estimate (`adapt::solid`), None where `settings.estimate`
     /// is false.
@@ -50,7 +51,10 @@ pub struct SolidAnswer {
 /// The answer at one load factor, in the request's units.
 #[derive(Debug, Clone)]
 pub struct SolidStep {
+    /// The load factor (1 for a load path step).
     pub factor: f64,
+    /// A load path step's factors, as the request named them.
+    pub loads: Option<std::collections::BTreeMap<String, f64>>,
     pub status: Status,
     pub report: SolidContactReport,
     pub max_penetration: f64,

@@ -15,7 +15,8 @@
 //! body of tetrahedra adds: 3 DOFs per node (`dofs`, DOF 3·node + c), its
 //! assembly and loads on face sets (`stiffness`, `loads`), a linear solve
 //! (`linear`), rows against the obstacle (`obstacle`), the Signorini solve with
-//! its KKT certificate (`signorini`), the answer as contact patches (area,
+//! its KKT certificate (`signorini`), the loads of a load path's steps
+//! (`path`), the answer as contact patches (area,
 //! force, centre of pressure, peak, outline polygons), points and the
 //! resultant (`report`), the displacement and stress `outputs` asks for
 //! (`fields`), and a nested-dissection order of the DOFs for the
@@ -33,6 +34,7 @@ pub mod linear;
 pub mod loads;
 pub mod obstacle;
 pub mod ordering;
+pub mod path;
 pub mod report;
 pub mod signorini;
 pub mod stiffness;

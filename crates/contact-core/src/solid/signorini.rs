@@ -25,7 +25,10 @@
 //!
 //! Load factors (`Operator`): scaling every load and prescribed motion by k
 //! scales f, the prescribed part of g and Rᵀ f, while K, B, W and D stay; so
-//! the operator is prepared once and each factor is one LCP on it.
+//! the operator is prepared once and each factor is one LCP on it. A load
+//! path's step (`path`) is one LCP on it too: its loads and prescribed
+//! values are another right-hand side (frictionless contact of a linear
+//! body keeps no history, so each step is solved from nothing).
 //!
 //! The answer carries the KKT certificate of the full system, each entry
 //! relative and dimensionless: primal (penetration max(0, −gap) over
@@ -203,6 +206,36 @@ pub fn prepare_within(
     factors: &[f64],
     max_bytes: f64,
 ) -> Result<Operator, CoreError> {
+    prepare_checked(body, rows, max_bytes, |c, fields, f_ext| {
+        let mut signs: Vec<f64> = factors
+            .iter()
+            .map(|k| if *k == 0.0 { 0.0 } else { k.signum() })
+            .collect();
+        signs.dedup();
+        for s in signs {
+            compatible(c, &motion_loads(fields, f_ext, s))?;
+        }
+        Ok(())
+    })
+}
+
+/// The loads of one solve on an `Operator`: external forces and prescribed
+/// values on every DOF (`dofs::dof_map`'s; its supports hold the same
+/// components as the operator's).
+#[derive(Debug, Clone)]
+pub struct StepLoads {
+    pub f_ext: Vec<f64>,
+    pub prescribed: Vec<f64>,
+}
+
+/// `prepare_within` with the loads' balance judged by `check(C, R, f_ext)`
+/// (C = −D, R the free motions on every DOF, f_ext the body's loads).
+pub(super) fn prepare_checked(
+    body: &SolidBody,
+    rows: &ObstacleRows,
+    max_bytes: f64,
+    check: impl FnOnce(&Mat<f64>, &[Vec<f64>], &[f64]) -> Result<(), CoreError>,
+) -> Result<Operator, CoreError> {
     let t0 = std::time::Instant::now();
     let touching: Vec<usize> = rows.terms.iter().flatten().map(|t| t.0).collect();
     let dofs = dof_map(body, Some(&touching))?;
@@ -222,15 +255,7 @@ pub fn prepare_within(
             ),
         ));
     }
-    let c = -&fr.d;
-    let mut signs: Vec<f64> = factors
-        .iter()
-        .map(|k| if *k == 0.0 { 0.0 } else { k.signum() })
-        .collect();
-    signs.dedup();
-    for s in signs {
-        compatible(&c, &motion_loads(&fields, &f_ext, s))?;
-    }
+    check(&-&fr.d, &fields, &f_ext)?;
     let t1 = std::time::Instant::now();
     crate::progress::stage(crate::progress::ProgressStage::Factorization);
     let refs: Vec<&[(usize, f64)]> = fr.rows.iter().map(|r| r.as_slice()).collect();
@@ -261,7 +286,7 @@ pub fn prepare_within(
 
 /// r = −Rᵀ f at load factor `k`, the right-hand side of the motions'
 /// equilibrium Cᵀλ = r (R on every DOF: a virtual support's share too).
-fn motion_loads(fields: &[Vec<f64>], f_ext: &[f64], k: f64) -> Vec<f64> {
+pub(super) fn motion_loads(fields: &[Vec<f64>], f_ext: &[f64], k: f64) -> Vec<f64> {
     fields.iter().map(|r| -k * dense::dot(r, f_ext)).collect()
 }
 
@@ -276,15 +301,35 @@ impl Operator {
         settings: &Settings,
         k: f64,
     ) -> Result<Contact, CoreError> {
+        let step = StepLoads {
+            f_ext: self.f_ext.iter().map(|f| k * f).collect(),
+            prescribed: self.dofs.prescribed.iter().map(|p| k * p).collect(),
+        };
+        self.solve_loads(body, rows, settings, &step)
+    }
+
+    /// The contact under `step`'s loads and prescribed values (a load path
+    /// step's), the gaps as given: the LCP on the same W with
+    /// q = g − B K⁻¹ f of this step, one forward sweep for its free
+    /// solution (the backward sweep for u is needed anyway, so solving each
+    /// named load once and combining would save nothing but a forward sweep
+    /// per step, at the cost of one stored field per load).
+    pub fn solve_loads(
+        &self,
+        body: &SolidBody,
+        rows: &ObstacleRows,
+        settings: &Settings,
+        step: &StepLoads,
+    ) -> Result<Contact, CoreError> {
         let t2 = std::time::Instant::now();
         crate::progress::stage(crate::progress::ProgressStage::ContactSolve);
         let op = &self.prepared;
         let mut dofs = self.dofs.clone();
-        dofs.prescribed.iter_mut().for_each(|p| *p *= k);
-        let f_ext: Vec<f64> = self.f_ext.iter().map(|f| k * f).collect();
-        let f = loads::free_rhs(&f_ext, &dofs, &op.stiffness);
+        dofs.prescribed.clone_from(&step.prescribed);
+        let f_ext = &step.f_ext;
+        let f = loads::free_rhs(f_ext, &dofs, &op.stiffness);
         let g = free_gaps(rows, &dofs);
-        let (c, r) = (-&self.rows.d, motion_loads(&self.fields, &self.f_ext, k));
+        let (c, r) = (-&self.rows.d, motion_loads(&self.fields, f_ext, 1.0));
         let nm = dofs.modes.len();
         let y = op.chol.forward(&f);
         let q: Vec<f64> = g.iter().zip(op.condensed.rows_of(&y)).map(|(g, b)| g - b).collect();
@@ -339,7 +384,7 @@ impl Operator {
         let t3 = std::time::Instant::now();
         let (ku, abs) = stiffness::internal_forces(body, &u);
         let mut residual = ku;
-        residual.iter_mut().zip(&f_ext).for_each(|(r, f)| *r -= f);
+        residual.iter_mut().zip(f_ext).for_each(|(r, f)| *r -= f);
         for ((terms, l), n) in rows.terms.iter().zip(&lambda).zip(&rows.normal) {
             for &(node, cn) in terms {
                 for cc in 0..3 {
@@ -364,7 +409,7 @@ impl Operator {
             primal: gap.iter().fold(0.0f64, |a, g| a.max(-g)) / umax,
             dual: lambda.iter().fold(0.0f64, |a, l| a.max(-l)) / lmax,
             complementarity: lambda.iter().zip(&gap).fold(0.0f64, |a, (l, g)| a.max((l * g).abs())) / (lmax * umax),
-            equilibrium: off_supports / inf_norm(&f_ext).max(inf_norm(&abs)).max(lmax),
+            equilibrium: off_supports / inf_norm(f_ext).max(inf_norm(&abs)).max(lmax),
         };
         let pressure = lambda.iter().zip(&rows.area).map(|(l, a)| l / a).collect();
         Ok(Contact {
@@ -408,7 +453,7 @@ fn unresisted(d: &Mat<f64>, basis: &[[f64; 6]]) -> Option<[f64; 6]> {
 /// Cᵀλ = r): some λ ≥ 0 must balance the loads (`contact::fichera::check`,
 /// an LP), and no motion may open every row while the loads do no work on it
 /// (`fichera::escape`: nothing would decide where the body rests).
-fn compatible(c: &Mat<f64>, r: &[f64]) -> Result<(), CoreError> {
+pub(super) fn compatible(c: &Mat<f64>, r: &[f64]) -> Result<(), CoreError> {
     if c.ncols() == 0 {
         return Ok(());
     }

@@ -4,7 +4,8 @@
 //! ```text
 //! SolidScene ─mesh→ Mesh3d ─admit→ ─rows→ ObstacleRows
 //!   ─assemble, factor (nested dissection, admitted by predicted time),
-//!    condense→ Operator ─LCP per load factor→ Contact (`solid::signorini`)
+//!    condense→ Operator ─LCP per load factor or load path step→ Contact
+//!    (`solid::signorini`, `solid::path`)
 //!   ─report→ SolidAnswer
 //!   ─estimate (a coarser companion, `adapt::solid`)→ SolidAnswer.accuracy
 //! ```
@@ -27,6 +28,7 @@ use crate::scene::Limits;
 use crate::solid::answer::{dimensional, status, BodyFields, SolidAnswer, SolidStep};
 use crate::solid::door::SolidProblem;
 use crate::solid::obstacle::rows_with;
+use crate::solid::path as solid_path;
 use crate::solid::report::report;
 use crate::solid::signorini::Contact;
 use crate::solid::two_level::Surface;
@@ -122,22 +124,50 @@ pub fn solve_solid_once(problem: &SolidProblem, limits: &Limits) -> Result<(Soli
         });
     }
     let rows_secs = t_rows.elapsed().as_secs_f64();
-    let stepped = !scene.load_factors.is_empty();
-    let factors = if stepped { scene.load_factors.clone() } else { vec![1.0] };
-    // One operator for every factor: only q and the motions' loads change.
-    let op = signorini::prepare_within(&body, &rows, &factors, limits.memory_bytes()).map_err(located)?;
+    let path: Vec<_> = scene.load_path.iter().map(|s| scene.at_step(s)).collect();
+    let stepped = !scene.load_factors.is_empty() || !path.is_empty();
+    let factors = if scene.load_factors.is_empty() {
+        vec![1.0]
+    } else {
+        scene.load_factors.clone()
+    };
+    // One operator for every factor or step: only q and the motions' loads change.
+    let mem = limits.memory_bytes();
+    let op = if path.is_empty() {
+        signorini::prepare_within(&body, &rows, &factors, mem)
+    } else {
+        solid_path::prepare_path(&body, &rows, &path, mem)
+    }
+    .map_err(located)?;
     obs.timings.assembly = rows_secs + op.seconds[0];
     obs.timings.factorization = op.seconds[1];
     let tol = scene.settings.tolerance;
     let (mut steps, mut last) = (Vec::new(), None);
-    for &k in &factors {
-        let contact = op.solve(&body, &rows, &scene.settings, k).map_err(located)?;
+    // (factor, load path step): a path's steps answer with factor 1 (2D's).
+    let runs: Vec<(f64, Option<usize>)> = if path.is_empty() {
+        factors.iter().map(|&k| (k, None)).collect()
+    } else {
+        (0..path.len()).map(|i| (1.0, Some(i))).collect()
+    };
+    for (factor, at) in runs {
+        let (contact, loads) = match at {
+            None => (op.solve(&body, &rows, &scene.settings, factor), None),
+            Some(i) => {
+                // A load path step's answer echoes its loads.
+                let b = solid_path::step_body(&body, &path[i]);
+                let l = solid_path::step_loads(&b, &rows).map_err(|e| solid_path::at_step(e, i))?;
+                let given = scene.load_path[i].given.clone();
+                (op.solve_loads(&b, &rows, &scene.settings, &l), Some(given))
+            }
+        };
+        let contact = contact.map_err(located)?;
         obs.timings.contact_solve += contact.seconds[2];
         obs.check(Stage::ContactSolve)?;
         let rep = report(&body, &rows, &contact).map_err(located)?;
         if stepped {
             steps.push(SolidStep {
-                factor: k,
+                factor,
+                loads,
                 status: status(&rep, tol),
                 report: dimensional(rep.clone(), scene),
                 max_penetration: max_penetration(&contact, scene),

@@ -102,7 +102,7 @@ fn step(s: SolidStep) -> p::LoadStep {
     let r = s.report;
     p::LoadStep {
         factor: s.factor,
-        loads: None,
+        loads: s.loads,
         status: status(s.status),
         iterations: r.iterations,
         pairs: Vec::new(),

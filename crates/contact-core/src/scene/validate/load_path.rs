@@ -14,6 +14,28 @@ use crate::scene::{Body, LoadRef, PathStep};
 const MAX_FACTOR: f64 = 1e6;
 
 pub fn load_path(req: &SolveRequest, bodies: &[Body], limits: &Limits) -> Result<Vec<PathStep>, CoreError> {
+    let steps = named_steps(req, limits, |name| load_ref(name, bodies, req), HINT_2D)?;
+    Ok(steps
+        .into_iter()
+        .map(|(factors, given)| PathStep { factors, given })
+        .collect())
+}
+
+/// What a 2D name that resolves to no load should have been.
+const HINT_2D: &str = "a traction, point load, support, body force, coupling motion or punch motion, e.g. \
+    /bodies/0/tractions/1, /bodies/0/couplings/0/vertical or /obstacles/0/punch/horizontal";
+
+/// The steps of `req.load_path`, each name resolved by `resolve` (2D's
+/// bodies and punches, a solid's body), with the checks every analysis
+/// shares: not with `load_factors`, at most `max_load_steps` steps, every
+/// factor finite and within `MAX_FACTOR`. An unresolved name is refused at
+/// its entry's pointer, `hint` saying what it could have named.
+pub(super) fn named_steps<R>(
+    req: &SolveRequest,
+    limits: &Limits,
+    resolve: impl Fn(&str) -> Option<R>,
+    hint: &str,
+) -> Result<Vec<NamedStep<R>>, CoreError> {
     if req.load_path.is_empty() {
         return Ok(Vec::new());
     }
@@ -44,15 +66,11 @@ pub fn load_path(req: &SolveRequest, bodies: &[Body], limits: &Limits) -> Result
                 .iter()
                 .map(|(name, &f)| {
                     let path = format!("/load_path/{k}/loads/{}", escape(name));
-                    let r = load_ref(name, bodies, req).ok_or_else(|| {
+                    let r = resolve(name).ok_or_else(|| {
                         invalid(
                             K::Request,
                             &path,
-                            format!(
-                                "'{name}' names no load: expected the JSON pointer of a traction, point load, support, \
-                                    body force, coupling motion or punch motion, e.g. /bodies/0/tractions/1, \
-                                    /bodies/0/couplings/0/vertical or /obstacles/0/punch/horizontal"
-                            ),
+                            format!("'{name}' names no load: expected the JSON pointer of {hint}"),
                         )
                     })?;
                     finite(f, &path, K::Request)?;
@@ -66,17 +84,24 @@ pub fn load_path(req: &SolveRequest, bodies: &[Body], limits: &Limits) -> Result
                     Ok((r, f))
                 })
                 .collect::<Result<Vec<_>, CoreError>>()?;
-            Ok(PathStep {
-                factors,
-                given: step.loads.clone(),
-            })
+            Ok((factors, step.loads.clone()))
         })
         .collect()
 }
 
+/// A step's resolved names with their factors, and the names as given.
+pub(super) type NamedStep<R> = (Vec<(R, f64)>, std::collections::BTreeMap<String, f64>);
+
 /// A key as one JSON pointer token (RFC 6901: ~ as ~0, / as ~1).
 fn escape(key: &str) -> String {
     key.replace('~', "~0").replace('/', "~1")
+}
+
+/// A pointer's array index: digits, no sign, no leading zero.
+pub(super) fn index(s: &str) -> Option<usize> {
+    (!s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()) && (s == "0" || !s.starts_with('0')))
+        .then(|| s.parse().ok())
+        .flatten()
 }
 
 /// The load a pointer names: `/bodies/<i>/<tractions|point_loads|supports>/<j>`
@@ -84,12 +109,6 @@ fn escape(key: &str) -> String {
 /// with the body by index, or
 /// `/obstacles/<i>/punch/<horizontal|vertical|rotation>` of a punch.
 fn load_ref(name: &str, bodies: &[Body], req: &SolveRequest) -> Option<LoadRef> {
-    let index = |s: &str| -> Option<usize> {
-        // A pointer's array index: digits, no sign, no leading zero.
-        (!s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()) && (s == "0" || !s.starts_with('0')))
-            .then(|| s.parse().ok())
-            .flatten()
-    };
     if let Some(rest) = name.strip_prefix("/obstacles/") {
         let parts: Vec<&str> = rest.split('/').collect();
         let obstacle = index(parts.first()?)?;

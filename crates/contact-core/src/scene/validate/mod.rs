@@ -11,6 +11,7 @@ mod obstacles;
 mod pairs;
 mod settings;
 mod solid;
+mod solid_load_path;
 mod solid_obstacle;
 
 pub use solid::solid_scene;

@@ -122,6 +122,7 @@ pub fn solid_scene(req: &SolveRequest, limits: &Limits) -> Result<SolidScene, Co
         };
         wire_settings::check_load_factors(&req.load_factors, size, scales, limits)?;
     }
+    let load_path = super::solid_load_path::solid_load_path(req, b, limits)?;
     let shape = super::solid_obstacle::obstacle(spec, length)?;
     // The face-set names are checked against the mesh by `solid::door`.
     let faces = spec.contact.faces.clone();
@@ -163,10 +164,11 @@ pub fn solid_scene(req: &SolveRequest, limits: &Limits) -> Result<SolidScene, Co
         time_limit,
         estimated_nodes,
         load_factors: req.load_factors.clone(),
+        load_path,
     })
 }
 
-/// The 2D sections stay empty, and what the 3D route does not do yet is
+/// The 2D sections stay empty, and what the 3D route does not do is
 /// refused rather than ignored.
 fn not_2d(req: &SolveRequest) -> Result<(), CoreError> {
     let unused = [
@@ -181,14 +183,6 @@ fn not_2d(req: &SolveRequest) -> Result<(), CoreError> {
             *path,
             "a 3D solid is described in `solid` alone: leave the 2D sections (bodies, obstacles, foundations, \
                 contacts) out",
-        ));
-    }
-    let not_yet = [("/load_path", req.load_path.is_empty())];
-    if let Some((path, _)) = not_yet.iter().find(|u| !u.1) {
-        return Err(invalid(
-            K::Request,
-            *path,
-            "not available for a 3D solid yet (a load path)",
         ));
     }
     if req.settings.formulation == proto::Formulation::Full {
