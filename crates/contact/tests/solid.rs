@@ -223,12 +223,7 @@ fn a_patch_the_mesh_does_not_resolve_is_warned() {
         solved(&req)
     };
     let resolved = ball(1.0);
-    let coarse = |r: &contact::proto::SolveReply| {
-        r.warnings
-            .iter()
-            .find(|w| w.code == "coarse_contact_zone")
-            .cloned()
-    };
+    let coarse = |r: &contact::proto::SolveReply| r.warnings.iter().find(|w| w.code == "coarse_contact_zone").cloned();
     assert!(coarse(&resolved).is_none(), "{:?}", resolved.warnings);
     // `solved` checks the status.
     let slipped = ball(1e6);
