@@ -12,8 +12,7 @@ from __future__ import annotations
 
 import pytest
 
-from contact_client import request as rq
-from contact_client import save_vtu, scenes
+from contact_client import request as rq, save_vtu, scenes
 
 
 @pytest.mark.parametrize("element", ["t4", "t10"])

@@ -72,7 +72,7 @@ fn main() {
             mesh.n_elems(),
             dofs.n_free
         );
-        let k = stiffness::assemble(&body, &dofs);
+        let k = stiffness::assemble(&body, &dofs).expect("no deadline here");
         let cost = FactorCost::predict(&k.k).unwrap();
         println!(
             "  factor (AMD): nnz(L) {:.3e}, {:.3e} multiply-adds",

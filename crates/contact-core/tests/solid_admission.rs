@@ -48,7 +48,7 @@ fn a_3d_factorization_predicted_past_the_time_left_is_not_started() {
     let plane = Plane::try_new([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
     let r = rows(&body, "z_min", plane).unwrap();
     let dofs = dof_map(&body, Some(&r.nodes)).unwrap();
-    let k = stiffness::assemble(&body, &dofs);
+    let k = stiffness::assemble(&body, &dofs).expect("no deadline here");
     let (fwd, inv) = nested_dissection(&mesh, &dofs).unwrap();
     let want = SymbolicFactor::try_new_ordered(&k.k, &fwd, &inv).unwrap().cost();
     let _d = Deadline::install(Duration::from_secs(3600));

@@ -8,6 +8,7 @@ use super::{loads, ordering, stiffness, SolidBody};
 use crate::error::CoreError;
 use crate::linalg::cholesky::SymbolicFactor;
 use crate::linalg::Cholesky;
+use crate::outcome::ProgressStage;
 use std::sync::Arc;
 
 /// Displacements and reactions of a body its supports hold.
@@ -30,7 +31,7 @@ pub struct Static {
 pub fn solve(body: &SolidBody) -> Result<Static, CoreError> {
     let t0 = std::time::Instant::now();
     let dofs = dof_map(body, None)?;
-    let k = stiffness::assemble(body, &dofs);
+    let k = stiffness::assemble(body, &dofs)?;
     let f_ext = loads::external(body)?;
     let f = loads::free_rhs(&f_ext, &dofs, &k);
     let t1 = std::time::Instant::now();
@@ -39,7 +40,7 @@ pub fn solve(body: &SolidBody) -> Result<Static, CoreError> {
     let t2 = std::time::Instant::now();
     let u = loads::full_field(&dofs, &chol.solve(&f));
     let t3 = std::time::Instant::now();
-    let (ku, abs) = stiffness::internal_forces(body, &u);
+    let (ku, abs) = stiffness::internal_forces(body, &u, ProgressStage::Post)?;
     let mut reactions = vec![0.0; u.len()];
     let mut worst: f64 = 0.0;
     for d in 0..u.len() {

@@ -53,6 +53,7 @@ use crate::fem::pattern::FIXED;
 use crate::linalg::cholesky::SymbolicFactor;
 use crate::linalg::dense;
 use crate::methods::{active_set, condensed};
+use crate::outcome::ProgressStage;
 use crate::scene::Settings;
 
 /// The relative KKT residuals of a contact solution (module doc).
@@ -239,7 +240,7 @@ pub(super) fn prepare_checked(
     let t0 = std::time::Instant::now();
     let touching: Vec<usize> = rows.terms.iter().flatten().map(|t| t.0).collect();
     let dofs = dof_map(body, Some(&touching))?;
-    let k = Arc::new(stiffness::assemble(body, &dofs));
+    let k = Arc::new(stiffness::assemble(body, &dofs)?);
     let f_ext = loads::external(body)?;
     let fr = free_rows(body, rows, &dofs);
     let nm = dofs.modes.len();
@@ -382,7 +383,7 @@ impl Operator {
             }
         }
         let t3 = std::time::Instant::now();
-        let (ku, abs) = stiffness::internal_forces(body, &u);
+        let (ku, abs) = stiffness::internal_forces(body, &u, ProgressStage::ContactSolve)?;
         let mut residual = ku;
         residual.iter_mut().zip(f_ext).for_each(|(r, f)| *r -= f);
         for ((terms, l), n) in rows.terms.iter().zip(&lambda).zip(&rows.normal) {
