@@ -150,7 +150,7 @@ mod tests {
 
     #[test]
     fn wide_node_numbers_take_the_wide_keys() {
-        // 3 × 22 bits pass 64: the u128 path, with the same answer.
+        // 3 × 23 bits (n = 2^22 needs 23) pass 64: the u128 path, with the same answer.
         let n = 1 << 22;
         let f = |e: usize| [side_key([n - 3, n - 2, n - 1 - (e % 2)])];
         assert_eq!(overlapped_side(2, n, f), None);

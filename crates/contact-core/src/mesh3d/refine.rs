@@ -212,8 +212,11 @@ fn split_face(f: &Face, s: &Splits, t10: bool) -> [Face; 4] {
 /// node per edge; a T10 one a node per child edge, two per edge, three per
 /// face (its midlines) and one per element (the octahedron's diagonal).
 pub fn refined_nodes(mesh: &Mesh3d) -> usize {
-    let mut edges = HashSet::with_capacity(7 * mesh.nodes.len());
-    let mut faces = HashSet::with_capacity(12 * mesh.nodes.len());
+    // A tetrahedral mesh has about 1.2–1.5 edges and 2 faces per element
+    // (each inner face shared by two of its four); faces are kept for T10 only.
+    let t10 = mesh.order == Order::T10;
+    let mut edges = HashSet::with_capacity(3 * mesh.n_elems() / 2 + 16);
+    let mut faces = HashSet::with_capacity(if t10 { 2 * mesh.n_elems() + 16 } else { 0 });
     for e in 0..mesh.n_elems() {
         let c = &mesh.elem(e)[..4];
         for [i, j] in EDGES {

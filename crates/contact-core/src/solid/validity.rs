@@ -3,8 +3,9 @@
 //! `coarse_contact_zone`, `solution::validity`).
 //!
 //! A patch's width is read from its rows' tributary area A as the diameter
-//! of a disk of that area, D = 2 √(A/π), counted in the spacing h of the
-//! candidate faces at its rows. 2D asks for 8 element edges across a zone
+//! of a disk of that area, D = 2 √(A/π), or for a strip (a line contact)
+//! twice its area over its length (`width`), counted in the spacing h of
+//! the candidate faces at its rows. 2D asks for 8 element edges across a zone
 //! (`MIN_ZONE_EDGES`), 4 across Hertz's half-width a. On the quarter models
 //! a 3D scene is usually posed as, a patch of radius a reads D = a, so the
 //! limit here is 4 edges across D: it holds the same on a quarter model as
@@ -28,16 +29,19 @@ use crate::solution::report::Warning;
 /// Face edges a patch must span across its width (module doc).
 pub const MIN_PATCH_EDGES: f64 = 4.0;
 
-/// A `coarse_contact_zone` warning per patch narrower than
-/// `MIN_PATCH_EDGES` face edges; `report` is nondimensional, `length` the
-/// scene's length scale, for the messages.
+/// One `coarse_contact_zone` warning for the narrowest patch when it spans
+/// fewer than `MIN_PATCH_EDGES` face spacings, counting the others that do
+/// (a height field may press thousands of patches: one message, as 2D
+/// gives one per pair for its narrowest zone); `report` is nondimensional,
+/// `length` the scene's length scale, for the message.
 pub fn coarse_patches(body: &SolidBody, rows: &ObstacleRows, report: &SolidContactReport, length: f64) -> Vec<Warning> {
     let Ok(set) = body.face_set(&rows.faces, "contact/faces") else {
         return Vec::new();
     };
     let nodes = &body.mesh.nodes;
     let pressed: HashSet<usize> = report.points.iter().filter(|q| q.in_contact).map(|q| q.node).collect();
-    let mut out = Vec::new();
+    // (patch, its width, the spacing there)
+    let mut narrow: Vec<(usize, f64, f64)> = Vec::new();
     for (k, patch) in report.patches.iter().enumerate() {
         let at: HashSet<usize> = patch.rows.iter().map(|&i| report.points[i].node).collect();
         let (mut sum, mut count, mut open_beside) = (0.0, 0usize, false);
@@ -57,37 +61,86 @@ pub fn coarse_patches(body: &SolidBody, rows: &ObstacleRows, report: &SolidConta
         // right triangles a box's faces are, 0.93 of the side of an
         // equilateral one.
         let h = (2.0 * sum / count as f64).sqrt();
-        let width = 2.0 * (patch.tributary_area / std::f64::consts::PI).sqrt();
-        let across = width / h;
-        if across >= MIN_PATCH_EDGES {
-            continue;
+        let points: Vec<[f64; 3]> = patch.rows.iter().map(|&i| report.points[i].position).collect();
+        let width = width(patch.tributary_area, &points, h);
+        if width / h < MIN_PATCH_EDGES {
+            narrow.push((k, width, h));
         }
-        // Round-off off a symmetry plane reads 0.
-        let c = patch
-            .centre_of_pressure
-            .map(|x| shown(if x.abs() < 1e-12 { 0.0 } else { x * length }));
-        out.push(Warning {
-            code: WarningCode::CoarseContactZone,
-            value: across,
-            limit: MIN_PATCH_EDGES,
-            location: "/solid/contact".into(),
-            message: format!(
-                "contact patch {k} (centre of pressure ({}, {}, {}), {} row(s) in contact) spans {across:.2} face \
-                    spacings across: the diameter {} of a disk of its area over the spacing {} of the faces at its \
-                    rows, fewer than {MIN_PATCH_EDGES}; its pressure and area are resolved only to about a face. Refine \
-                    near it to an edge of at most {} (a box's grading: h_min about that, extent a little beyond the \
-                    patch). A patch this small is also what a unit slip gives (a modulus in Pa with lengths in mm)",
-                c[0],
-                c[1],
-                c[2],
-                patch.rows.len(),
-                shown(width * length),
-                shown(h * length),
-                shown(width * length / 8.0),
-            ),
-        });
     }
-    out
+    let Some(&(k, width, h)) = narrow.iter().min_by(|a, b| (a.1 / a.2).total_cmp(&(b.1 / b.2))) else {
+        return Vec::new();
+    };
+    let patch = &report.patches[k];
+    let across = width / h;
+    // Round-off off a symmetry plane reads 0.
+    let c = patch
+        .centre_of_pressure
+        .map(|x| shown(if x.abs() < 1e-12 { 0.0 } else { x * length }));
+    let others = match narrow.len() - 1 {
+        0 => String::new(),
+        n => format!(" ({n} other patch(es) span fewer than {MIN_PATCH_EDGES} too)"),
+    };
+    vec![Warning {
+        code: WarningCode::CoarseContactZone,
+        value: across,
+        limit: MIN_PATCH_EDGES,
+        location: "/solid/contact".into(),
+        message: format!(
+            "contact patch {k} (centre of pressure ({}, {}, {}), {} row(s) in contact) spans {across:.2} face \
+                spacings across: its width {} over the spacing {} of the faces at its rows, fewer than \
+                {MIN_PATCH_EDGES}{others}; its pressure and area are resolved only to about a face. Refine near it \
+                to an edge of at most {} (a box's grading: h_min about that, extent a little beyond the patch). A \
+                patch this small is also what a unit slip gives (a modulus in Pa with lengths in mm)",
+            c[0],
+            c[1],
+            c[2],
+            patch.rows.len(),
+            shown(width * length),
+            shown(h * length),
+            shown(width * length / 8.0),
+        ),
+    }]
+}
+
+/// A patch's width: the diameter of a disk of its area A, 2 √(A/π), or,
+/// where it is a strip, twice its area over its length L (its points'
+/// extent along their principal axis, plus a spacing h for the rows' own
+/// share): a disk of radius r reads 2r either way (2A/L = πr ≥ 2r), a line
+/// of single nodes m spacings long about 2h whatever m, where the disk's
+/// diameter alone grew as 2h √(m/π).
+fn width(area: f64, points: &[[f64; 3]], h: f64) -> f64 {
+    let disk = 2.0 * (area / std::f64::consts::PI).sqrt();
+    let n = points.len() as f64;
+    let c = points.iter().fold([0.0; 3], |a, p| [0, 1, 2].map(|i| a[i] + p[i] / n));
+    let mut m = [[0.0; 3]; 3];
+    for p in points {
+        let d = sub(*p, c);
+        for i in 0..3 {
+            for j in 0..3 {
+                m[i][j] += d[i] * d[j];
+            }
+        }
+    }
+    // The principal axis by power iteration from the most spread coordinate
+    // (a 3×3 moment matrix: 30 steps settle it to far below a spacing).
+    let start = (0..3).max_by(|&a, &b| m[a][a].total_cmp(&m[b][b])).unwrap_or(0);
+    let mut v = [0.0; 3];
+    v[start] = 1.0;
+    for _ in 0..30 {
+        let w = [0, 1, 2].map(|i| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2]);
+        let l = norm(w);
+        if l <= 0.0 {
+            break;
+        }
+        v = w.map(|x| x / l);
+    }
+    let along = points.iter().map(|p| {
+        let d = sub(*p, c);
+        d[0] * v[0] + d[1] * v[1] + d[2] * v[2]
+    });
+    let (lo, hi) = along.fold((f64::MAX, f64::MIN), |(lo, hi), s| (lo.min(s), hi.max(s)));
+    let length = (hi - lo).max(0.0) + h;
+    disk.min(2.0 * area / length)
 }
 
 fn norm(v: [f64; 3]) -> f64 {
