@@ -21,7 +21,7 @@ use std::collections::HashSet;
 use super::obstacle::ObstacleRows;
 use super::report::SolidContactReport;
 use super::SolidBody;
-use crate::mesh3d::{cross, sub};
+use crate::mesh3d::{area_normal, dot, sub};
 use crate::outcome::WarningCode;
 use crate::scene::scaling::shown;
 use crate::solution::report::Warning;
@@ -47,7 +47,7 @@ pub fn coarse_patches(body: &SolidBody, rows: &ObstacleRows, report: &SolidConta
         let (mut sum, mut count, mut open_beside) = (0.0, 0usize, false);
         for f in set.iter().filter(|f| f.corners.iter().any(|c| at.contains(c))) {
             let [p, q, r] = f.corners.map(|n| nodes[n]);
-            sum += 0.5 * norm(cross(sub(q, p), sub(r, p)));
+            sum += area_normal(p, q, r).0;
             count += 1;
             open_beside |= f.corners.iter().any(|c| !pressed.contains(c));
         }
@@ -128,21 +128,14 @@ fn width(area: f64, points: &[[f64; 3]], h: f64) -> f64 {
     v[start] = 1.0;
     for _ in 0..30 {
         let w = [0, 1, 2].map(|i| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2]);
-        let l = norm(w);
+        let l = dot(w, w).sqrt();
         if l <= 0.0 {
             break;
         }
         v = w.map(|x| x / l);
     }
-    let along = points.iter().map(|p| {
-        let d = sub(*p, c);
-        d[0] * v[0] + d[1] * v[1] + d[2] * v[2]
-    });
+    let along = points.iter().map(|p| dot(sub(*p, c), v));
     let (lo, hi) = along.fold((f64::MAX, f64::MIN), |(lo, hi), s| (lo.min(s), hi.max(s)));
     let length = (hi - lo).max(0.0) + h;
     disk.min(2.0 * area / length)
-}
-
-fn norm(v: [f64; 3]) -> f64 {
-    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
 }
