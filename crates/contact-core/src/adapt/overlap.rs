@@ -13,10 +13,12 @@
 //! own stages as if they were the answer's. A companion that fails gives the
 //! same note as after the answer. The answer's energy bound is made while the
 //! companion ends. A given (inline or Gmsh) mesh's companion, its region
-//! meshed again, does not look at the clock, so `Auto` solves it after the
-//! answer: a failing or timed-out answer would otherwise wait for it. The
-//! finer fallback of a region that cannot be meshed again needs the answer's
-//! size and stays after it.
+//! meshed again, looks at the clock between its phases but not inside its
+//! triangulation, which a failing or timed-out answer waits for: `Auto` runs
+//! it beside the answer only where that triangulation is predicted to fit
+//! the lateness a limit tolerates (max(10 %, 0.2 s)), and after it otherwise.
+//! The finer fallback of a region that cannot be meshed again needs the
+//! answer's size and stays after it.
 //!
 //! **Memory.** The two solves are now simultaneous: the companion (a quarter
 //! of the unknowns, so about a quarter of the answer's 1.34–1.46 kB per DOF,
@@ -161,15 +163,33 @@ fn core(scene: &Scene, limits: &Limits) -> Option<Busy> {
     match limits.overlap {
         Overlap::Off => None,
         Overlap::Always => Some(busy()),
-        // A given mesh's companion is its region meshed again, which does
-        // not look at the clock: an answer that fails or times out would
-        // wait for it, past its limit (review).
-        Overlap::Auto if super::sizing::given(scene) => None,
+        // A given mesh's companion is its region meshed again, whose
+        // triangulation does not look at the clock: an answer that fails or
+        // times out waits for it, so it runs beside only when it fits in the
+        // lateness a limit tolerates.
+        Overlap::Auto if super::sizing::given(scene) && coarsening_secs(scene) > tolerated_lateness() => None,
         Overlap::Auto if 2.0 * (2.0 * scene.estimated_nodes) <= limits.max_dofs as f64 => {
             (crate::linalg::threads() == 1).then(free_core).flatten()
         }
         Overlap::Auto => None,
     }
+}
+
+/// Seconds per given node of `mesh::coarsen` at most, measured on T3 disks
+/// from 1k to 274k nodes (1.3–3.7 µs, growing with the size), on the
+/// machine the factorization's rate is fitted on (`rate::scale`).
+const COARSEN_PER_NODE: f64 = 4e-6;
+
+/// The coarsening of a given mesh, predicted.
+fn coarsening_secs(scene: &Scene) -> f64 {
+    COARSEN_PER_NODE * scene.estimated_nodes * crate::linalg::rate::scale()
+}
+
+/// How late an answer may come for its limit: max(10 %, 0.2 s) of the time
+/// left, the bound the service's load test holds every reply to; without a
+/// limit, any.
+fn tolerated_lateness() -> f64 {
+    (0.1 * crate::cancel::remaining_secs()).max(0.2)
 }
 
 /// `answer()` with the companion `make` gives solved on a second thread
