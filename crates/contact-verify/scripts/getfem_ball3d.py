@@ -90,9 +90,9 @@ def integral_patch(gf, md, mim_c, mf_l, region):
     """The integral brick's contact force, active area, and nodal radii, pressures and in-contact flags."""
     # the contact stress is lambda_n <= 0 in GetFEM's sign: the pressure is its negative
     force = gf.asm_generic(mim_c, 0, "-lambda_n", region, md)
-    # The weak multiplier has no pointwise sign (it rings outside the patch, by up to 5 % of p0 just past the edge on the 35k T10 mesh) and the gap is
-    # met weakly, so "in contact" is the brick's own active set: Alart-Curnier's p - r g > 0, with the deformed
-    # gap g = obstacle + u_z (the obstacle's normal is z to O(r/R)).
+    # The weak multiplier has no pointwise sign (it rings outside the patch, by up to 5 % of p0 just past the edge
+    # on the 35k T10 mesh) and the gap is met weakly, so "in contact" is the brick's own active set:
+    # Alart-Curnier's p - r g > 0, with the deformed gap g = obstacle + u_z (the obstacle's normal is z to O(r/R)).
     area = gf.asm_generic(mim_c, 0, "Heaviside(-lambda_n - r*(obstacle + u(3)))", region, md)
     ldofs = mf_l.basic_dof_on_region(region)
     pl = -md.variable("lambda_n")
