@@ -190,6 +190,9 @@ pub struct Operator {
     f_ext: Vec<f64>,
     /// Seconds of assembly, and of the factorization with condensation.
     pub seconds: [f64; 2],
+    /// Bytes of the factor of K (8 per stored value): what a refinement
+    /// round's next factor is predicted from (`adapt::solid`).
+    pub factor_bytes: f64,
 }
 
 /// The operator of `body` against the rows, for the load `factors` the
@@ -282,6 +285,7 @@ pub(super) fn prepare_checked(
         fields,
         f_ext,
         seconds: [t1 - t0, t1.elapsed()].map(|d| d.as_secs_f64()),
+        factor_bytes,
     })
 }
 

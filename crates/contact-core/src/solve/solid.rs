@@ -47,7 +47,7 @@ pub fn solve_solid(problem: &SolidProblem, limits: &Limits) -> Result<SolidAnswe
     let _busy = crate::adapt::overlap::busy();
     let once = |p: &SolidProblem| solve_solid_once(p, limits);
     match problem.scene.settings.accuracy {
-        Some(target) => crate::adapt::solid::refine(problem, target, &once, limits.max_dofs),
+        Some(target) => crate::adapt::solid::refine(problem, target, &once, limits),
         None => {
             if problem.scene.settings.estimate {
                 crate::progress::expect_estimate(crate::adapt::solid::COMPANION_SHARE);
@@ -210,6 +210,7 @@ pub fn solve_solid_once(problem: &SolidProblem, limits: &Limits) -> Result<(Soli
         candidates: rows.len(),
         active,
         refinements: contact.refinements,
+        factor_bytes: op.factor_bytes,
         timings: obs.finish(),
         client_id: scene.client_id.clone(),
         outputs: o,
