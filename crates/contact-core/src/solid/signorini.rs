@@ -50,7 +50,6 @@ use crate::cache::Prepared;
 use crate::contact::fichera;
 use crate::error::{CoreError, InvalidKind};
 use crate::fem::pattern::FIXED;
-use crate::linalg::cholesky::SymbolicFactor;
 use crate::linalg::dense;
 use crate::methods::{active_set, condensed};
 use crate::outcome::ProgressStage;
@@ -263,8 +262,7 @@ pub(super) fn prepare_checked(
     let t1 = std::time::Instant::now();
     crate::progress::stage(crate::progress::ProgressStage::Factorization);
     let refs: Vec<&[(usize, f64)]> = fr.rows.iter().map(|r| r.as_slice()).collect();
-    let (fwd, inv) = ordering::nested_dissection(body.mesh, &dofs)?;
-    let symbolic = Arc::new(SymbolicFactor::try_new_ordered(&k.k, &fwd, &inv)?);
+    let symbolic = Arc::new(ordering::analysed(body.mesh, &dofs, &k.k)?);
     let factor_bytes = 8.0 * symbolic.cost().nnz as f64;
     if factor_bytes > max_bytes {
         return Err(CoreError::TooLarge {
