@@ -37,7 +37,7 @@ fn a_round_whose_factor_cannot_fit_is_not_built() {
         // round grows it by more (a regraded round's smallest step,
         // `STEP_MAX` = 0.75 on h_min, at least doubles the unknowns near
         // the patch). A given mesh's split round, 8 times the nodes, is
-        // let within the DOF limit: its factor, 8^1.5 ≈ 23 times the first
+        // let within the DOF limit: its factor, predicted 8² = 64 times the first
         // (`FACTOR_GROWTH`), is what cannot fit.
         let split = problem(&req, &Limits::default()).mesh.map(|m| 3 * refined_nodes(&m));
         let max_dofs = split
