@@ -159,7 +159,7 @@ pub fn large_displacement(body: &SolidBody, u: &[f64], name: &str) -> Vec<Warnin
         .map(|d| dot([d[0], d[1], d[2]], [d[0], d[1], d[2]]).sqrt())
         .fold(0.0, f64::max);
     let moved = biggest / size;
-    if !(moved > MAX_DISPLACEMENT) {
+    if moved.is_nan() || moved <= MAX_DISPLACEMENT {
         return Vec::new();
     }
     vec![Warning {
