@@ -86,8 +86,8 @@ fn main() {
         let nd = analysis.cost();
         let per = |s: f64| 1e6 * s / dofs.n_free as f64;
         println!(
-            "  factor (nested dissection): nnz(L) {:.3e} ({:.0} B per DOF), {:.3e} multiply-adds (ordering {t_order:.3} \
-             s, {:.2} µs per DOF; symbolic analysis {t_symbolic:.3} s, {:.2} µs per DOF)",
+            "  factor (nested dissection): nnz(L) {:.3e} ({:.0} B per DOF), {:.3e} multiply-adds (ordering \
+             {t_order:.3} s, {:.2} µs per DOF; symbolic analysis {t_symbolic:.3} s, {:.2} µs per DOF)",
             nd.nnz as f64,
             8.0 * nd.nnz as f64 / dofs.n_free as f64,
             nd.flops,

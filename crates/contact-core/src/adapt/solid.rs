@@ -186,17 +186,13 @@ fn estimate_always(problem: &SolidProblem, answer: &mut SolidAnswer, surface: &S
 /// 2.0–2.4, loaded machine, docs/verification/accuracy.md).
 const SOLID_TIME_GROWTH: f64 = 2.0;
 
-/// How a 3D factor's stored values are predicted to grow with its
-/// unknowns, nnz(L) ∝ n²: a bound above every growth measured. Nested
-/// dissection of a uniform 3D grid fills like n^(4/3) (George and Liu);
-/// in `solid::ordering`'s order the `solid3d_timing` example (`--cost`)
-/// measured 3.53e7 at 46.8k DOF to 4.62e8 at 292.7k on graded T4 boxes
-/// (exponent 1.40), 5.78e7 at 48.8k to 3.09e8 at 133.7k on T10 (1.66), and
-/// the ball example's regraded round (T10, 35k DOF, its window widened and
-/// refined) 1.81: at n^1.5 that round was predicted within the 3.75 GB a
-/// request had and its factor, analysed, held 6.41 GB. A prediction that
-/// reads high cuts the round smaller (or stops the rounds) where one that
-/// reads low makes the mesh, assembles and analyses it for nothing.
+/// A 3D factor's stored values are predicted to grow as nnz(L) ∝ n², above
+/// every growth measured (nested dissection of a 3D grid: n^(4/3), George
+/// and Liu): the `solid3d_timing` example (`--cost`) measured n^1.40 on
+/// graded T4 boxes (47k to 293k DOF), n^1.66 on T10 (49k to 134k), and the
+/// ball example's regraded T10 round from 35k DOF n^1.81 (at n^1.5 it was
+/// let in under the 3.75 GB a request had, and its factor held 6.41 GB).
+/// Reading high cuts a round smaller; reading low builds it for nothing.
 const FACTOR_GROWTH: f64 = 2.0;
 
 /// How the rounds make their next mesh and estimate each answer (module
