@@ -80,7 +80,7 @@ fn a_reached_target_is_met_against_the_reference() {
         seen.borrow_mut().push((solved.0.dofs, solved.1.clone()));
         Ok(solved)
     };
-    let again = contact_core::adapt::solid::refine(&p, p.scene.settings.accuracy.unwrap(), &record, limits.max_dofs)
+    let again = contact_core::adapt::solid::refine(&p, p.scene.settings.accuracy.unwrap(), &record, &limits)
         .expect("refined again");
     assert_eq!(again.dofs, answer.dofs, "the rounds are deterministic");
     let level = seen

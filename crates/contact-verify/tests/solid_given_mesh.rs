@@ -44,13 +44,7 @@ fn rounds(
         seen.borrow_mut().push((solved.0.dofs, solved.1.clone()));
         Ok(solved)
     };
-    let answer = refine(
-        &p,
-        p.scene.settings.accuracy.expect("a target"),
-        &record,
-        limits.max_dofs,
-    )
-    .expect("refined");
+    let answer = refine(&p, p.scene.settings.accuracy.expect("a target"), &record, limits).expect("refined");
     // The same rounds through the route the service takes.
     assert_eq!(solve_solid(&p, limits).expect("refined").dofs, answer.dofs);
     let level = seen

@@ -240,6 +240,48 @@ fn a_patch_the_mesh_does_not_resolve_is_warned() {
     );
 }
 
+/// Loads far too large for the modulus, without `load_factors`, are treated
+/// as 2D treats them: answered with a `large_displacement` warning naming
+/// the likely unit slip when the solve can represent them, refused at the
+/// load's pointer when it cannot (nondimensional loads past 1e150 E·L²), and
+/// a `load_path` step's factor (up to 1e6) counts: the step is refused at
+/// its own pointer where its scaled loads pass that.
+#[test]
+fn loads_far_too_large_for_the_modulus_are_warned_or_refused() {
+    let pressed = |p: f64| {
+        let mut req = example("solid_ball_on_flat.json");
+        let body = &mut req["solid"]["body"];
+        body["mesh"]["box"]["element"] = json!("t4");
+        body["mesh"]["box"]["grading"]["h_min"] = json!(0.4);
+        body["tractions"][0]["pressure"] = json!(p);
+        req
+    };
+    let p = example("solid_ball_on_flat.json")["solid"]["body"]["tractions"][0]["pressure"]
+        .as_f64()
+        .unwrap();
+    let moved = |r: &contact::proto::SolveReply| r.warnings.iter().find(|w| w.code == "large_displacement").cloned();
+    let as_meant = solved(&pressed(p));
+    assert!(moved(&as_meant).is_none(), "{:?}", as_meant.warnings);
+    // ×1e9: the linear answer moves the 10 mm cube by about 1e9 times the
+    // example's approach (0.02 mm, a²/R): 1e6 of its size, past 5e-2.
+    let slipped = solved(&pressed(p * 1e9));
+    let w = moved(&slipped).unwrap_or_else(|| panic!("no large_displacement: {:?}", slipped.warnings));
+    assert_eq!((w.location.as_str(), w.limit), ("/solid/body", 5e-2), "{w:?}");
+    assert!(w.value > 1e3, "{w:?}");
+    assert!(w.message.contains("unit slip"), "{}", w.message);
+    // p / E = 1e155 > 1e150: refused at the pressure.
+    let e = solve(&pressed(2.1e5 * 1e155)).expect_err("beyond what the solve represents");
+    assert_eq!(e.path, "/solid/body/tractions/0", "{e:?}");
+    assert!(e.message.contains("unit slip"), "{}", e.message);
+    // p / E = 1e145 is, but a step's factor of 1e6 takes it past.
+    let mut path = pressed(2.1e5 * 1e145);
+    solved(&path);
+    path["load_path"] =
+        json!([{"loads": {"/solid/body/tractions/0": 1.0}}, {"loads": {"/solid/body/tractions/0": 1e6}}]);
+    let e = solve(&path).expect_err("a step beyond what the solve represents");
+    assert_eq!(e.path, "/load_path/1", "{e:?}");
+}
+
 /// A coarse Hertz ball on T4 (nonuniform pressure, a patch edge inside the
 /// mesh) in mm, N, MPa and in m, N, Pa: lengths ×1e-3, stresses ×1e6,
 /// forces as they are, moments ×1e-3. The door scales both to the same

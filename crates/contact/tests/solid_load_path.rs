@@ -15,7 +15,9 @@
 //! - equilibrium and the KKT certificate at every step (1e-9, as the single
 //!   solve's tests in `solid.rs`);
 //! - refusals (an unknown name, a step no contact balances, a step whose
-//!   supports conflict), each at a pointer that resolves in the request.
+//!   supports conflict, a step whose prescribed values its factor takes past
+//!   what the solve represents), each at a pointer that resolves in the
+//!   request.
 
 mod common;
 use common::*;
@@ -257,9 +259,19 @@ fn a_path_is_refused_where_it_is_wrong() {
         {"faces": "z_max", "uz": -0.02}, {"faces": "x_max", "uz": -0.02}
     ]);
     conflict["solid"]["body"]["tractions"] = json!([]);
+    // A step's prescribed values are judged as the request's: uz of 1e145
+    // cube sides is representable (below 1e150), a step's 1e6 times it is
+    // not, and is refused at the step, not at the support.
+    let mut pushed =
+        path(json!([{"loads": {"/solid/body/supports/2": 1.0}}, {"loads": {"/solid/body/supports/2": 1e6}}]));
+    pushed["solid"]["body"]["supports"] = json!([
+        {"faces": "x_min", "ux": 0.0}, {"faces": "y_min", "uy": 0.0}, {"faces": "z_max", "uz": -1e146}
+    ]);
+    pushed["solid"]["body"]["tractions"] = json!([]);
     let cases = cases.into_iter().chain([
         (both, ErrorCode::InvalidRequest, "/load_path"),
         (conflict, ErrorCode::InvalidRequest, "/load_path/0"),
+        (pushed, ErrorCode::InvalidRequest, "/load_path/1"),
     ]);
     for (req, code, at) in cases {
         let e = solve(&req).expect_err(at);

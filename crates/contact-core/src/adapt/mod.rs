@@ -510,7 +510,10 @@ fn stop_why(stopped: StopReason, target: &AccuracyTarget, failure: Option<&str>)
             "the next round would exceed max_dofs = {} (the request's, or the service's size or memory limit)",
             target.max_dofs
         ),
-        StopReason::SizeLimit => "the next round exceeds the service's size limit".into(),
+        StopReason::SizeLimit => match failure {
+            Some(why) => format!("the next round exceeds the service's size limit: {why}"),
+            None => "the next round exceeds the service's size limit".into(),
+        },
         StopReason::TimeLimit => {
             "the next round would not end within the time limit (predicted from the last round's time and growth)"
                 .into()

@@ -35,7 +35,10 @@
 //!   solve at least two meshes, the second with eight times the unknowns.
 //!
 //! The rounds stop when the estimate meets its target (with `SAFETY`), when
-//! nothing is in contact, at `max_rounds`, `max_dofs`, the time limit (a
+//! nothing is in contact, at `max_rounds`, `max_dofs` or the service's
+//! memory per request (the next factor's bytes predicted from the last
+//! one's as n², `FACTOR_GROWTH`: both judged before the next mesh is
+//! made, stop `max_dofs` as in 2D), the time limit (a
 //! round's time predicted as t ∝ n², `SOLID_TIME_GROWTH`), when two rounds
 //! do not improve the estimate, or when a round fails or is refused by the
 //! size, candidate or memory limits `solve` applies to every mesh
@@ -53,7 +56,7 @@ use crate::mesh3d::refine::{refine as split, refined_nodes};
 use crate::mesh3d::{Mesh3d, EDGES};
 use crate::outcome::{EstimateBasis, Note, NoteKind, Status, StopReason, WarningCode};
 use crate::scene::solid::{grid_nodes, SolidMesh};
-use crate::scene::{AccuracyTarget, Outputs};
+use crate::scene::{AccuracyTarget, Limits, Outputs};
 use crate::solid::answer::{SolidAccuracy, SolidAnswer};
 use crate::solid::door::SolidProblem;
 use crate::solid::two_level::{two_level, Surface, PRESSURE_ORDER};
@@ -183,6 +186,15 @@ fn estimate_always(problem: &SolidProblem, answer: &mut SolidAnswer, surface: &S
 /// 2.0–2.4, loaded machine, docs/verification/accuracy.md).
 const SOLID_TIME_GROWTH: f64 = 2.0;
 
+/// A 3D factor's stored values are predicted to grow as nnz(L) ∝ n², above
+/// every growth measured (nested dissection of a 3D grid: n^(4/3), George
+/// and Liu): the `solid3d_timing` example (`--cost`) measured n^1.40 on
+/// graded T4 boxes (47k to 293k DOF), n^1.66 on T10 (49k to 134k), and the
+/// ball example's regraded T10 round from 35k DOF n^1.81 (at n^1.5 it was
+/// let in under the 3.75 GB a request had, and its factor held 6.41 GB).
+/// Reading high cuts a round smaller; reading low builds it for nothing.
+const FACTOR_GROWTH: f64 = 2.0;
+
 /// How the rounds make their next mesh and estimate each answer (module
 /// doc): the loop of [`refine`] is the same for both.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -202,18 +214,25 @@ impl Rounds {
     }
 
     /// The round after `current`, or why there is none.
+    /// `max_bytes`: the memory a factor may take (`Limits::memory_bytes`).
     fn next(
         self,
         current: &SolidProblem,
         answer: &SolidAnswer,
         pressed: &[[f64; 3]],
         target: &AccuracyTarget,
+        max_bytes: f64,
     ) -> Result<SolidProblem, StopReason> {
-        let fits = |nodes: f64| 3.0 * nodes <= target.max_dofs as f64;
+        // The next factor's bytes from this one's (`FACTOR_GROWTH`), the
+        // unknowns' growth from the node counts each mesh is made with.
+        let now = current.scene.estimated_nodes;
+        let factor = |nodes: f64| answer.factor_bytes * (nodes / now).max(1.0).powf(FACTOR_GROWTH);
+        let fits = |nodes: f64| 3.0 * nodes <= target.max_dofs as f64 && factor(nodes) <= max_bytes;
         if self == Rounds::Split {
             let mesh = current.mesh.as_ref().expect("a given mesh");
             // Counted before it is made: eight times a mesh at the limit
-            // would be made for nothing.
+            // would be made for nothing (a factor past the memory, built
+            // and refused, took 1.68 GB and minutes).
             let nodes = refined_nodes(mesh) as f64;
             if !fits(nodes) {
                 return Err(StopReason::MaxDofs);
@@ -297,16 +316,18 @@ impl Rounds {
 }
 
 /// Solves, estimates and refines the problem's mesh until `target` is met
-/// or a limit stops the rounds (module doc). `max_dofs`: the deployment's
-/// size limit, which no round may pass.
+/// or a limit stops the rounds (module doc). `limits`: the deployment's
+/// `max_dofs`, its size limit, and `memory_bytes`, the memory a factor may take, which no
+/// round may pass.
 pub fn refine(
     problem: &SolidProblem,
     target: AccuracyTarget,
     solve: &SolidSolver,
-    max_dofs: usize,
+    limits: &Limits,
 ) -> Result<SolidAnswer, CoreError> {
+    let max_bytes = limits.memory_bytes();
     let target = AccuracyTarget {
-        max_dofs: target.max_dofs.min(max_dofs),
+        max_dofs: target.max_dofs.min(limits.max_dofs),
         ..target
     };
     let kind = Rounds::of(problem);
@@ -335,7 +356,7 @@ pub fn refine(
             break StopReason::MaxRounds;
         }
         let t = Instant::now();
-        let next = match kind.next(&current, &answer, &pressed, &target) {
+        let next = match kind.next(&current, &answer, &pressed, &target, max_bytes) {
             Ok(next) => next,
             Err(stop) => break stop,
         };
@@ -349,7 +370,10 @@ pub fn refine(
         let (mut fine, fine_surface) = match solve(&next) {
             Ok(solved) => solved,
             Err(CoreError::Timeout { .. }) => break StopReason::TimeLimit,
-            Err(CoreError::TooLarge { .. }) => break StopReason::SizeLimit,
+            Err(e @ CoreError::TooLarge { .. }) => {
+                failure = Some(e.to_string());
+                break StopReason::SizeLimit;
+            }
             Err(e) => {
                 failure = Some(e.to_string());
                 break StopReason::RoundFailed;

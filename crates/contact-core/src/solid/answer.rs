@@ -29,6 +29,9 @@ pub struct SolidAnswer {
     pub active: usize,
     /// Contact-force refinement steps on the final active set.
     pub refinements: usize,
+    /// Bytes of the factor of K (`signorini::Operator::factor_bytes`): what
+    /// the next refinement round's memory is predicted from.
+    pub factor_bytes: f64,
     pub timings: Timings,
     pub client_id: Option<String>,
     /// What the request's `outputs` asked for.

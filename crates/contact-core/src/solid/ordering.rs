@@ -18,12 +18,62 @@
 //! the polls are at most that far apart (the whole top step at most, about
 //! one sort of all the nodes), and they cost one clock read per step, about
 //! n / 64 reads in all.
+//!
+//! faer's symbolic analysis after it does not poll: `analysed` predicts
+//! both stages from the free DOFs (`predicted_secs`) and starts neither
+//! when they cannot end in the time left, as 2D's AMD order is admitted
+//! (`linalg::symbolic`); a 149k-DOF T10 ball with a 1.5 s limit answered
+//! `too_large`… after 2.0 s, 0.5 s past it, in the analysis.
+
+use faer::sparse::SparseColMat;
 
 use super::dofs::SolidDofs;
 use crate::cancel::{self, Timeout};
+use crate::error::CoreError;
 use crate::fem::pattern::FIXED;
-use crate::mesh3d::Mesh3d;
+use crate::linalg::cholesky::SymbolicFactor;
+use crate::mesh3d::{Mesh3d, Order};
 use crate::outcome::ProgressStage;
+
+/// Seconds per free DOF of the nested dissection: measured 0.42–0.52 µs on
+/// graded T4 boxes of 47k and 293k DOF, 0.44–1.03 µs on T10 of 49k and
+/// 134k (the `solid3d_timing` example, `--cost`, load average 5.5 on 2
+/// cores); the largest, times `rate::scale()` as 2D's are.
+const ORDERING_PER_DOF: f64 = 1.03e-6;
+
+/// faer's supernodal symbolic analysis in that order costs about 3e-9 s per
+/// stored value of L (0.106 s at nnz(L) = 3.5e7, 1.49 s at 4.6e8, the same
+/// runs), which fills like n^(4/3) in 3D: t = c n^(4/3), c measured 6.3e-8
+/// and 7.6e-8 on the T4 boxes, 8.9e-8 and 1.42e-7 on the T10 ones (their
+/// factors fill 1.5 times more per DOF); the larger of each.
+const SYMBOLIC_T4: f64 = 7.6e-8;
+const SYMBOLIC_T10: f64 = 1.42e-7;
+
+/// Seconds the order and the symbolic analysis of `n_free` DOFs are
+/// predicted to take on this machine (`ORDERING_PER_DOF`, `SYMBOLIC_T4`,
+/// `SYMBOLIC_T10`).
+pub fn predicted_secs(order: Order, n_free: usize) -> [f64; 2] {
+    let n = n_free as f64;
+    let c = match order {
+        Order::T4 => SYMBOLIC_T4,
+        Order::T10 => SYMBOLIC_T10,
+    };
+    let scale = crate::linalg::rate::scale();
+    [ORDERING_PER_DOF * n * scale, c * n.powf(4.0 / 3.0) * scale]
+}
+
+/// The supernodal symbolic factor of `k` (the stiffness on `dofs`'s free
+/// DOFs) in nested-dissection order; neither stage is started when the
+/// prediction says it cannot end in the time left (module doc): a
+/// `Timeout` naming its prediction.
+pub fn analysed(mesh: &Mesh3d, dofs: &SolidDofs, k: &SparseColMat<usize, f64>) -> Result<SymbolicFactor, CoreError> {
+    let [ordering, symbolic] = predicted_secs(mesh.order, dofs.n_free);
+    cancel::check_room(ProgressStage::Factorization, ordering + symbolic)?;
+    let (fwd, inv) = nested_dissection(mesh, dofs)?;
+    // The order polls; the analysis does not: judged again with what is left.
+    cancel::check_room(ProgressStage::Factorization, symbolic)?;
+    Ok(SymbolicFactor::try_new_ordered(k, &fwd, &inv)?)
+}
 
 /// Leaves of the dissection: sets of at most this many nodes keep their order.
 const LEAF: usize = 64;
@@ -109,4 +159,47 @@ fn dissect(
     dissect(high, mesh, adj, side, order)?;
     order.extend(separator);
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh3d::generate::box_mesh;
+    use crate::solid::{dofs::dof_map, stiffness, SolidBody, Support};
+
+    /// An order and analysis predicted past the time left are not started
+    /// (2D's `an_ordering_that_cannot_end_in_time_is_not_started`): a T10
+    /// cube of 22³ cells (about 2.7e5 free DOFs, its order and analysis
+    /// predicted at about 3 s) given half its prediction is refused
+    /// with that prediction, not by a poll (which names none) once the
+    /// deadline passed.
+    #[test]
+    fn an_order_that_cannot_end_in_time_is_not_started() {
+        let mesh = box_mesh([0.0; 3], [1.0; 3], 1.0 / 22.0, None, Order::T10);
+        let body = SolidBody {
+            mesh: &mesh,
+            youngs_modulus: 1.0,
+            poisson_ratio: 0.3,
+            supports: vec![
+                Support::roller("z_min", 2),
+                Support::roller("x_min", 0),
+                Support::roller("y_min", 1),
+            ],
+            loads: Vec::new(),
+            body_force: [0.0; 3],
+        };
+        let dofs = dof_map(&body, None).expect("held");
+        let k = stiffness::assemble(&body, &dofs).expect("no deadline yet");
+        let [ordering, symbolic] = predicted_secs(Order::T10, dofs.n_free);
+        let predicted = ordering + symbolic;
+        assert!(predicted > 1.0, "{predicted} s: a prediction a poll could not overtake");
+        let _deadline = cancel::Deadline::install(std::time::Duration::from_secs_f64(0.5 * predicted));
+        match analysed(&mesh, &dofs, &k.k) {
+            Err(CoreError::Timeout {
+                predicted: Some((work, left)),
+                ..
+            }) => assert!(work > left, "{work} s predicted, {left} s left"),
+            other => panic!("not refused by its prediction: {:?}", other.map(|s| s.cost())),
+        }
+    }
 }

@@ -50,7 +50,6 @@ use crate::cache::Prepared;
 use crate::contact::fichera;
 use crate::error::{CoreError, InvalidKind};
 use crate::fem::pattern::FIXED;
-use crate::linalg::cholesky::SymbolicFactor;
 use crate::linalg::dense;
 use crate::methods::{active_set, condensed};
 use crate::outcome::ProgressStage;
@@ -190,6 +189,9 @@ pub struct Operator {
     f_ext: Vec<f64>,
     /// Seconds of assembly, and of the factorization with condensation.
     pub seconds: [f64; 2],
+    /// Bytes of the factor of K (8 per stored value): what a refinement
+    /// round's next factor is predicted from (`adapt::solid`).
+    pub factor_bytes: f64,
 }
 
 /// The operator of `body` against the rows, for the load `factors` the
@@ -260,8 +262,7 @@ pub(super) fn prepare_checked(
     let t1 = std::time::Instant::now();
     crate::progress::stage(crate::progress::ProgressStage::Factorization);
     let refs: Vec<&[(usize, f64)]> = fr.rows.iter().map(|r| r.as_slice()).collect();
-    let (fwd, inv) = ordering::nested_dissection(body.mesh, &dofs)?;
-    let symbolic = Arc::new(SymbolicFactor::try_new_ordered(&k.k, &fwd, &inv)?);
+    let symbolic = Arc::new(ordering::analysed(body.mesh, &dofs, &k.k)?);
     let factor_bytes = 8.0 * symbolic.cost().nnz as f64;
     if factor_bytes > max_bytes {
         return Err(CoreError::TooLarge {
@@ -282,6 +283,7 @@ pub(super) fn prepare_checked(
         fields,
         f_ext,
         seconds: [t1 - t0, t1.elapsed()].map(|d| d.as_secs_f64()),
+        factor_bytes,
     })
 }
 

@@ -1,6 +1,13 @@
 //! What a converged, certified 3D answer can still get wrong that the user
 //! must be told: a contact patch narrower than the mesh resolves (2D's
-//! `coarse_contact_zone`, `solution::validity`).
+//! `coarse_contact_zone`, `solution::validity`), and a body moved further
+//! than the small-displacement theory holds (2D's `large_displacement`, the
+//! same limit `MAX_DISPLACEMENT`: 5 % of the body's largest side).
+//!
+//! Both are what a unit slip gives, as in 2D: loads 10⁻⁶ of what was meant
+//! (a modulus in Pa with lengths in mm) press one node; loads 10⁶ too large
+//! (or ×10⁹, measured on the ball example: the base pressed whole, a
+//! displacement of 10⁵ sides) move the body by many times its size.
 //!
 //! A patch's width is read from its rows' tributary area A as the diameter
 //! of a disk of that area, D = 2 √(A/π), or for a strip (a line contact)
@@ -25,6 +32,7 @@ use crate::mesh3d::{area_normal, dot, sub};
 use crate::outcome::WarningCode;
 use crate::scene::scaling::shown;
 use crate::solution::report::Warning;
+use crate::solution::validity::MAX_DISPLACEMENT;
 
 /// Face edges a patch must span across its width (module doc).
 pub const MIN_PATCH_EDGES: f64 = 4.0;
@@ -138,4 +146,32 @@ fn width(area: f64, points: &[[f64; 3]], h: f64) -> f64 {
     let (lo, hi) = along.fold((f64::MAX, f64::MIN), |(lo, hi), s| (lo.min(s), hi.max(s)));
     let length = (hi - lo).max(0.0) + h;
     disk.min(2.0 * area / length)
+}
+
+/// A `large_displacement` warning when some node of `body` moves by more
+/// than `MAX_DISPLACEMENT` of the body's largest side (rigid motions the
+/// supports leave free included, as 2D counts them): `u` on every DOF,
+/// nondimensional as the mesh.
+pub fn large_displacement(body: &SolidBody, u: &[f64], name: &str) -> Vec<Warning> {
+    let size = crate::mesh::extent(&body.mesh.nodes);
+    let biggest = u
+        .chunks_exact(3)
+        .map(|d| dot([d[0], d[1], d[2]], [d[0], d[1], d[2]]).sqrt())
+        .fold(0.0, f64::max);
+    let moved = biggest / size;
+    if moved.is_nan() || moved <= MAX_DISPLACEMENT {
+        return Vec::new();
+    }
+    vec![Warning {
+        code: WarningCode::LargeDisplacement,
+        value: moved,
+        limit: MAX_DISPLACEMENT,
+        location: "/solid/body".into(),
+        message: format!(
+            "body '{name}' moves by {moved:.3e} of its size, beyond the {MAX_DISPLACEMENT} up to which equilibrium \
+                written on the undeformed shape holds: the answer is that of the linear model, not of the real body. \
+                A displacement this large is also what a unit slip gives (loads far larger than meant for the \
+                modulus: a modulus in MPa with stresses in Pa, say)"
+        ),
+    }]
 }

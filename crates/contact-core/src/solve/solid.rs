@@ -32,7 +32,7 @@ use crate::solid::path as solid_path;
 use crate::solid::report::report;
 use crate::solid::signorini::Contact;
 use crate::solid::two_level::Surface;
-use crate::solid::validity::coarse_patches;
+use crate::solid::validity::{coarse_patches, large_displacement};
 use crate::solid::{fields, signorini, SolidBody};
 
 /// Solves the 3D problem within its time limit, if it has one, with its
@@ -47,7 +47,7 @@ pub fn solve_solid(problem: &SolidProblem, limits: &Limits) -> Result<SolidAnswe
     let _busy = crate::adapt::overlap::busy();
     let once = |p: &SolidProblem| solve_solid_once(p, limits);
     match problem.scene.settings.accuracy {
-        Some(target) => crate::adapt::solid::refine(problem, target, &once, limits.max_dofs),
+        Some(target) => crate::adapt::solid::refine(problem, target, &once, limits),
         None => {
             if problem.scene.settings.estimate {
                 crate::progress::expect_estimate(crate::adapt::solid::COMPANION_SHARE);
@@ -197,7 +197,8 @@ pub fn solve_solid_once(problem: &SolidProblem, limits: &Limits) -> Result<(Soli
         .find(|s| *s != Status::Solved)
         .unwrap_or_else(|| status(&rep, tol));
     crate::progress::stage(ProgressStage::Post);
-    let warnings = coarse_patches(&body, &rows, &rep, scene.length);
+    let mut warnings = coarse_patches(&body, &rows, &rep, scene.length);
+    warnings.extend(large_displacement(&body, &contact.u, &scene.body));
     let answer = SolidAnswer {
         body: scene.body.clone(),
         obstacle: scene.obstacle.clone(),
@@ -210,6 +211,7 @@ pub fn solve_solid_once(problem: &SolidProblem, limits: &Limits) -> Result<(Soli
         candidates: rows.len(),
         active,
         refinements: contact.refinements,
+        factor_bytes: op.factor_bytes,
         timings: obs.finish(),
         client_id: scene.client_id.clone(),
         outputs: o,

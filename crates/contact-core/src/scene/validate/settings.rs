@@ -284,6 +284,24 @@ fn check_reply_magnitude(size: f64, scales: Scales, path: &str) -> Result<(), Co
     ))
 }
 
+/// Loads of the nondimensional `size` (a 3D solid's largest load or
+/// prescribed value, or one load path step's: its factors times them)
+/// against `MAX_SCALED_LOAD` and the reply's magnitude, refused at `path`.
+pub(super) fn check_load_size(size: f64, scales: Scales, path: &str) -> Result<(), CoreError> {
+    if size > MAX_SCALED_LOAD {
+        return Err(invalid(
+            InvalidKind::Request,
+            path,
+            format!(
+                "these loads or prescribed values reach {size:.1e} (nondimensional: stresses in units of E, \
+                    displacements of L), beyond what the solve can represent (below {MAX_SCALED_LOAD:e}): a unit \
+                    slip? (a modulus in MPa with stresses in Pa, say)"
+            ),
+        ));
+    }
+    check_reply_magnitude(size, scales, path)
+}
+
 /// `load_factors`: a bounded list of finite factors whose scaled loads stay
 /// representable. `size`: the largest nondimensional load or prescribed motion.
 pub(super) fn check_load_factors(factors: &[f64], size: f64, scales: Scales, limits: &Limits) -> Result<(), CoreError> {

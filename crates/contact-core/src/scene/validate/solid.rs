@@ -102,27 +102,22 @@ pub fn solid_scene(req: &SolveRequest, limits: &Limits) -> Result<SolidScene, Co
             body_force[c] = finite(*x, &format!("{bp}/body_force/{c}"), K::Request)? * length / e;
         }
     }
-    if !req.load_factors.is_empty() {
-        // The largest nondimensional load or prescribed motion, as 2D judges
-        // it; a solid's forces are totals (force unit E·L², as a body of
-        // revolution's).
-        let size = supports
-            .iter()
-            .flat_map(|s| s.fix.iter().flatten().copied())
-            .chain(loads.iter().flat_map(|l| match l {
-                FaceLoad::Traction { t, .. } => t.to_vec(),
-                FaceLoad::Pressure { p, .. } => vec![*p],
-            }))
-            .chain(body_force)
-            .fold(0.0f64, |a, v| a.max(v.abs()));
-        let scales = crate::scene::Scales {
-            length,
-            modulus: e,
-            axisymmetric: true,
-        };
-        wire_settings::check_load_factors(&req.load_factors, size, scales, limits)?;
+    let scales = crate::scene::Scales {
+        length,
+        modulus: e,
+        axisymmetric: true,
+    };
+    // The largest nondimensional load or prescribed value of each entry, as
+    // 2D judges them; a solid's forces are totals (force unit E·L², as a
+    // body of revolution's).
+    let sizes = super::solid_load_path::Sizes::of(&supports, &loads, body_force);
+    if req.load_factors.is_empty() {
+        sizes.check_base(scales)?;
+    } else {
+        wire_settings::check_load_factors(&req.load_factors, sizes.largest(), scales, limits)?;
     }
     let load_path = super::solid_load_path::solid_load_path(req, b, limits)?;
+    sizes.check_steps(&load_path, scales)?;
     let shape = super::solid_obstacle::obstacle(spec, length)?;
     // The face-set names are checked against the mesh by `solid::door`.
     let faces = spec.contact.faces.clone();
