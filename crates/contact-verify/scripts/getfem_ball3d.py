@@ -176,8 +176,9 @@ def solve_getfem(msh, degree, lsolver, kind):
         md.add_initialized_data("r", [E * h_min])
         expr = "z + (x*x + y*y)/(2*%r)" % R_BALL
         md.add_nodal_contact_with_rigid_obstacle_brick(mim_c, "u", "lambda_n", "r", CONTACT, expr, 1)
-    # nothing holds the body along z but the contact: start Newton with the apex touching (a Hertz approach
-    # a2/R = 0.02 mm down), so the first tangent already has an active set
+    # nothing holds the body along z but the contact: start Newton with the whole body moved down by Hertz's
+    # approach a2/R (0.02 mm), which presses the face into the obstacle for r < sqrt(2) a, so the first
+    # tangent already has an active set
     u0 = np.zeros(mf_u.nbdof())
     u0[2::3] = -A_HERTZ**2 / R_BALL
     md.set_variable("u", u0)

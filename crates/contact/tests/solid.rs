@@ -262,8 +262,9 @@ fn loads_far_too_large_for_the_modulus_are_warned_or_refused() {
     let moved = |r: &contact::proto::SolveReply| r.warnings.iter().find(|w| w.code == "large_displacement").cloned();
     let as_meant = solved(&pressed(p));
     assert!(moved(&as_meant).is_none(), "{:?}", as_meant.warnings);
-    // ×1e9: the linear answer moves the 10 mm cube by about 1e9 times the
-    // example's approach (0.02 mm, a²/R): 1e6 of its size, past 5e-2.
+    // ×1e9: the whole base is pressed, and the linear answer moves the 10 mm
+    // cube by about p/E times its side (15.4e9 / 2.1e5 × 10 mm): some 7e4 of
+    // its size, past 5e-2.
     let slipped = solved(&pressed(p * 1e9));
     let w = moved(&slipped).unwrap_or_else(|| panic!("no large_displacement: {:?}", slipped.warnings));
     assert_eq!((w.location.as_str(), w.limit), ("/solid/body", 5e-2), "{w:?}");

@@ -191,7 +191,8 @@ const SOLID_TIME_GROWTH: f64 = 2.0;
 /// and Liu): the `solid3d_timing` example (`--cost`) measured n^1.40 on
 /// graded T4 boxes (47k to 293k DOF), n^1.66 on T10 (49k to 134k), and the
 /// ball example's regraded T10 round from 35k DOF n^1.81 (at n^1.5 it was
-/// let in under the 3.75 GB a request had, and its factor held 6.41 GB).
+/// let in under the 3.75 GB a request had, and its analysis then predicted
+/// a factor of 6.41 GB, refused after the round was built).
 /// Reading high cuts a round smaller; reading low builds it for nothing.
 const FACTOR_GROWTH: f64 = 2.0;
 
@@ -231,8 +232,8 @@ impl Rounds {
         if self == Rounds::Split {
             let mesh = current.mesh.as_ref().expect("a given mesh");
             // Counted before it is made: eight times a mesh at the limit
-            // would be made for nothing (a factor past the memory, built
-            // and refused, took 1.68 GB and minutes).
+            // would be made for nothing (a round whose factor the analysis
+            // refused as past the memory took 1.68 GB and minutes).
             let nodes = refined_nodes(mesh) as f64;
             if !fits(nodes) {
                 return Err(StopReason::MaxDofs);

@@ -43,23 +43,26 @@ const ORDERING_PER_DOF: f64 = 1.03e-6;
 
 /// faer's supernodal symbolic analysis in that order costs about 3e-9 s per
 /// stored value of L (0.106 s at nnz(L) = 3.5e7, 1.49 s at 4.6e8, the same
-/// runs), which fills like n^(4/3) in 3D: t = c n^(4/3), c measured 6.3e-8
-/// and 7.6e-8 on the T4 boxes, 8.9e-8 and 1.42e-7 on the T10 ones (their
-/// factors fill 1.5 times more per DOF); the larger of each.
-const SYMBOLIC_T4: f64 = 7.6e-8;
-const SYMBOLIC_T10: f64 = 1.42e-7;
+/// runs), and L fills faster than n: the analysis took 0.106 s at 47k and
+/// 1.49 s at 293k DOF on the T4 boxes (n^1.45), 0.158 s at 49k and 0.97 s at
+/// 134k on the T10 ones (n^1.80). So t = t_ref (n / n_ref)^p from the larger
+/// of each, with its exponent: a c n^(4/3) law anchored there (first
+/// built) read 1.9 times low for T10 at 500k DOF, and the analysis does not
+/// poll (review).
+const SYMBOLIC_T4: [f64; 3] = [1.49, 293e3, 1.45];
+const SYMBOLIC_T10: [f64; 3] = [0.97, 134e3, 1.80];
 
 /// Seconds the order and the symbolic analysis of `n_free` DOFs are
 /// predicted to take on this machine (`ORDERING_PER_DOF`, `SYMBOLIC_T4`,
 /// `SYMBOLIC_T10`).
 pub fn predicted_secs(order: Order, n_free: usize) -> [f64; 2] {
     let n = n_free as f64;
-    let c = match order {
+    let [t_ref, n_ref, p] = match order {
         Order::T4 => SYMBOLIC_T4,
         Order::T10 => SYMBOLIC_T10,
     };
     let scale = crate::linalg::rate::scale();
-    [ORDERING_PER_DOF * n * scale, c * n.powf(4.0 / 3.0) * scale]
+    [ORDERING_PER_DOF * n * scale, t_ref * (n / n_ref).powf(p) * scale]
 }
 
 /// The supernodal symbolic factor of `k` (the stiffness on `dofs`'s free

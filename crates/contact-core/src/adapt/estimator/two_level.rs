@@ -30,6 +30,16 @@ impl Estimator for TwoLevel {
         if let Some(coarser) = self.ahead(scene) {
             return Ok(Some(coarser));
         }
+        // A coarsening stopped by the clock (`mesh::coarsen` looks at it) is
+        // not a region that cannot be meshed again: say so, not that a finer
+        // solve does not fit (review).
+        if crate::cancel::expired() {
+            return Err(
+                "the time limit passed before the error estimate's coarser companion was made; only the zone \
+                        ends' uncertainty is estimated"
+                    .into(),
+            );
+        }
         // Only a given mesh whose region cannot be meshed again is left.
         let predicted = report.size.dofs as f64 * (RATIO * RATIO);
         let most = FINER_MAX_DOFS.min(max_dofs as f64);
