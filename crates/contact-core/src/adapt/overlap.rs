@@ -175,9 +175,10 @@ fn core(scene: &Scene, limits: &Limits) -> Option<Busy> {
     }
 }
 
-/// Seconds per given node of `mesh::coarsen` at most, measured on T3 disks
-/// from 1k to 274k nodes (1.3–3.7 µs, growing with the size), on the
-/// machine the factorization's rate is fitted on (`rate::scale`).
+/// Seconds per given node of `mesh::coarsen`: measured on T3 disks from 1k
+/// to 274k nodes (1.3–3.7 µs, growing with the size), so above that size
+/// and for T6 (not measured) an extrapolation; times the machine's
+/// factorization rate (`rate::scale`).
 const COARSEN_PER_NODE: f64 = 4e-6;
 
 /// The coarsening of a given mesh, predicted.

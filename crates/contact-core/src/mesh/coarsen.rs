@@ -24,9 +24,9 @@
 //! The coarsening looks at the request's clock between its phases (`None`
 //! once the deadline has passed or the companion is stopped), so that it can
 //! run beside the answer (`adapt::overlap`). The triangulation itself
-//! (spade's refinement) does not; the whole coarsening took 1.3–3.7 µs per
-//! given node (1.0 s at 274k T3 nodes, the more per node the larger), so the
-//! overlap bounds it by the lateness a limit tolerates.
+//! (spade's refinement) does not, so the overlap bounds the coarsening's
+//! predicted time by the lateness a limit tolerates (its measured cost per
+//! node: `adapt::overlap`'s `COARSEN_PER_NODE`).
 
 use std::collections::{BTreeMap, HashMap};
 

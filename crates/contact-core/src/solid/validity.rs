@@ -6,8 +6,8 @@
 //!
 //! Both are what a unit slip gives, as in 2D: loads 10⁻⁶ of what was meant
 //! (a modulus in Pa with lengths in mm) press one node; loads 10⁶ too large
-//! (or ×10⁹, measured on the ball example: the base pressed whole, a
-//! displacement of 10⁵ sides) move the body by many times its size.
+//! move the body by many times its size (the ball example's ×10⁹ is
+//! worked out in `tests/solid.rs`, `loads_far_too_large_for_the_modulus_are_warned_or_refused`).
 //!
 //! A patch's width is read from its rows' tributary area A as the diameter
 //! of a disk of that area, D = 2 √(A/π), or for a strip (a line contact)
