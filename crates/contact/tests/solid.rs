@@ -270,6 +270,18 @@ fn loads_far_too_large_for_the_modulus_are_warned_or_refused() {
     assert_eq!((w.location.as_str(), w.limit), ("/solid/body", 5e-2), "{w:?}");
     assert!(w.value > 1e3, "{w:?}");
     assert!(w.message.contains("unit slip"), "{}", w.message);
+    // A path through ×1e9 that ends on the load as meant: the warning is the
+    // largest step's, not the last's (it read the last step only), and names it.
+    // (A step's factor is at most 1e6, so the base is ×1e4.)
+    let mut through = pressed(p * 1e4);
+    through["load_path"] = json!([
+        {"loads": {"/solid/body/tractions/0": 1e5}},
+        {"loads": {"/solid/body/tractions/0": 1e-4}}
+    ]);
+    let through = solved(&through);
+    let w = moved(&through).unwrap_or_else(|| panic!("no large_displacement: {:?}", through.warnings));
+    assert!(w.value > 1e3, "{w:?}");
+    assert!(w.message.contains("at load path step 0"), "{}", w.message);
     // p / E = 1e155 > 1e150: refused at the pressure.
     let e = solve(&pressed(2.1e5 * 1e155)).expect_err("beyond what the solve represents");
     assert_eq!(e.path, "/solid/body/tractions/0", "{e:?}");

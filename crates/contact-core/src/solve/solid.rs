@@ -34,6 +34,7 @@ use crate::solid::signorini::Contact;
 use crate::solid::two_level::Surface;
 use crate::solid::validity::{coarse_patches, large_displacement};
 use crate::solid::{fields, signorini, SolidBody};
+use crate::solution::report::Warning;
 
 /// Solves the 3D problem within its time limit, if it has one, with its
 /// error estimate, or refined round by round to `settings.accuracy`
@@ -143,6 +144,9 @@ pub fn solve_solid_once(problem: &SolidProblem, limits: &Limits) -> Result<(Soli
     obs.timings.factorization = op.seconds[1];
     let tol = scene.settings.tolerance;
     let (mut steps, mut last) = (Vec::new(), None);
+    // The largest move over every step, not the last step's: a path may
+    // pass through a load far larger than the one it ends on.
+    let mut moved: Vec<Warning> = Vec::new();
     // (factor, load path step): a path's steps answer with factor 1 (2D's).
     let runs: Vec<(f64, Option<usize>)> = if path.is_empty() {
         factors.iter().map(|&k| (k, None)).collect()
@@ -164,6 +168,18 @@ pub fn solve_solid_once(problem: &SolidProblem, limits: &Limits) -> Result<(Soli
         obs.timings.contact_solve += contact.seconds[2];
         obs.check(Stage::ContactSolve)?;
         let rep = report(&body, &rows, &contact).map_err(located)?;
+        let mut w = large_displacement(&body, &contact.u, &scene.body);
+        if w.first().map(|w| w.value) > moved.first().map(|w| w.value) {
+            if stepped {
+                for w in &mut w {
+                    w.message.push_str(&match at {
+                        Some(i) => format!(" (at load path step {i})"),
+                        None => format!(" (at load factor {factor})"),
+                    });
+                }
+            }
+            moved = w;
+        }
         if stepped {
             steps.push(SolidStep {
                 factor,
@@ -198,7 +214,7 @@ pub fn solve_solid_once(problem: &SolidProblem, limits: &Limits) -> Result<(Soli
         .unwrap_or_else(|| status(&rep, tol));
     crate::progress::stage(ProgressStage::Post);
     let mut warnings = coarse_patches(&body, &rows, &rep, scene.length);
-    warnings.extend(large_displacement(&body, &contact.u, &scene.body));
+    warnings.extend(moved);
     let answer = SolidAnswer {
         body: scene.body.clone(),
         obstacle: scene.obstacle.clone(),
