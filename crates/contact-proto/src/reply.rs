@@ -71,7 +71,10 @@ pub struct SolveReply {
     /// which is then not a model of the physical scene. Limits: strain 5e-2,
     /// rotation 0.15 rad, displacement 5e-2 of the body's size, contact
     /// half-width 0.3 of a curved obstacle's radius, contact displacement 5e-2
-    /// of that radius.
+    /// of that radius. With `load_factors` or `load_path`, every step is
+    /// read: each kind at each place comes from the step where it is furthest
+    /// past its limit, and its message names that step when it is not the
+    /// last.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<Warning>,
     /// With `outputs` listing `vtu`: the VTK XML unstructured grid of every body

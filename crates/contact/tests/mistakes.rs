@@ -181,6 +181,22 @@ fn each_warning_fires_only_where_its_assumption_fails() {
         vee.warnings
     );
 
+    // Stepped, a warning is the worst step's, named, not the last step's
+    // alone: the vee's move at factor 1 is still told when the steps end
+    // on a thousandth of it (the reply read the last step only).
+    let mut stepped = example("signorini_inline_block_on_vee.json");
+    stepped["load_factors"] = json!([1.0, 1e-3]);
+    let stepped = solve(&stepped).expect("answered");
+    let moved = vee.warnings.iter().find(|w| w.code == "large_displacement").unwrap();
+    let told = stepped.warnings.iter().find(|w| w.code == "large_displacement");
+    let told = told.unwrap_or_else(|| panic!("{:?}", stepped.warnings));
+    assert!(told.message.ends_with(" (at load factor 1)"), "{}", told.message);
+    // The same step's value: the first step is the whole request's.
+    assert!(
+        (told.value - moved.value).abs() <= 1e-9 * moved.value,
+        "{told:?} against {moved:?}"
+    );
+
     let rounded = |load: f64| {
         let mut req = example("indentation_flat_punch.json");
         req["obstacles"][0]["shape"]["profile"]["psi"]["flat"]["corner_radius"] = json!(0.3);

@@ -289,6 +289,9 @@ pub struct LoadStep {
     pub resultant: Resultant,
     pub certificate: Certificate,
     pub couplings: Vec<CouplingReport>,
+    /// The step's own warnings, merged into the reply's by `with_steps`
+    /// (not on the wire per step).
+    pub warnings: Vec<Warning>,
 }
 
 impl LoadStep {
@@ -303,7 +306,30 @@ impl LoadStep {
             resultant: r.resultant,
             certificate: r.certificate,
             couplings: r.couplings.clone(),
+            warnings: r.warnings.clone(),
         }
+    }
+
+    /// Where this step is, for a warning read from it: "load path step i"
+    /// or "load factor k".
+    fn label(&self, i: usize) -> String {
+        match self.loads {
+            Some(_) => format!("load path step {i}"),
+            None => format!("load factor {}", self.factor),
+        }
+    }
+}
+
+/// How far a warning is past its limit, whichever side of it the warning
+/// fires on (a displacement above its limit, a zone's width in spacings
+/// below it): ≥ 1 for a warning that fired.
+fn past_limit(w: &Warning) -> f64 {
+    let (v, l) = (w.value.abs(), w.limit.abs());
+    let r = (v / l).max(l / v);
+    if r.is_nan() {
+        0.0
+    } else {
+        r
     }
 }
 
@@ -313,9 +339,34 @@ pub fn with_steps(mut last: Report, steps: Vec<LoadStep>, timings: Timings) -> R
     if let Some(bad) = steps.iter().find(|st| st.status != Status::Solved) {
         last.status = bad.status;
     }
+    last.warnings = step_warnings(std::mem::take(&mut last.warnings), &steps);
     last.timings = timings;
     last.steps = Some(steps);
     last
+}
+
+/// The last step's warnings with every earlier step's: each kind at each
+/// place from the step where it is furthest past its limit, named there
+/// when that is not the last step. A path through a load far too large for
+/// the modulus that ends on a small one must still say so; the reply read
+/// the last step's alone. The last step's warnings keep their order; the
+/// others follow in the order the steps first raised them.
+fn step_warnings(last: Vec<Warning>, steps: &[LoadStep]) -> Vec<Warning> {
+    let same = |a: &Warning, b: &Warning| a.code == b.code && a.location == b.location;
+    let mut out = last;
+    let earlier = steps.len().saturating_sub(1);
+    for (i, step) in steps.iter().enumerate().take(earlier) {
+        for w in &step.warnings {
+            let mut named = w.clone();
+            named.message = format!("{} (at {})", w.message, step.label(i));
+            match out.iter().position(|o| same(o, w)) {
+                Some(j) if past_limit(w) > past_limit(&out[j]) => out[j] = named,
+                Some(_) => {}
+                None => out.push(named),
+            }
+        }
+    }
+    out
 }
 
 /// What touches what in one pair.
