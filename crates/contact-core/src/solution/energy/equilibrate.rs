@@ -20,9 +20,10 @@
 //! pressure, a free surface) t̂ is that traction; on sides with a prescribed
 //! displacement component that component is sought like an inner side's.
 //!
-//! Length: about 700 lines, a seventh of them the patch test; the node
-//! systems (the general one and an inner node's fan), the sides' tractions
-//! and the elements' energies share the side numbering and belong together
+//! Length: about 750 lines, a seventh of them the patch test; the node
+//! systems (the general one and an inner node's fan; `quadratic` solves its
+//! corners' with them), the sides' tractions and the elements' energies
+//! share the side numbering and belong together
 //! (the numbering, the elements' rows kept for the walk and the reused
 //! buffers are what keeps the bound a small share of a solve).
 

@@ -18,7 +18,8 @@
 //!
 //! The answer u_h is made admissible by a correction w where a candidate side
 //! penetrates between its nodes (v = u_h + w; the bound of u − u_h adds
-//! ‖w‖_E). τ is the equilibrated stress of `equilibrate` for the answer with
+//! ‖w‖_E). τ is the equilibrated stress of `equilibrate` (of `quadratic` on
+//! T6) for the answer with
 //! its nodal contact forces replaced by a pressure p* ≥ 0 whose traction
 //! −p* ν is linear on each side and follows the obstacle's normal exactly:
 //! p* linear through the nodal pressures λ_i / w_i where the obstacle is
@@ -38,10 +39,16 @@
 //! complementary energies are those of a second (non-local) body, which the
 //! pointwise Young inequality of `foundation` does not carry.
 //!
-//! Length: about 680 lines, the bound's data from the scene (loads,
-//! supports, the contact pressure, the admissibility correction, the contact
-//! term) in one pass over the same sides; the equilibration, the Airy stress,
-//! a punch's balance and the beds' sides are modules of their own.
+//! On quadratic triangles (straight-sided, `quadratic`) p* is linear on
+//! each half of a side through its three nodal pressures (one q on a
+//! circle), its loads are the P2 functions' moments, and the admissibility
+//! is checked along the quadratic displacement.
+//!
+//! Length: about 820 lines, the bound's data from the scene (loads,
+//! supports, the contact pressure on linear and quadratic sides, the
+//! admissibility correction, the contact term) in one pass over the same
+//! sides; the equilibration (linear and quadratic), the Airy stress, a
+//! punch's balance and the beds' sides are modules of their own.
 
 pub mod airy;
 pub mod equilibrate;
@@ -119,7 +126,7 @@ pub fn unsupported(scene: &Scene, model: &Model, factor: Option<&Cholesky>) -> O
     if scene.analysis == Analysis::Axisymmetric {
         return Some("the equilibrated stress is built for plane sections, not axisymmetry");
     }
-    if let Some(why) = quadratic_gate(scene, model) {
+    if let Some(why) = quadratic::unsupported(scene, model) {
         return Some(why);
     }
     if scene.has_friction() {
@@ -155,42 +162,6 @@ pub fn unsupported(scene: &Scene, model: &Model, factor: Option<&Cholesky>) -> O
     }
     if factor.is_none() {
         return Some("the bound needs the stiffness factor of the condensed route");
-    }
-    None
-}
-
-/// Why a scene with quadratic triangles is out of the bound's reach, if it
-/// is: the T6 stress (`quadratic`) is built on affine elements with the full
-/// integration rule (Galerkin orthogonality for every P2 function), for
-/// single bodies on rigid obstacles.
-fn quadratic_gate(scene: &Scene, model: &Model) -> Option<&'static str> {
-    if model.meshes.iter().all(|m| m.order == Order::T3) {
-        return None;
-    }
-    // A midside node off its side's midpoint by more than round-off makes
-    // the element's map quadratic, and σ_h no longer linear on it.
-    const STRAIGHT: f64 = 1e-9;
-    for m in model.meshes.iter().filter(|m| m.order == Order::T6) {
-        for k in 0..m.n_elems() {
-            let e = m.elem(k);
-            for j in 0..3 {
-                let (a, b, mid) = (m.nodes[e[j]], m.nodes[e[(j + 1) % 3]], m.nodes[e[3 + j]]);
-                let l = (b[0] - a[0]).hypot(b[1] - a[1]);
-                let off = (mid[0] - 0.5 * (a[0] + b[0])).hypot(mid[1] - 0.5 * (a[1] + b[1]));
-                if off > STRAIGHT * l {
-                    return Some("curved quadratic sides are not in the bound yet");
-                }
-            }
-        }
-    }
-    let reduced = scene.bodies.iter().zip(&model.meshes).any(|(b, m)| {
-        crate::fem::assembly::integration(b, m.order, scene.analysis) != crate::fem::kernel::Integration::Full
-    });
-    if reduced {
-        return Some("the P2-P0 element's reduced integration is not in the bound");
-    }
-    if scene.obstacles.iter().any(|o| o.punch.is_some()) || !scene.foundations.is_empty() {
-        return Some("punches and beds on quadratic triangles are not in the bound yet");
     }
     None
 }
@@ -522,7 +493,7 @@ pub fn bound(
         let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
         let t = s.traction();
         for c in 0..2 {
-            let f = quadratic::moments(l, [t[0][c], t[1][c], t[2][c]]);
+            let f = quadratic::moments(l, t.map(|v| v[c]));
             for (n, fc) in s.nodes().zip(f) {
                 add(s.body, n, c, fc);
             }

@@ -17,13 +17,56 @@
 //! sides' tractions, and `split` carries them with an admissible stress.
 //!
 //! An element's midside nodes must be at its sides' midpoints (affine
-//! elements: σ_h linear on K, and the quadrature below exact): the caller
-//! refuses curved ones (`super::unsupported`).
+//! elements: σ_h linear on K, and the quadrature below exact): `unsupported`
+//! refuses curved ones.
 
 use super::equilibrate::{given_at, node_systems, Bound, Input, Numbering, NONE};
 use super::split;
+use crate::fem::assembly::integration;
+use crate::fem::kernel::Integration;
+use crate::mesh::Order;
+use crate::model::Model;
+use crate::scene::Scene;
 
-/// ∫_Γ t φ_i ds / |Γ| for the P2 functions of a side (first end, middle,
+/// Why a scene with quadratic triangles is out of the bound's reach, if it
+/// is: the T6 stress of this module is built on affine elements with the full
+/// integration rule (Galerkin orthogonality for every P2 function), for
+/// single bodies on rigid obstacles.
+pub(super) fn unsupported(scene: &Scene, model: &Model) -> Option<&'static str> {
+    if model.meshes.iter().all(|m| m.order == Order::T3) {
+        return None;
+    }
+    // A midside node off its side's midpoint by more than round-off makes
+    // the element's map quadratic, and σ_h no longer linear on it.
+    const STRAIGHT: f64 = 1e-9;
+    for m in model.meshes.iter().filter(|m| m.order == Order::T6) {
+        for k in 0..m.n_elems() {
+            let e = m.elem(k);
+            for j in 0..3 {
+                let (a, b, mid) = (m.nodes[e[j]], m.nodes[e[(j + 1) % 3]], m.nodes[e[3 + j]]);
+                let l = (b[0] - a[0]).hypot(b[1] - a[1]);
+                let off = (mid[0] - 0.5 * (a[0] + b[0])).hypot(mid[1] - 0.5 * (a[1] + b[1]));
+                if off > STRAIGHT * l {
+                    return Some("curved quadratic sides are not in the bound yet");
+                }
+            }
+        }
+    }
+    let reduced = scene
+        .bodies
+        .iter()
+        .zip(&model.meshes)
+        .any(|(b, m)| integration(b, m.order, scene.analysis) != Integration::Full);
+    if reduced {
+        return Some("the P2-P0 element's reduced integration is not in the bound");
+    }
+    if scene.obstacles.iter().any(|o| o.punch.is_some()) || !scene.foundations.is_empty() {
+        return Some("punches and beds on quadratic triangles are not in the bound yet");
+    }
+    None
+}
+
+/// ∫_Γ t φ_i ds for the P2 functions of a side (first end, middle,
 /// second end) against the traction linear on each half through the values
 /// at the same three points: [7 2 −1; 6 20 6; −1 2 7] / 48.
 pub fn moments(l: f64, t: [f64; 3]) -> [f64; 3] {

@@ -188,8 +188,8 @@ pub fn stress(
             for pt in 0..3 {
                 for (i, a) in alpha.iter().enumerate() {
                     let mi = mode_at(s, i, k, pt);
-                    for r in 0..3 {
-                        sub.at[k][pt][r] += a * mi[r];
+                    for (v, m) in sub.at[k][pt].iter_mut().zip(mi) {
+                        *v += a * m;
                     }
                 }
                 let tg = target_at(sub.points[k][pt]);
