@@ -3,7 +3,8 @@
 //! monotonically), the exact potential extrapolated from the three, and
 //! ‖u − u_h‖_E ≤ √(2 (J(u_h) − J(u))) compared with the bound.
 //!
-//! `cargo run --release -p contact-verify --example energy_bound`
+//! `cargo run --release -p contact-verify --example energy_bound [FACTOR] [SCENE…]`
+//! (FACTOR coarsens the scene's mesh, `effectivity::scaled`).
 
 use contact_core::mesh::uniform::refine_uniform;
 use contact_core::{Limits, Scene};
@@ -18,8 +19,22 @@ fn effectivity_scene(name: &str) -> Value {
     (scene.request)()
 }
 
+/// The clamped block of the test `energy_bound` (loaded on top, held at its
+/// bottom, with no contact), in elements of `element`.
+fn clamped_block(element: &str) -> Value {
+    use contact_verify::build::*;
+    let block = body("block", 100.0, 0.3, rectangle([0.0, 0.0], 2.0, 1.0, 0.2, element))
+        .fixed("bottom")
+        .traction("top", [0.3, -1.0])
+        .body_force([0.0, -0.5]);
+    request(vec![block], vec![pair("block", "top").obstacle("far")])
+        .with_obstacle(obstacle("far", line([0.0, 1.2], [0.0, -1.0])))
+        .to_value()
+}
+
 fn main() {
-    let scenes: Vec<(&str, Value)> = vec![
+    let t3 = |(name, v): (&'static str, Value)| (name, v, "t3");
+    let mut scenes: Vec<(&str, Value, &str)> = vec![
         (
             "hertz_block",
             serde_json::from_str(include_str!("../../../proto/examples/signorini_hertz_cylinder.json")).unwrap(),
@@ -48,17 +63,28 @@ fn main() {
         ),
         // Loaded off centre: it lifts off the springs (`effectivity`).
         ("winkler_footing", effectivity_scene("winkler_footing")),
-    ];
+    ]
+    .into_iter()
+    .map(t3)
+    .collect();
+    // Quadratic triangles (`solution::energy::quadratic`).
+    scenes.push((
+        "hertz_t6",
+        serde_json::from_str(include_str!("../../../proto/examples/signorini_hertz_cylinder_t6.json")).unwrap(),
+        "t6",
+    ));
+    scenes.push(("clamped_t3", clamped_block("t3"), "t3"));
+    scenes.push(("clamped_t6", clamped_block("t6"), "t6"));
     let scale: Vec<f64> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();
     let factor = scale.first().copied().unwrap_or(1.0);
     println!("scene          level    dofs   bound_rel  true_rel(J)  effectivity  correction  contact  t_solve");
     let only: Vec<String> = std::env::args().skip(1).filter(|a| a.parse::<f64>().is_err()).collect();
-    for (name, base) in scenes {
+    for (name, base, element) in scenes {
         if !only.is_empty() && !only.iter().any(|o| o == name) {
             continue;
         }
         let base = if factor != 1.0 {
-            contact_verify::effectivity::scaled(&base, factor, "t3")
+            contact_verify::effectivity::scaled(&base, factor, element)
         } else {
             base
         };

@@ -24,6 +24,7 @@
 /// Stress (xx, yy, xy) at the three side midpoints of each sub-triangle, and
 /// the sub-triangle's area: what the midpoint rule (exact for quadratics)
 /// needs to integrate the energy of σ − σ_h.
+#[derive(Debug, Clone, Copy)]
 pub struct SubStress {
     pub area: [f64; 3],
     pub at: [[[f64; 3]; 3]; 3],
@@ -112,7 +113,7 @@ fn solve7<const R: usize>(a: &mut [[f64; 7]; 7], b: &mut [[f64; R]; 7]) -> bool 
     true
 }
 
-fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
+pub(super) fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
     let det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
         + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
     if det.abs() < 1e-300 {

@@ -20,29 +20,33 @@
 //! pressure, a free surface) t̂ is that traction; on sides with a prescribed
 //! displacement component that component is sought like an inner side's.
 //!
-//! Length: about 700 lines, a seventh of them the patch test; the node
-//! systems (the general one and an inner node's fan), the sides' tractions
-//! and the elements' energies share the side numbering and belong together
+//! Length: about 750 lines, a seventh of them the patch test; the node
+//! systems (the general one and an inner node's fan; `quadratic` solves its
+//! corners' with them), the sides' tractions and the elements' energies
+//! share the side numbering and belong together
 //! (the numbering, the elements' rows kept for the walk and the reused
 //! buffers are what keeps the bound a small share of a solve).
 
 use super::airy;
 use std::collections::HashMap;
 
-/// A boundary side's data, per component: the traction at its two ends (in
-/// the order of `ends`), or None where that component's displacement is
-/// prescribed (the traction is then sought).
+/// A boundary side's data, per component: the traction at its first end,
+/// its middle and its second end (in the order of `ends`; linear on each
+/// half, and on linear triangles linear along the side, the middle value
+/// unread), or None where that component's displacement is prescribed (the
+/// traction is then sought).
 #[derive(Debug, Clone, Copy)]
 pub struct Given {
     pub ends: [usize; 2],
-    pub traction: [Option<[f64; 2]>; 2],
+    pub traction: [Option<[f64; 3]>; 2],
 }
 
-/// One body's linear triangles and what is known on them.
-pub struct Input<'a> {
+/// One body's triangles (N = 3 linear, `quadratic` for N = 6) and what is
+/// known on them.
+pub struct Input<'a, const N: usize> {
     pub nodes: &'a [[f64; 2]],
-    /// Three corners per element, either orientation.
-    pub elems: &'a [[usize; 3]],
+    /// N nodes per element (corners first), either orientation.
+    pub elems: &'a [[usize; N]],
     /// The answer to equilibrate (in equilibrium with the loads below at
     /// every node whose displacement is not prescribed).
     pub u_eq: &'a [[f64; 2]],
@@ -71,18 +75,18 @@ pub struct Bound {
     pub norm2: f64,
 }
 
-struct Side {
-    ends: [usize; 2],
+pub(super) struct Side {
+    pub(super) ends: [usize; 2],
     /// Elements on each side of it (the first one's outward normal is the
     /// side's).
-    elems: [usize; 2],
-    normal: [f64; 2],
-    len: f64,
+    pub(super) elems: [usize; 2],
+    pub(super) normal: [f64; 2],
+    pub(super) len: f64,
 }
 
-const NONE: usize = usize::MAX;
+pub(super) const NONE: usize = usize::MAX;
 
-fn inverse3(d: [[f64; 3]; 3]) -> [[f64; 3]; 3] {
+pub(super) fn inverse3(d: [[f64; 3]; 3]) -> [[f64; 3]; 3] {
     let det = d[0][0] * (d[1][1] * d[2][2] - d[1][2] * d[2][1]) - d[0][1] * (d[1][0] * d[2][2] - d[1][2] * d[2][0])
         + d[0][2] * (d[1][0] * d[2][1] - d[1][1] * d[2][0]);
     // The adjugate's (i, j) entry is the cofactor of (j, i).
@@ -209,6 +213,7 @@ struct Around<'a> {
     rows: &'a [[[f64; 2]; 3]],
     sides: &'a [Side],
     smooth: &'a [[f64; 3]],
+    prior: fn(f64, f64, f64) -> f64,
 }
 
 /// The projections b of an inner node's sides, both components in one walk
@@ -244,7 +249,7 @@ fn inner_node(node: usize, elems: &[u32], at: &Around, fan: &mut Vec<Step>, proj
             d,
         });
         for c in 0..2 {
-            let bbar = sd.len * (2.0 * tn[c] + to[c]) / 6.0;
+            let bbar = (at.prior)(sd.len, tn[c], to[c]);
             num[c] += (eta * bbar - d[c]) / sd.len;
             d[c] -= y[c];
         }
@@ -277,153 +282,152 @@ fn inner_node(node: usize, elems: &[u32], at: &Around, fan: &mut Vec<Step>, proj
 
 /// The admissible stress's distance to σ(u_cmp), element by element; None
 /// for a degenerate element.
-pub fn bound(inp: &Input) -> Option<Bound> {
-    let ne = inp.elems.len();
-    let f = inp.body_force;
-    // One pass over the elements keeps what the node systems need of σ_h:
-    // the corners in 32 bits, each corner's row and the nodal stresses,
-    // averaged over each node's elements (by area): the tractions sought
-    // stay closest to theirs, which are nearer the exact traction than
-    // either element's own (Zienkiewicz–Zhu recovery). The gradients are
-    // made again where they are needed next: cheaper than the first touch
-    // of the memory that would keep them (about a millisecond per megabyte,
-    // measured with perf on the roller example's fresh process).
-    let mut corners: Vec<[u32; 3]> = Vec::with_capacity(ne);
-    let mut rows: Vec<[[f64; 2]; 3]> = Vec::with_capacity(ne);
-    let mut smooth = vec![[0.0; 3]; inp.nodes.len()];
-    let mut weight = vec![0.0; inp.nodes.len()];
-    for &e in inp.elems {
-        let (e, grads, area) = geometry(inp.nodes, e);
-        if area <= 0.0 {
-            return None;
-        }
-        let s = stress(&inp.d, &grads, e, inp.u_eq);
-        for &n in &e {
-            for r in 0..3 {
-                smooth[n][r] += area * s[r];
+/// The given traction of a side at its first end, middle and second end,
+/// in the side's own order (0 on a free side, None where sought).
+pub(super) fn given_at(given: &HashMap<[usize; 2], Given>, s: &Side, c: usize) -> Option<[f64; 3]> {
+    let key = [s.ends[0].min(s.ends[1]), s.ends[0].max(s.ends[1])];
+    match given.get(&key) {
+        Some(g) => g.traction[c].map(|t| if g.ends == s.ends { t } else { [t[2], t[1], t[0]] }),
+        None => Some([0.0; 3]),
+    }
+}
+
+/// The sides of a mesh's corner triangles, each numbered once with its one
+/// or two elements, and the elements around each node.
+pub(super) struct Numbering {
+    pub(super) sides: Vec<Side>,
+    pub(super) elem_sides: Vec<[usize; 3]>,
+    node_start: Vec<usize>,
+    node_list: Vec<u32>,
+}
+
+impl Numbering {
+    /// `corners`: each element's corners, counter-clockwise.
+    pub(super) fn new(nodes: &[[f64; 2]], corners: &[[u32; 3]]) -> Numbering {
+        let ne = corners.len();
+        // Elements around each node, in increasing order (a counting sort into
+        // one array instead of a list per node: no allocation per node).
+        let mut node_start = vec![0usize; nodes.len() + 1];
+        for e in corners {
+            for &n in e {
+                node_start[n as usize + 1] += 1;
             }
-            weight[n] += area;
         }
-        rows.push(std::array::from_fn(|i| {
-            let ty = traction(s, grads[i]);
-            std::array::from_fn(|c| area * ty[c] - f[c] * area / 3.0)
-        }));
-        corners.push(e.map(|n| n as u32));
-    }
-    for (s, w) in smooth.iter_mut().zip(&weight) {
-        if *w > 0.0 {
-            s.iter_mut().for_each(|v| *v /= w);
+        for n in 0..nodes.len() {
+            node_start[n + 1] += node_start[n];
         }
-    }
-    // Elements around each node, in increasing order (a counting sort into
-    // one array instead of a list per node: no allocation per node).
-    let mut node_start = vec![0usize; inp.nodes.len() + 1];
-    for e in &corners {
-        for &n in e {
-            node_start[n as usize + 1] += 1;
-        }
-    }
-    for n in 0..inp.nodes.len() {
-        node_start[n + 1] += node_start[n];
-    }
-    let mut node_list = vec![0u32; node_start[inp.nodes.len()]];
-    let mut fill = node_start.clone();
-    for (k, e) in corners.iter().enumerate() {
-        for n in e.map(|n| n as usize) {
-            node_list[fill[n]] = k as u32;
-            fill[n] += 1;
-        }
-    }
-    let elems_at = |n: usize| &node_list[node_start[n]..node_start[n + 1]];
-    // Sides, oriented by their first (lowest-numbered) element's
-    // counter-clockwise walk; the other element is found among the
-    // elements of the side's first corner (the elements in turn, so a
-    // side's first element numbers it).
-    let mut sides: Vec<Side> = Vec::with_capacity(2 * ne);
-    let mut elem_sides = vec![[NONE; 3]; ne];
-    for k in 0..ne {
-        let e = corners[k].map(|n| n as usize);
-        for j in 0..3 {
-            if elem_sides[k][j] != NONE {
-                continue;
+        let mut node_list = vec![0u32; node_start[nodes.len()]];
+        let mut fill = node_start.clone();
+        for (k, e) in corners.iter().enumerate() {
+            for n in e.map(|n| n as usize) {
+                node_list[fill[n]] = k as u32;
+                fill[n] += 1;
             }
-            let (a, b) = (e[j], e[(j + 1) % 3]);
-            let (pa, pb) = (inp.nodes[a], inp.nodes[b]);
-            // A plain root, not hypot (whose guard against overflow is slow,
-            // once per side): a side is far from overflow.
-            let (dx, dy) = (pb[0] - pa[0], pb[1] - pa[1]);
-            let len = (dx * dx + dy * dy).sqrt();
-            let id = sides.len();
-            let mut side = Side {
-                ends: [a, b],
-                elems: [k, NONE],
-                normal: [(pb[1] - pa[1]) / len, -(pb[0] - pa[0]) / len],
-                len,
-            };
-            elem_sides[k][j] = id;
-            // A side has at most two elements (a third would make the mesh
-            // non-manifold, which the mesh checks refuse).
-            let (a32, b32) = (a as u32, b as u32);
-            for &k2 in elems_at(a) {
-                let k2 = k2 as usize;
-                if k2 <= k {
+        }
+        let elems_at = |n: usize| &node_list[node_start[n]..node_start[n + 1]];
+        // Sides, oriented by their first (lowest-numbered) element's
+        // counter-clockwise walk; the other element is found among the
+        // elements of the side's first corner (the elements in turn, so a
+        // side's first element numbers it).
+        let mut sides: Vec<Side> = Vec::with_capacity(2 * ne);
+        let mut elem_sides = vec![[NONE; 3]; ne];
+        for k in 0..ne {
+            let e = corners[k].map(|n| n as usize);
+            for j in 0..3 {
+                if elem_sides[k][j] != NONE {
                     continue;
                 }
-                let e2 = corners[k2];
-                if let Some(j2) = (0..3).find(|&j2| {
-                    let (c, d) = (e2[j2], e2[(j2 + 1) % 3]);
-                    (c == a32 && d == b32) || (c == b32 && d == a32)
-                }) {
-                    side.elems[1] = k2;
-                    elem_sides[k2][j2] = id;
+                let (a, b) = (e[j], e[(j + 1) % 3]);
+                let (pa, pb) = (nodes[a], nodes[b]);
+                // A plain root, not hypot (whose guard against overflow is slow,
+                // once per side): a side is far from overflow.
+                let (dx, dy) = (pb[0] - pa[0], pb[1] - pa[1]);
+                let len = (dx * dx + dy * dy).sqrt();
+                let id = sides.len();
+                let mut side = Side {
+                    ends: [a, b],
+                    elems: [k, NONE],
+                    normal: [(pb[1] - pa[1]) / len, -(pb[0] - pa[0]) / len],
+                    len,
+                };
+                elem_sides[k][j] = id;
+                // A side has at most two elements (a third would make the mesh
+                // non-manifold, which the mesh checks refuse).
+                let (a32, b32) = (a as u32, b as u32);
+                for &k2 in elems_at(a) {
+                    let k2 = k2 as usize;
+                    if k2 <= k {
+                        continue;
+                    }
+                    let e2 = corners[k2];
+                    if let Some(j2) = (0..3).find(|&j2| {
+                        let (c, d) = (e2[j2], e2[(j2 + 1) % 3]);
+                        (c == a32 && d == b32) || (c == b32 && d == a32)
+                    }) {
+                        side.elems[1] = k2;
+                        elem_sides[k2][j2] = id;
+                    }
                 }
+                sides.push(side);
             }
-            sides.push(side);
+        }
+        Numbering {
+            sides,
+            elem_sides,
+            node_start,
+            node_list,
         }
     }
+
+    fn elems_at(&self, n: usize) -> &[u32] {
+        &self.node_list[self.node_start[n]..self.node_start[n + 1]]
+    }
+
+    /// η of side `id` for element k: 1 where the side's normal is k's
+    /// outward one.
+    pub(super) fn sign(&self, id: usize, k: usize) -> f64 {
+        if self.sides[id].elems[0] == k {
+            1.0
+        } else {
+            -1.0
+        }
+    }
+}
+
+/// The node systems: every corner's sought projections b[side][end][c]
+/// = ∫ t̂ φ_end ds from its elements' rows, the projections given already
+/// in `proj`; `prior` (the side's length, the smoothed traction at the
+/// node's end and at the other) is the moment the sought ones stay closest
+/// to.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn node_systems(
+    num: &Numbering,
+    corners: &[[u32; 3]],
+    rows: &[[[f64; 2]; 3]],
+    smooth: &[[f64; 3]],
+    prior: fn(f64, f64, f64) -> f64,
+    sought: &[[bool; 2]],
+    proj: &mut [[[f64; 2]; 2]],
+) {
+    let (sides, elem_sides) = (&num.sides, &num.elem_sides);
     let sign = |side: &Side, k: usize| if side.elems[0] == k { 1.0 } else { -1.0 };
-    // The given traction of a side at its ends, in the side's own order.
-    let given_at = |s: &Side, c: usize| -> Option<[f64; 2]> {
-        let key = [s.ends[0].min(s.ends[1]), s.ends[0].max(s.ends[1])];
-        match inp.given.get(&key) {
-            Some(g) => g.traction[c].map(|t| if g.ends == s.ends { t } else { [t[1], t[0]] }),
-            None => Some([0.0, 0.0]),
-        }
-    };
-    // Projections b[side][end][component] = ∫ t̂ φ_end ds.
-    let mut proj = vec![[[0.0; 2]; 2]; sides.len()];
-    let mut sought = vec![[false; 2]; sides.len()];
-    for (id, s) in sides.iter().enumerate() {
-        for c in 0..2 {
-            if s.elems[1] != NONE {
-                sought[id][c] = true;
-                continue;
-            }
-            match given_at(s, c) {
-                Some([ta, tb]) => {
-                    proj[id][0][c] = s.len * (2.0 * ta + tb) / 6.0;
-                    proj[id][1][c] = s.len * (ta + 2.0 * tb) / 6.0;
-                }
-                None => sought[id][c] = true,
-            }
-        }
-    }
     let (mut cols, mut last): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
     let (mut a, mut m, mut y, mut bbar, mut wt, mut skip) = (vec![], vec![], vec![], vec![], vec![], vec![]);
     let mut fan: Vec<Step> = Vec::new();
     let around = Around {
-        corners: &corners,
-        elem_sides: &elem_sides,
-        rows: &rows,
-        sides: &sides,
-        smooth: &smooth,
+        corners,
+        elem_sides,
+        rows,
+        sides,
+        smooth,
+        prior,
     };
-    for node in 0..inp.nodes.len() {
-        let elems = elems_at(node);
+    for node in 0..num.node_start.len() - 1 {
+        let elems = num.elems_at(node);
         if elems.is_empty() {
             continue;
         }
-        if inner_node(node, elems, &around, &mut fan, &mut proj) {
+        if inner_node(node, elems, &around, &mut fan, proj) {
             // A node inside: its elements and sides form a cycle, solved in
             // one pass instead of through A Aᵀ (most nodes).
             continue;
@@ -482,7 +486,7 @@ pub fn bound(inp: &Input) -> Option<Bound> {
                     }
                 };
                 let other = sd.ends[0] + sd.ends[1] - node;
-                sd.len * (2.0 * t(smooth[node]) + t(smooth[other])) / 6.0
+                prior(sd.len, t(smooth[node]), t(smooth[other]))
             }));
             for r in 0..nr {
                 y[r] -= (0..nc).map(|j| a[r * nc + j] * bbar[j]).sum::<f64>();
@@ -509,6 +513,79 @@ pub fn bound(inp: &Input) -> Option<Bound> {
             std::mem::swap(&mut last, &mut cols);
         }
     }
+}
+
+pub fn bound(inp: &Input<3>) -> Option<Bound> {
+    let ne = inp.elems.len();
+    let f = inp.body_force;
+    // One pass over the elements keeps what the node systems need of σ_h:
+    // the corners in 32 bits, each corner's row and the nodal stresses,
+    // averaged over each node's elements (by area): the tractions sought
+    // stay closest to theirs, which are nearer the exact traction than
+    // either element's own (Zienkiewicz–Zhu recovery). The gradients are
+    // made again where they are needed next: cheaper than the first touch
+    // of the memory that would keep them (about a millisecond per megabyte,
+    // measured with perf on the roller example's fresh process).
+    let mut corners: Vec<[u32; 3]> = Vec::with_capacity(ne);
+    let mut rows: Vec<[[f64; 2]; 3]> = Vec::with_capacity(ne);
+    let mut smooth = vec![[0.0; 3]; inp.nodes.len()];
+    let mut weight = vec![0.0; inp.nodes.len()];
+    for &e in inp.elems {
+        let (e, grads, area) = geometry(inp.nodes, e);
+        if area <= 0.0 {
+            return None;
+        }
+        let s = stress(&inp.d, &grads, e, inp.u_eq);
+        for &n in &e {
+            for r in 0..3 {
+                smooth[n][r] += area * s[r];
+            }
+            weight[n] += area;
+        }
+        rows.push(std::array::from_fn(|i| {
+            let ty = traction(s, grads[i]);
+            std::array::from_fn(|c| area * ty[c] - f[c] * area / 3.0)
+        }));
+        corners.push(e.map(|n| n as u32));
+    }
+    for (s, w) in smooth.iter_mut().zip(&weight) {
+        if *w > 0.0 {
+            s.iter_mut().for_each(|v| *v /= w);
+        }
+    }
+    let num = Numbering::new(inp.nodes, &corners);
+    let (sides, elem_sides) = (&num.sides, &num.elem_sides);
+    let sign = |side: &Side, k: usize| if side.elems[0] == k { 1.0 } else { -1.0 };
+    // The given traction of a side at its ends, in the side's own order.
+    let given_at = |s: &Side, c: usize| given_at(inp.given, s, c);
+    // Projections b[side][end][component] = ∫ t̂ φ_end ds.
+    let mut proj = vec![[[0.0; 2]; 2]; sides.len()];
+    let mut sought = vec![[false; 2]; sides.len()];
+    for (id, s) in sides.iter().enumerate() {
+        for c in 0..2 {
+            if s.elems[1] != NONE {
+                sought[id][c] = true;
+                continue;
+            }
+            match given_at(s, c) {
+                Some([ta, _, tb]) => {
+                    proj[id][0][c] = s.len * (2.0 * ta + tb) / 6.0;
+                    proj[id][1][c] = s.len * (ta + 2.0 * tb) / 6.0;
+                }
+                None => sought[id][c] = true,
+            }
+        }
+    }
+    // The hats' moments of the nodal stresses' linear traction.
+    node_systems(
+        &num,
+        &corners,
+        &rows,
+        &smooth,
+        |l, near, far| l * (2.0 * near + far) / 6.0,
+        &sought,
+        &mut proj,
+    );
     // Each element's admissible stress against σ(u_cmp).
     let compliance = inverse3(inp.d);
     let mut indicators = vec![0.0; ne];
@@ -647,7 +724,7 @@ mod tests {
                 let traction = if held && on_left {
                     [None, None]
                 } else {
-                    [Some([t[0], t[0]]), Some([t[1], t[1]])]
+                    [Some([t[0]; 3]), Some([t[1]; 3])]
                 };
                 given.insert([a.min(b), a.max(b)], Given { ends: [a, b], traction });
             }

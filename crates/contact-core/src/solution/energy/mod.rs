@@ -18,7 +18,8 @@
 //!
 //! The answer u_h is made admissible by a correction w where a candidate side
 //! penetrates between its nodes (v = u_h + w; the bound of u − u_h adds
-//! ‖w‖_E). τ is the equilibrated stress of `equilibrate` for the answer with
+//! ‖w‖_E). τ is the equilibrated stress of `equilibrate` (of `quadratic` on
+//! T6) for the answer with
 //! its nodal contact forces replaced by a pressure p* ≥ 0 whose traction
 //! −p* ν is linear on each side and follows the obstacle's normal exactly:
 //! p* linear through the nodal pressures λ_i / w_i where the obstacle is
@@ -38,16 +39,24 @@
 //! complementary energies are those of a second (non-local) body, which the
 //! pointwise Young inequality of `foundation` does not carry.
 //!
-//! Length: about 680 lines, the bound's data from the scene (loads,
-//! supports, the contact pressure, the admissibility correction, the contact
-//! term) in one pass over the same sides; the equilibration, the Airy stress,
-//! a punch's balance and the beds' sides are modules of their own.
+//! On quadratic triangles (straight-sided, `quadratic`) p* is linear on
+//! each half of a side through its three nodal pressures (one q on a
+//! circle), its loads are the P2 functions' moments, and the admissibility
+//! is checked along the quadratic displacement.
+//!
+//! Length: about 820 lines, the bound's data from the scene (loads,
+//! supports, the contact pressure on linear and quadratic sides, the
+//! admissibility correction, the contact term) in one pass over the same
+//! sides; the equilibration (linear and quadratic), the Airy stress, a
+//! punch's balance and the beds' sides are modules of their own.
 
 pub mod airy;
 pub mod equilibrate;
 mod foundation;
 mod pending;
 mod punch;
+pub mod quadratic;
+pub mod split;
 
 pub use pending::{Operator, Pending};
 
@@ -117,8 +126,8 @@ pub fn unsupported(scene: &Scene, model: &Model, factor: Option<&Cholesky>) -> O
     if scene.analysis == Analysis::Axisymmetric {
         return Some("the equilibrated stress is built for plane sections, not axisymmetry");
     }
-    if model.meshes.iter().any(|m| m.order != Order::T3) {
-        return Some("the equilibrated stress is built for linear triangles (T3) only");
+    if let Some(why) = quadratic::unsupported(scene, model) {
+        return Some(why);
     }
     if scene.has_friction() {
         return Some("friction is not in the bound's complementary energy");
@@ -166,10 +175,21 @@ struct ContactSide {
     ends: [usize; 2],
     pressure: [f64; 2],
     dir: [[f64; 2]; 2],
+    /// A quadratic side's midside node, p* and ν there: p* is linear on
+    /// each half (on a circle q |x − c|, whose −p* ν is linear along the
+    /// whole side).
+    mid: Option<Mid>,
     form: Form,
     /// The obstacle's curvature along the side (`form_of`), for the
     /// admissibility check's margin.
     curvature: f64,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Mid {
+    node: usize,
+    pressure: f64,
+    dir: [f64; 2],
 }
 
 /// How the obstacle's normal runs along a side: the traction −p*(x) ν(x)
@@ -191,14 +211,35 @@ impl ContactSide {
     /// p* at parameter t of the side.
     fn pressure_at(&self, mesh: &Mesh2d, t: f64) -> f64 {
         let (a, b) = (mesh.nodes[self.ends[0]], mesh.nodes[self.ends[1]]);
-        match self.form {
-            Form::Arc { center } => {
+        match (self.form, self.mid) {
+            (Form::Arc { center }, _) => {
                 let x = [(1.0 - t) * a[0] + t * b[0], (1.0 - t) * a[1] + t * b[1]];
                 let ra = (a[0] - center[0]).hypot(a[1] - center[1]);
                 self.pressure[0] / ra * (x[0] - center[0]).hypot(x[1] - center[1])
             }
+            (_, Some(m)) if t <= 0.5 => (1.0 - 2.0 * t) * self.pressure[0] + 2.0 * t * m.pressure,
+            (_, Some(m)) => (2.0 - 2.0 * t) * m.pressure + (2.0 * t - 1.0) * self.pressure[1],
             _ => (1.0 - t) * self.pressure[0] + t * self.pressure[1],
         }
+    }
+
+    /// The traction −p* ν on the body at the side's first end, middle and
+    /// second end (linear on each half; the middle value is the mean of the
+    /// ends' on a linear side).
+    fn traction(&self) -> [[f64; 2]; 3] {
+        let [a, b] = [0, 1].map(|e| self.dir[e].map(|d| -self.pressure[e] * d));
+        let m = match self.mid {
+            Some(m) => m.dir.map(|d| -m.pressure * d),
+            None => [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0],
+        };
+        [a, m, b]
+    }
+
+    /// The side's nodes in order along it (first end, midside, second end).
+    fn nodes(&self) -> impl Iterator<Item = usize> + '_ {
+        std::iter::once(self.ends[0])
+            .chain(self.mid.map(|m| m.node))
+            .chain(std::iter::once(self.ends[1]))
     }
 }
 
@@ -287,12 +328,11 @@ pub fn bound(
                 let tr = vector.unwrap_or([-pressure * n[0], -pressure * n[1]]);
                 let g = given[b].entry(key(e.a, e.b)).or_insert(Given {
                     ends: [e.a, e.b],
-                    traction: [Some([0.0; 2]); 2],
+                    traction: [Some([0.0; 3]); 2],
                 });
                 for (c, tc) in tr.iter().enumerate() {
                     if let Some(v) = g.traction[c].as_mut() {
-                        v[0] += tc;
-                        v[1] += tc;
+                        v.iter_mut().for_each(|x| *x += tc);
                     }
                 }
             }
@@ -325,6 +365,9 @@ pub fn bound(
                 continue;
             };
             let mut pressure = [at(e.a).map_or(0.0, |x| x.0), at(e.b).map_or(0.0, |x| x.0)];
+            // A quadratic side's midside p*: its own row's, or the ends'
+            // mean where the multiplier lives on the corners alone.
+            let mut mid_pressure = e.mid.map(|m| at(m).map_or(0.5 * (pressure[0] + pressure[1]), |x| x.0));
             let shape = &scene.obstacles[o].shape;
             let Some((form, turn)) = form_of(shape, mesh.nodes[e.a], mesh.nodes[e.b]) else {
                 if pressure != [0.0, 0.0] {
@@ -343,24 +386,39 @@ pub fn bound(
                 // (at a sharp corner the continuous model's normal is not even
                 // defined), and the admissibility between samples has no
                 // bound there: a side in contact there is out of reach.
-                Form::Kinked if pressure != [0.0, 0.0] => {
+                Form::Kinked if pressure != [0.0, 0.0] || mid_pressure.is_some_and(|p| p != 0.0) => {
                     return Err("the obstacle's normal turns within a side in contact (a sharp corner or a spline)")
                 }
                 Form::Arc { center } => {
                     // One q on the side, p* = q |x − c|, with the mean of the
                     // nodal pressures' integral.
                     let r = |n: usize| (mesh.nodes[n][0] - center[0]).hypot(mesh.nodes[n][1] - center[1]);
-                    let q = (pressure[0] + pressure[1]) / (r(e.a) + r(e.b));
+                    // On a quadratic side the mean by Simpson's weights.
+                    let q = match (e.mid, mid_pressure) {
+                        (Some(m), Some(pm)) => (pressure[0] + 4.0 * pm + pressure[1]) / (r(e.a) + 4.0 * r(m) + r(e.b)),
+                        _ => (pressure[0] + pressure[1]) / (r(e.a) + r(e.b)),
+                    };
                     pressure = [q * r(e.a), q * r(e.b)];
+                    mid_pressure = e.mid.map(|m| q * r(m));
                 }
                 _ => {}
             }
+            let mid = match (e.mid, mid_pressure) {
+                (Some(node), Some(p)) => {
+                    let Some(dir) = exact(node).or_else(|| dir_of(node)) else {
+                        continue;
+                    };
+                    Some(Mid { node, pressure: p, dir })
+                }
+                _ => None,
+            };
             let side = ContactSide {
                 body: pair.body,
                 obstacle: o,
                 ends: [e.a, e.b],
                 pressure,
                 dir: [da, db],
+                mid,
                 form,
                 curvature: match form {
                     Form::Straight => 0.0,
@@ -382,18 +440,19 @@ pub fn bound(
         foundation::balance(model, set, &mut beds)?;
     }
     for side in &sides {
-        let t = [0, 1].map(|e| side.dir[e].map(|d| -side.pressure[e] * d));
-        add_traction(&mut given[side.body], side.ends, t);
+        add_traction(&mut given[side.body], side.ends, side.traction());
     }
     for side in &beds {
-        add_traction(&mut given[side.body], side.ends, side.traction());
+        let [a, b] = side.traction();
+        let m = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
+        add_traction(&mut given[side.body], side.ends, [a, m, b]);
     }
     for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
         for s in &body.supports {
             for e in mesh.edge_sets.get(&s.edges).map(|v| v.as_slice()).unwrap_or(&[]) {
                 let g = given[b].entry(key(e.a, e.b)).or_insert(Given {
                     ends: [e.a, e.b],
-                    traction: [Some([0.0; 2]); 2],
+                    traction: [Some([0.0; 3]); 2],
                 });
                 if s.ux.is_some() {
                     g.traction[0] = None;
@@ -415,6 +474,7 @@ pub fn bound(
     };
     let linear = sides
         .iter()
+        .filter(|s| s.mid.is_none())
         .map(|s| (s.body, s.ends, [0, 1].map(|e| s.dir[e].map(|d| -s.pressure[e] * d))))
         .chain(beds.iter().map(|s| (s.body, s.ends, s.traction())));
     for (body, ends, t) in linear {
@@ -424,6 +484,19 @@ pub fn bound(
         for (c, (&ta, &tb)) in t[0].iter().zip(&t[1]).enumerate() {
             add(body, ends[0], c, l * (2.0 * ta + tb) / 6.0);
             add(body, ends[1], c, l * (ta + 2.0 * tb) / 6.0);
+        }
+    }
+    // A quadratic side's consistent forces: the P2 functions' moments.
+    for s in sides.iter().filter(|s| s.mid.is_some()) {
+        let mesh = &meshes[s.body];
+        let (pa, pb) = (mesh.nodes[s.ends[0]], mesh.nodes[s.ends[1]]);
+        let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+        let t = s.traction();
+        for c in 0..2 {
+            let f = quadratic::moments(l, t.map(|v| v[c]));
+            for (n, fc) in s.nodes().zip(f) {
+                add(s.body, n, c, fc);
+            }
         }
     }
     for (cand, l) in model.cons.candidates.iter().zip(lambda) {
@@ -477,10 +550,18 @@ pub fn bound(
             (1.0 - t) * mesh.nodes[a][0] + t * mesh.nodes[b][0],
             (1.0 - t) * mesh.nodes[a][1] + t * mesh.nodes[b][1],
         ];
-        let v = [
-            (1.0 - t) * field[a][0] + t * field[b][0],
-            (1.0 - t) * field[a][1] + t * field[b][1],
-        ];
+        let v = match s.mid {
+            // The P2 functions along the side.
+            Some(m) => {
+                let w = [(1.0 - t) * (1.0 - 2.0 * t), 4.0 * t * (1.0 - t), t * (2.0 * t - 1.0)];
+                let vm = field[m.node];
+                std::array::from_fn(|c| w[0] * field[a][c] + w[1] * vm[c] + w[2] * field[b][c])
+            }
+            None => [
+                (1.0 - t) * field[a][0] + t * field[b][0],
+                (1.0 - t) * field[a][1] + t * field[b][1],
+            ],
+        };
         (x, v)
     };
     // The largest of v · ν − g along a side: at its samples, plus what a
@@ -505,54 +586,99 @@ pub fn bound(
         let (a, b) = (mesh.nodes[s.ends[0]], mesh.nodes[s.ends[1]]);
         let l = (b[0] - a[0]).hypot(b[1] - a[1]);
         let curvature = s.curvature;
-        if curvature > 0.0 {
+        let delta = l / (SAMPLES - 1) as f64;
+        if let Some(m) = s.mid {
+            // A quadratic v: |v''| = 4 |v_a − 2 v_m + v_b| / l², |v'| at
+            // most its ends' (v' is linear), |v| at most 1.25 of the nodes'
+            // largest (Σ |φ_i| ≤ 1.25 along a side); on a straight piece f
+            // is a quadratic and only |v''| counts.
+            let (va, vm, vb) = (field[s.ends[0]], field[m.node], field[s.ends[1]]);
+            let second = 4.0 * (va[0] - 2.0 * vm[0] + vb[0]).hypot(va[1] - 2.0 * vm[1] + vb[1]) / (l * l);
+            let slope = [(-3.0, 4.0, -1.0), (1.0, -4.0, 3.0)]
+                .iter()
+                .map(|(x, y, z)| (x * va[0] + y * vm[0] + z * vb[0]).hypot(x * va[1] + y * vm[1] + z * vb[1]) / l)
+                .fold(0.0, f64::max);
+            let vmax = 1.25 * [va, vm, vb].iter().map(|v| v[0].hypot(v[1])).fold(0.0, f64::max);
+            // Twice the estimate of |f''|, as below.
+            worst += delta * delta / 4.0
+                * (second + curvature + 2.0 * vmax * curvature * curvature + 2.0 * slope * curvature);
+        } else if curvature > 0.0 {
             let (va, vb) = (field[s.ends[0]], field[s.ends[1]]);
             let vmax = va[0].hypot(va[1]).max(vb[0].hypot(vb[1]));
             let slope = (vb[0] - va[0]).hypot(vb[1] - va[1]) / l;
-            let delta = l / (SAMPLES - 1) as f64;
             // Twice the estimate of |f''|: a margin on the bound of a unit
             // vector's turn along a line.
             worst += delta * delta / 4.0 * (curvature + 2.0 * vmax * curvature * curvature + 2.0 * slope * curvature);
         }
         (worst, cos)
     };
-    let mut push: HashMap<(usize, usize), f64> = HashMap::new();
     let mut dir_at: HashMap<(usize, usize), [f64; 2]> = HashMap::new();
     for s in &sides {
-        for (end, &n) in s.ends.iter().enumerate() {
-            let d = *dir_at.entry((s.body, n)).or_insert(s.dir[end]);
+        let mid = s.mid.map(|m| (m.node, m.dir));
+        for (n, dn) in [(s.ends[0], s.dir[0]), (s.ends[1], s.dir[1])].into_iter().chain(mid) {
+            let d = *dir_at.entry((s.body, n)).or_insert(dn);
             // A node facing two obstacles in different directions would be
             // pushed into one of them.
-            if (d[0] - s.dir[end][0]).abs() + (d[1] - s.dir[end][1]).abs() > 1e-9 {
+            if (d[0] - dn[0]).abs() + (d[1] - dn[1]).abs() > 1e-9 {
                 return Err("a node faces two obstacles in different directions");
             }
         }
-        let (worst, cos) = worst_of(s, &u_h[s.body]);
-        if worst > 0.0 {
-            if cos < 0.5 {
-                return Err("a candidate side turns too far from its rows' direction to be made admissible");
-            }
-            for &n in &s.ends {
-                let e = push.entry((s.body, n)).or_insert(0.0);
-                // 1 % over: the margin of the check moves with v a little.
-                *e = e.max(1.01 * worst / cos);
-            }
-        }
     }
+    // A linear side's hats are ≥ 0, so pushing its ends by its worst moves
+    // every point of it at least as far: one round, then the check. A
+    // quadratic side's corner functions are negative on its far half, so a
+    // corner pushed further by its other side pulls that half back: its
+    // midside node takes the larger of its ends' pushes (the added push is
+    // then concave along the side, so at least its smaller end's), and what
+    // the margin's change leaves is pushed again, in a few more rounds.
+    let rounds = if sides.iter().any(|s| s.mid.is_some()) { 4 } else { 1 };
     let mut v = u_h.to_vec();
     let mut w = vec![0.0; dofs.n_free];
-    for (&(b, n), &delta) in &push {
-        let dn = dir_at[&(b, n)];
-        for c in 0..2 {
-            let step = -delta * dn[c];
-            match dofs.free[dofs.dof(b, n, c)] {
-                FIXED if step.abs() > 1e-12 * delta.max(f64::MIN_POSITIVE) && dn[c].abs() > 1e-9 => {
-                    return Err("a node whose displacement is prescribed passes the obstacle between its rows")
+    let mut pushed = false;
+    for _ in 0..rounds {
+        let mut push: HashMap<(usize, usize), f64> = HashMap::new();
+        for s in &sides {
+            let (worst, cos) = worst_of(s, &v[s.body]);
+            if worst > 0.0 {
+                if cos < 0.5 {
+                    return Err("a candidate side turns too far from its rows' direction to be made admissible");
                 }
-                FIXED => {}
-                i => {
-                    w[i] = step;
-                    v[b][n][c] += step;
+                // Every node of the side moves: v · ν gains the push at
+                // every point (the shape functions sum to 1).
+                for n in s.nodes() {
+                    let e = push.entry((s.body, n)).or_insert(0.0);
+                    // 1 % over: the margin of the check moves with v a little.
+                    *e = e.max(1.01 * worst / cos);
+                }
+            }
+        }
+        if push.is_empty() {
+            break;
+        }
+        for s in &sides {
+            if let Some(m) = s.mid {
+                let ends = s.ends.map(|n| push.get(&(s.body, n)).copied().unwrap_or(0.0));
+                let most = ends[0].max(ends[1]);
+                if most > 0.0 {
+                    let e = push.entry((s.body, m.node)).or_insert(0.0);
+                    *e = e.max(most);
+                }
+            }
+        }
+        pushed = true;
+        for (&(b, n), &delta) in &push {
+            let dn = dir_at[&(b, n)];
+            for c in 0..2 {
+                let step = -delta * dn[c];
+                match dofs.free[dofs.dof(b, n, c)] {
+                    FIXED if step.abs() > 1e-12 * delta.max(f64::MIN_POSITIVE) && dn[c].abs() > 1e-9 => {
+                        return Err("a node whose displacement is prescribed passes the obstacle between its rows")
+                    }
+                    FIXED => {}
+                    i => {
+                        w[i] += step;
+                        v[b][n][c] += step;
+                    }
                 }
             }
         }
@@ -561,7 +687,7 @@ pub fn bound(
     if sides.iter().any(|s| worst_of(s, &v[s.body]).0 > 0.0) {
         return Err("the answer could not be made admissible along its candidate sides");
     }
-    let correction = if push.is_empty() {
+    let correction = if !pushed {
         0.0
     } else {
         let kw = sym_lower_matvec(k, &w);
@@ -576,13 +702,22 @@ pub fn bound(
         let mesh = &meshes[s.body];
         let (pa, pb) = (mesh.nodes[s.ends[0]], mesh.nodes[s.ends[1]]);
         let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
-        for (t, wq) in punch::GAUSS4 {
-            let (x, vv) = along(s, &v[s.body], t);
-            let Some((g, dir)) = gap_at(s, x) else {
-                continue;
-            };
-            let p = s.pressure_at(mesh, t);
-            contact += 2.0 * wq * l * p * (g - vv[0] * dir[0] - vv[1] * dir[1]).max(0.0);
+        // A quadratic side's p* has a kink at its middle: each half alone.
+        let halves: &[(f64, f64)] = if s.mid.is_some() {
+            &[(0.0, 0.5), (0.5, 0.5)]
+        } else {
+            &[(0.0, 1.0)]
+        };
+        for &(start, len) in halves {
+            for (t, wq) in punch::GAUSS4 {
+                let t = start + len * t;
+                let (x, vv) = along(s, &v[s.body], t);
+                let Some((g, dir)) = gap_at(s, x) else {
+                    continue;
+                };
+                let p = s.pressure_at(mesh, t);
+                contact += 2.0 * wq * len * l * p * (g - vv[0] * dir[0] - vv[1] * dir[1]).max(0.0);
+            }
         }
     }
     // The beds' term (v = u_h there: a bed takes no correction) and their
@@ -601,21 +736,38 @@ pub fn bound(
                 Constitutive::<3>::stress(&law, &e)[r]
             })
         });
-        // Linear triangles (`unsupported`): three corners per element, read
-        // in place rather than copied.
-        let (elems, rest) = mesh.elems.as_chunks::<3>();
-        debug_assert!(rest.is_empty() && elems.len() == mesh.n_elems());
-        let inp = equilibrate::Input {
-            nodes: &mesh.nodes,
-            elems,
-            u_eq: &u_eq[b],
-            u_cmp: &v[b],
-            u_norm: &u_h[b],
-            d: dm,
-            body_force: body.body_force,
-            given: &given[b],
-        };
-        let out = equilibrate::bound(&inp).ok_or("a degenerate element")?;
+        // The elements' nodes read in place rather than copied.
+        let out = match mesh.order {
+            Order::T3 => {
+                let (elems, rest) = mesh.elems.as_chunks::<3>();
+                debug_assert!(rest.is_empty() && elems.len() == mesh.n_elems());
+                equilibrate::bound(&equilibrate::Input {
+                    nodes: &mesh.nodes,
+                    elems,
+                    u_eq: &u_eq[b],
+                    u_cmp: &v[b],
+                    u_norm: &u_h[b],
+                    d: dm,
+                    body_force: body.body_force,
+                    given: &given[b],
+                })
+            }
+            Order::T6 => {
+                let (elems, rest) = mesh.elems.as_chunks::<6>();
+                debug_assert!(rest.is_empty() && elems.len() == mesh.n_elems());
+                quadratic::bound(&equilibrate::Input {
+                    nodes: &mesh.nodes,
+                    elems,
+                    u_eq: &u_eq[b],
+                    u_cmp: &v[b],
+                    u_norm: &u_h[b],
+                    d: dm,
+                    body_force: body.body_force,
+                    given: &given[b],
+                })
+            }
+        }
+        .ok_or("a degenerate element")?;
         // Each element's tractions must balance for its Airy stress to carry
         // them all; round-off leaves 1e-13 or so (the patch test), a node
         // system that was not in equilibrium far more.
@@ -656,19 +808,19 @@ pub fn bound(
 
 /// Adds a linear traction (its values at `ends`, in that order) to a side's
 /// given data.
-fn add_traction(given: &mut HashMap<[usize; 2], Given>, ends: [usize; 2], t: [[f64; 2]; 2]) {
+fn add_traction(given: &mut HashMap<[usize; 2], Given>, ends: [usize; 2], t: [[f64; 2]; 3]) {
     let g = given
         .entry([ends[0].min(ends[1]), ends[0].max(ends[1])])
         .or_insert(Given {
             ends,
-            traction: [Some([0.0; 2]); 2],
+            traction: [Some([0.0; 3]); 2],
         });
     let flip = g.ends != ends;
     for (c, slot) in g.traction.iter_mut().enumerate() {
         if let Some(v) = slot.as_mut() {
-            let (x, y) = if flip { (t[1][c], t[0][c]) } else { (t[0][c], t[1][c]) };
-            v[0] += x;
-            v[1] += y;
+            for (i, x) in v.iter_mut().enumerate() {
+                *x += t[if flip { 2 - i } else { i }][c];
+            }
         }
     }
 }

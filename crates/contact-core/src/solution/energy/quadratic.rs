@@ -1,0 +1,449 @@
+//! Equilibrated tractions and the admissible stress on straight-sided
+//! quadratic triangles (T6), by the node systems of `equilibrate` with
+//! quadratic test functions.
+//!
+//! Galerkin orthogonality holds for every P2 shape function φ_i, so on each
+//! element K the rows R_K(φ_i) = ∫_K σ_h : ε(φ_i) − ∫_K f φ_i must equal
+//! Σ_Γ η_KΓ ∫_Γ t̂_Γ φ_i ds for all six nodes. A midside node's function
+//! vanishes on K's other two sides: its condition concerns its side alone,
+//! whose moment against it is then the two elements' rows (they agree, up to
+//! the solver's residual, where the node is free: their mean is taken) or
+//! the data on a boundary side. A corner's function gives node systems of
+//! exactly the linear triangles' structure (the unknowns each side's moment
+//! against it), solved by `equilibrate::node_systems`. Each side's traction
+//! is then linear on each half, continuous at the midpoint: three values per
+//! component, fixed by its three moments (`from_moments`). The P2 functions
+//! sum to 1 and reproduce x, so each element is in equilibrium under its
+//! sides' tractions, and `split` carries them with an admissible stress.
+//!
+//! An element's midside nodes must be at its sides' midpoints (affine
+//! elements: σ_h linear on K, and the quadrature below exact): `unsupported`
+//! refuses curved ones.
+
+use super::equilibrate::{given_at, node_systems, Bound, Input, Numbering, NONE};
+use super::split;
+use crate::fem::assembly::integration;
+use crate::fem::kernel::Integration;
+use crate::mesh::Order;
+use crate::model::Model;
+use crate::scene::Scene;
+
+/// Why a scene with quadratic triangles is out of the bound's reach, if it
+/// is: the T6 stress of this module is built on affine elements with the full
+/// integration rule (Galerkin orthogonality for every P2 function), for
+/// single bodies on rigid obstacles.
+pub(super) fn unsupported(scene: &Scene, model: &Model) -> Option<&'static str> {
+    if model.meshes.iter().all(|m| m.order == Order::T3) {
+        return None;
+    }
+    // A midside node off its side's midpoint by more than round-off makes
+    // the element's map quadratic, and σ_h no longer linear on it.
+    const STRAIGHT: f64 = 1e-9;
+    for m in model.meshes.iter().filter(|m| m.order == Order::T6) {
+        for k in 0..m.n_elems() {
+            let e = m.elem(k);
+            for j in 0..3 {
+                let (a, b, mid) = (m.nodes[e[j]], m.nodes[e[(j + 1) % 3]], m.nodes[e[3 + j]]);
+                let l = (b[0] - a[0]).hypot(b[1] - a[1]);
+                let off = (mid[0] - 0.5 * (a[0] + b[0])).hypot(mid[1] - 0.5 * (a[1] + b[1]));
+                if off > STRAIGHT * l {
+                    return Some("curved quadratic sides are not in the bound yet");
+                }
+            }
+        }
+    }
+    let reduced = scene
+        .bodies
+        .iter()
+        .zip(&model.meshes)
+        .any(|(b, m)| integration(b, m.order, scene.analysis) != Integration::Full);
+    if reduced {
+        return Some("the P2-P0 element's reduced integration is not in the bound");
+    }
+    if scene.obstacles.iter().any(|o| o.punch.is_some()) || !scene.foundations.is_empty() {
+        return Some("punches and beds on quadratic triangles are not in the bound yet");
+    }
+    None
+}
+
+/// ∫_Γ t φ_i ds for the P2 functions of a side (first end, middle,
+/// second end) against the traction linear on each half through the values
+/// at the same three points: [7 2 −1; 6 20 6; −1 2 7] / 48.
+pub fn moments(l: f64, t: [f64; 3]) -> [f64; 3] {
+    [
+        l * (7.0 * t[0] + 2.0 * t[1] - t[2]) / 48.0,
+        l * (6.0 * t[0] + 20.0 * t[1] + 6.0 * t[2]) / 48.0,
+        l * (-t[0] + 2.0 * t[1] + 7.0 * t[2]) / 48.0,
+    ]
+}
+
+/// The traction values at a side's first end, middle and second end whose
+/// `moments` are `b` (the inverse of `moments`).
+pub fn from_moments(l: f64, b: [f64; 3]) -> [f64; 3] {
+    [
+        (8.0 * b[0] - b[1] + 2.0 * b[2]) / l,
+        (-3.0 * b[0] + 3.0 * b[1] - 3.0 * b[2]) / l,
+        (2.0 * b[0] - b[1] + 8.0 * b[2]) / l,
+    ]
+}
+
+/// Counter-clockwise corners, the midside nodes in the same order (mid j
+/// between corners j and j + 1), the barycentric gradients ∇L_j and the
+/// area.
+type Geometry = ([usize; 3], [usize; 3], [[f64; 2]; 3], f64);
+
+fn geometry(nodes: &[[f64; 2]], e: [usize; 6]) -> Geometry {
+    let [a, b, c, ab, bc, ca] = e;
+    let (pa, pb, pc) = (nodes[a], nodes[b], nodes[c]);
+    let det = (pb[0] - pa[0]) * (pc[1] - pa[1]) - (pc[0] - pa[0]) * (pb[1] - pa[1]);
+    let (k, m) = if det >= 0.0 {
+        ([a, b, c], [ab, bc, ca])
+    } else {
+        ([a, c, b], [ca, bc, ab])
+    };
+    let p = [nodes[k[0]], nodes[k[1]], nodes[k[2]]];
+    let two_a = det.abs();
+    let grads = std::array::from_fn(|i| {
+        let (j, l) = ((i + 1) % 3, (i + 2) % 3);
+        [(p[j][1] - p[l][1]) / two_a, (p[l][0] - p[j][0]) / two_a]
+    });
+    (k, m, grads, two_a / 2.0)
+}
+
+/// ∇ of the six P2 functions (corners, then midsides) at barycentric `l`.
+fn p2_gradients(g: &[[f64; 2]; 3], l: [f64; 3]) -> [[f64; 2]; 6] {
+    std::array::from_fn(|n| {
+        if n < 3 {
+            let s = 4.0 * l[n] - 1.0;
+            [s * g[n][0], s * g[n][1]]
+        } else {
+            let (i, j) = (n - 3, (n - 2) % 3);
+            [
+                4.0 * (l[i] * g[j][0] + l[j] * g[i][0]),
+                4.0 * (l[i] * g[j][1] + l[j] * g[i][1]),
+            ]
+        }
+    })
+}
+
+/// σ (xx, yy, xy) of `u` at barycentric `l` of the element (`k` corners,
+/// `m` midsides).
+fn stress_at(
+    d: &[[f64; 3]; 3],
+    g: &[[f64; 2]; 3],
+    k: [usize; 3],
+    m: [usize; 3],
+    l: [f64; 3],
+    u: &[[f64; 2]],
+) -> [f64; 3] {
+    let grads = p2_gradients(g, l);
+    let mut eps = [0.0; 3];
+    for (n, gr) in grads.iter().enumerate() {
+        let un = u[if n < 3 { k[n] } else { m[n - 3] }];
+        eps[0] += gr[0] * un[0];
+        eps[1] += gr[1] * un[1];
+        eps[2] += gr[1] * un[0] + gr[0] * un[1];
+    }
+    std::array::from_fn(|r| (0..3).map(|c| d[r][c] * eps[c]).sum())
+}
+
+/// Barycentric coordinates of corner i and of the side midpoints.
+const CORNER: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+const MIDPOINT: [[f64; 3]; 3] = [[0.5, 0.5, 0.0], [0.0, 0.5, 0.5], [0.5, 0.0, 0.5]];
+
+fn traction(s: [f64; 3], n: [f64; 2]) -> [f64; 2] {
+    [s[0] * n[0] + s[2] * n[1], s[2] * n[0] + s[1] * n[1]]
+}
+
+/// The admissible stress's distance to σ(u_cmp), element by element, on
+/// straight-sided quadratic triangles; None for a degenerate element.
+pub fn bound(inp: &Input<6>) -> Option<Bound> {
+    let ne = inp.elems.len();
+    let f = inp.body_force;
+    let d = &inp.d;
+    let mut corners: Vec<[u32; 3]> = Vec::with_capacity(ne);
+    let mut rows: Vec<[[f64; 2]; 3]> = Vec::with_capacity(ne);
+    let mut mid_rows: Vec<[[f64; 2]; 3]> = Vec::with_capacity(ne);
+    let mut smooth = vec![[0.0; 3]; inp.nodes.len()];
+    let mut weight = vec![0.0; inp.nodes.len()];
+    for &e in inp.elems {
+        let (k, m, g, area) = geometry(inp.nodes, e);
+        if area <= 0.0 {
+            return None;
+        }
+        // σ_h is linear on K: its values at the corners (for the nodal
+        // average) and at the side midpoints, where the three-point rule
+        // (weights |K|/3, exact for quadratics) integrates σ_h : ε(φ_i).
+        let at = |l: [f64; 3]| stress_at(d, &g, k, m, l, inp.u_eq);
+        for (i, &n) in k.iter().enumerate() {
+            let s = at(CORNER[i]);
+            for r in 0..3 {
+                smooth[n][r] += area * s[r];
+            }
+            weight[n] += area;
+        }
+        let mut r6 = [[0.0; 2]; 6];
+        for l in MIDPOINT {
+            let s = at(l);
+            for (n, gr) in p2_gradients(&g, l).iter().enumerate() {
+                let t = traction(s, *gr);
+                for c in 0..2 {
+                    r6[n][c] += area / 3.0 * t[c];
+                }
+            }
+        }
+        // ∫_K φ_i: 0 at a corner, |K|/3 at a midside node.
+        for row in r6.iter_mut().skip(3) {
+            for c in 0..2 {
+                row[c] -= f[c] * area / 3.0;
+            }
+        }
+        rows.push([r6[0], r6[1], r6[2]]);
+        mid_rows.push([r6[3], r6[4], r6[5]]);
+        corners.push(k.map(|n| n as u32));
+    }
+    for (s, w) in smooth.iter_mut().zip(&weight) {
+        if *w > 0.0 {
+            s.iter_mut().for_each(|v| *v /= w);
+        }
+    }
+    let num = Numbering::new(inp.nodes, &corners);
+    let (sides, elem_sides) = (&num.sides, &num.elem_sides);
+    // Moments against the corners' functions (proj) and the midside one
+    // (mid), in each side's own orientation.
+    let mut proj = vec![[[0.0; 2]; 2]; sides.len()];
+    let mut mid = vec![[0.0; 2]; sides.len()];
+    let mut sought = vec![[false; 2]; sides.len()];
+    for (k, es) in elem_sides.iter().enumerate() {
+        for (j, &id) in es.iter().enumerate() {
+            let eta = num.sign(id, k);
+            let share = if sides[id].elems[1] == NONE { 1.0 } else { 0.5 };
+            for c in 0..2 {
+                mid[id][c] += share * eta * mid_rows[k][j][c];
+            }
+        }
+    }
+    for (id, s) in sides.iter().enumerate() {
+        for c in 0..2 {
+            if s.elems[1] != NONE {
+                sought[id][c] = true;
+                continue;
+            }
+            match given_at(inp.given, s, c) {
+                Some(t) => {
+                    let b = moments(s.len, t);
+                    proj[id][0][c] = b[0];
+                    mid[id][c] = b[1];
+                    proj[id][1][c] = b[2];
+                }
+                None => sought[id][c] = true,
+            }
+        }
+    }
+    // A linear traction's moment against the P2 corner function is |Γ|/6
+    // of its value at that corner, whatever it is at the other.
+    node_systems(
+        &num,
+        &corners,
+        &rows,
+        &smooth,
+        |l, near, _| l * near / 6.0,
+        &sought,
+        &mut proj,
+    );
+    let compliance = super::equilibrate::inverse3(inp.d);
+    let mut indicators = vec![0.0; ne];
+    let (mut closure, mut scale) = (0.0_f64, 0.0_f64);
+    let mut norm2 = 0.0;
+    for (kk, &elem) in inp.elems.iter().enumerate() {
+        let (k, m, g, area) = geometry(inp.nodes, elem);
+        let p = [inp.nodes[k[0]], inp.nodes[k[1]], inp.nodes[k[2]]];
+        for l in MIDPOINT {
+            let s = stress_at(d, &g, k, m, l, inp.u_norm);
+            let e = stress_at(
+                &[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+                &g,
+                k,
+                m,
+                l,
+                inp.u_norm,
+            );
+            norm2 += area / 3.0 * (s[0] * e[0] + s[1] * e[1] + s[2] * e[2]);
+        }
+        let centroid = [(p[0][0] + p[1][0] + p[2][0]) / 3.0, (p[0][1] + p[1][1] + p[2][1]) / 3.0];
+        // The body force's particular stress, div σ_p = −f.
+        let particular = |x: [f64; 2]| [-f[0] * (x[0] - centroid[0]), -f[1] * (x[1] - centroid[1]), 0.0];
+        let mut t = [[[[0.0; 2]; 2]; 2]; 3];
+        for j in 0..3 {
+            let id = elem_sides[kk][j];
+            let sd = &sides[id];
+            let eta = num.sign(id, kk);
+            let (a, b) = (p[j], p[(j + 1) % 3]);
+            let xm = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
+            let n = [(b[1] - a[1]) / sd.len, -(b[0] - a[0]) / sd.len];
+            // The side's three values per component, in K's order.
+            let mut v = [[0.0; 2]; 3];
+            for c in 0..2 {
+                let vals = from_moments(sd.len, [proj[id][0][c], mid[id][c], proj[id][1][c]]);
+                let vals = if sd.ends[0] == k[j] {
+                    vals
+                } else {
+                    [vals[2], vals[1], vals[0]]
+                };
+                for i in 0..3 {
+                    v[i][c] = eta * vals[i];
+                }
+            }
+            let pts = [a, xm, b];
+            let w: [[f64; 2]; 3] = std::array::from_fn(|i| {
+                let sp = traction(particular(pts[i]), n);
+                [v[i][0] - sp[0], v[i][1] - sp[1]]
+            });
+            t[j] = [[w[0], w[1]], [w[1], w[2]]];
+        }
+        let target: [[f64; 3]; 3] = std::array::from_fn(|i| {
+            let s = stress_at(d, &g, k, m, CORNER[i], inp.u_cmp);
+            let sp = particular(p[i]);
+            std::array::from_fn(|r| s[r] - sp[r])
+        });
+        let out = split::stress(&p, &t, &target, &compliance)?;
+        closure = closure.max(out.closure);
+        scale = scale.max(out.scale);
+        for s in target {
+            scale = scale.max(s.iter().fold(0.0_f64, |a, v| a.max(v.abs())));
+        }
+        indicators[kk] = out.energy;
+    }
+    let closure = if scale > 0.0 { closure / scale } else { closure };
+    Some(Bound {
+        indicators,
+        closure,
+        norm2,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::equilibrate::Given;
+    use super::*;
+    use std::collections::HashMap;
+
+    /// The patch test of quadratic triangles: a quadratic displacement has a
+    /// linear stress, in equilibrium with a uniform body force f = −div σ
+    /// and with its own tractions σ n, linear along every side (so the
+    /// sides' data carry them exactly). It is then its own finite element
+    /// answer, the equilibrated tractions are σ n and the four-split stress
+    /// is σ: the bound vanishes to round-off, whether a side's traction is
+    /// given or its displacement held, on a mesh of eight triangles in both
+    /// orientations.
+    #[test]
+    fn a_linear_stress_has_a_zero_bound() {
+        let mut nodes = vec![
+            [0.0, 0.0],
+            [0.5, 0.0],
+            [1.0, 0.0],
+            [0.0, 0.5],
+            [0.45, 0.55],
+            [1.0, 0.5],
+            [0.0, 1.0],
+            [0.5, 1.0],
+            [1.0, 1.0],
+        ];
+        let corners = [
+            [0, 1, 4],
+            [0, 3, 4],
+            [1, 2, 5],
+            [1, 4, 5],
+            [3, 4, 7],
+            [3, 7, 6],
+            [4, 5, 8],
+            [4, 8, 7],
+        ];
+        let mut mid: HashMap<[usize; 2], usize> = HashMap::new();
+        let mut at = |a: usize, b: usize, nodes: &mut Vec<[f64; 2]>| {
+            *mid.entry([a.min(b), a.max(b)]).or_insert_with(|| {
+                nodes.push([0, 1].map(|c| (nodes[a][c] + nodes[b][c]) / 2.0));
+                nodes.len() - 1
+            })
+        };
+        let elems: Vec<[usize; 6]> = corners
+            .iter()
+            .map(|&[a, b, c]| {
+                [
+                    a,
+                    b,
+                    c,
+                    at(a, b, &mut nodes),
+                    at(b, c, &mut nodes),
+                    at(c, a, &mut nodes),
+                ]
+            })
+            .collect();
+        let (e, nu) = (2.0, 0.3);
+        let k = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
+        let d = [
+            [k * (1.0 - nu), k * nu, 0.0],
+            [k * nu, k * (1.0 - nu), 0.0],
+            [0.0, 0.0, k * (1.0 - 2.0 * nu) / 2.0],
+        ];
+        // u = (1e-3 x² − 4e-4 xy + 2e-4 y, −3e-4 y² + 5e-4 x² + 1e-4 x).
+        let u_at = |x: [f64; 2]| {
+            [
+                1e-3 * x[0] * x[0] - 4e-4 * x[0] * x[1] + 2e-4 * x[1],
+                -3e-4 * x[1] * x[1] + 5e-4 * x[0] * x[0] + 1e-4 * x[0],
+            ]
+        };
+        let sigma = |x: [f64; 2]| -> [f64; 3] {
+            let eps = [
+                2e-3 * x[0] - 4e-4 * x[1],
+                -6e-4 * x[1],
+                -4e-4 * x[0] + 2e-4 + 1e-3 * x[0] + 1e-4,
+            ];
+            std::array::from_fn(|r| (0..3).map(|c| d[r][c] * eps[c]).sum())
+        };
+        // f = −div σ (σ is linear: its derivatives by differences are exact
+        // up to round-off).
+        let (s0, sx, sy) = (sigma([0.0, 0.0]), sigma([1.0, 0.0]), sigma([0.0, 1.0]));
+        let f = [
+            -((sx[0] - s0[0]) + (sy[2] - s0[2])),
+            -((sx[2] - s0[2]) + (sy[1] - s0[1])),
+        ];
+        let u: Vec<[f64; 2]> = nodes.iter().map(|&x| u_at(x)).collect();
+        let boundary = [[0, 1], [1, 2], [2, 5], [5, 8], [8, 7], [7, 6], [6, 3], [3, 0]];
+        for held in [false, true] {
+            let mut given = HashMap::new();
+            for [a, b] in boundary {
+                let (pa, pb) = (nodes[a], nodes[b]);
+                let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+                let n = [(pb[1] - pa[1]) / l, -(pb[0] - pa[0]) / l];
+                let pm = [(pa[0] + pb[0]) / 2.0, (pa[1] + pb[1]) / 2.0];
+                let t = [pa, pm, pb].map(|x| traction(sigma(x), n));
+                let on_left = pa[0] == 0.0 && pb[0] == 0.0;
+                let traction = if held && on_left {
+                    [None, None]
+                } else {
+                    [0, 1].map(|c| Some(t.map(|v| v[c])))
+                };
+                given.insert([a.min(b), a.max(b)], Given { ends: [a, b], traction });
+            }
+            let inp = Input {
+                nodes: &nodes,
+                elems: &elems,
+                u_eq: &u,
+                u_cmp: &u,
+                u_norm: &u,
+                d,
+                body_force: f,
+                given: &given,
+            };
+            let b = bound(&inp).expect("mesh");
+            let total: f64 = b.indicators.iter().sum();
+            assert!(b.closure < 1e-10, "held {held}: closure {}", b.closure);
+            assert!(
+                total < 1e-20 * b.norm2,
+                "held {held}: {total:e} against ‖u‖² {}",
+                b.norm2
+            );
+        }
+    }
+}
