@@ -191,8 +191,11 @@ pub struct PairAccuracy {
     /// stress against rigid obstacles and punches (under load or motion
     /// control) whose sides in contact face straight or circular pieces, and
     /// on tensionless Winkler foundations (a body they alone hold included),
-    /// under supports, uniform tractions and pressures, and body forces; not
-    /// T6, axisymmetry, friction, two bodies, Pasternak or half-plane
+    /// under supports, uniform tractions and pressures, and body forces, and
+    /// straight-sided quadratic triangles (T6) against rigid obstacles under
+    /// the same loads; not curved T6, the P2–P0 element (T6 at ν ≥ 0.45 in
+    /// plane strain), T6 punches or beds, axisymmetry, friction, two bodies,
+    /// Pasternak or half-plane
     /// foundations, point loads (whose energy is infinite), tractions over
     /// part of a side, couplings, bodies moved by contact with obstacles
     /// alone, or contact at a sharp corner, a polyline's vertex or a spline
