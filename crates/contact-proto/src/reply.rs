@@ -74,7 +74,8 @@ pub struct SolveReply {
     /// of that radius. With `load_factors` or `load_path`, every step is
     /// read: each kind at each place comes from the step where it is furthest
     /// past its limit, and its message names that step when it is not the
-    /// last.
+    /// last (a solid's `large_displacement` likewise; its patches' warnings
+    /// are the last step's).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<Warning>,
     /// With `outputs` listing `vtu`: the VTK XML unstructured grid of every body

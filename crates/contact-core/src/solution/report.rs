@@ -320,17 +320,23 @@ impl LoadStep {
     }
 }
 
-/// How far a warning is past its limit, whichever side of it the warning
-/// fires on (a displacement above its limit, a zone's width in spacings
-/// below it): ≥ 1 for a warning that fired.
-fn past_limit(w: &Warning) -> f64 {
-    let (v, l) = (w.value.abs(), w.limit.abs());
-    let r = (v / l).max(l / v);
-    if r.is_nan() {
-        0.0
-    } else {
-        r
+/// Whether warning `a` is further past its limit than `b` (the same kind at
+/// the same place), whichever side of its limit it fires on (a displacement
+/// above it, a zone's width in spacings below it). A limit of 0 (a count of
+/// nodes, say) compares the values; a NaN value is the worst: it must not be
+/// hidden behind a finite one.
+fn worse(a: &Warning, b: &Warning) -> bool {
+    if a.value.is_nan() || b.value.is_nan() {
+        return a.value.is_nan() && !b.value.is_nan();
     }
+    if a.limit == 0.0 || b.limit == 0.0 {
+        return a.value.abs() > b.value.abs();
+    }
+    let past = |w: &Warning| {
+        let (v, l) = (w.value.abs(), w.limit.abs());
+        (v / l).max(l / v)
+    };
+    past(a) > past(b)
 }
 
 /// The last step's report with every step and their summed timings: only as
@@ -360,7 +366,7 @@ fn step_warnings(last: Vec<Warning>, steps: &[LoadStep]) -> Vec<Warning> {
             let mut named = w.clone();
             named.message = format!("{} (at {})", w.message, step.label(i));
             match out.iter().position(|o| same(o, w)) {
-                Some(j) if past_limit(w) > past_limit(&out[j]) => out[j] = named,
+                Some(j) if worse(w, &out[j]) => out[j] = named,
                 Some(_) => {}
                 None => out.push(named),
             }
@@ -558,4 +564,59 @@ pub struct FoundationReport {
     pub w: Vec<f64>,
     pub reference_distance: Option<f64>,
     pub load: f64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn warning(code: WarningCode, value: f64, limit: f64) -> Warning {
+        Warning {
+            code,
+            value,
+            limit,
+            location: "/contacts/0".into(),
+            message: "m".into(),
+        }
+    }
+
+    fn step(factor: f64, warnings: Vec<Warning>) -> LoadStep {
+        LoadStep {
+            factor,
+            loads: None,
+            status: Status::Solved,
+            iterations: 0,
+            pairs: Vec::new(),
+            resultant: Resultant::default(),
+            certificate: Certificate::default(),
+            couplings: Vec::new(),
+            warnings,
+        }
+    }
+
+    /// The worst step's warning is kept, named when not the last: a zone 1
+    /// spacing wide is further past the limit of 4 than one 2 wide (the
+    /// warning fires below its limit); a count against a limit of 0 is
+    /// compared as a count; a NaN is never replaced by a finite value.
+    #[test]
+    fn each_warning_is_the_worst_steps() {
+        let coarse = WarningCode::CoarseContactZone;
+        let slip = WarningCode::PrescribedSlip;
+        let last = vec![warning(coarse, 2.0, 4.0), warning(slip, 3.0, 0.0)];
+        let steps = [
+            step(0.5, vec![warning(coarse, 1.0, 4.0), warning(slip, 5.0, 0.0)]),
+            step(1.0, last.clone()),
+        ];
+        let out = step_warnings(last, &steps);
+        assert_eq!(out.len(), 2);
+        assert_eq!((out[0].value, out[0].message.as_str()), (1.0, "m (at load factor 0.5)"));
+        assert_eq!((out[1].value, out[1].message.as_str()), (5.0, "m (at load factor 0.5)"));
+        let last = vec![warning(coarse, f64::NAN, 4.0)];
+        let steps = [step(0.5, vec![warning(coarse, 1.0, 4.0)]), step(1.0, last.clone())];
+        assert!(step_warnings(last, &steps)[0].value.is_nan());
+        // A kind only an earlier step raised is added after the last step's.
+        let steps = [step(0.5, vec![warning(slip, 1.0, 0.0)]), step(1.0, Vec::new())];
+        let out = step_warnings(Vec::new(), &steps);
+        assert_eq!((out.len(), out[0].code), (1, slip));
+    }
 }

@@ -153,7 +153,8 @@ pub fn solve_solid_once(problem: &SolidProblem, limits: &Limits) -> Result<(Soli
     } else {
         (0..path.len()).map(|i| (1.0, Some(i))).collect()
     };
-    for (factor, at) in runs {
+    let n_runs = runs.len();
+    for (run, (factor, at)) in runs.into_iter().enumerate() {
         let (contact, loads) = match at {
             None => (op.solve(&body, &rows, &scene.settings, factor), None),
             Some(i) => {
@@ -168,9 +169,11 @@ pub fn solve_solid_once(problem: &SolidProblem, limits: &Limits) -> Result<(Soli
         obs.timings.contact_solve += contact.seconds[2];
         obs.check(Stage::ContactSolve)?;
         let rep = report(&body, &rows, &contact).map_err(located)?;
+        // One warning at most (the body's largest move); named by its step
+        // when that is not the last, as 2D's `report::with_steps`.
         let mut w = large_displacement(&body, &contact.u, &scene.body);
         if w.first().map(|w| w.value) > moved.first().map(|w| w.value) {
-            if stepped {
+            if run + 1 < n_runs {
                 for w in &mut w {
                     w.message.push_str(&match at {
                         Some(i) => format!(" (at load path step {i})"),

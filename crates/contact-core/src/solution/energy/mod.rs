@@ -370,7 +370,9 @@ pub fn bound(
             let mut mid_pressure = e.mid.map(|m| at(m).map_or(0.5 * (pressure[0] + pressure[1]), |x| x.0));
             let shape = &scene.obstacles[o].shape;
             let Some((form, turn)) = form_of(shape, mesh.nodes[e.a], mesh.nodes[e.b]) else {
-                if pressure != [0.0, 0.0] {
+                // A quadratic side's midside row can press where its corners
+                // do not (their values alternate near a zone's end).
+                if pressure != [0.0, 0.0] || mid_pressure.is_some_and(|p| p != 0.0) {
                     return Err("a side in contact runs past an open end of its obstacle");
                 }
                 continue;
@@ -567,8 +569,8 @@ pub fn bound(
     // The largest of v · ν − g along a side: at its samples, plus what a
     // smooth function can gain between samples δ apart, δ²/8 max|f''|; with
     // ρ the distance to a circular piece's centre, |g''| ≤ 1/ρ and
-    // |(v · ν)''| ≤ 2|v|/ρ² + 2|v'|/ρ. 0 on a straight piece, where f is
-    // linear.
+    // |(v · ν)''| ≤ 2|v|/ρ² + 2|v'|/ρ. On a straight piece that is 0 for a
+    // linear side; a quadratic side's own |v''| is added below.
     let worst_of = |s: &ContactSide, field: &[[f64; 2]]| -> (f64, f64) {
         let mesh = &meshes[s.body];
         let (mut worst, mut cos) = (f64::NEG_INFINITY, 1.0_f64);
@@ -696,7 +698,9 @@ pub fn bound(
     // 2 ∫ p* (g − v · ν), Gauss–Legendre with 4 points on each side.
     let mut contact = 0.0;
     for s in &sides {
-        if s.pressure == [0.0, 0.0] {
+        // Not only the corners: a midside p* can press between two corners
+        // at 0, and its term must then be counted.
+        if s.pressure == [0.0, 0.0] && s.mid.is_none_or(|m| m.pressure == 0.0) {
             continue;
         }
         let mesh = &meshes[s.body];
