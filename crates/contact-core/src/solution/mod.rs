@@ -5,6 +5,7 @@ pub mod certificate;
 pub mod compose;
 pub mod corners;
 pub mod couplings;
+pub mod end_layer;
 pub mod energy;
 pub mod friction;
 pub mod peak_fit;

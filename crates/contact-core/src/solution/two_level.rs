@@ -5,9 +5,10 @@
 //! equilibrated-flux bound, say) would sit beside it and fill the same
 //! `PairAccuracy`.
 //!
-//! Length: about 610 lines, the two levels' differences and the answer's own
+//! Length: about 625 lines, the two levels' differences and the answer's own
 //! nodal terms each estimate keeps the largest of (zone ends, edge placement,
-//! spacing steps, an axis peak, the resultant's floor), each with the
+//! spacing steps, an axis peak, an end node standing off its neighbours
+//! (`end_layer`), the resultant's floor), each with the
 //! measurement that made it: one estimate read as a whole. Its
 //! dimension-free sums (`relative_l2`, `peak_deviation`, `richardson`,
 //! `resultant`) serve the 3D estimate too (`solid::two_level`).
@@ -18,6 +19,7 @@ use crate::solution::accuracy::{
     along, along_polyline, described, described_at, described_l2_of, field, field_with_reach, fit_quadratic, MIN_FIT,
 };
 use crate::solution::corners;
+use crate::solution::end_layer;
 use crate::solution::peak_fit;
 use crate::solution::report::{PairAccuracy, PairReport, SingularEnd};
 
@@ -106,6 +108,19 @@ pub fn two_level(answer: &PairReport, other: &PairReport, ratio: f64) -> PairAcc
     } else {
         0.0
     };
+    // An end of the edge set whose node stands off its oscillating
+    // neighbours: its own error, the same at every level (`end_layer`).
+    let standing = end_layer::standing_ends(answer, &counted);
+    let layer = if den > 0.0 {
+        end_layer::l2_share(&standing) / den
+    } else {
+        0.0
+    };
+    let top = nodes
+        .iter()
+        .filter(|q| counted(q.0, q.1))
+        .map(|q| q.2)
+        .fold(0.0, f64::max);
     // The described field's difference (the square-root facets to the
     // fitted edges included), along the answer's surface.
     let (pa, ra) = described(answer);
@@ -139,12 +154,19 @@ pub fn two_level(answer: &PairReport, other: &PairReport, ratio: f64) -> PairAcc
         } else {
             EstimateBasis::TwoLevel
         },
-        pressure_l2: l2.map(|v| (v / scale).max(edge.sqrt()).max(placement).max(grading.sqrt())),
+        pressure_l2: l2.map(|v| {
+            (v / scale)
+                .max(edge.sqrt())
+                .max(placement)
+                .max(grading.sqrt())
+                .max(layer.sqrt())
+        }),
         peak: d.peak.map(|v| {
             let theirs = accuracy::weighted_field(other);
             peak_fit::fitted_peak_error(&nodes, &theirs, &counted, PEAK_REGION, scale)
                 .map_or(v / scale, |f| f.min(v / scale))
                 .max(peak_spike(&nodes, &counted))
+                .max(end_layer::peak_error(&standing, top))
         }),
         resultant: d.resultant.map(|v| resultant(v, scale)),
         zone_edges: answer.zones_along.iter().map(|z| z.uncertainty).collect(),
@@ -384,9 +406,10 @@ fn peak_difference(answer: &PairReport, other: &PairReport, counted: &dyn Fn(f64
 /// The trend is the even quadratic p0 − c s² (s along the surface) or the
 /// full quadratic, whichever the node is nearer (an axis peak has zero
 /// slope), and only where the neighbours follow the even one to `SPIKE_EVEN`
-/// of their spread: a pressure that rises toward an end (a press fit's hub
-/// edge, a Pasternak footing's edge) is the physics there, not a node's
-/// error. Interior peaks are left to the two levels: there a T6 surface's
+/// of their spread: a pressure that rises toward an end (a Pasternak
+/// footing's edge) is the physics there, not a node's error, and an end
+/// node standing off oscillating neighbours (a press fit's flush ends) is
+/// `end_layer`'s. Interior peaks are left to the two levels: there a T6 surface's
 /// corner and midside values alternate (the two cylinders), which a
 /// neighbours' fit reads as a spike at every level. The measurements:
 /// docs/verification/accuracy.md, "A peak node standing off its neighbours".
