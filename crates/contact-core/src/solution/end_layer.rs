@@ -13,9 +13,10 @@
 //! few nodes wide whatever h, so the end node is 4 % (T6) and 10–12 % (T3)
 //! off at every level and the two levels agree on it (Richardson's scaling
 //! divides it away); its share of the L2 error falls like h^(1/2), the
-//! order the whole bore's error showed (T3 2.26, 1.46, 0.97, 0.68 %). It is
-//! the corner paradox of a sliding frictional interface meeting a
-//! shear-free end face: the sum of one equal-material quarter-plane and the
+//! order the whole bore's error showed (T3 2.26, 1.46, 0.97, 0.68 %). Our
+//! reading of it (a derivation of ours, not checked against a published
+//! corner analysis), a sliding frictional interface meeting a shear-free
+//! end face: the sum of one equal-material quarter-plane and the
 //! other's mirror image has zero shear and normal displacement on the bore
 //! (half a half-plane: regular, and it carries the pressure), their
 //! difference zero normal stress and the shear mu p (a quarter-plane sheared
