@@ -175,7 +175,9 @@ pub struct PairAccuracy {
     #[serde(default)]
     pub fitted_edges: Vec<[Option<f64>; 2]>,
     /// Zone ends where the pressure is unbounded (a punch's sharp corner,
-    /// p ~ d^(-1/2)): its L2 norm is infinite there, so `pressure_l2` and
+    /// p ~ d^(-1/2); a footing's edge on a Pasternak layer, which carries a
+    /// concentrated line load, or on an elastic half-plane): its L2 norm is
+    /// infinite there, so `pressure_l2` and
     /// `peak` leave out the band of radius `band` around each (5 % of the
     /// zone's length). Read the resultant and the zone there.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

@@ -142,6 +142,36 @@ fn pasternak_settlement_and_decay_match_the_closed_form() {
     }
 }
 
+/// A footing's edges on a Pasternak layer carry a concentrated line load
+/// √(kμ) w0 (the closed form above), so the end node's pressure is that load
+/// over its tributary length and doubles as h halves: the pressure there is
+/// unbounded and has no error to estimate. The reply names both edges as
+/// singular ends (it estimated ±16 % for a node that doubles) and estimates
+/// the pressure outside their bands, where the T6 answer at h = 0.00625
+/// puts the true error at 1.5e-4 (L2) and 2.6e-4 (peak) for the example's
+/// h = 0.05: the estimate must be at least half of that.
+#[test]
+fn a_pasternak_footings_edges_are_named_singular() {
+    let at = |h: f64| {
+        let mut req = example("foundation_pasternak_footing.json");
+        req["bodies"][0]["mesh"]["rectangle"]["size"] = json!(h);
+        solved(&req)
+    };
+    let (coarse, fine) = (at(0.05), at(0.025));
+    let end = |r: &contact::proto::SolveReply| r.pairs[0].points.iter().map(|q| q.pressure).fold(0.0, f64::max);
+    let ratio = end(&fine) / end(&coarse);
+    assert!(
+        (1.9..2.1).contains(&ratio),
+        "the end node's pressure grew by {ratio} as h halved"
+    );
+    let acc = coarse.pairs[0].accuracy.as_ref().expect("an estimate");
+    let mut ends: Vec<[f64; 2]> = acc.singular_ends.iter().map(|e| e.at).collect();
+    ends.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    assert_eq!(ends, vec![[-1.0, 0.0], [1.0, 0.0]], "{acc:?}");
+    assert!(acc.pressure_l2.unwrap() >= 0.5 * 1.5e-4, "{acc:?}");
+    assert!(acc.peak.unwrap() >= 0.5 * 2.6e-4, "{acc:?}");
+}
+
 /// A roller 10⁶ times stiffer than an elastic half-plane foundation reproduces
 /// Hertz for a rigid cylinder on the half-plane: half-width and peak within 1 %
 /// (measured −0.6 % and +0.23 %; the zone is the union of the active panels of

@@ -16,7 +16,9 @@
 //! An end is singular when the pressure at its last node in contact exceeds
 //! that of both nodes next inward (a smooth edge's pressure falls to it) and
 //! the surface goes on past it (where the edge set itself ends, a footing's
-//! whole base, the end is that of the body and its zone end is exact).
+//! whole base, the end is that of the body and its zone end is exact), or
+//! where the edge set ends on a target that goes on past it and carries
+//! load there (a Pasternak layer, an elastic half-plane).
 
 use crate::solution::report::{PairReport, SingularEnd};
 
@@ -48,7 +50,13 @@ pub fn singular_ends(pair: &PairReport) -> Vec<SingularEnd> {
     for z in &pair.zones_along {
         let length = (z.s[1] - z.s[0]).abs();
         for (end, uncertainty) in [(z.start, z.uncertainty[0]), (z.end, z.uncertainty[1])] {
-            if uncertainty <= 0.0 || length <= 0.0 {
+            // An end of the edge set (its place exact) is a corner too where
+            // the target goes on past it: a footing's edge on a Pasternak
+            // layer carries a concentrated line load √(kμ) w there (the
+            // example's end node read 7.31, 13.9, 27.2, 53.6 at T3 sizes
+            // 0.1 to 0.0125, doubling as h halves), and on a half-plane the
+            // edge of a stiffer body is a punch's corner.
+            if length <= 0.0 || (uncertainty <= 0.0 && !pair.goes_on) {
                 continue;
             }
             let Some(&last) = touching.iter().find(|q| q.0 == end[0] && q.1 == end[1]) else {

@@ -13,7 +13,7 @@ use std::collections::{BTreeMap, HashMap, HashSet};
 
 use crate::contact::ConstraintSet;
 use crate::mesh::{boundary::boundary_nodes, Edge, Mesh2d};
-use crate::scene::{Scene, Target};
+use crate::scene::{FoundationModel, Scene, Target};
 use crate::solution::accuracy;
 use crate::solution::report::{ContactPoint, CounterPoint, FittedEnd, PairReport, PairTarget, Resultant, ZoneAlong};
 
@@ -142,9 +142,14 @@ pub fn pairs(
             } => PairTarget::Body(scene.bodies[*body].name.clone(), *discretization),
         };
         let (other_points, other_resultant) = other.map_or((None, None), |(p, r)| (Some(p), Some(r)));
+        let goes_on = match pair.target {
+            Target::Foundation(f) => !matches!(scene.foundations[f].model, FoundationModel::Winkler { .. }),
+            _ => false,
+        };
         out.push(PairReport {
             body: scene.bodies[pair.body].name.clone(),
             target,
+            goes_on,
             other_points,
             other_resultant,
             zones,

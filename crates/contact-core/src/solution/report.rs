@@ -388,6 +388,11 @@ pub enum PairTarget {
 pub struct PairReport {
     pub body: String,
     pub target: PairTarget,
+    /// The target's surface goes on past the ends of the body's edge set
+    /// and carries load there (a Pasternak layer, an elastic half-plane):
+    /// an end of the edge set pressed into it is a corner on it, where the
+    /// pressure may be unbounded (`corners`).
+    pub goes_on: bool,
     /// Intervals [x_start, x_end] along x1 where the body touches: the
     /// x-extent of each zone of `zones_along`, in increasing x.
     pub zones: Vec<[f64; 2]>,
