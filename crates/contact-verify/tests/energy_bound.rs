@@ -5,7 +5,9 @@
 //! admissible answer in contact 2 (J(u_h) − J(u)) is ‖u − u_h‖²_E plus the
 //! work of the exact pressure on the answer's gap, a bit more.
 
+use contact_core::fem::element::gradients;
 use contact_core::mesh::uniform::refine_uniform;
+use contact_core::mesh::Order;
 use contact_core::solution::energy::EnergyBound;
 use contact_core::solution::report::Report;
 use contact_core::{Limits, Scene};
@@ -287,35 +289,18 @@ fn footing(factor: f64) -> Value {
 }
 
 /// Plane-strain D of E and ν (engineering shear).
+/// A T3 or T6 element by its node count.
+fn order_of(t: &[usize]) -> Order {
+    if t.len() == 6 {
+        Order::T6
+    } else {
+        Order::T3
+    }
+}
+
 fn plane_strain(e: f64, nu: f64) -> [[f64; 3]; 3] {
     let (l, m) = (e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu)));
     [[l + 2.0 * m, l, 0.0], [l, l + 2.0 * m, 0.0], [0.0, 0.0, m]]
-}
-
-/// ∇ of the P2 functions (corners, then midsides 01, 12, 20) at barycentric
-/// `l`, from the corners' ∇L.
-fn p2_gradients(g: &[[f64; 2]; 3], l: [f64; 3]) -> [[f64; 2]; 6] {
-    std::array::from_fn(|n| {
-        if n < 3 {
-            let s = 4.0 * l[n] - 1.0;
-            [s * g[n][0], s * g[n][1]]
-        } else {
-            let (i, j) = (n - 3, (n - 2) % 3);
-            [0, 1].map(|c| 4.0 * (l[i] * g[j][c] + l[j] * g[i][c]))
-        }
-    })
-}
-
-/// The P2 functions at barycentric `l`.
-fn p2_values(l: [f64; 3]) -> [f64; 6] {
-    [
-        l[0] * (2.0 * l[0] - 1.0),
-        l[1] * (2.0 * l[1] - 1.0),
-        l[2] * (2.0 * l[2] - 1.0),
-        4.0 * l[0] * l[1],
-        4.0 * l[1] * l[2],
-        4.0 * l[2] * l[0],
-    ]
 }
 
 /// ‖u_f − I u_c‖_E, ‖I u_c‖_E (= ‖u_c‖_E) and ‖u_f‖_E on the fine mesh of
@@ -343,11 +328,11 @@ fn energy_of_difference(coarse: &Report, fine: &Report, d: [[f64; 3]; 3]) -> [f6
         [1.0 - l1 - l2, l1, l2]
     };
     let shape = |t: &[usize], l: [f64; 3]| -> Vec<f64> {
-        if t.len() == 6 {
-            p2_values(l).to_vec()
-        } else {
-            l.to_vec()
-        }
+        let x: Vec<[f64; 2]> = t.iter().map(|&n| xc[n]).collect();
+        let (mut n, mut dx, mut dy) = ([0.0; 6], [0.0; 6], [0.0; 6]);
+        // Straight sides: the element's map is affine, (ξ, η) = (L1, L2).
+        gradients(order_of(t), &x, l[1], l[2], &mut n, &mut dx, &mut dy);
+        n[..t.len()].to_vec()
     };
     let interpolated: Vec<[f64; 2]> = xf
         .iter()
@@ -364,30 +349,22 @@ fn energy_of_difference(coarse: &Report, fine: &Report, d: [[f64; 3]; 3]) -> [f6
     let energy = |u: &dyn Fn(usize) -> [f64; 2]| -> f64 {
         ef.iter()
             .map(|t| {
-                let p = [xf[t[0]], xf[t[1]], xf[t[2]]];
-                let det = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
-                let g: [[f64; 2]; 3] = std::array::from_fn(|i| {
-                    let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-                    [(p[j][1] - p[k][1]) / det, (p[k][0] - p[j][0]) / det]
-                });
+                let x: Vec<[f64; 2]> = t.iter().map(|&n| xf[n]).collect();
                 let points: &[[f64; 3]] = if t.len() == 6 {
                     &[[0.5, 0.5, 0.0], [0.0, 0.5, 0.5], [0.5, 0.0, 0.5]]
                 } else {
                     &[[1.0 / 3.0; 3]]
                 };
-                let mut sum = 0.0;
+                let (mut sum, mut det) = (0.0, 0.0);
                 for &l in points {
-                    let grads: Vec<[f64; 2]> = if t.len() == 6 {
-                        p2_gradients(&g, l).to_vec()
-                    } else {
-                        g.to_vec()
-                    };
+                    let (mut n, mut dx, mut dy) = ([0.0; 6], [0.0; 6], [0.0; 6]);
+                    det = gradients(order_of(t), &x, l[1], l[2], &mut n, &mut dx, &mut dy);
                     let mut eps = [0.0; 3];
-                    for (gr, &node) in grads.iter().zip(t.iter()) {
+                    for (i, &node) in t.iter().enumerate() {
                         let ui = u(node);
-                        eps[0] += gr[0] * ui[0];
-                        eps[1] += gr[1] * ui[1];
-                        eps[2] += gr[1] * ui[0] + gr[0] * ui[1];
+                        eps[0] += dx[i] * ui[0];
+                        eps[1] += dy[i] * ui[1];
+                        eps[2] += dy[i] * ui[0] + dx[i] * ui[1];
                     }
                     let s: f64 = (0..3)
                         .map(|r| eps[r] * (0..3).map(|c| d[r][c] * eps[c]).sum::<f64>())

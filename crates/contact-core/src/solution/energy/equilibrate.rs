@@ -284,6 +284,48 @@ fn inner_node(node: usize, elems: &[u32], at: &Around, fan: &mut Vec<Step>, proj
 /// for a degenerate element.
 /// The given traction of a side at its first end, middle and second end,
 /// in the side's own order (0 on a free side, None where sought).
+/// Each side's moments of its given traction against its nodes' functions
+/// (`moments(length, the traction at its start, middle and end)`, in the
+/// side's own order): at both ends (`proj`) and, for quadratic sides, the
+/// middle (`mid`); `sought` where an interior side's or a held component's
+/// traction is left to the node systems.
+pub(super) struct Given3 {
+    pub(super) proj: Vec<[[f64; 2]; 2]>,
+    pub(super) mid: Vec<[f64; 2]>,
+    pub(super) sought: Vec<[bool; 2]>,
+}
+
+pub(super) fn given_moments(
+    sides: &[Side],
+    given: &HashMap<[usize; 2], Given>,
+    moments: impl Fn(f64, [f64; 3]) -> [f64; 3],
+) -> Given3 {
+    let mut out = Given3 {
+        proj: vec![[[0.0; 2]; 2]; sides.len()],
+        mid: vec![[0.0; 2]; sides.len()],
+        sought: vec![[false; 2]; sides.len()],
+    };
+    for (id, s) in sides.iter().enumerate() {
+        for c in 0..2 {
+            let t = if s.elems[1] == NONE {
+                given_at(given, s, c)
+            } else {
+                None
+            };
+            match t {
+                Some(t) => {
+                    let b = moments(s.len, t);
+                    out.proj[id][0][c] = b[0];
+                    out.mid[id][c] = b[1];
+                    out.proj[id][1][c] = b[2];
+                }
+                None => out.sought[id][c] = true,
+            }
+        }
+    }
+    out
+}
+
 pub(super) fn given_at(given: &HashMap<[usize; 2], Given>, s: &Side, c: usize) -> Option<[f64; 3]> {
     let key = [s.ends[0].min(s.ends[1]), s.ends[0].max(s.ends[1])];
     match given.get(&key) {
@@ -410,7 +452,6 @@ pub(super) fn node_systems(
     proj: &mut [[[f64; 2]; 2]],
 ) {
     let (sides, elem_sides) = (&num.sides, &num.elem_sides);
-    let sign = |side: &Side, k: usize| if side.elems[0] == k { 1.0 } else { -1.0 };
     let (mut cols, mut last): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
     let (mut a, mut m, mut y, mut bbar, mut wt, mut skip) = (vec![], vec![], vec![], vec![], vec![], vec![]);
     let mut fan: Vec<Step> = Vec::new();
@@ -459,7 +500,7 @@ pub(super) fn node_systems(
                     let Some(end) = sd.ends.iter().position(|&n| n == node) else {
                         continue;
                     };
-                    let eta = sign(sd, k);
+                    let eta = num.sign(id, k);
                     match cols.iter().position(|&x| x == id) {
                         Some(col) => a[r * nc + col] = eta,
                         None => rhs -= eta * proj[id][end][c],
@@ -555,27 +596,11 @@ pub fn bound(inp: &Input<3>) -> Option<Bound> {
     }
     let num = Numbering::new(inp.nodes, &corners);
     let (sides, elem_sides) = (&num.sides, &num.elem_sides);
-    let sign = |side: &Side, k: usize| if side.elems[0] == k { 1.0 } else { -1.0 };
     // The given traction of a side at its ends, in the side's own order.
-    let given_at = |s: &Side, c: usize| given_at(inp.given, s, c);
     // Projections b[side][end][component] = ∫ t̂ φ_end ds.
-    let mut proj = vec![[[0.0; 2]; 2]; sides.len()];
-    let mut sought = vec![[false; 2]; sides.len()];
-    for (id, s) in sides.iter().enumerate() {
-        for c in 0..2 {
-            if s.elems[1] != NONE {
-                sought[id][c] = true;
-                continue;
-            }
-            match given_at(s, c) {
-                Some([ta, _, tb]) => {
-                    proj[id][0][c] = s.len * (2.0 * ta + tb) / 6.0;
-                    proj[id][1][c] = s.len * (ta + 2.0 * tb) / 6.0;
-                }
-                None => sought[id][c] = true,
-            }
-        }
-    }
+    let Given3 { mut proj, sought, .. } = given_moments(sides, inp.given, |l, [ta, _, tb]| {
+        [l * (2.0 * ta + tb) / 6.0, 0.0, l * (ta + 2.0 * tb) / 6.0]
+    });
     // The hats' moments of the nodal stresses' linear traction.
     node_systems(
         &num,
@@ -604,7 +629,7 @@ pub fn bound(inp: &Input<3>) -> Option<Bound> {
         let mut t = [[[0.0; 2]; 2]; 3];
         for j in 0..3 {
             let sd = &sides[elem_sides[k][j]];
-            let eta = sign(sd, k);
+            let eta = num.sign(elem_sides[k][j], k);
             let (a, b) = (e[j], e[(j + 1) % 3]);
             let l = sd.len;
             // Linear traction from its two end moments, at the side's ends.

@@ -20,7 +20,7 @@
 //! elements: σ_h linear on K, and the quadrature below exact): `unsupported`
 //! refuses curved ones.
 
-use super::equilibrate::{given_at, node_systems, Bound, Input, Numbering, NONE};
+use super::equilibrate::{given_moments, node_systems, Bound, Given3, Input, Numbering, NONE};
 use super::split;
 use crate::fem::assembly::integration;
 use crate::fem::kernel::Integration;
@@ -211,32 +211,19 @@ pub fn bound(inp: &Input<6>) -> Option<Bound> {
     let (sides, elem_sides) = (&num.sides, &num.elem_sides);
     // Moments against the corners' functions (proj) and the midside one
     // (mid), in each side's own orientation.
-    let mut proj = vec![[[0.0; 2]; 2]; sides.len()];
-    let mut mid = vec![[0.0; 2]; sides.len()];
-    let mut sought = vec![[false; 2]; sides.len()];
+    // Given sides take their data's moments; elsewhere the midside moment
+    // is the two elements' rows' (their mean: they agree by orthogonality).
+    let Given3 {
+        mut proj,
+        mut mid,
+        sought,
+    } = given_moments(sides, inp.given, moments);
     for (k, es) in elem_sides.iter().enumerate() {
         for (j, &id) in es.iter().enumerate() {
             let eta = num.sign(id, k);
             let share = if sides[id].elems[1] == NONE { 1.0 } else { 0.5 };
-            for c in 0..2 {
+            for c in (0..2).filter(|&c| sought[id][c]) {
                 mid[id][c] += share * eta * mid_rows[k][j][c];
-            }
-        }
-    }
-    for (id, s) in sides.iter().enumerate() {
-        for c in 0..2 {
-            if s.elems[1] != NONE {
-                sought[id][c] = true;
-                continue;
-            }
-            match given_at(inp.given, s, c) {
-                Some(t) => {
-                    let b = moments(s.len, t);
-                    proj[id][0][c] = b[0];
-                    mid[id][c] = b[1];
-                    proj[id][1][c] = b[2];
-                }
-                None => sought[id][c] = true,
             }
         }
     }
