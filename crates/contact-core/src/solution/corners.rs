@@ -52,10 +52,10 @@ pub fn singular_ends(pair: &PairReport) -> Vec<SingularEnd> {
         for (end, uncertainty) in [(z.start, z.uncertainty[0]), (z.end, z.uncertainty[1])] {
             // An end of the edge set (its place exact) is a corner too where
             // the target goes on past it: a footing's edge on a Pasternak
-            // layer carries a concentrated line load √(kμ) w there (the
-            // example's end node read 7.31, 13.9, 27.2, 53.6 at T3 sizes
-            // 0.1 to 0.0125, doubling as h halves), and on a half-plane the
-            // edge of a stiffer body is a punch's corner.
+            // layer carries a concentrated line load √(kμ) w there, and on a
+            // half-plane the edge of a stiffer body is a punch's corner (the
+            // end nodes measured: docs/verification/accuracy.md, "A
+            // footing's edge on a Pasternak layer").
             if length <= 0.0 || (uncertainty <= 0.0 && !pair.goes_on) {
                 continue;
             }

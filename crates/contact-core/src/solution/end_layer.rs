@@ -3,33 +3,16 @@
 //! node's own error, which no level resolves.
 //!
 //! The press fit pushed out (proto/examples/friction_press_fit_pushed_out.json,
-//! the whole bore sliding with mu = 0.2) is bounded there: at fixed
-//! distances from the bottom end the pressure converges over five T6 levels
-//! (h = 0.1 to 0.00625: 0.0819 at d = 0.05, 0.0820 at d = 0.025, T3 alike)
-//! and runs flat into the end, 0.0820 extrapolated. Yet the nodes next to
-//! the end read the same at every level, counted in nodes from the end: T6
-//! 0.0853, 0.0795, 0.0831, 0.0815, 0.0824 at h = 0.1 and at 0.00625; T3
-//! 0.0917 to 0.0904 at the end node, 0.0790 to 0.0797 next. The layer is a
-//! few nodes wide whatever h, so the end node is 4 % (T6) and 10–12 % (T3)
-//! off at every level and the two levels agree on it (Richardson's scaling
-//! divides it away); its share of the L2 error falls like h^(1/2), the
-//! order the whole bore's error showed (T3 2.26, 1.46, 0.97, 0.68 %). Our
-//! reading of it (a derivation of ours, not checked against a published
-//! corner analysis), a sliding frictional interface meeting a shear-free
-//! end face: the sum of one equal-material quarter-plane and the
-//! other's mirror image has zero shear and normal displacement on the bore
-//! (half a half-plane: regular, and it carries the pressure), their
-//! difference zero normal stress and the shear mu p (a quarter-plane sheared
-//! on one face, free on the other: stresses like ln d). So the pressure is
-//! bounded and the axial stress at the corner is not, a field the elements
-//! do not resolve at their own scale.
-//!
-//! The end node's step above its inward neighbour measures that error: as
-//! the peak's (effectivity 1.15–1.17 T3, 1.70–1.73 T6, against the
-//! converged 0.0820) and, times its tributary weight, as its share of the
-//! squared L2 error (1.62–1.66 T3, 1.34–1.50 T6). The measurements and the
-//! command: docs/verification/accuracy.md, "A zone's end at the edge set's
-//! end".
+//! the whole bore sliding) is bounded there: at fixed distances from the end
+//! the pressure converges and runs flat into it, yet the nodes next to the
+//! end read the same at every level, a layer a few nodes wide whatever h.
+//! So the end node is off by the same amount at every level and the two
+//! levels agree on it (Richardson's scaling divides it away). The end
+//! node's step above its inward neighbour measures that error: as the
+//! peak's and, times its tributary weight, as its share of the squared L2
+//! error. The measurements (levels, effectivities, the reading of the
+//! corner) and the command: docs/verification/accuracy.md, "A zone's end
+//! at the edge set's end".
 
 use crate::solution::report::PairReport;
 

@@ -20,7 +20,7 @@
 //! pressure, a free surface) t̂ is that traction; on sides with a prescribed
 //! displacement component that component is sought like an inner side's.
 //!
-//! Length: about 750 lines, a seventh of them the patch test; the node
+//! Length: about 800 lines, a seventh of them the patch test; the node
 //! systems (the general one and an inner node's fan; `quadratic` solves its
 //! corners' with them), the sides' tractions and the elements' energies
 //! share the side numbering and belong together
@@ -73,6 +73,35 @@ pub struct Bound {
     pub closure: f64,
     /// ‖u_norm‖²_E = Σ_K |K| ε_Kᵀ D ε_K.
     pub norm2: f64,
+}
+
+impl Bound {
+    /// The bound of `indicators` with the largest closure read against the
+    /// largest traction or stress `scale` (as it is when nothing is carried).
+    pub(super) fn new(indicators: Vec<f64>, closure: f64, scale: f64, norm2: f64) -> Self {
+        let closure = if scale > 0.0 { closure / scale } else { closure };
+        Self {
+            indicators,
+            closure,
+            norm2,
+        }
+    }
+}
+
+/// The nodes' area-weighted sums of the elements' stresses made means.
+pub(super) fn mean_over_areas(smooth: &mut [[f64; 3]], weight: &[f64]) {
+    for (s, w) in smooth.iter_mut().zip(weight) {
+        if *w > 0.0 {
+            s.iter_mut().for_each(|v| *v /= w);
+        }
+    }
+}
+
+/// The body force's particular stress on the triangle of corners `p`,
+/// div σ_p = −f, zero at its centroid.
+pub(super) fn particular_stress(f: [f64; 2], p: &[[f64; 2]; 3]) -> impl Fn([f64; 2]) -> [f64; 3] {
+    let centroid = [(p[0][0] + p[1][0] + p[2][0]) / 3.0, (p[0][1] + p[1][1] + p[2][1]) / 3.0];
+    move |x| [-f[0] * (x[0] - centroid[0]), -f[1] * (x[1] - centroid[1]), 0.0]
 }
 
 pub(super) struct Side {
@@ -589,11 +618,7 @@ pub fn bound(inp: &Input<3>) -> Option<Bound> {
         }));
         corners.push(e.map(|n| n as u32));
     }
-    for (s, w) in smooth.iter_mut().zip(&weight) {
-        if *w > 0.0 {
-            s.iter_mut().for_each(|v| *v /= w);
-        }
-    }
+    mean_over_areas(&mut smooth, &weight);
     let num = Numbering::new(inp.nodes, &corners);
     let (sides, elem_sides) = (&num.sides, &num.elem_sides);
     // The given traction of a side at its ends, in the side's own order.
@@ -623,9 +648,7 @@ pub fn bound(inp: &Input<3>) -> Option<Bound> {
         let sn: [f64; 3] = std::array::from_fn(|r| (0..3).map(|c| inp.d[r][c] * eps[c]).sum());
         norm2 += area * (sn[0] * eps[0] + sn[1] * eps[1] + sn[2] * eps[2]);
         let p = [inp.nodes[e[0]], inp.nodes[e[1]], inp.nodes[e[2]]];
-        let centroid = [(p[0][0] + p[1][0] + p[2][0]) / 3.0, (p[0][1] + p[1][1] + p[2][1]) / 3.0];
-        // The body force's particular stress, div σ_p = −f.
-        let particular = |x: [f64; 2]| [-f[0] * (x[0] - centroid[0]), -f[1] * (x[1] - centroid[1]), 0.0];
+        let particular = particular_stress(f, &p);
         let mut t = [[[0.0; 2]; 2]; 3];
         for j in 0..3 {
             let sd = &sides[elem_sides[k][j]];
@@ -669,12 +692,7 @@ pub fn bound(inp: &Input<3>) -> Option<Bound> {
         }
         indicators[k] = sum;
     }
-    let closure = if scale > 0.0 { closure / scale } else { closure };
-    Some(Bound {
-        indicators,
-        closure,
-        norm2,
-    })
+    Some(Bound::new(indicators, closure, scale, norm2))
 }
 
 #[cfg(test)]

@@ -20,7 +20,9 @@
 //! elements: σ_h linear on K, and the quadrature below exact): `unsupported`
 //! refuses curved ones.
 
-use super::equilibrate::{given_moments, node_systems, Bound, Given3, Input, Numbering, NONE};
+use super::equilibrate::{
+    given_moments, mean_over_areas, node_systems, particular_stress, Bound, Given3, Input, Numbering, NONE,
+};
 use super::split;
 use crate::fem::assembly::integration;
 use crate::fem::kernel::Integration;
@@ -202,11 +204,7 @@ pub fn bound(inp: &Input<6>) -> Option<Bound> {
         mid_rows.push([r6[3], r6[4], r6[5]]);
         corners.push(k.map(|n| n as u32));
     }
-    for (s, w) in smooth.iter_mut().zip(&weight) {
-        if *w > 0.0 {
-            s.iter_mut().for_each(|v| *v /= w);
-        }
-    }
+    mean_over_areas(&mut smooth, &weight);
     let num = Numbering::new(inp.nodes, &corners);
     let (sides, elem_sides) = (&num.sides, &num.elem_sides);
     // Moments against the corners' functions (proj) and the midside one
@@ -257,9 +255,7 @@ pub fn bound(inp: &Input<6>) -> Option<Bound> {
             );
             norm2 += area / 3.0 * (s[0] * e[0] + s[1] * e[1] + s[2] * e[2]);
         }
-        let centroid = [(p[0][0] + p[1][0] + p[2][0]) / 3.0, (p[0][1] + p[1][1] + p[2][1]) / 3.0];
-        // The body force's particular stress, div σ_p = −f.
-        let particular = |x: [f64; 2]| [-f[0] * (x[0] - centroid[0]), -f[1] * (x[1] - centroid[1]), 0.0];
+        let particular = particular_stress(f, &p);
         let mut t = [[[[0.0; 2]; 2]; 2]; 3];
         for j in 0..3 {
             let id = elem_sides[kk][j];
@@ -301,12 +297,7 @@ pub fn bound(inp: &Input<6>) -> Option<Bound> {
         }
         indicators[kk] = out.energy;
     }
-    let closure = if scale > 0.0 { closure / scale } else { closure };
-    Some(Bound {
-        indicators,
-        closure,
-        norm2,
-    })
+    Some(Bound::new(indicators, closure, scale, norm2))
 }
 
 #[cfg(test)]
