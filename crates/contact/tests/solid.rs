@@ -211,7 +211,8 @@ fn a_ball_on_a_flat_matches_hertz() {
 /// patch spans at most 2/√π = 1.13 spacings: its tributary area is at most
 /// a third of its six faces', h² on a grid of right triangles, whose disk's
 /// diameter is 2h/√π (fewer faces at the box's corner, where the apex is:
-/// measured 0.65); the width taken is at most that diameter.
+/// measured 0.65); the width taken is at most that diameter. A load path
+/// is warned at its narrowest step's patch.
 #[test]
 fn a_patch_the_mesh_does_not_resolve_is_warned() {
     let ball = |stiffer: f64| {
@@ -238,6 +239,19 @@ fn a_patch_the_mesh_does_not_resolve_is_warned() {
         "{}",
         w.message
     );
+    // A path through the load ×1e-6 (a ∝ P^(1/3): the same 100 times smaller
+    // patch) that ends on the load as meant: the narrow patch of its first
+    // step is warned and named, though the last step's is resolved (the
+    // reply read the last step's patches alone).
+    let mut path = example("solid_ball_on_flat.json");
+    path["solid"]["body"]["mesh"]["box"]["element"] = json!("t4");
+    path["solid"]["body"]["mesh"]["box"]["grading"]["h_min"] = json!(0.2);
+    path["load_path"] =
+        json!([{"loads": {"/solid/body/tractions/0": 1e-6}}, {"loads": {"/solid/body/tractions/0": 1.0}}]);
+    let through = solved(&path);
+    let w = coarse(&through).unwrap_or_else(|| panic!("no coarse_contact_zone: {:?}", through.warnings));
+    assert!(w.value <= 2.0 / std::f64::consts::PI.sqrt(), "one node's patch: {w:?}");
+    assert!(w.message.contains("(at load path step 0)"), "{}", w.message);
 }
 
 /// Loads far too large for the modulus, without `load_factors`, are treated

@@ -204,6 +204,34 @@ fn where_nothing_touches_the_steps_superpose() {
     assert!(worst <= 1e-9 * scale, "{worst} of {scale}");
 }
 
+/// Only a path's steps are solved, so only theirs must agree: base values
+/// that disagree where two supports meet (uz −0.02 and −0.01 on the edge of
+/// z_max and x_max) are not refused when every step moves them into
+/// agreement, and that step is then the base's supports with x_max's doubled.
+#[test]
+fn a_paths_base_values_need_not_agree_where_its_steps_do() {
+    let mut r = example("solid_ball_on_flat.json");
+    let supports = |x_max: f64| {
+        json!([
+            {"faces": "x_min", "ux": 0.0}, {"faces": "y_min", "uy": 0.0},
+            {"faces": "z_max", "uz": -0.02}, {"faces": "x_max", "uz": x_max}
+        ])
+    };
+    r["solid"]["body"]["supports"] = supports(-0.01);
+    r["solid"]["body"]["tractions"] = json!([]);
+    r["load_path"] = json!([{"loads": {"/solid/body/supports/3": 2.0}}]);
+    let path = solved(&r);
+    let mut plain = r.clone();
+    plain.as_object_mut().unwrap().remove("load_path");
+    plain["solid"]["body"]["supports"] = supports(-0.02);
+    let alone = solved(&plain);
+    let fa = step_solid(&path.steps.as_ref().unwrap()[0]).resultant.force[2];
+    let fb = alone.solid.as_ref().unwrap().resultant.force[2];
+    assert!(fb.abs() > 0.0, "the pushed quarter touches");
+    // The same linear system and LCP: equal to the solver's tolerance.
+    assert!((fa - fb).abs() <= 1e-9 * fb.abs(), "{fa} against {fb}");
+}
+
 /// Refusals, each with its code and a pointer that resolves in the request.
 #[test]
 fn a_path_is_refused_where_it_is_wrong() {

@@ -17,16 +17,29 @@ use crate::scene::solid::SolidLoads;
 /// with each step's loads made and checked for balance before the
 /// factorization (a path's steps are not multiples of one load, so every
 /// step is judged, not every sign), a step that fails refused at
-/// `/load_path/<i>`. Each step's loads are made again when it is solved
-/// (`step_loads`, O(elements)) rather than kept: 100 steps of a
-/// million-DOF body would hold 1.6 GB of them.
+/// `/load_path/<i>`. The operator is made on the first step's supports:
+/// only the steps are solved, so the request's own prescribed values need
+/// not agree where two supports meet (every step shares their sets). Each
+/// step's loads are made again when it is solved (`step_loads`,
+/// O(elements)) rather than kept: 100 steps of a million-DOF body would
+/// hold 1.6 GB of them.
 pub fn prepare_path(
     body: &SolidBody,
     rows: &ObstacleRows,
     steps: &[SolidLoads],
     max_bytes: f64,
 ) -> Result<Operator, CoreError> {
-    prepare_checked(body, rows, max_bytes, |c, fields, _| {
+    let Some(first) = steps.first() else {
+        return Err(CoreError::invalid(
+            crate::error::InvalidKind::Request,
+            "/load_path",
+            "a load path has at least one step",
+        ));
+    };
+    let first = step_body(body, first);
+    // Its conflicts at the step's pointer, before the operator reads them.
+    step_loads(&first, rows).map_err(|e| at_step(e, 0))?;
+    prepare_checked(&first, rows, max_bytes, |c, fields, _| {
         for (i, s) in steps.iter().enumerate() {
             let l = step_loads(&step_body(body, s), rows).map_err(|e| at_step(e, i))?;
             compatible(c, &motion_loads(fields, &l.f_ext, 1.0)).map_err(|e| at_step(e, i))?;

@@ -358,13 +358,29 @@ pub fn with_steps(mut last: Report, steps: Vec<LoadStep>, timings: Timings) -> R
 /// the last step's alone. The last step's warnings keep their order; the
 /// others follow in the order the steps first raised them.
 fn step_warnings(last: Vec<Warning>, steps: &[LoadStep]) -> Vec<Warning> {
+    let earlier = steps.len().saturating_sub(1);
+    let named = steps
+        .iter()
+        .enumerate()
+        .take(earlier)
+        .map(|(i, step)| (step.label(i), step.warnings.as_slice()));
+    worst_of_steps(last, named)
+}
+
+/// `last` (the last step's warnings) with the `earlier` steps' (each with
+/// the label that names it, "load factor k" or "load path step i"), as
+/// `step_warnings` merges them; a tie stays with the last step. Shared by
+/// the 2D steps and a solid's.
+pub fn worst_of_steps<'a>(
+    last: Vec<Warning>,
+    earlier: impl IntoIterator<Item = (String, &'a [Warning])>,
+) -> Vec<Warning> {
     let same = |a: &Warning, b: &Warning| a.code == b.code && a.location == b.location;
     let mut out = last;
-    let earlier = steps.len().saturating_sub(1);
-    for (i, step) in steps.iter().enumerate().take(earlier) {
-        for w in &step.warnings {
+    for (label, warnings) in earlier {
+        for w in warnings {
             let mut named = w.clone();
-            named.message = format!("{} (at {})", w.message, step.label(i));
+            named.message = format!("{} (at {label})", w.message);
             match out.iter().position(|o| same(o, w)) {
                 Some(j) if worse(w, &out[j]) => out[j] = named,
                 Some(_) => {}

@@ -34,7 +34,7 @@ use crate::solid::signorini::Contact;
 use crate::solid::two_level::Surface;
 use crate::solid::validity::{coarse_patches, large_displacement};
 use crate::solid::{fields, signorini, SolidBody};
-use crate::solution::report::Warning;
+use crate::solution::report::{worst_of_steps, Warning};
 
 /// Solves the 3D problem within its time limit, if it has one, with its
 /// error estimate, or refined round by round to `settings.accuracy`
@@ -144,17 +144,17 @@ pub fn solve_solid_once(problem: &SolidProblem, limits: &Limits) -> Result<(Soli
     obs.timings.factorization = op.seconds[1];
     let tol = scene.settings.tolerance;
     let (mut steps, mut last) = (Vec::new(), None);
-    // The largest move over every step, not the last step's: a path may
-    // pass through a load far larger than the one it ends on.
-    let mut moved: Vec<Warning> = Vec::new();
+    // Every step's warnings, not the last step's alone: a path may pass
+    // through a load far larger than the one it ends on, or a patch far
+    // narrower (merged as 2D's `report::with_steps`).
+    let mut warned: Vec<(String, Vec<Warning>)> = Vec::new();
     // (factor, load path step): a path's steps answer with factor 1 (2D's).
     let runs: Vec<(f64, Option<usize>)> = if path.is_empty() {
         factors.iter().map(|&k| (k, None)).collect()
     } else {
         (0..path.len()).map(|i| (1.0, Some(i))).collect()
     };
-    let n_runs = runs.len();
-    for (run, (factor, at)) in runs.into_iter().enumerate() {
+    for (factor, at) in runs {
         let (contact, loads) = match at {
             None => (op.solve(&body, &rows, &scene.settings, factor), None),
             Some(i) => {
@@ -169,20 +169,13 @@ pub fn solve_solid_once(problem: &SolidProblem, limits: &Limits) -> Result<(Soli
         obs.timings.contact_solve += contact.seconds[2];
         obs.check(Stage::ContactSolve)?;
         let rep = report(&body, &rows, &contact).map_err(located)?;
-        // One warning at most (the body's largest move); named by its step
-        // when that is not the last, as 2D's `report::with_steps`.
         let mut w = large_displacement(&body, &contact.u, &scene.body);
-        if w.first().map(|w| w.value) > moved.first().map(|w| w.value) {
-            if run + 1 < n_runs {
-                for w in &mut w {
-                    w.message.push_str(&match at {
-                        Some(i) => format!(" (at load path step {i})"),
-                        None => format!(" (at load factor {factor})"),
-                    });
-                }
-            }
-            moved = w;
-        }
+        w.extend(coarse_patches(&body, &rows, &rep, scene.length));
+        let label = match at {
+            Some(i) => format!("load path step {i}"),
+            None => format!("load factor {factor}"),
+        };
+        warned.push((label, w));
         if stepped {
             steps.push(SolidStep {
                 factor,
@@ -216,8 +209,8 @@ pub fn solve_solid_once(problem: &SolidProblem, limits: &Limits) -> Result<(Soli
         .find(|s| *s != Status::Solved)
         .unwrap_or_else(|| status(&rep, tol));
     crate::progress::stage(ProgressStage::Post);
-    let mut warnings = coarse_patches(&body, &rows, &rep, scene.length);
-    warnings.extend(moved);
+    let last_warnings = warned.pop().map(|(_, w)| w).unwrap_or_default();
+    let warnings = worst_of_steps(last_warnings, warned.iter().map(|(l, w)| (l.clone(), w.as_slice())));
     let answer = SolidAnswer {
         body: scene.body.clone(),
         obstacle: scene.obstacle.clone(),

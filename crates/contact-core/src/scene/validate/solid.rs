@@ -111,7 +111,8 @@ pub fn solid_scene(req: &SolveRequest, limits: &Limits) -> Result<SolidScene, Co
     // 2D judges them; a solid's forces are totals (force unit E·L², as a
     // body of revolution's).
     let sizes = super::solid_load_path::Sizes::of(&supports, &loads, body_force);
-    if req.load_factors.is_empty() {
+    // A path's steps are judged instead (`check_steps`): only they are solved.
+    if req.load_factors.is_empty() && req.load_path.is_empty() {
         sizes.check_base(scales)?;
     } else {
         wire_settings::check_load_factors(&req.load_factors, sizes.largest(), scales, limits)?;
