@@ -174,6 +174,42 @@ fn the_bound_is_above_the_error_of_a_flat_punch() {
     theorem_holds(&r, 2, plane_strain(200.0, 0.3));
 }
 
+/// The example's flat punch with h_min 0.03, so that its corner x = 1 falls
+/// within a side (1/0.03 is no whole number of steps): the last node under
+/// the face and the first one past it are both candidates' ends, the free
+/// one standing above the face, so the answer passes the punch between them,
+/// at x = 1 by δ = the interpolated u_y − α₂ (the gap there is α₂: ν = (0, 1),
+/// θ = 0 by symmetry to round-off). The bound checks the part of that side
+/// the punch faces (`normal::facing_part`) and pushes it out: its correction
+/// is positive, where the side used to be skipped unchecked (correction 0,
+/// bound 0.202 against 0.302 now, docs/verification/accuracy.md).
+#[test]
+fn a_punch_corner_within_a_side_is_checked_and_pushed_out() {
+    let mut req: Value =
+        serde_json::from_str(include_str!("../../../proto/examples/indentation_flat_punch.json")).expect("json");
+    let mesh = &mut req["bodies"][0]["mesh"]["rectangle"];
+    mesh["grading"]["h_min"] = json!(0.03);
+    mesh["size"] = json!(3.0);
+    req["outputs"] = json!(["mesh", "displacement"]);
+    let r = contact_verify::run::solve(&req, &Limits::default()).expect("solve");
+    let fields = &r.bodies.as_ref().expect("fields")[0];
+    let (x, u) = (
+        fields.nodes.as_ref().expect("nodes"),
+        fields.displacement.as_ref().expect("displacement"),
+    );
+    let mut top: Vec<usize> = (0..x.len()).filter(|&n| x[n][1].abs() < 1e-12).collect();
+    top.sort_by(|&a, &b| x[a][0].total_cmp(&x[b][0]));
+    let k = top.iter().rposition(|&n| x[n][0] < 1.0).expect("a node under the face");
+    let (inner, outer) = (top[k], top[k + 1]);
+    assert!(x[outer][0] > 1.0 + 1e-6, "no node on the corner: {}", x[outer][0]);
+    let s = (1.0 - x[inner][0]) / (x[outer][0] - x[inner][0]);
+    let alpha2 = r.punches[0].alpha2;
+    let delta = (1.0 - s) * (u[inner][1] - alpha2) + s * (u[outer][1] - alpha2);
+    assert!(delta > 0.0, "the answer passes the punch at its corner by {delta}");
+    let e = r.energy.unwrap_or_else(|| panic!("{:?}", r.notes));
+    assert!(e.correction > 0.0, "correction {}", e.correction);
+}
+
 /// The V-shaped floor of `signorini_inline_block_on_vee` (a polyline of two
 /// segments meeting at 11.4°, a gentle joint: the gap interpolates their
 /// normals along each, `normal::Form::Fan`, p* = q |m|), the example's 16

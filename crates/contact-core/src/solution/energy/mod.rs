@@ -35,11 +35,15 @@
 //!   interpolates, `normal::Form::Fan`: the V-shaped floor of
 //!   `signorini_inline_block_on_vee`) takes p* = q |m|, one q per side:
 //!   −p* ν = −q m is linear.
-//! - A node on the boundary of two pieces' regions (a V's apex under a
-//!   node, a punch's corner on a node) gives each of its sides its own
-//!   form and values: the given traction is per side, so p* may jump at a
-//!   node, and its loads differ from the nodal contact forces by what u_eq
-//!   absorbs (K (u_eq − u_h) = f(p*) − f_c, whatever p* is).
+//! - The given traction is per side, so p* may jump at a node (it does
+//!   where a side past an obstacle's end takes p* = 0, below), and its loads
+//!   differ from the nodal contact forces by what u_eq absorbs
+//!   (K (u_eq − u_h) = f(p*) − f_c, whatever p* is). A node on the boundary
+//!   of two pieces' regions where the normal is continuous (the V's apex,
+//!   a gentle joint, under a node) leaves each side one piece's form. At a
+//!   sharp corner on a node the node's normal is one piece's and the other
+//!   side's interior the other's: that side reads `Kinked`, out of reach in
+//!   contact (taking each side's own limit there is not done yet).
 //! - Where the obstacle ends within a side (an open end: a flat punch's
 //!   corner between two nodes), the side past the end is free, τ n = 0, and
 //!   a p* linear along the side that vanishes there vanishes on all of it:
@@ -141,6 +145,11 @@ impl EnergyBound {
 /// Why a foundation is out of the bound's reach.
 const BED_MODELS: &str =
     "only Winkler beds are in the bound (a Pasternak layer's or a half-plane's complementary energy is not)";
+
+/// Why a side in contact is out of reach where its normal is of no
+/// `normal::Form` with a linear traction.
+const KINKED: &str =
+    "the obstacle's normal turns within a side in contact across two of its pieces (a sharp corner, a joint)";
 
 /// Sample points per candidate side where the admissibility of u_h is
 /// checked (the gap is a smooth function of the point on each side).
@@ -388,11 +397,7 @@ pub fn bound(
                 // (at a sharp corner the continuous model's normal is not even
                 // defined), and the admissibility between samples has no
                 // bound there: a side in contact there is out of reach.
-                Form::Kinked if pressure != [0.0, 0.0] || mid_pressure.is_some_and(|p| p != 0.0) => {
-                    return Err(
-                        "the obstacle's normal turns within a side in contact across two of its pieces (a sharp corner, a joint or a spline)",
-                    )
-                }
+                Form::Kinked if pressure != [0.0, 0.0] || mid_pressure.is_some_and(|p| p != 0.0) => return Err(KINKED),
                 Form::Fan { .. } => {
                     // One q on the side, p* = q |m|, with the mean of the
                     // nodal pressures' integral as on an arc.
@@ -440,12 +445,12 @@ pub fn bound(
                 form,
                 span,
                 curvature: match form {
-                    Form::Straight => 0.0,
+                    // 0 on a flat; 1/ρ over a gentle joint's wedge (`form_of`).
+                    Form::Straight => turn,
                     Form::Arc { .. } | Form::Fan { .. } => turn,
-                    // A side out of contact whose normal turns at a vertex:
-                    // the samples' turn over their spacing stands for its
-                    // curvature.
-                    Form::Kinked => turn * (SAMPLES - 1) as f64,
+                    // A side out of contact whose normal turns at a vertex
+                    // (`form_of`'s bound).
+                    Form::Kinked => turn,
                 },
             };
             sides.push(side);
@@ -668,6 +673,10 @@ pub fn bound(
         let mut push: HashMap<(usize, usize), f64> = HashMap::new();
         for s in &sides {
             let (worst, cos, slack) = worst_of(s, &v[s.body]);
+            // A side through an obstacle's vertex has no finite margin.
+            if worst.is_nan() || worst == f64::INFINITY {
+                return Err("the answer could not be made admissible along its candidate sides");
+            }
             if worst > slack {
                 if cos < 0.5 {
                     return Err("a candidate side turns too far from its rows' direction to be made admissible");

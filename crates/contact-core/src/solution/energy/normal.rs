@@ -26,7 +26,12 @@
 //!
 //! The form is read from the normals at `SAMPLES` points of the side, fitted
 //! to round-off (1e-9): the normal of each shape above is analytic between
-//! them.
+//! them. Along with it goes a bound of the curvature the admissibility
+//! check's margin needs: 0 on a flat, where v · ν − g is affine on a linear
+//! side and its samples' largest exact; the turn's bound on an arc or a fan;
+//! and 1/ρ where two samples share a vertex as their closest point (g =
+//! ±|x − c| there: over a convex gentle joint's wedge the normal is constant
+//! and the side counts as straight, but g is not affine).
 
 use super::SAMPLES;
 use crate::contact::gap::closest;
@@ -81,17 +86,30 @@ fn cross(u: [f64; 2], v: [f64; 2]) -> f64 {
 pub(super) fn form_of(shape: &Shape, a: [f64; 2], b: [f64; 2]) -> Option<(Form, f64)> {
     let mut normals = Vec::with_capacity(SAMPLES);
     let mut points = Vec::with_capacity(SAMPLES);
+    let mut feet = Vec::with_capacity(SAMPLES);
     for q in 0..SAMPLES {
         let t = q as f64 / (SAMPLES - 1) as f64;
         let x = [(1.0 - t) * a[0] + t * b[0], (1.0 - t) * a[1] + t * b[1]];
         let c = closest(shape, x)?;
         normals.push(c.normal);
         points.push(x);
+        feet.push(c.point);
     }
     let l = (b[0] - a[0]).hypot(b[1] - a[1]);
+    // A vertex that is the closest point of two neighbouring samples: there
+    // g = ±|x − c|, not affine along the side whatever the normal does (a
+    // gentle joint's normal is constant over its wedge, `gap::gentle_joint`),
+    // and |g''| ≤ 1/ρ with ρ the vertex's distance from the side.
+    let vertex = feet
+        .windows(2)
+        .filter(|w| (w[0][0] - w[1][0]).hypot(w[0][1] - w[1][1]) <= 1e-12 * (1.0 + w[0][0].hypot(w[0][1])))
+        .map(|w| 1.0 / distance_to_segment(w[0], a, b))
+        .fold(0.0, f64::max);
     let turn = normals.iter().map(|n| cross(normals[0], *n).abs()).fold(0.0, f64::max);
     if turn <= 1e-12 {
-        return Some((Form::Straight, 0.0));
+        // ν constant: a linear p* follows it; the vertex's curvature goes to
+        // the admissibility check's margin.
+        return Some((Form::Straight, vertex));
     }
     // The normals' lines at the two ends meet at the centre of a circular
     // piece; every normal must then point along x − c.
@@ -116,7 +134,16 @@ pub(super) fn form_of(shape: &Shape, a: [f64; 2], b: [f64; 2]) -> Option<(Form, 
     if let Some(fan) = fan(&normals) {
         return Some(fan_with_turn(fan, l));
     }
-    Some((Form::Kinked, turn / l))
+    // The samples' turn over their spacing stands for the curvature of a
+    // side out of contact whose normal turns at a vertex.
+    Some((Form::Kinked, (turn / l * (SAMPLES - 1) as f64).max(vertex)))
+}
+
+/// The distance from p to the segment a–b.
+fn distance_to_segment(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let s = (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / (d[0] * d[0] + d[1] * d[1])).clamp(0.0, 1.0);
+    (a[0] + s * d[0] - p[0]).hypot(a[1] + s * d[1] - p[1])
 }
 
 /// The part [t0, t1] of the segment a–b that the obstacle faces, where it
@@ -238,6 +265,26 @@ mod tests {
         assert!((turn - 0.04936).abs() < 2e-5, "turn {turn}");
         let (across, _) = form_of(&vee, [-0.25, 0.0], [0.25, 0.0]).expect("faced");
         assert_eq!(across, Form::Kinked);
+    }
+
+    /// Over a convex gentle joint (a roof of 11.4°, whose joint normal the gap
+    /// gives to the whole wedge above it) the normal is constant, so a linear
+    /// p* follows it, but the gap is the distance to the apex, not affine:
+    /// the admissibility check's margin takes |g''| ≤ 1/ρ, ρ = 0.5 the apex's
+    /// distance from the side (0 on a flat).
+    #[test]
+    fn a_gentle_joints_wedge_is_straight_with_the_vertexs_curvature() {
+        let roof = Shape::Polyline {
+            points: vec![[-1.0, -0.1], [0.0, 0.0], [1.0, -0.1]],
+        };
+        let (form, curvature) = form_of(&roof, [-0.04, 0.5], [0.04, 0.5]).expect("faced");
+        assert_eq!(form, Form::Straight);
+        assert!((curvature - 2.0).abs() < 1e-12, "curvature {curvature}");
+        let flat = Shape::Line {
+            point: [0.0, 0.0],
+            normal: [0.0, 1.0],
+        };
+        assert_eq!(form_of(&flat, [-0.04, 0.5], [0.04, 0.5]), Some((Form::Straight, 0.0)));
     }
 
     /// A circle stays an arc (its p* = q |x − c| as before), a flat punch's
