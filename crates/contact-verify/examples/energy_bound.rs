@@ -44,6 +44,15 @@ fn main() {
             "flat_punch",
             serde_json::from_str(include_str!("../../../proto/examples/indentation_flat_punch.json")).unwrap(),
         ),
+        // A polyline floor whose two segments' normals turn along them
+        // (`energy::normal`, a fan on each side).
+        (
+            "vee",
+            serde_json::from_str(include_str!(
+                "../../../proto/examples/signorini_inline_block_on_vee.json"
+            ))
+            .unwrap(),
+        ),
         (
             "circular_punch",
             serde_json::from_str(include_str!("../../../proto/examples/indentation_circular_punch.json")).unwrap(),

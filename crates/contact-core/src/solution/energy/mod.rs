@@ -27,6 +27,33 @@
 //! change under that replacement is one solve with the factor at hand. A
 //! side in contact where the normal turns otherwise is out of reach.
 //!
+//! The theorem asks nothing of p* but p* ≥ 0 and −p* ν(x) for the gap's own
+//! ν(x) on every facing point, and nothing of v but v · ν ≤ g there; so:
+//!
+//! - ν = m(x)/|m(x)| with m affine along the side (a circle's x − c, or a
+//!   finely tabulated curve's segment whose joints' normals the gap
+//!   interpolates, `normal::Form::Fan`: the V-shaped floor of
+//!   `signorini_inline_block_on_vee`) takes p* = q |m|, one q per side:
+//!   −p* ν = −q m is linear.
+//! - The given traction is per side, so p* may jump at a node (it does
+//!   where a side past an obstacle's end takes p* = 0, below), and its loads
+//!   differ from the nodal contact forces by what u_eq absorbs
+//!   (K (u_eq − u_h) = f(p*) − f_c, whatever p* is). A node on the boundary
+//!   of two pieces' regions where the normal is continuous (the V's apex,
+//!   a gentle joint, under a node) leaves each side one piece's form. At a
+//!   sharp corner on a node the node's normal is one piece's and the other
+//!   side's interior the other's: that side reads `Kinked`, out of reach in
+//!   contact (taking each side's own limit there is not done yet).
+//! - Where the obstacle ends within a side (an open end: a flat punch's
+//!   corner between two nodes), the side past the end is free, τ n = 0, and
+//!   a p* linear along the side that vanishes there vanishes on all of it:
+//!   p* = 0 on that side, and its admissibility is checked on the part the
+//!   obstacle faces (`normal::facing_part`), which on a straight piece and a
+//!   linear side is exact at the part's two ends (v · ν − g affine).
+//! - An excess of v · ν over g below the rounding of the two, 8 ε
+//!   (|v · ν| + |g|), is taken as contact: the flat punch's answer meets its
+//!   face to 4e-19 of 2e-2, which no push can remove in floating point.
+//!
 //! A body's sides on a tensionless Winkler bed add the bed's term
 //! 2 ∫ [½ k (w⁺)² + p*²/(2k) − p* w] dx (w the indentation) in place of the
 //! obstacle's, with no admissibility correction (`foundation`, where the
@@ -44,7 +71,7 @@
 //! circle), its loads are the P2 functions' moments, and the admissibility
 //! is checked along the quadratic displacement.
 //!
-//! Length: about 820 lines, the bound's data from the scene (loads,
+//! Length: about 880 lines, the bound's data from the scene (loads,
 //! supports, the contact pressure on linear and quadratic sides, the
 //! admissibility correction, the contact term) in one pass over the same
 //! sides; the equilibration (linear and quadratic), the Airy stress, a
@@ -53,6 +80,7 @@
 pub mod airy;
 pub mod equilibrate;
 mod foundation;
+mod normal;
 mod pending;
 mod punch;
 pub mod quadratic;
@@ -76,6 +104,7 @@ use crate::mesh::{boundary::edge_normal, Mesh2d, Order};
 use crate::model::Model;
 use crate::scene::{Analysis, FoundationModel, GapMeasure, Scene, Target};
 use equilibrate::Given;
+use normal::{form_of, Form};
 
 /// The bound of one answer, nondimensional.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -116,6 +145,11 @@ impl EnergyBound {
 /// Why a foundation is out of the bound's reach.
 const BED_MODELS: &str =
     "only Winkler beds are in the bound (a Pasternak layer's or a half-plane's complementary energy is not)";
+
+/// Why a side in contact is out of reach where its normal is of no
+/// `normal::Form` with a linear traction.
+const KINKED: &str =
+    "the obstacle's normal turns within a side in contact across two of its pieces (a sharp corner, a joint)";
 
 /// Sample points per candidate side where the admissibility of u_h is
 /// checked (the gap is a smooth function of the point on each side).
@@ -180,6 +214,9 @@ struct ContactSide {
     /// whole side).
     mid: Option<Mid>,
     form: Form,
+    /// The part of the side the obstacle faces, in the side's parameter
+    /// (all of it, [0, 1], but where the obstacle ends within the side).
+    span: [f64; 2],
     /// The obstacle's curvature along the side (`form_of`), for the
     /// admissibility check's margin.
     curvature: f64,
@@ -192,21 +229,6 @@ struct Mid {
     dir: [f64; 2],
 }
 
-/// How the obstacle's normal runs along a side: the traction −p*(x) ν(x)
-/// is linear in x either way.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Form {
-    /// ν constant (a straight piece): p* linear between the ends.
-    Straight,
-    /// ν = ±(x − c)/|x − c| (a circular piece centred at c): p* = q |x − c|
-    /// with one q on the side, so −p* ν = ∓q (x − c).
-    Arc { center: [f64; 2] },
-    /// ν turns otherwise (a vertex of a polyline or profile within the
-    /// side, a sharp corner, a spline): no linear traction follows it, so a
-    /// side in contact there is out of the bound's reach.
-    Kinked,
-}
-
 impl ContactSide {
     /// p* at parameter t of the side.
     fn pressure_at(&self, mesh: &Mesh2d, t: f64) -> f64 {
@@ -217,6 +239,7 @@ impl ContactSide {
                 let ra = (a[0] - center[0]).hypot(a[1] - center[1]);
                 self.pressure[0] / ra * (x[0] - center[0]).hypot(x[1] - center[1])
             }
+            (Form::Fan { .. }, _) => self.pressure[0] * self.form.scale(a, b, t).unwrap_or(1.0),
             (_, Some(m)) if t <= 0.5 => (1.0 - 2.0 * t) * self.pressure[0] + 2.0 * t * m.pressure,
             (_, Some(m)) => (2.0 - 2.0 * t) * m.pressure + (2.0 * t - 1.0) * self.pressure[1],
             _ => (1.0 - t) * self.pressure[0] + t * self.pressure[1],
@@ -241,47 +264,6 @@ impl ContactSide {
             .chain(self.mid.map(|m| m.node))
             .chain(std::iter::once(self.ends[1]))
     }
-}
-
-/// The form of the obstacle's normal along the segment a–b, from its normals
-/// at `SAMPLES` points (None where the obstacle does not face every one).
-fn form_of(shape: &crate::scene::Shape, a: [f64; 2], b: [f64; 2]) -> Option<(Form, f64)> {
-    let mut normals = Vec::with_capacity(SAMPLES);
-    let mut points = Vec::with_capacity(SAMPLES);
-    for q in 0..SAMPLES {
-        let t = q as f64 / (SAMPLES - 1) as f64;
-        let x = [(1.0 - t) * a[0] + t * b[0], (1.0 - t) * a[1] + t * b[1]];
-        let c = closest(shape, x)?;
-        normals.push(c.normal);
-        points.push(x);
-    }
-    let l = (b[0] - a[0]).hypot(b[1] - a[1]);
-    let cross = |u: [f64; 2], v: [f64; 2]| u[0] * v[1] - u[1] * v[0];
-    let turn = normals.iter().map(|n| cross(normals[0], *n).abs()).fold(0.0, f64::max);
-    if turn <= 1e-12 {
-        return Some((Form::Straight, 0.0));
-    }
-    // The normals' lines at the two ends meet at the centre of a circular
-    // piece; every normal must then point along x − c.
-    let (n0, n1) = (normals[0], normals[SAMPLES - 1]);
-    let den = cross(n0, n1);
-    if den.abs() > 1e-300 {
-        let d = [b[0] - a[0], b[1] - a[1]];
-        let s0 = cross(d, n1) / den;
-        let center = [a[0] + s0 * n0[0], a[1] + s0 * n0[1]];
-        let fits = points.iter().zip(&normals).all(|(x, n)| {
-            let r = [x[0] - center[0], x[1] - center[1]];
-            cross(r, *n).abs() <= 1e-9 * (r[0].hypot(r[1]) + l)
-        });
-        if fits {
-            let rho = points
-                .iter()
-                .map(|x| (x[0] - center[0]).hypot(x[1] - center[1]))
-                .fold(f64::INFINITY, f64::min);
-            return Some((Form::Arc { center }, 1.0 / rho));
-        }
-    }
-    Some((Form::Kinked, turn / l))
 }
 
 /// The bound of a solved frictionless scene on rigid obstacles (see
@@ -361,15 +343,34 @@ pub fn bound(
                     .map(|x| x.1)
                     .or_else(|| closest(&scene.obstacles[o].shape, mesh.nodes[n]).map(|c| [-c.normal[0], -c.normal[1]]))
             };
-            let (Some(da), Some(db)) = (dir_of(e.a), dir_of(e.b)) else {
+            let shape = &scene.obstacles[o].shape;
+            let (xa, xb) = (mesh.nodes[e.a], mesh.nodes[e.b]);
+            // Where the obstacle ends within the side (an open end of a
+            // polyline or profile, a flat punch's corner between two
+            // nodes), the part of the side it faces.
+            let point = |t: f64| [(1.0 - t) * xa[0] + t * xb[0], (1.0 - t) * xa[1] + t * xb[1]];
+            let (span, found) = match form_of(shape, xa, xb) {
+                Some(f) => ([0.0, 1.0], Some(f)),
+                None => match normal::facing_part(shape, xa, xb) {
+                    Some(part) => (part, form_of(shape, point(part[0]), point(part[1]))),
+                    None => ([0.0, 1.0], None),
+                },
+            };
+            let facing = closest(shape, point(0.5 * (span[0] + span[1]))).map(|c| [-c.normal[0], -c.normal[1]]);
+            let (Some(da), Some(db)) = (dir_of(e.a).or(facing), dir_of(e.b).or(facing)) else {
                 continue;
             };
             let mut pressure = [at(e.a).map_or(0.0, |x| x.0), at(e.b).map_or(0.0, |x| x.0)];
             // A quadratic side's midside p*: its own row's, or the ends'
             // mean where the multiplier lives on the corners alone.
             let mut mid_pressure = e.mid.map(|m| at(m).map_or(0.5 * (pressure[0] + pressure[1]), |x| x.0));
-            let shape = &scene.obstacles[o].shape;
-            let Some((form, turn)) = form_of(shape, mesh.nodes[e.a], mesh.nodes[e.b]) else {
+            let Some((form, turn)) = found.map(|(f, t)| match f {
+                // A punch's rigid motion b(y) enters g as b · ν, whose
+                // second derivative along a fan the margin below does not
+                // hold: a fan on a punch is left out of reach.
+                Form::Fan { .. } if scene.obstacles[o].punch.is_some() => (Form::Kinked, t),
+                _ => (f, t),
+            }) else {
                 // A quadratic side's midside row can press where its corners
                 // do not (their values alternate near a zone's end).
                 if pressure != [0.0, 0.0] || mid_pressure.is_some_and(|p| p != 0.0) {
@@ -377,6 +378,14 @@ pub fn bound(
                 }
                 continue;
             };
+            if span != [0.0, 1.0] {
+                // Past the obstacle's end the side is free (τ n = 0), and a
+                // p* linear along the side that vanishes there vanishes on
+                // all of it: the side's nodal forces go to u_eq's shift, and
+                // its admissibility is checked on the facing part alone.
+                pressure = [0.0, 0.0];
+                mid_pressure = mid_pressure.map(|_| 0.0);
+            }
             // The traction at the ends follows the obstacle's own normal there
             // (a nodal row's direction is that normal at its node).
             let exact = |n: usize| closest(shape, mesh.nodes[n]).map(|c| [-c.normal[0], -c.normal[1]]);
@@ -388,8 +397,20 @@ pub fn bound(
                 // (at a sharp corner the continuous model's normal is not even
                 // defined), and the admissibility between samples has no
                 // bound there: a side in contact there is out of reach.
-                Form::Kinked if pressure != [0.0, 0.0] || mid_pressure.is_some_and(|p| p != 0.0) => {
-                    return Err("the obstacle's normal turns within a side in contact (a sharp corner or a spline)")
+                Form::Kinked if pressure != [0.0, 0.0] || mid_pressure.is_some_and(|p| p != 0.0) => return Err(KINKED),
+                Form::Fan { .. } => {
+                    // One q on the side, p* = q |m|, with the mean of the
+                    // nodal pressures' integral as on an arc.
+                    let (pa, pb) = (mesh.nodes[e.a], mesh.nodes[e.b]);
+                    let r = |t: f64| form.scale(pa, pb, t).unwrap_or(1.0);
+                    let q = match (e.mid, mid_pressure) {
+                        (Some(_), Some(pm)) => {
+                            (pressure[0] + 4.0 * pm + pressure[1]) / (r(0.0) + 4.0 * r(0.5) + r(1.0))
+                        }
+                        _ => (pressure[0] + pressure[1]) / (r(0.0) + r(1.0)),
+                    };
+                    pressure = [q * r(0.0), q * r(1.0)];
+                    mid_pressure = e.mid.map(|_| q * r(0.5));
                 }
                 Form::Arc { center } => {
                     // One q on the side, p* = q |x − c|, with the mean of the
@@ -407,7 +428,7 @@ pub fn bound(
             }
             let mid = match (e.mid, mid_pressure) {
                 (Some(node), Some(p)) => {
-                    let Some(dir) = exact(node).or_else(|| dir_of(node)) else {
+                    let Some(dir) = exact(node).or_else(|| dir_of(node)).or(facing) else {
                         continue;
                     };
                     Some(Mid { node, pressure: p, dir })
@@ -422,13 +443,14 @@ pub fn bound(
                 dir: [da, db],
                 mid,
                 form,
+                span,
                 curvature: match form {
-                    Form::Straight => 0.0,
-                    Form::Arc { .. } => turn,
-                    // A side out of contact whose normal turns at a vertex:
-                    // the samples' turn over their spacing stands for its
-                    // curvature.
-                    Form::Kinked => turn * (SAMPLES - 1) as f64,
+                    // 0 on a flat; 1/ρ over a gentle joint's wedge (`form_of`).
+                    Form::Straight => turn,
+                    Form::Arc { .. } | Form::Fan { .. } => turn,
+                    // A side out of contact whose normal turns at a vertex
+                    // (`form_of`'s bound).
+                    Form::Kinked => turn,
                 },
             };
             sides.push(side);
@@ -570,17 +592,27 @@ pub fn bound(
     // smooth function can gain between samples δ apart, δ²/8 max|f''|; with
     // ρ the distance to a circular piece's centre, |g''| ≤ 1/ρ and
     // |(v · ν)''| ≤ 2|v|/ρ² + 2|v'|/ρ. On a straight piece that is 0 for a
-    // linear side; a quadratic side's own |v''| is added below.
-    let worst_of = |s: &ContactSide, field: &[[f64; 2]]| -> (f64, f64) {
+    // linear side; a quadratic side's own |v''| is added below. On a fan
+    // (`normal::Form::Fan`) g is affine and, κ the bound of the normal's
+    // turn, |ν'| ≤ κ and |ν''| ≤ 3κ² (ν = m/|m|, m affine): the arc's
+    // margin below covers it. The third value is the rounding of v · ν − g
+    // at the samples, 8 ε (|v · ν| + |g|): an excess below it is no
+    // measurable penetration (the answer of a punch pressed flat meets its
+    // face to 4e-19 of 2e-2, and a push that small leaves v unchanged in
+    // floating point), and is taken as contact.
+    let worst_of = |s: &ContactSide, field: &[[f64; 2]]| -> (f64, f64, f64) {
         let mesh = &meshes[s.body];
-        let (mut worst, mut cos) = (f64::NEG_INFINITY, 1.0_f64);
+        let (mut worst, mut cos, mut slack) = (f64::NEG_INFINITY, 1.0_f64, 0.0_f64);
+        let part = s.span[1] - s.span[0];
         for q in 0..SAMPLES {
-            let t = q as f64 / (SAMPLES - 1) as f64;
+            let t = s.span[0] + part * q as f64 / (SAMPLES - 1) as f64;
             let (x, v) = along(s, field, t);
             let Some((g, dir)) = gap_at(s, x) else {
                 continue;
             };
-            worst = worst.max(v[0] * dir[0] + v[1] * dir[1] - g);
+            let vn = v[0] * dir[0] + v[1] * dir[1];
+            worst = worst.max(vn - g);
+            slack = slack.max(8.0 * f64::EPSILON * (vn.abs() + g.abs()));
             for dn in &s.dir {
                 cos = cos.min(dn[0] * dir[0] + dn[1] * dir[1]);
             }
@@ -588,7 +620,7 @@ pub fn bound(
         let (a, b) = (mesh.nodes[s.ends[0]], mesh.nodes[s.ends[1]]);
         let l = (b[0] - a[0]).hypot(b[1] - a[1]);
         let curvature = s.curvature;
-        let delta = l / (SAMPLES - 1) as f64;
+        let delta = l * part / (SAMPLES - 1) as f64;
         if let Some(m) = s.mid {
             // A quadratic v: |v''| = 4 |v_a − 2 v_m + v_b| / l², |v'| at
             // most its ends' (v' is linear), |v| at most 1.25 of the nodes'
@@ -612,7 +644,7 @@ pub fn bound(
             // vector's turn along a line.
             worst += delta * delta / 4.0 * (curvature + 2.0 * vmax * curvature * curvature + 2.0 * slope * curvature);
         }
-        (worst, cos)
+        (worst, cos, slack)
     };
     let mut dir_at: HashMap<(usize, usize), [f64; 2]> = HashMap::new();
     for s in &sides {
@@ -640,8 +672,12 @@ pub fn bound(
     for _ in 0..rounds {
         let mut push: HashMap<(usize, usize), f64> = HashMap::new();
         for s in &sides {
-            let (worst, cos) = worst_of(s, &v[s.body]);
-            if worst > 0.0 {
+            let (worst, cos, slack) = worst_of(s, &v[s.body]);
+            // A side through an obstacle's vertex has no finite margin.
+            if worst.is_nan() || worst == f64::INFINITY {
+                return Err("the answer could not be made admissible along its candidate sides");
+            }
+            if worst > slack {
                 if cos < 0.5 {
                     return Err("a candidate side turns too far from its rows' direction to be made admissible");
                 }
@@ -686,7 +722,10 @@ pub fn bound(
         }
     }
     // v must be admissible everywhere: checked again, margin included.
-    if sides.iter().any(|s| worst_of(s, &v[s.body]).0 > 0.0) {
+    if sides.iter().any(|s| {
+        let (worst, _, slack) = worst_of(s, &v[s.body]);
+        worst > slack
+    }) {
         return Err("the answer could not be made admissible along its candidate sides");
     }
     let correction = if !pushed {

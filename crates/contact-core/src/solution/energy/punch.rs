@@ -66,7 +66,9 @@ pub(super) fn balance(
             for j in 0..=n {
                 let p = match s.form {
                     // One q on an arc's side: scaled at its midpoint.
-                    Form::Arc { .. } => s.pressure_at(mesh, t) * if j < n { basis(mid, j) } else { 1.0 },
+                    Form::Arc { .. } | Form::Fan { .. } => {
+                        s.pressure_at(mesh, t) * if j < n { basis(mid, j) } else { 1.0 }
+                    }
                     _ => {
                         (1.0 - t) * s.pressure[0] * if j < n { basis(pa[0], j) } else { 1.0 }
                             + t * s.pressure[1] * if j < n { basis(pb[0], j) } else { 1.0 }
@@ -109,7 +111,7 @@ pub(super) fn balance(
         let mid = 0.5 * (mesh.nodes[s.ends[0]][0] + mesh.nodes[s.ends[1]][0]);
         for (end, &node) in s.ends.iter().enumerate() {
             let x = match s.form {
-                Form::Arc { .. } => mid,
+                Form::Arc { .. } | Form::Fan { .. } => mid,
                 _ => mesh.nodes[node][0],
             };
             let f: f64 = (0..n).map(|j| coef[j] * basis(x, j)).sum();
