@@ -567,6 +567,25 @@ pub fn bound(
         }
         Some((g, dir))
     };
+    // A punch's rigid motion at a side's samples: the largest |b(y)| over
+    // the closest points y, and |θ| R with R = |y − c| on a circular piece
+    // centred at c (0 and 0 off punches).
+    let motion_at = |s: &ContactSide, x: [f64; 2]| -> (f64, f64) {
+        let obstacle = &scene.obstacles[s.obstacle];
+        let (Some(pu), Some((_, beta))) = (&obstacle.punch, punches.iter().find(|(o, _)| *o == s.obstacle)) else {
+            return (0.0, 0.0);
+        };
+        let Some(c) = closest(&obstacle.shape, x) else {
+            return (0.0, 0.0);
+        };
+        let (dx, dy) = (c.point[0] - pu.reference[0], c.point[1] - pu.reference[1]);
+        let b = (beta[0] - beta[2] * dy).hypot(beta[1] + beta[2] * dx);
+        let r = match s.form {
+            Form::Arc { center } => (c.point[0] - center[0]).hypot(c.point[1] - center[1]),
+            _ => 0.0,
+        };
+        (b, beta[2].abs() * r)
+    };
     let along = |s: &ContactSide, field: &[[f64; 2]], t: f64| -> ([f64; 2], [f64; 2]) {
         let mesh = &meshes[s.body];
         let (a, b) = (s.ends[0], s.ends[1]);
@@ -599,10 +618,15 @@ pub fn bound(
     // at the samples, 8 ε (|v · ν| + |g|): an excess below it is no
     // measurable penetration (the answer of a punch pressed flat meets its
     // face to 4e-19 of 2e-2, and a push that small leaves v unchanged in
-    // floating point), and is taken as contact.
+    // floating point), and is taken as contact. On a punch g holds the
+    // punch's motion, −b(y) · ν with b = (α1 − θ (y_y − r_y), α2 + θ (y_x −
+    // r_x)) at the closest point y: on a circular piece of radius R,
+    // |y'| ≤ R/ρ and |y''| ≤ 2R/ρ², so |(b · ν)''| ≤ (2|b| + 4|θ|R)/ρ²,
+    // added to the margin as `moving` (a fan on a punch is out of reach).
     let worst_of = |s: &ContactSide, field: &[[f64; 2]]| -> (f64, f64, f64) {
         let mesh = &meshes[s.body];
         let (mut worst, mut cos, mut slack) = (f64::NEG_INFINITY, 1.0_f64, 0.0_f64);
+        let (mut bmax, mut turn_r) = (0.0_f64, 0.0_f64);
         let part = s.span[1] - s.span[0];
         for q in 0..SAMPLES {
             let t = s.span[0] + part * q as f64 / (SAMPLES - 1) as f64;
@@ -610,6 +634,11 @@ pub fn bound(
             let Some((g, dir)) = gap_at(s, x) else {
                 continue;
             };
+            if s.curvature > 0.0 {
+                let (b, tr) = motion_at(s, x);
+                bmax = bmax.max(b);
+                turn_r = turn_r.max(tr);
+            }
             let vn = v[0] * dir[0] + v[1] * dir[1];
             worst = worst.max(vn - g);
             slack = slack.max(8.0 * f64::EPSILON * (vn.abs() + g.abs()));
@@ -621,6 +650,7 @@ pub fn bound(
         let l = (b[0] - a[0]).hypot(b[1] - a[1]);
         let curvature = s.curvature;
         let delta = l * part / (SAMPLES - 1) as f64;
+        let moving = (2.0 * bmax + 4.0 * turn_r) * curvature * curvature;
         if let Some(m) = s.mid {
             // A quadratic v: |v''| = 4 |v_a − 2 v_m + v_b| / l², |v'| at
             // most its ends' (v' is linear), |v| at most 1.25 of the nodes'
@@ -635,14 +665,15 @@ pub fn bound(
             let vmax = 1.25 * [va, vm, vb].iter().map(|v| v[0].hypot(v[1])).fold(0.0, f64::max);
             // Twice the estimate of |f''|, as below.
             worst += delta * delta / 4.0
-                * (second + curvature + 2.0 * vmax * curvature * curvature + 2.0 * slope * curvature);
+                * (second + curvature + 2.0 * vmax * curvature * curvature + 2.0 * slope * curvature + moving);
         } else if curvature > 0.0 {
             let (va, vb) = (field[s.ends[0]], field[s.ends[1]]);
             let vmax = va[0].hypot(va[1]).max(vb[0].hypot(vb[1]));
             let slope = (vb[0] - va[0]).hypot(vb[1] - va[1]) / l;
             // Twice the estimate of |f''|: a margin on the bound of a unit
             // vector's turn along a line.
-            worst += delta * delta / 4.0 * (curvature + 2.0 * vmax * curvature * curvature + 2.0 * slope * curvature);
+            worst += delta * delta / 4.0
+                * (curvature + 2.0 * vmax * curvature * curvature + 2.0 * slope * curvature + moving);
         }
         (worst, cos, slack)
     };
