@@ -53,30 +53,31 @@ fn extrapolated(j: [f64; 3]) -> f64 {
 /// is 2 (J(u_h) − J(u)) exactly, and J on the twice-refined mesh is above
 /// J(u), so √(2 (J(u_h) − J(finest))) is below the true error. The bound must
 /// be above it, by construction (no tolerance but round-off). Its
-/// effectivity against the extrapolated error measures 3.60 here (and 3.61
-/// one level finer): the clamped corners' singular stresses are where an
-/// equilibrated stress of linear triangles is least sharp (the Hertz scenes
-/// of the example `energy_bound` read 2.0–2.6). 4 keeps that figure with a
-/// margin for the extrapolation, whose ratio 2.5 shows the corners' rate.
+/// effectivity against the extrapolated error measures 2.43 here (3.60
+/// before the patches' Airy corrections, `energy::patch`, which relax the
+/// stress where it is worst, the clamped corners' reactions among it). 2.8
+/// keeps that figure with a margin for the extrapolation, whose ratio 2.5
+/// shows the corners' rate.
 #[test]
 fn the_bound_is_above_the_error_of_a_clamped_block() {
-    clamped_block("t3");
+    clamped_block("t3", 2.8);
 }
 
 /// The clamped block above in quadratic triangles of the same size
 /// (`energy::quadratic`: node systems with the P2 functions, each element's
 /// stress made on its four sub-triangles): the bound is above the error
 /// measured against the twice-refined mesh by construction, and its
-/// effectivity against the extrapolated error measures 3.39 (3.42 one level
-/// finer; J ratio 2.73, the clamped corners' rate); [1, 4] as for T3's 3.60.
+/// effectivity against the extrapolated error measures 1.51 (3.39 before
+/// the patches' corrections; J ratio 2.73, the clamped corners' rate);
+/// [1, 2] keeps it with the extrapolation's margin.
 #[test]
 fn the_bound_is_above_the_error_of_a_clamped_t6_block() {
-    clamped_block("t6");
+    clamped_block("t6", 2.0);
 }
 
 /// The clamped block's checks in `element`: the bound above the error's
-/// lower bound, its effectivity within [1, 4], no contact term.
-fn clamped_block(element: &str) {
+/// lower bound, its effectivity within [1, `most`], no contact term.
+fn clamped_block(element: &str, most: f64) {
     let block = body("block", 100.0, 0.3, rectangle([0.0, 0.0], 2.0, 1.0, 0.2, element))
         .fixed("bottom")
         .traction("top", [0.3, -1.0])
@@ -95,7 +96,7 @@ fn clamped_block(element: &str) {
         "bound {} under a lower bound of the error {below}",
         l[0].absolute
     );
-    assert!((1.0..=4.0).contains(&eff), "effectivity {eff}");
+    assert!((1.0..=most).contains(&eff), "effectivity {eff}");
     // Nothing touches: no contact term and no correction.
     assert_eq!((l[0].contact, l[0].correction), (0.0, 0.0));
 }
@@ -108,8 +109,9 @@ fn clamped_block(element: &str) {
 /// ‖u − u_f‖_E, so the theorem asks B_h ≥ ‖u_f − u_h‖_E − B_f with no
 /// tolerance but round-off. The contact term and the admissibility
 /// correction (the answer's quadratic sides pass the cylinder between their
-/// nodes) are at work. Its effectivity against the extrapolated truth is the
-/// example `energy_bound`'s (3.1–3.8).
+/// nodes) are at work (measured 0.0257 ≥ 0.0108 − 0.0056). Its effectivity
+/// against the extrapolated truth is the example `energy_bound`'s (see
+/// docs/verification/accuracy.md: 3.1–3.8 before the patches' corrections).
 #[test]
 fn the_bound_is_above_the_error_of_hertz_contact_on_t6() {
     let base: Value =
@@ -138,9 +140,10 @@ fn the_bound_is_above_the_error_of_hertz_contact_on_t6() {
 /// curved obstacle: the answer passes the cylinder between its nodes by the
 /// chord's sagitta, so the admissibility correction is at work). The bound
 /// is above √(2 (J(u_h) − J(u))) with J(u) extrapolated: the truth is at or
-/// below that, so the check is the stricter one. Measured 2.58; 3 is the
-/// issue's mark for an equilibrated bound. The extrapolation carries about
-/// 1 % (its ratio measures 3.8 where the clean rate is 4).
+/// below that, so the check is the stricter one. Measured 2.03 (2.58 before
+/// the patches' corrections, `energy::patch`); 2.5 keeps it with a margin
+/// under the mark of 3. The extrapolation carries about 1 % (its
+/// ratio measures 3.8 where the clean rate is 4).
 #[test]
 fn the_bound_is_above_the_error_of_hertz_contact() {
     let base: Value =
@@ -150,7 +153,7 @@ fn the_bound_is_above_the_error_of_hertz_contact() {
     let j = [l[0].potential, l[1].potential, l[2].potential];
     let truth = (2.0 * (j[0] - extrapolated(j))).sqrt();
     let eff = l[0].absolute / truth;
-    assert!((1.0..=3.0).contains(&eff), "effectivity {eff}");
+    assert!((1.0..=2.5).contains(&eff), "effectivity {eff}");
     assert!(l[0].correction > 0.0 && l[0].contact > 0.0);
 }
 
@@ -251,7 +254,8 @@ fn theorem_holds(r: &[Report], fine: usize, d: [[f64; 3]; 3]) {
 /// asks, and on the punch's arc p* = q |x − c| so that the traction follows
 /// the arc's normal exactly. Effectivity against the extrapolated truth,
 /// whose potential includes the load's work on the punch's motion: measured
-/// 2.58.
+/// 2.03 (2.58 before the patches' corrections); [1, 2.5] as for the Hertz
+/// block.
 #[test]
 fn the_bound_is_above_the_error_of_a_loaded_circular_punch() {
     let base: Value =
@@ -262,7 +266,7 @@ fn the_bound_is_above_the_error_of_a_loaded_circular_punch() {
     assert!(j[0] > j[1] && j[1] > j[2], "nested meshes lower the potential: {j:?}");
     let truth = (2.0 * (j[0] - extrapolated(j))).sqrt();
     let eff = l[0].absolute / truth;
-    assert!((1.0..=3.0).contains(&eff), "effectivity {eff}");
+    assert!((1.0..=2.5).contains(&eff), "effectivity {eff}");
 }
 
 /// The relative bound is a property of the shape of the answer, not of its
@@ -474,15 +478,15 @@ fn energy_of_difference(coarse: &Report, fine: &Report, d: [[f64; 3]; 3]) -> [f6
 /// ‖u_f − u_h‖_E − ‖u − u_f‖_E, and the fine answer's own bound is above
 /// ‖u − u_f‖_E, so the theorem (effectivity ≥ 1) asks
 /// B_h ≥ ‖u_f − u_h‖_E − B_f with no tolerance but round-off (measured
-/// 0.061 ≥ 0.019 − 0.012, in the reply's units). Against the truth
+/// 0.038 ≥ 0.019 − 0.006, in the reply's units; 0.061 ≥ 0.019 − 0.012
+/// before the patches' corrections). Against the truth
 /// √(2 (J(u_h) − J(u))) (J with the springs' energy, extrapolated; for a
 /// bed it is at or above the error: it adds the springs' convex remainder)
-/// the effectivity measures 3.19 here, and 3.36 and 3.42 at h = 0.05 and
-/// 0.025 (`energy_bound` example): the load's edge on the top and the
-/// footing's corners, where the equilibrated stress of linear triangles is
-/// least sharp, as on the clamped block above (3.60). 4 keeps it with the
-/// extrapolation's margin (its ratio read 3.07 from h = 0.05 in the example,
-/// where the clean rate is 4).
+/// the effectivity measures 1.99 here (3.19 before the corrections; the
+/// `energy_bound` example reads h = 0.05 and 0.025 too): the load's edge on
+/// the top and the footing's corners weigh most, as on the clamped block
+/// above. 2.4 keeps it with the extrapolation's margin (its ratio read
+/// 3.07 from h = 0.05 in the example, where the clean rate is 4).
 /// A Pasternak bed is out of the bound's reach and its reply has none.
 #[test]
 fn the_bound_is_above_the_error_of_a_footing_lifting_off_a_bed() {
@@ -506,7 +510,7 @@ fn the_bound_is_above_the_error_of_a_footing_lifting_off_a_bed() {
     let j = [b[0].potential, b[1].potential, b[2].potential];
     let truth = (2.0 * (j[0] - extrapolated(j))).sqrt();
     let eff = b[0].absolute / truth;
-    assert!((1.0..=4.0).contains(&eff), "effectivity {eff}");
+    assert!((1.0..=2.4).contains(&eff), "effectivity {eff}");
     // v is free on a bed: no correction; the lift-off side carries a contact
     // term.
     assert_eq!(b[0].correction, 0.0);
@@ -539,9 +543,11 @@ fn a_uniformly_pressed_footing_on_a_bed_has_a_bound_at_round_off() {
 /// the right half of its top: a body its supports hold (no free rigid
 /// motion), so p* is the rows' nodal pressures unscaled and the answer moves
 /// by p*'s loads through the plain factor. Effectivity against the
-/// extrapolated truth: measured 3.79 (J ratio 3.3, four elements through
-/// the thickness), the clamped corners' singular stresses weighing as on
-/// the clamped block above (3.60); [1, 4] as there.
+/// extrapolated truth: measured 2.95 (3.79 before the patches' corrections;
+/// J ratio 3.3, four elements through the thickness), the clamped corners'
+/// singular stresses weighing as on the clamped block above (the patches
+/// relaxed are a share of a small mesh's few vertices); 3.3 keeps it with
+/// the extrapolation's margin.
 #[test]
 fn the_bound_is_above_the_error_of_a_clamped_slab_on_a_bed() {
     let slab = body("slab", 200.0, 0.25, rectangle([-2.0, 0.0], 4.0, 0.5, 0.125, "t3"))
@@ -561,6 +567,6 @@ fn the_bound_is_above_the_error_of_a_clamped_slab_on_a_bed() {
     assert!(j[0] > j[1] && j[1] > j[2], "nested meshes lower the potential: {j:?}");
     let truth = (2.0 * (j[0] - extrapolated(j))).sqrt();
     let eff = l[0].absolute / truth;
-    assert!((1.0..=4.0).contains(&eff), "effectivity {eff}");
+    assert!((1.0..=3.3).contains(&eff), "effectivity {eff}");
     assert_eq!(l[0].correction, 0.0);
 }

@@ -16,7 +16,7 @@
 //! equilibrium inside (Ciarlet, *The Finite Element Method for Elliptic
 //! Problems*, §6.1; Johnson & Mercier, Numer. Math. 30, 1978).
 //!
-//! Length: about 500 lines, two fifths of them the tests that the stress
+//! Length: about 570 lines, a third of them the tests that the stress
 //! reproduces uniform and linear equilibrated fields and carries any
 //! balanced tractions; the HCT element, its reference table and the Airy
 //! walk are one construction.
@@ -319,6 +319,62 @@ pub fn stress(p: &[[f64; 2]; 3], t: &[[[f64; 2]; 2]; 3]) -> Option<SubStress> {
     // element): the gap is a round-off-sized traction, far from overflow.
     let (gx, gy) = (grad[3][0] - grad[0][0], grad[3][1] - grad[0][1]);
     let closure = ((gx * gx + gy * gy).sqrt() / h).max((phi[3] - phi[0]).abs() / (h * h));
+    let corner_grad = [grad[0], grad[1], grad[2]];
+    let at = from_dofs(p, [phi[0], phi[1], phi[2]], corner_grad, mid)?;
+    let a = [
+        [p[1][0] - p[0][0], p[2][0] - p[0][0]],
+        [p[1][1] - p[0][1], p[2][1] - p[0][1]],
+    ];
+    let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+    let rp = reference_points();
+    Some(SubStress {
+        area: [det / 6.0; 3],
+        at,
+        points: std::array::from_fn(|j| {
+            std::array::from_fn(|q| {
+                let x = rp[j][q];
+                [
+                    p[0][0] + a[0][0] * x[0] + a[0][1] * x[1],
+                    p[0][1] + a[1][0] * x[0] + a[1][1] * x[1],
+                ]
+            })
+        }),
+        closure,
+        scale,
+    })
+}
+
+/// The gradients at the side midpoints of the HCT function on `p` with
+/// values `phi` and gradients `grad` at the corners whose gradient's part
+/// along side j's normal at its midpoint is `normal[j]` (a vector along that
+/// normal): the tangential part is the cubic's along the side, fixed by its
+/// ends (Hermite: φ'(½) = 3/2 (φ_b − φ_a)/l − ¼ (∂_τφ_a + ∂_τφ_b)), so two
+/// elements that share a side's corner data and its normal part share the
+/// whole gradient there, and their HCT functions are C¹ across it.
+pub fn mid_gradients(p: &[[f64; 2]; 3], phi: [f64; 3], grad: [[f64; 2]; 3], normal: [[f64; 2]; 3]) -> [[f64; 2]; 3] {
+    std::array::from_fn(|j| {
+        let k = (j + 1) % 3;
+        let d = [p[k][0] - p[j][0], p[k][1] - p[j][1]];
+        let l2 = d[0] * d[0] + d[1] * d[1];
+        // With τ = d / l: (3/2 (φ_b − φ_a) / l − ¼ (∇φ_a + ∇φ_b)·d / l) d / l.
+        let s = 1.5 * (phi[k] - phi[j]) / l2 - 0.25 * (dot(&grad[j], &d) + dot(&grad[k], &d)) / l2;
+        [normal[j][0] + s * d[0], normal[j][1] + s * d[1]]
+    })
+}
+
+/// The Airy stress (xx, yy, xy), at the nine points of `SubStress::at`, of
+/// the HCT function on the triangle `p` (counter-clockwise) with values
+/// `phi`, gradients `grad` at the corners and gradients `mid` at the side
+/// midpoints (side j from p[j] to p[j+1]; their tangential parts those of
+/// `mid_gradients`). Linear in the data: the stress of the tractions
+/// (`stress`) and the patches' corrections (`patch`) are both made here.
+/// None for a degenerate triangle.
+pub fn from_dofs(
+    p: &[[f64; 2]; 3],
+    phi: [f64; 3],
+    grad: [[f64; 2]; 3],
+    mid: [[f64; 2]; 3],
+) -> Option<[[[f64; 3]; 3]; 3]> {
     // x = p0 + A ξ: reference gradients are Aᵀ ∇φ, the reference normal
     // derivative at a midpoint is Aᵀ ∇φ there along the reference normal.
     let a = [
@@ -347,19 +403,15 @@ pub fn stress(p: &[[f64; 2]; 3], t: &[[[f64; 2]; 2]; 3]) -> Option<SubStress> {
     // H = A⁻ᵀ Ĥ A⁻¹.
     let inv = [[a[1][1] / det, -a[0][1] / det], [-a[1][0] / det, a[0][0] / det]];
     let table = reference_table();
-    let rp = reference_points();
-    let mut out = SubStress {
-        area: [det / 6.0; 3],
-        at: [[[0.0; 3]; 3]; 3],
-        points: [[[0.0; 2]; 3]; 3],
-        closure,
-        scale,
-    };
     // The reference Hessians at the nine points, summed in the order of the
-    // degrees of freedom; the first three (φ and ∇φ at p[0]) are 0 by the
-    // walk's start, and adding their zero products would change nothing.
+    // degrees of freedom; those that are 0 (φ and ∇φ at p[0] for the
+    // tractions' walk, most of them for a patch's corrections) would add
+    // nothing.
     let mut hess = [0.0; 27];
-    for (d, row) in dofs.iter().zip(table).skip(3) {
+    for (d, row) in dofs.iter().zip(table) {
+        if *d == 0.0 {
+            continue;
+        }
         for (h, t) in hess.iter_mut().zip(row) {
             *h += d * t;
         }
@@ -374,17 +426,13 @@ pub fn stress(p: &[[f64; 2]; 3], t: &[[[f64; 2]; 2]; 3]) -> Option<SubStress> {
             inv[0][r] * inv[1][s] + inv[1][r] * inv[0][s],
         ]
     });
+    let mut out = [[[0.0; 3]; 3]; 3];
     for j in 0..3 {
         for q in 0..3 {
             let hh = &hess[9 * j + 3 * q..9 * j + 3 * q + 3];
             let [pxx, pyy, pxy]: [f64; 3] =
                 std::array::from_fn(|o| map[o][0] * hh[0] + map[o][1] * hh[1] + map[o][2] * hh[2]);
-            out.at[j][q] = [pyy, pxx, -pxy];
-            let x = rp[j][q];
-            out.points[j][q] = [
-                p[0][0] + a[0][0] * x[0] + a[0][1] * x[1],
-                p[0][1] + a[1][0] * x[0] + a[1][1] * x[1],
-            ];
+            out[j][q] = [pyy, pxx, -pxy];
         }
     }
     Some(out)

@@ -16,8 +16,10 @@
 //! freedom (a node inside has one) is spent on staying closest to the mean of
 //! the two elements' own tractions. Each element is then in equilibrium under
 //! its sides' tractions (the hats sum to 1 and reproduce x), which is what
-//! `airy` needs. On sides where the traction is given (loads, the contact
-//! pressure, a free surface) t̂ is that traction; on sides with a prescribed
+//! `airy` needs; that local choice is then improved where the energy is
+//! largest by `patch`'s Airy corrections, which minimise it over patches.
+//! On sides where the traction is given (loads, the contact pressure, a free
+//! surface) t̂ is that traction; on sides with a prescribed
 //! displacement component that component is sought like an inner side's.
 //!
 //! Length: about 800 lines, a seventh of them the patch test; the node
@@ -28,7 +30,9 @@
 //! buffers are what keeps the bound a small share of a solve).
 
 use super::airy;
-use std::collections::HashMap;
+pub(super) use super::numbering::{factor_psd, solve_factored, Numbering, Side, NONE};
+use super::patch::{Patches, Residual, SHARE};
+use std::collections::{HashMap, HashSet};
 
 /// A boundary side's data, per component: the traction at its first end,
 /// its middle and its second end (in the order of `ends`; linear on each
@@ -104,17 +108,6 @@ pub(super) fn particular_stress(f: [f64; 2], p: &[[f64; 2]; 3]) -> impl Fn([f64;
     move |x| [-f[0] * (x[0] - centroid[0]), -f[1] * (x[1] - centroid[1]), 0.0]
 }
 
-pub(super) struct Side {
-    pub(super) ends: [usize; 2],
-    /// Elements on each side of it (the first one's outward normal is the
-    /// side's).
-    pub(super) elems: [usize; 2],
-    pub(super) normal: [f64; 2],
-    pub(super) len: f64,
-}
-
-pub(super) const NONE: usize = usize::MAX;
-
 pub(super) fn inverse3(d: [[f64; 3]; 3]) -> [[f64; 3]; 3] {
     let det = d[0][0] * (d[1][1] * d[2][2] - d[1][2] * d[2][1]) - d[0][1] * (d[1][0] * d[2][2] - d[1][2] * d[2][0])
         + d[0][2] * (d[1][0] * d[2][1] - d[1][1] * d[2][0]);
@@ -161,50 +154,6 @@ fn strain(grads: &[[f64; 2]; 3], e: [usize; 3], u: &[[f64; 2]]) -> [f64; 3] {
 fn stress(d: &[[f64; 3]; 3], grads: &[[f64; 2]; 3], e: [usize; 3], u: &[[f64; 2]]) -> [f64; 3] {
     let eps = strain(grads, e, u);
     std::array::from_fn(|r| (0..3).map(|c| d[r][c] * eps[c]).sum())
-}
-
-/// Cholesky of the symmetric positive semi-definite `m` (n × n, row-major,
-/// lower triangle) that marks null pivots in `skip` instead of failing: for
-/// a consistent right-hand side `solve_factored` then gives a solution y
-/// whose Aᵀ y (the traction sought) is the unique one.
-pub(super) fn factor_psd(m: &mut [f64], n: usize, skip: &mut Vec<bool>) {
-    let scale = (0..n).map(|i| m[i * n + i]).fold(0.0, f64::max);
-    skip.clear();
-    skip.resize(n, false);
-    for k in 0..n {
-        let piv = m[k * n + k];
-        if piv <= 1e-10 * scale {
-            skip[k] = true;
-            continue;
-        }
-        let r = piv.sqrt();
-        for i in k..n {
-            m[i * n + k] /= r;
-        }
-        for j in k + 1..n {
-            for i in j..n {
-                m[i * n + j] -= m[i * n + k] * m[j * n + k];
-            }
-        }
-    }
-}
-
-pub(super) fn solve_factored(m: &[f64], skip: &[bool], rhs: &mut [f64], n: usize) {
-    for k in 0..n {
-        if skip[k] {
-            rhs[k] = 0.0;
-            continue;
-        }
-        let s: f64 = (0..k).filter(|&j| !skip[j]).map(|j| m[k * n + j] * rhs[j]).sum();
-        rhs[k] = (rhs[k] - s) / m[k * n + k];
-    }
-    for k in (0..n).rev() {
-        if skip[k] {
-            continue;
-        }
-        let s: f64 = (k + 1..n).filter(|&j| !skip[j]).map(|j| m[j * n + k] * rhs[j]).sum();
-        rhs[k] = (rhs[k] - s) / m[k * n + k];
-    }
 }
 
 /// One element of an inner node's fan: the side it is entered by, the
@@ -355,113 +304,23 @@ pub(super) fn given_moments(
     out
 }
 
+/// The boundary sides whose both components are sought (both displacement
+/// components held), by their sorted corners: where the patches' Airy
+/// corrections may move the reactions.
+pub(super) fn held(sides: &[Side], sought: &[[bool; 2]]) -> HashSet<[usize; 2]> {
+    sides
+        .iter()
+        .zip(sought)
+        .filter(|(s, h)| s.elems[1] == NONE && h[0] && h[1])
+        .map(|(s, _)| [s.ends[0].min(s.ends[1]), s.ends[0].max(s.ends[1])])
+        .collect()
+}
+
 pub(super) fn given_at(given: &HashMap<[usize; 2], Given>, s: &Side, c: usize) -> Option<[f64; 3]> {
     let key = [s.ends[0].min(s.ends[1]), s.ends[0].max(s.ends[1])];
     match given.get(&key) {
         Some(g) => g.traction[c].map(|t| if g.ends == s.ends { t } else { [t[2], t[1], t[0]] }),
         None => Some([0.0; 3]),
-    }
-}
-
-/// The sides of a mesh's corner triangles, each numbered once with its one
-/// or two elements, and the elements around each node.
-pub(super) struct Numbering {
-    pub(super) sides: Vec<Side>,
-    pub(super) elem_sides: Vec<[usize; 3]>,
-    node_start: Vec<usize>,
-    node_list: Vec<u32>,
-}
-
-impl Numbering {
-    /// `corners`: each element's corners, counter-clockwise.
-    pub(super) fn new(nodes: &[[f64; 2]], corners: &[[u32; 3]]) -> Numbering {
-        let ne = corners.len();
-        // Elements around each node, in increasing order (a counting sort into
-        // one array instead of a list per node: no allocation per node).
-        let mut node_start = vec![0usize; nodes.len() + 1];
-        for e in corners {
-            for &n in e {
-                node_start[n as usize + 1] += 1;
-            }
-        }
-        for n in 0..nodes.len() {
-            node_start[n + 1] += node_start[n];
-        }
-        let mut node_list = vec![0u32; node_start[nodes.len()]];
-        let mut fill = node_start.clone();
-        for (k, e) in corners.iter().enumerate() {
-            for n in e.map(|n| n as usize) {
-                node_list[fill[n]] = k as u32;
-                fill[n] += 1;
-            }
-        }
-        let elems_at = |n: usize| &node_list[node_start[n]..node_start[n + 1]];
-        // Sides, oriented by their first (lowest-numbered) element's
-        // counter-clockwise walk; the other element is found among the
-        // elements of the side's first corner (the elements in turn, so a
-        // side's first element numbers it).
-        let mut sides: Vec<Side> = Vec::with_capacity(2 * ne);
-        let mut elem_sides = vec![[NONE; 3]; ne];
-        for k in 0..ne {
-            let e = corners[k].map(|n| n as usize);
-            for j in 0..3 {
-                if elem_sides[k][j] != NONE {
-                    continue;
-                }
-                let (a, b) = (e[j], e[(j + 1) % 3]);
-                let (pa, pb) = (nodes[a], nodes[b]);
-                // A plain root, not hypot (whose guard against overflow is slow,
-                // once per side): a side is far from overflow.
-                let (dx, dy) = (pb[0] - pa[0], pb[1] - pa[1]);
-                let len = (dx * dx + dy * dy).sqrt();
-                let id = sides.len();
-                let mut side = Side {
-                    ends: [a, b],
-                    elems: [k, NONE],
-                    normal: [(pb[1] - pa[1]) / len, -(pb[0] - pa[0]) / len],
-                    len,
-                };
-                elem_sides[k][j] = id;
-                // A side has at most two elements (a third would make the mesh
-                // non-manifold, which the mesh checks refuse).
-                let (a32, b32) = (a as u32, b as u32);
-                for &k2 in elems_at(a) {
-                    let k2 = k2 as usize;
-                    if k2 <= k {
-                        continue;
-                    }
-                    let e2 = corners[k2];
-                    if let Some(j2) = (0..3).find(|&j2| {
-                        let (c, d) = (e2[j2], e2[(j2 + 1) % 3]);
-                        (c == a32 && d == b32) || (c == b32 && d == a32)
-                    }) {
-                        side.elems[1] = k2;
-                        elem_sides[k2][j2] = id;
-                    }
-                }
-                sides.push(side);
-            }
-        }
-        Numbering {
-            sides,
-            elem_sides,
-            node_start,
-            node_list,
-        }
-    }
-
-    fn elems_at(&self, n: usize) -> &[u32] {
-        &self.node_list[self.node_start[n]..self.node_start[n + 1]]
-    }
-
-    /// η of side `id` for element k: 1 where the side's normal is k's
-    /// outward one.
-    pub(super) fn sign(&self, id: usize, k: usize) -> f64 {
-        if self.sides[id].elems[0] == k {
-            1.0
-        } else {
-            -1.0
-        }
     }
 }
 
@@ -638,7 +497,7 @@ pub fn bound(inp: &Input<3>) -> Option<Bound> {
     );
     // Each element's admissible stress against σ(u_cmp).
     let compliance = inverse3(inp.d);
-    let mut indicators = vec![0.0; ne];
+    let mut residual: Vec<Residual> = Vec::with_capacity(ne);
     let (mut closure, mut scale) = (0.0_f64, 0.0_f64);
     let mut norm2 = 0.0;
     for (k, &elem) in inp.elems.iter().enumerate() {
@@ -678,20 +537,16 @@ pub fn bound(inp: &Input<3>) -> Option<Bound> {
         scale = scale.max(sub.scale);
         let sh = stress(&inp.d, grads, e, inp.u_cmp);
         scale = scale.max(sh.iter().fold(0.0_f64, |m, v| m.max(v.abs())));
-        let mut sum = 0.0;
-        for j in 0..3 {
-            for q in 0..3 {
-                let x = sub.points[j][q];
-                let sp = particular(x);
-                let diff: [f64; 3] = std::array::from_fn(|r| sub.at[j][q][r] + sp[r] - sh[r]);
-                let w: f64 = (0..3)
-                    .map(|r| diff[r] * (0..3).map(|c| compliance[r][c] * diff[c]).sum::<f64>())
-                    .sum();
-                sum += sub.area[j] / 3.0 * w;
-            }
-        }
-        indicators[k] = sum;
+        residual.push(std::array::from_fn(|j| {
+            std::array::from_fn(|q| {
+                let sp = particular(sub.points[j][q]);
+                std::array::from_fn(|r| sub.at[j][q][r] + sp[r] - sh[r])
+            })
+        }));
     }
+    let mut patches = Patches::new(inp.nodes, &corners, &num, compliance, &held(sides, &sought), residual);
+    patches.relax_largest(SHARE);
+    let indicators = (0..ne).map(|k| patches.energy(k)).collect();
     Some(Bound::new(indicators, closure, scale, norm2))
 }
 

@@ -19,7 +19,8 @@
 //! The answer u_h is made admissible by a correction w where a candidate side
 //! penetrates between its nodes (v = u_h + w; the bound of u − u_h adds
 //! ‖w‖_E). τ is the equilibrated stress of `equilibrate` (of `quadratic` on
-//! T6) for the answer with
+//! T6), lowered patch by patch by Airy corrections (`patch`), for the answer
+//! with
 //! its nodal contact forces replaced by a pressure p* ≥ 0 whose traction
 //! −p* ν is linear on each side and follows the obstacle's normal exactly:
 //! p* linear through the nodal pressures λ_i / w_i where the obstacle is
@@ -81,6 +82,8 @@ pub mod airy;
 pub mod equilibrate;
 mod foundation;
 mod normal;
+mod numbering;
+mod patch;
 mod pending;
 mod punch;
 pub mod quadratic;

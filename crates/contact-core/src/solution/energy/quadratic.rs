@@ -23,12 +23,14 @@
 use super::equilibrate::{
     given_moments, mean_over_areas, node_systems, particular_stress, Bound, Given3, Input, Numbering, NONE,
 };
+use super::patch::{Patches, Residual, SHARE};
 use super::split;
 use crate::fem::assembly::integration;
 use crate::fem::kernel::Integration;
 use crate::mesh::Order;
 use crate::model::Model;
 use crate::scene::Scene;
+use std::collections::HashSet;
 
 /// Why a scene with quadratic triangles is out of the bound's reach, if it
 /// is: the T6 stress of this module is built on affine elements with the full
@@ -237,12 +239,26 @@ pub fn bound(inp: &Input<6>) -> Option<Bound> {
         &mut proj,
     );
     let compliance = super::equilibrate::inverse3(inp.d);
-    let mut indicators = vec![0.0; ne];
+    // The four sub-triangles of each element (`split`'s order: the corner
+    // ones at k[0], k[1], k[2], then the middle one), the mesh of the
+    // patches' HCT space, and its boundary half-sides with both components
+    // held.
+    let mut tris: Vec<[u32; 3]> = Vec::with_capacity(4 * ne);
+    let mut held = HashSet::new();
+    let mut residual: Vec<Residual> = Vec::with_capacity(4 * ne);
     let (mut closure, mut scale) = (0.0_f64, 0.0_f64);
     let mut norm2 = 0.0;
     for (kk, &elem) in inp.elems.iter().enumerate() {
         let (k, m, g, area) = geometry(inp.nodes, elem);
         let p = [inp.nodes[k[0]], inp.nodes[k[1]], inp.nodes[k[2]]];
+        tris.extend([[k[0], m[0], m[2]], [m[0], k[1], m[1]], [m[2], m[1], k[2]], m].map(|t| t.map(|n| n as u32)));
+        for (j, &id) in elem_sides[kk].iter().enumerate() {
+            if sides[id].elems[1] == NONE && sought[id] == [true, true] {
+                for [a, b] in [[k[j], m[j]], [m[j], k[(j + 1) % 3]]] {
+                    held.insert([a.min(b), a.max(b)]);
+                }
+            }
+        }
         for l in MIDPOINT {
             let s = stress_at(d, &g, k, m, l, inp.u_norm);
             let e = stress_at(
@@ -295,8 +311,15 @@ pub fn bound(inp: &Input<6>) -> Option<Bound> {
         for s in target {
             scale = scale.max(s.iter().fold(0.0_f64, |a, v| a.max(v.abs())));
         }
-        indicators[kk] = out.energy;
+        residual.extend(out.residual);
     }
+    let sub_num = Numbering::new(inp.nodes, &tris);
+    let mut patches = Patches::new(inp.nodes, &tris, &sub_num, compliance, &held, residual);
+    patches.relax_largest(SHARE);
+    // Each element's indicator is its four sub-triangles'.
+    let indicators = (0..ne)
+        .map(|k| (4 * k..4 * k + 4).map(|t| patches.energy(t)).sum())
+        .collect();
     Some(Bound::new(indicators, closure, scale, norm2))
 }
 

@@ -17,6 +17,7 @@
 //! an admissible stress; the least one only tightens the bound.
 
 use super::airy::{self, SubStress};
+use super::patch::Residual;
 
 /// The four sub-triangles' stresses with the least α, and its energy.
 pub struct Split {
@@ -24,6 +25,8 @@ pub struct Split {
     pub subs: [SubStress; 4],
     /// ∫_K (σ* − σ̄) : C⁻¹ (σ* − σ̄).
     pub energy: f64,
+    /// σ* − σ̄ at each sub-triangle's nine points (`patch`'s residual).
+    pub residual: [Residual; 4],
     /// The largest of the sub-triangles' `closure` and `scale`.
     pub closure: f64,
     pub scale: f64,
@@ -180,12 +183,13 @@ pub fn stress(
     let alpha = airy::solve3(h, [-g[0], -g[1], -g[2]]).unwrap_or([0.0; 3]);
     let mut subs: [SubStress; 4] = [base[0], base[1], base[2], base[3]];
     let (mut energy, mut closure, mut scale) = (0.0, 0.0_f64, 0.0_f64);
-    for (s, sub) in subs.iter_mut().enumerate() {
+    let mut residual = [[[[0.0; 3]; 3]; 3]; 4];
+    for (s, (sub, res)) in subs.iter_mut().zip(residual.iter_mut()).enumerate() {
         closure = closure.max(sub.closure);
         scale = scale.max(sub.scale);
-        for k in 0..3 {
+        for (k, res_k) in res.iter_mut().enumerate() {
             let w = sub.area[k] / 3.0;
-            for pt in 0..3 {
+            for (pt, res_pt) in res_k.iter_mut().enumerate() {
                 for (i, a) in alpha.iter().enumerate() {
                     let mi = mode_at(s, i, k, pt);
                     for (v, m) in sub.at[k][pt].iter_mut().zip(mi) {
@@ -195,12 +199,14 @@ pub fn stress(
                 let tg = target_at(sub.points[k][pt]);
                 let diff: [f64; 3] = std::array::from_fn(|r| sub.at[k][pt][r] - tg[r]);
                 energy += w * energy_of(diff, diff);
+                *res_pt = diff;
             }
         }
     }
     Some(Split {
         subs,
         energy,
+        residual,
         closure,
         scale,
     })
