@@ -379,6 +379,14 @@ pub fn bound(
                 if pressure != [0.0, 0.0] || mid_pressure.is_some_and(|p| p != 0.0) {
                     return Err("a side in contact runs past an open end of its obstacle");
                 }
+                // A part the obstacle faces whose form is unknown, or pieces
+                // of it apart, would go unchecked: v · ν ≤ g is not shown there.
+                if span != [0.0, 1.0] || normal::faced_in_pieces(shape, xa, xb) {
+                    return Err(
+                        "an obstacle faces part of a candidate side in a way the admissibility check does not \
+                        resolve (pieces of it apart within the side)",
+                    );
+                }
                 continue;
             };
             if span != [0.0, 1.0] {

@@ -146,6 +146,27 @@ fn distance_to_segment(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] + s * d[0] - p[0]).hypot(a[1] + s * d[1] - p[1])
 }
 
+/// Whether the obstacle faces each of the side's samples.
+fn seen_by(shape: &Shape, a: [f64; 2], b: [f64; 2]) -> Vec<bool> {
+    (0..SAMPLES)
+        .map(|q| {
+            let t = q as f64 / (SAMPLES - 1) as f64;
+            closest(shape, [(1.0 - t) * a[0] + t * b[0], (1.0 - t) * a[1] + t * b[1]]).is_some()
+        })
+        .collect()
+}
+
+/// Whether the obstacle faces the side's samples in more than one run (a
+/// gap between two of its pieces within the side), which `facing_part`
+/// leaves to the caller: no part of it may be dropped unchecked.
+pub(super) fn faced_in_pieces(shape: &Shape, a: [f64; 2], b: [f64; 2]) -> bool {
+    let seen = seen_by(shape, a, b);
+    match (seen.iter().position(|&x| x), seen.iter().rposition(|&x| x)) {
+        (Some(first), Some(last)) => seen[first..=last].iter().any(|x| !x),
+        _ => false,
+    }
+}
+
 /// The part [t0, t1] of the segment a–b that the obstacle faces, where it
 /// faces some of its samples but not all (an open end of a polyline or a
 /// profile within the side): each end found by bisection between the last
@@ -156,7 +177,7 @@ fn distance_to_segment(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
 pub(super) fn facing_part(shape: &Shape, a: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
     let faces = |t: f64| closest(shape, [(1.0 - t) * a[0] + t * b[0], (1.0 - t) * a[1] + t * b[1]]).is_some();
     let ts: Vec<f64> = (0..SAMPLES).map(|q| q as f64 / (SAMPLES - 1) as f64).collect();
-    let seen: Vec<bool> = ts.iter().map(|&t| faces(t)).collect();
+    let seen = seen_by(shape, a, b);
     let first = seen.iter().position(|&x| x)?;
     let last = seen.iter().rposition(|&x| x)?;
     if seen[first..=last].iter().any(|x| !x) {

@@ -21,11 +21,15 @@
 //! is safe (fewer corrections, never an inadmissible one). So σ* + airy(ψ)
 //! stays statically admissible for every such ψ, and its energy
 //! Σ_K ‖σ* + airy(ψ) − σ_h‖²_{C⁻¹,K} over the patch's free degrees of
-//! freedom is a small positive semi-definite quadratic (3 + k unknowns, k the
-//! free sides at i), minimised exactly: each step can only lower the bound,
-//! and a Gauss–Seidel sweep over the vertices moves σ* towards the mesh's
-//! Johnson–Mercier optimum (the least complementary energy over all
-//! admissible piecewise-linear stresses on the split).
+//! freedom is a small positive semi-definite quadratic (at most 3 + k
+//! unknowns, k the free sides at i; k alone where i is on a given side),
+//! minimised exactly: each step can only lower the bound, and a
+//! Gauss–Seidel sweep over the vertices moves σ* towards the least
+//! complementary energy over the patches' span. That span is smaller than
+//! all admissible piecewise-linear stresses on the split (the Johnson–Mercier
+//! optimum): it leaves out a ψ whose gradient is a nonzero constant along a
+//! given side between two held parts (the resultant moving between
+//! supports) and every ψ on a roller's side.
 //!
 //! The mesh here is any triangle mesh whose every triangle is an HCT
 //! macro-element: the linear triangles themselves (`equilibrate`), or each
@@ -50,9 +54,9 @@ use std::collections::HashSet;
 /// blocks at twice the time); the largest 20 %: 1.13, 1.59, 1.85, 1.37 at
 /// 50 / 109 ms; 10 %: 1.23, 1.62, 2.07, 1.40 at 40 / 87 ms, the whole
 /// estimate then 31 % of the solve on both (medians; 23 % without); 5 %:
-/// 1.45, 1.67, 2.43, 1.51 at 35 / 79 ms, the estimate 24–26 % of the solve
-/// on the four 2D examples. The last keeps the estimate under its mark of
-/// 30 % and every row measured under 2.5 (docs/verification/accuracy.md).
+/// 1.45, 1.67, 2.43, 1.51 at 35 / 79 ms, the whole estimate 19–26 % of the
+/// solve on the four 2D examples. The last keeps the estimate under its mark
+/// of 30 % and every row measured under 2.6 (docs/verification/accuracy.md).
 pub(super) const SHARE: f64 = 0.05;
 
 /// σ* − σ_h of one triangle at the nine points of `airy::SubStress::at`
