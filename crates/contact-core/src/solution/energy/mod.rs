@@ -578,9 +578,9 @@ pub fn bound(
         }
         Some((g, dir))
     };
-    // A punch's rigid motion at a side's samples: the largest |b(y)| over
-    // the closest points y, and |θ| R with R = |y − c| on a circular piece
-    // centred at c (0 and 0 off punches).
+    // A punch's rigid motion at a side's sample: |b(y)| at the closest point
+    // y, and |θ| R with R = |y − c| on a circular piece centred at c, |θ|
+    // on any other (0 and 0 off punches).
     let motion_at = |s: &ContactSide, x: [f64; 2]| -> (f64, f64) {
         let obstacle = &scene.obstacles[s.obstacle];
         let (Some(pu), Some((_, beta))) = (&obstacle.punch, punches.iter().find(|(o, _)| *o == s.obstacle)) else {
@@ -593,7 +593,7 @@ pub fn bound(
         let b = (beta[0] - beta[2] * dy).hypot(beta[1] + beta[2] * dx);
         let r = match s.form {
             Form::Arc { center } => (c.point[0] - center[0]).hypot(c.point[1] - center[1]),
-            _ => 0.0,
+            _ => 1.0,
         };
         (b, beta[2].abs() * r)
     };
@@ -633,7 +633,10 @@ pub fn bound(
     // punch's motion, −b(y) · ν with b = (α1 − θ (y_y − r_y), α2 + θ (y_x −
     // r_x)) at the closest point y: on a circular piece of radius R,
     // |y'| ≤ R/ρ and |y''| ≤ 2R/ρ², so |(b · ν)''| ≤ (2|b| + 4|θ|R)/ρ²,
-    // added to the margin as `moving` (a fan on a punch is out of reach).
+    // added to the margin as `moving`. On any other piece that turns (a
+    // punch's fan or kink out of contact: in contact they are out of reach)
+    // y moves along a facet at most at the side's speed (|y'| ≤ 1, y'' = 0)
+    // or stays at a vertex, so 2|b'||ν'| ≤ 2|θ|κ joins 2|b|κ².
     let worst_of = |s: &ContactSide, field: &[[f64; 2]]| -> (f64, f64, f64) {
         let mesh = &meshes[s.body];
         let (mut worst, mut cos, mut slack) = (f64::NEG_INFINITY, 1.0_f64, 0.0_f64);
@@ -661,7 +664,10 @@ pub fn bound(
         let l = (b[0] - a[0]).hypot(b[1] - a[1]);
         let curvature = s.curvature;
         let delta = l * part / (SAMPLES - 1) as f64;
-        let moving = (2.0 * bmax + 4.0 * turn_r) * curvature * curvature;
+        let moving = match s.form {
+            Form::Arc { .. } => (2.0 * bmax + 4.0 * turn_r) * curvature * curvature,
+            _ => 2.0 * bmax * curvature * curvature + 2.0 * turn_r * curvature,
+        };
         if let Some(m) = s.mid {
             // A quadratic v: |v''| = 4 |v_a − 2 v_m + v_b| / l², |v'| at
             // most its ends' (v' is linear), |v| at most 1.25 of the nodes'
