@@ -556,17 +556,7 @@ mod tests {
 
     /// A square of eight triangles around a middle node, in both orientations.
     fn square() -> (Vec<[f64; 2]>, Vec<[usize; 3]>) {
-        let nodes = vec![
-            [0.0, 0.0],
-            [0.5, 0.0],
-            [1.0, 0.0],
-            [0.0, 0.5],
-            [0.45, 0.55],
-            [1.0, 0.5],
-            [0.0, 1.0],
-            [0.5, 1.0],
-            [1.0, 1.0],
-        ];
+        let nodes = super::super::fixtures::square_nodes();
         let elems = vec![
             [0, 1, 4],
             [0, 3, 4],

@@ -80,6 +80,8 @@
 
 pub mod airy;
 pub mod equilibrate;
+#[cfg(test)]
+mod fixtures;
 mod foundation;
 mod normal;
 mod numbering;

@@ -339,6 +339,7 @@ impl<'a> Patches<'a> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::fixtures::compliance;
     use super::*;
 
     /// A square of eight triangles around an inner node (corners
@@ -346,17 +347,7 @@ mod tests {
     type Mesh = (Vec<[f64; 2]>, Vec<[u32; 3]>, HashSet<[usize; 2]>);
 
     fn square() -> Mesh {
-        let nodes = vec![
-            [0.0, 0.0],
-            [0.5, 0.0],
-            [1.0, 0.0],
-            [0.0, 0.5],
-            [0.45, 0.55],
-            [1.0, 0.5],
-            [0.0, 1.0],
-            [0.5, 1.0],
-            [1.0, 1.0],
-        ];
+        let nodes = super::super::fixtures::square_nodes();
         let tris = vec![
             [0, 1, 4],
             [0, 4, 3],
@@ -368,17 +359,6 @@ mod tests {
             [4, 8, 7],
         ];
         (nodes, tris, HashSet::from([[0, 3], [3, 6]]))
-    }
-
-    /// Plane-strain compliance (E = 2, ν = 0.3), engineering shear.
-    fn compliance() -> [[f64; 3]; 3] {
-        let (e, nu) = (2.0, 0.3);
-        let c = (1.0 + nu) / e;
-        [
-            [c * (1.0 - nu), -c * nu, 0.0],
-            [-c * nu, c * (1.0 - nu), 0.0],
-            [0.0, 0.0, 2.0 * c],
-        ]
     }
 
     /// The correction of vertex v with coefficients 0.3 + 0.17 i, 0.9 − 0.2 i

@@ -339,17 +339,7 @@ mod tests {
     /// orientations.
     #[test]
     fn a_linear_stress_has_a_zero_bound() {
-        let mut nodes = vec![
-            [0.0, 0.0],
-            [0.5, 0.0],
-            [1.0, 0.0],
-            [0.0, 0.5],
-            [0.45, 0.55],
-            [1.0, 0.5],
-            [0.0, 1.0],
-            [0.5, 1.0],
-            [1.0, 1.0],
-        ];
+        let mut nodes = super::super::fixtures::square_nodes();
         let corners = [
             [0, 1, 4],
             [0, 3, 4],

@@ -214,20 +214,10 @@ pub fn stress(
 
 #[cfg(test)]
 mod tests {
+    use super::super::fixtures::compliance;
     use super::*;
 
     const TRIANGLE: [[f64; 2]; 3] = [[0.3, -0.2], [2.1, 0.4], [0.7, 1.9]];
-
-    /// Plane-strain compliance (E = 2, ν = 0.3), engineering shear.
-    fn compliance() -> [[f64; 3]; 3] {
-        let (e, nu) = (2.0, 0.3);
-        let c = (1.0 + nu) / e;
-        [
-            [c * (1.0 - nu), -c * nu, 0.0],
-            [-c * nu, c * (1.0 - nu), 0.0],
-            [0.0, 0.0, 2.0 * c],
-        ]
-    }
 
     /// σ n on each half of each side of `p`, at the half's ends.
     fn halves(p: &[[f64; 2]; 3], sigma: &dyn Fn([f64; 2]) -> [f64; 3]) -> [[Linear; 2]; 3] {
