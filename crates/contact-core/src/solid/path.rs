@@ -38,9 +38,10 @@ pub fn prepare_path(
     };
     let first = step_body(body, first);
     // Its conflicts at the step's pointer, before the operator reads them.
-    step_loads(&first, rows).map_err(|e| at_step(e, 0))?;
+    let loads0 = step_loads(&first, rows).map_err(|e| at_step(e, 0))?;
     prepare_checked(&first, rows, max_bytes, |c, fields, _| {
-        for (i, s) in steps.iter().enumerate() {
+        compatible(c, &motion_loads(fields, &loads0.f_ext, 1.0)).map_err(|e| at_step(e, 0))?;
+        for (i, s) in steps.iter().enumerate().skip(1) {
             let l = step_loads(&step_body(body, s), rows).map_err(|e| at_step(e, i))?;
             compatible(c, &motion_loads(fields, &l.f_ext, 1.0)).map_err(|e| at_step(e, i))?;
         }

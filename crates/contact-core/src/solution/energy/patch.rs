@@ -45,18 +45,11 @@ use super::numbering::{factor_psd, solve_factored, Numbering, NONE};
 use std::collections::HashSet;
 
 /// The share of the vertices whose patches are relaxed: those holding the
-/// most energy, largest first. Measured (effectivity from `cargo run
-/// --release -p contact-verify --example energy_bound`; the bound's time on
-/// `signorini_hertz_cylinder` T3 / `_t6`, fastest of seven to nine runs at
-/// load 2.4–4, against 27 / 67 ms without corrections): every vertex once
-/// in index order, Hertz T3 1.12, Hertz T6 1.61, clamped block T3 1.29, T6
-/// 1.34, at 130 / 245 ms (a second sweep: 1.17 and 1.27 on the clamped
-/// blocks at twice the time); the largest 20 %: 1.13, 1.59, 1.85, 1.37 at
-/// 50 / 109 ms; 10 %: 1.23, 1.62, 2.07, 1.40 at 40 / 87 ms, the whole
-/// estimate then 31 % of the solve on both (medians; 23 % without); 5 %:
-/// 1.45, 1.67, 2.43, 1.51 at 35 / 79 ms, the whole estimate 19–26 % of the
-/// solve on the four 2D examples. The last keeps the estimate under its mark
-/// of 30 % and every row measured under 2.6 (docs/verification/accuracy.md).
+/// most energy, largest first. The largest share whose whole estimate stays
+/// under its mark of 30 % of the solve: at 10 % it measured 31 % on the
+/// Hertz examples, at 5 % 19–26 % on the four 2D examples (the measured
+/// effectivity against share and time is kept in one place, the
+/// verification page's "The energy bound").
 pub(super) const SHARE: f64 = 0.05;
 
 /// σ* − σ_h of one triangle at the nine points of `airy::SubStress::at`
