@@ -100,8 +100,9 @@ use faer::sparse::SparseColMat;
 use crate::contact::free_motions::Motion;
 use crate::contact::gap::closest;
 use crate::contact::rows::punch_coefficients;
-use crate::fem::assembly::{DofMap, FIXED};
+use crate::fem::assembly::{each_element, integration, DofMap, FIXED};
 use crate::fem::constitutive::Constitutive;
+use crate::fem::kernel::Integration;
 use crate::fem::loads::clip;
 use crate::linalg::sparse::sym_lower_matvec;
 use crate::linalg::Cholesky;
@@ -125,7 +126,8 @@ pub struct EnergyBound {
     /// 2 ∫ [½ k (w⁺)² + p*²/(2k) − p* w] dx (`foundation`).
     pub contact: f64,
     /// ‖u_eq − u_h‖_E: how far the answer moves when its nodal contact
-    /// forces become p*'s loads.
+    /// forces become p*'s loads (in the stiffness the answer was solved
+    /// with: on the P2–P0 element its discrete energy).
     pub shift: f64,
     /// The potential energy ½ a(u_h, u_h) − ℓ(u_h) plus the beds'
     /// ∫ ½ k (w⁺)² dx (the continuous springs' energy), the latter taken at
@@ -716,6 +718,12 @@ pub fn bound(
     // then concave along the side, so at least its smaller end's), and what
     // the margin's change leaves is pushed again, in a few more rounds.
     let rounds = if sides.iter().any(|s| s.mid.is_some()) { 4 } else { 1 };
+    let reduced: Vec<bool> = scene
+        .bodies
+        .iter()
+        .zip(meshes)
+        .map(|(body, mesh)| integration(body, mesh.order, scene.analysis) == Integration::MeanDilatation)
+        .collect();
     let mut v = u_h.to_vec();
     let mut w = vec![0.0; dofs.n_free];
     let mut pushed = false;
@@ -780,6 +788,12 @@ pub fn bound(
     }
     let correction = if !pushed {
         0.0
+    } else if reduced.iter().any(|&r| r) {
+        // K of the P2–P0 element holds the mean dilatation's energy alone,
+        // λ |K| θ̄² ≤ λ ∫_K (tr ε)² (Jensen): wᵀ K w would be short of the
+        // true ‖w‖²_E the triangle inequality needs. The elements' full rule
+        // is the true energy.
+        full_energy(scene, meshes, &v, u_h).sqrt()
     } else {
         let kw = sym_lower_matvec(k, &w);
         w.iter().zip(&kw).map(|(a, b)| a * b).sum::<f64>().max(0.0).sqrt()
@@ -843,6 +857,7 @@ pub fn bound(
                     d: dm,
                     body_force: body.body_force,
                     given: &given[b],
+                    mean_dilatation: None,
                 })
             }
             Order::T6 => {
@@ -857,6 +872,8 @@ pub fn bound(
                     d: dm,
                     body_force: body.body_force,
                     given: &given[b],
+                    mean_dilatation: (integration(body, mesh.order, scene.analysis) == Integration::MeanDilatation)
+                        .then(|| Constitutive::<3>::volumetric_lambda(&law)),
                 })
             }
         }
@@ -916,6 +933,32 @@ fn add_traction(given: &mut HashMap<[usize; 2], Given>, ends: [usize; 2], t: [[f
             }
         }
     }
+}
+
+/// Σ_b ‖v_b − u_b‖²_E in the true energy (every element's full rule, exact
+/// for the polynomial strains of straight-sided elements), over the
+/// elements v moved.
+fn full_energy(scene: &Scene, meshes: &[Mesh2d], v: &[Vec<[f64; 2]>], u: &[Vec<[f64; 2]>]) -> f64 {
+    let mut sum = 0.0;
+    for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
+        let w: Vec<[f64; 2]> = v[b]
+            .iter()
+            .zip(&u[b])
+            .map(|(a, c)| [a[0] - c[0], a[1] - c[1]])
+            .collect();
+        let moved = (0..mesh.n_elems()).filter(|&e| mesh.elem(e).iter().any(|&n| w[n] != [0.0, 0.0]));
+        let law = crate::fem::assembly::law(body, scene.analysis);
+        each_element(mesh, scene.analysis, &law, Integration::Full, moved, |conn, ke| {
+            let nd = 2 * conn.len();
+            let we = |a: usize| w[conn[a / 2]][a % 2];
+            for a in 0..nd {
+                for c in 0..nd {
+                    sum += we(a) * ke[a * nd + c] * we(c);
+                }
+            }
+        });
+    }
+    sum.max(0.0)
 }
 
 /// The body of global DOF `g` and the DOF's index within the body.
