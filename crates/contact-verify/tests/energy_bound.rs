@@ -203,6 +203,45 @@ fn the_bound_is_above_the_error_of_a_flat_punch() {
     theorem_holds(&r, 2, plane_strain(200.0, 0.3));
 }
 
+/// The flat punch above in quadratic triangles (`effectivity::scaled` by 4
+/// for T6: h_min 0.08, nodes every 0.04, so a node on each corner; about
+/// the same DOF), against its answer refined twice, as above: B_h ≥
+/// ‖u_f − u_h‖_E − B_f with no tolerance but round-off. p* is linear on
+/// each half of a side through its three nodal pressures and carries the
+/// punch's load exactly (`punch::balance` integrates each half and scales
+/// the midside values too). The effectivity against the reference and
+/// against the extrapolated potential (full integration at ν = 0.3: J
+/// falls over nested meshes) are printed.
+#[test]
+fn the_bound_is_above_the_error_of_a_flat_punch_on_t6() {
+    let base: Value =
+        serde_json::from_str(include_str!("../../../proto/examples/indentation_flat_punch.json")).expect("json");
+    // Centred, and under the moment M = 2 of the effectivity scene
+    // `punch_under_moment` (eccentric by 0.2: p* balances the force and the
+    // moment, its midside values scaled with the corners').
+    let mut eccentric = base.clone();
+    eccentric["obstacles"][0]["punch"]["rotation"] = json!({ "load": 2.0 });
+    for (name, scene) in [("centred", base), ("under a moment", eccentric)] {
+        let mut req = contact_verify::effectivity::scaled(&scene, 4.0, "t6");
+        req["outputs"] = json!(["mesh", "displacement"]);
+        let r = solves(&req, 3);
+        println!("{name}");
+        theorem_holds(&r, 2, plane_strain(200.0, 0.3));
+        let eff = extrapolated_effectivity(&r);
+        println!("effectivity against the extrapolated J: {eff:.2}");
+        assert!(eff >= 1.0, "{name}: effectivity {eff}");
+    }
+}
+
+/// The effectivity of the coarsest answer's bound against √(2 (J(u_h) −
+/// J(u))), J(u) extrapolated from the three levels of `r`.
+fn extrapolated_effectivity(r: &[Report]) -> f64 {
+    let b: Vec<EnergyBound> = r.iter().map(|r| r.energy.expect("bound")).collect();
+    let j = [b[0].potential, b[1].potential, b[2].potential];
+    assert!(j[0] > j[1] && j[1] > j[2], "nested meshes lower the potential: {j:?}");
+    b[0].absolute / (2.0 * (j[0] - extrapolated(j))).sqrt()
+}
+
 /// The example's flat punch with h_min 0.03, so that its corner x = 1 falls
 /// within a side (1/0.03 is no whole number of steps): the last node under
 /// the face and the first one past it are both candidates' ends, the free
@@ -394,12 +433,12 @@ fn scenes_outside_the_bound_carry_none() {
 /// The effectivity scene's footing on a tensionless Winkler bed
 /// (`contact_verify::effectivity`, loaded off centre: it lifts off the
 /// springs near x = 0.11), with its displacements and mesh in the reply.
-fn footing(factor: f64) -> Value {
+fn footing(factor: f64, element: &str) -> Value {
     let scene = contact_verify::effectivity::SCENES
         .iter()
         .find(|s| s.name == "winkler_footing")
         .expect("scene");
-    let mut req = contact_verify::effectivity::scaled(&(scene.request)(), factor, "t3");
+    let mut req = contact_verify::effectivity::scaled(&(scene.request)(), factor, element);
     req["outputs"] = json!(["mesh", "displacement"]);
     req
 }
@@ -521,7 +560,7 @@ fn energy_of_difference(coarse: &Report, fine: &Report, d: [[f64; 3]; 3]) -> [f6
 /// A Pasternak bed is out of the bound's reach and its reply has none.
 #[test]
 fn the_bound_is_above_the_error_of_a_footing_lifting_off_a_bed() {
-    let r = solves(&footing(2.0), 4);
+    let r = solves(&footing(2.0, "t3"), 4);
     let b: Vec<EnergyBound> = r
         .iter()
         .map(|r| r.energy.unwrap_or_else(|| panic!("{:?}", r.notes)))
@@ -552,6 +591,25 @@ fn the_bound_is_above_the_error_of_a_footing_lifting_off_a_bed() {
     .expect("json");
     let r = contact_verify::run::solve(&pasternak, &Limits::default()).expect("solve");
     assert!(r.energy.is_none());
+}
+
+/// The lifting-off footing above in quadratic triangles (h = 0.1, nodes
+/// every 0.05: the load's end x = 0.4 on a corner), against its answer
+/// refined three times: B_h ≥ ‖u_f − u_h‖_E − B_f with no tolerance but round-off.
+/// The bed's rows are the corners' (`contact::targets::foundation`), p* is
+/// linear along each side through them, and the bed's term follows the
+/// quadratic indentation across its roots (`foundation::terms`). The
+/// effectivity against the reference and against the extrapolated potential
+/// (with the springs' energy, at or above the error) are printed.
+#[test]
+fn the_bound_is_above_the_error_of_a_footing_lifting_off_a_bed_on_t6() {
+    let r = solves(&footing(1.0, "t6"), 4);
+    let b = theorem_holds(&r, 3, plane_strain(200.0, 0.25));
+    let eff = extrapolated_effectivity(&r);
+    println!("effectivity against the extrapolated J: {eff:.2}");
+    assert!(eff >= 1.0, "effectivity {eff}");
+    assert_eq!(b.correction, 0.0);
+    assert!(b.contact > 0.0);
 }
 
 /// The example's footing centred under a uniform pressure: its uniform

@@ -167,7 +167,7 @@ pub fn unsupported(scene: &Scene, model: &Model, factor: Option<&Cholesky>) -> O
     if scene.analysis == Analysis::Axisymmetric {
         return Some("the equilibrated stress is built for plane sections, not axisymmetry");
     }
-    if let Some(why) = quadratic::unsupported(scene, model) {
+    if let Some(why) = quadratic::unsupported(model) {
         return Some(why);
     }
     if scene.has_friction() {
@@ -515,7 +515,11 @@ pub fn bound(
         .iter()
         .filter(|s| s.mid.is_none())
         .map(|s| (s.body, s.ends, [0, 1].map(|e| s.dir[e].map(|d| -s.pressure[e] * d))))
-        .chain(beds.iter().map(|s| (s.body, s.ends, s.traction())));
+        .chain(
+            beds.iter()
+                .filter(|s| s.mid.is_none())
+                .map(|s| (s.body, s.ends, s.traction())),
+        );
     for (body, ends, t) in linear {
         let mesh = &meshes[body];
         let (pa, pb) = (mesh.nodes[ends[0]], mesh.nodes[ends[1]]);
@@ -534,6 +538,20 @@ pub fn bound(
         for c in 0..2 {
             let f = quadratic::moments(l, t.map(|v| v[c]));
             for (n, fc) in s.nodes().zip(f) {
+                add(s.body, n, c, fc);
+            }
+        }
+    }
+    // A bed's quadratic side: p* linear along it, the P2 moments.
+    for s in &beds {
+        let Some(mid) = s.mid else { continue };
+        let mesh = &meshes[s.body];
+        let (pa, pb) = (mesh.nodes[s.ends[0]], mesh.nodes[s.ends[1]]);
+        let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+        let [ta, tb] = s.traction();
+        for c in 0..2 {
+            let f = quadratic::moments(l, [ta[c], 0.5 * (ta[c] + tb[c]), tb[c]]);
+            for (n, fc) in [s.ends[0], mid, s.ends[1]].into_iter().zip(f) {
                 add(s.body, n, c, fc);
             }
         }
@@ -810,12 +828,7 @@ pub fn bound(
         let (pa, pb) = (mesh.nodes[s.ends[0]], mesh.nodes[s.ends[1]]);
         let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
         // A quadratic side's p* has a kink at its middle: each half alone.
-        let halves: &[(f64, f64)] = if s.mid.is_some() {
-            &[(0.0, 0.5), (0.5, 0.5)]
-        } else {
-            &[(0.0, 1.0)]
-        };
-        for &(start, len) in halves {
+        for &(start, len) in punch::halves(s) {
             for (t, wq) in punch::GAUSS4 {
                 let t = start + len * t;
                 let (x, vv) = along(s, &v[s.body], t);

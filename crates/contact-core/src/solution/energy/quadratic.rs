@@ -46,14 +46,14 @@ use super::patch::{Patches, Residual, SHARE};
 use super::split;
 use crate::mesh::Order;
 use crate::model::Model;
-use crate::scene::Scene;
 use std::collections::HashSet;
 
 /// Why a scene with quadratic triangles is out of the bound's reach, if it
 /// is: the T6 stress of this module is built on affine elements (Galerkin
 /// orthogonality for every P2 function, of the full rule's stress or the
-/// P2–P0 element's), for single bodies on rigid obstacles.
-pub(super) fn unsupported(scene: &Scene, model: &Model) -> Option<&'static str> {
+/// P2–P0 element's); what else a scene must be (one body per contact, no
+/// friction, rigid obstacles, punches or Winkler beds) is `energy::unsupported`'s.
+pub(super) fn unsupported(model: &Model) -> Option<&'static str> {
     if model.meshes.iter().all(|m| m.order == Order::T3) {
         return None;
     }
@@ -72,9 +72,6 @@ pub(super) fn unsupported(scene: &Scene, model: &Model) -> Option<&'static str> 
                 }
             }
         }
-    }
-    if scene.obstacles.iter().any(|o| o.punch.is_some()) || !scene.foundations.is_empty() {
-        return Some("punches and beds on quadratic triangles are not in the bound yet");
     }
     None
 }
