@@ -33,7 +33,10 @@
 //! pressure λ / h equal to k times the row's indentation wherever the row
 //! is active: p* linear through those nodal values on each side is k w(u_h)
 //! on every side in full contact, so the bed's term is the lift-off sides'
-//! share alone. A side that runs past an end of the bed gets p* = 0 (p* may
+//! share alone. On quadratic triangles the rows are the corners' (dual
+//! mortar rows, `contact::targets::foundation`): p* is linear along each
+//! side through them while w is quadratic, so the term is not zero in full
+//! contact, and is integrated on the pieces between w's roots. A side that runs past an end of the bed gets p* = 0 (p* may
 //! be discontinuous between sides; a pressure beyond the bed is not
 //! admissible).
 
@@ -234,16 +237,22 @@ pub(super) fn terms(meshes: &[Mesh2d], sides: &[BedSide], v: &[Vec<[f64; 2]>]) -
         let w_of = |node: usize| -v[s.body][node][1] - (mesh.nodes[node][1] - s.y0);
         let (wa, wb) = (w_of(a), w_of(b));
         // w along the side: linear, or on a straight quadratic side the P2
-        // interpolant through its midside value (y is linear along it).
-        let wm = s.mid.map_or(0.5 * (wa + wb), w_of);
-        let w_at = |t: f64| (1.0 - t) * (1.0 - 2.0 * t) * wa + 4.0 * t * (1.0 - t) * wm + t * (2.0 * t - 1.0) * wb;
+        // interpolant through its midside value (y is linear along it). The
+        // linear side keeps its own formula and its round-off (the centred
+        // footing's bound, 1.7e-8 of its norm, is that round-off).
+        let wm = s.mid.map(w_of);
+        let w_at = |t: f64| match wm {
+            Some(wm) => (1.0 - t) * (1.0 - 2.0 * t) * wa + 4.0 * t * (1.0 - t) * wm + t * (2.0 * t - 1.0) * wb,
+            None => (1.0 - t) * wa + t * wb,
+        };
         let dx = (pb[0] - pa[0]).abs();
         let mut cuts = vec![s.over[0], s.over[1]];
-        cuts.extend(
-            roots(wa, wm, wb)
-                .into_iter()
-                .filter(|&r| r > s.over[0] && r < s.over[1]),
-        );
+        let inner = match wm {
+            Some(wm) => roots(wa, wm, wb),
+            None if wa != wb => vec![wa / (wa - wb)],
+            None => vec![],
+        };
+        cuts.extend(inner.into_iter().filter(|&r| r > s.over[0] && r < s.over[1]));
         cuts.sort_by(f64::total_cmp);
         // Each piece's integrand is a polynomial of degree 4 at most (w
         // quadratic, p* linear), which 4 Gauss points integrate exactly.

@@ -69,10 +69,16 @@
 //!
 //! On quadratic triangles (straight-sided, `quadratic`) p* is linear on
 //! each half of a side through its three nodal pressures (one q on a
-//! circle), its loads are the P2 functions' moments, and the admissibility
-//! is checked along the quadratic displacement.
+//! circle; on a side the obstacle faces in part, nonzero on a whole half it
+//! faces alone), its loads are the P2 functions' moments, and the
+//! admissibility is checked along the quadratic displacement. A punch
+//! scales the midside values with the corners' (`punch`); a bed's p* stays
+//! linear along the side through its corners' rows (`foundation`). On the
+//! P2–P0 element the rows are of the stress it integrates and the
+//! correction's norm is the true energy's (K holds the mean dilatation's
+//! alone, which is short of it).
 //!
-//! Length: about 880 lines, the bound's data from the scene (loads,
+//! Length: about 1,010 lines, the bound's data from the scene (loads,
 //! supports, the contact pressure on linear and quadratic sides, the
 //! admissibility correction, the contact term) in one pass over the same
 //! sides; the equilibration (linear and quadratic), the Airy stress, a
@@ -393,12 +399,32 @@ pub fn bound(
                 }
                 continue;
             };
+            // A quadratic side on a straight piece that faces all of one of
+            // its halves (the obstacle ends on its midside node or past it:
+            // `facing_part` reads a flat punch's corner on the node END_SLACK
+            // of the piece past it, `contact::gap`): that half's end.
+            let facing_half = match (e.mid, form) {
+                (Some(_), Form::Straight) if span[0] == 0.0 && span[1] >= 0.5 => Some(0),
+                (Some(_), Form::Straight) if span[1] == 1.0 && span[0] <= 0.5 => Some(1),
+                _ => None,
+            };
             if span != [0.0, 1.0] {
                 // Past the obstacle's end the side is free (τ n = 0), and a
                 // p* linear along the side that vanishes there vanishes on
                 // all of it: the side's nodal forces go to u_eq's shift, and
-                // its admissibility is checked on the facing part alone.
+                // its admissibility is checked on the facing part alone. On a
+                // quadratic side p* is linear on each half: where the
+                // obstacle faces a whole half, p* vanishes on the other and
+                // at the middle, and falls linearly from the facing end's
+                // pressure on that half (a flat punch's corner on a midside
+                // node, where p* = 0 on the whole side read the T6 punch's
+                // effectivity 3.9, against 1.5 a level finer whose corner is
+                // on a corner node).
+                let kept = facing_half.map(|end| pressure[end]);
                 pressure = [0.0, 0.0];
+                if let (Some(end), Some(p)) = (facing_half, kept) {
+                    pressure[end] = p;
+                }
                 mid_pressure = mid_pressure.map(|_| 0.0);
             }
             // The traction at the ends follows the obstacle's own normal there
