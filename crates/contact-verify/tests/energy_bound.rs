@@ -4,6 +4,10 @@
 //! minimum; with no contact ‖u − u_h‖²_E = 2 (J(u_h) − J(u)), and with an
 //! admissible answer in contact 2 (J(u_h) − J(u)) is ‖u − u_h‖²_E plus the
 //! work of the exact pressure on the answer's gap, a bit more.
+//!
+//! Length: about 650 lines, one test per kind of scene the bound covers
+//! (clamped blocks, Hertz in T3, T6 and P2–P0, punches, the V, beds) and the
+//! true-energy difference of nested answers they share.
 
 use contact_core::fem::element::gradients;
 use contact_core::mesh::uniform::refine_uniform;
@@ -166,7 +170,10 @@ fn the_bound_is_above_the_error_of_hertz_contact() {
 /// energy's (`energy_of_difference` with the true D), with no tolerance but
 /// round-off; the effectivity against the reference, B_h / ‖u_f − u_h‖_E,
 /// is printed with the bracket the reference's own bound leaves
-/// (B_h / (diff ± B_f)).
+/// (B_h / (diff ± B_f)): measured 1.04 and 1.02 (0.240 ≥ 0.231 − 0.077 and
+/// 0.776 ≥ 0.759 − 0.251), the volumetric misfit λ (tr ε − θ̄) being most
+/// of both the error and the bound. The relative bound grows like √λ
+/// (0.194 and 0.538: the true energy's error, not the element's).
 #[test]
 fn the_bound_is_above_the_error_of_hertz_contact_on_p2_p0() {
     let base: Value =
@@ -204,14 +211,18 @@ fn the_bound_is_above_the_error_of_a_flat_punch() {
 }
 
 /// The flat punch above in quadratic triangles (`effectivity::scaled` by 4
-/// for T6: h_min 0.08, nodes every 0.04, so a node on each corner; about
-/// the same DOF), against its answer refined twice, as above: B_h ≥
-/// ‖u_f − u_h‖_E − B_f with no tolerance but round-off. p* is linear on
-/// each half of a side through its three nodal pressures and carries the
-/// punch's load exactly (`punch::balance` integrates each half and scales
-/// the midside values too). The effectivity against the reference and
-/// against the extrapolated potential (full integration at ν = 0.3: J
-/// falls over nested meshes) are printed.
+/// for T6: h_min 0.08, nodes every 0.04, so each corner on a midside node:
+/// p* lives on the half of that side the punch faces alone), against its
+/// answer refined twice, as above: B_h ≥ ‖u_f − u_h‖_E − B_f with no
+/// tolerance but round-off (measured 0.181 ≥ 0.055 − 0.028 centred). p* is
+/// linear on each half of a side through its three nodal pressures and
+/// carries the punch's load exactly (`punch::balance` integrates each half
+/// and scales the midside values too). Against the extrapolated potential
+/// (full integration at ν = 0.3: J falls over nested meshes) the
+/// effectivity measures 3.48 centred and 3.45 under the moment (1.25 where
+/// the corners fall on corner nodes, docs/verification/accuracy.md: p*
+/// must vanish at the middle of the corner's side, where the pressure
+/// peaks); 4 keeps it with the extrapolation's margin (its ratio 3.72).
 #[test]
 fn the_bound_is_above_the_error_of_a_flat_punch_on_t6() {
     let base: Value =
@@ -229,7 +240,7 @@ fn the_bound_is_above_the_error_of_a_flat_punch_on_t6() {
         theorem_holds(&r, 2, plane_strain(200.0, 0.3));
         let eff = extrapolated_effectivity(&r);
         println!("effectivity against the extrapolated J: {eff:.2}");
-        assert!(eff >= 1.0, "{name}: effectivity {eff}");
+        assert!((1.0..=4.0).contains(&eff), "{name}: effectivity {eff}");
     }
 }
 
@@ -599,15 +610,17 @@ fn the_bound_is_above_the_error_of_a_footing_lifting_off_a_bed() {
 /// The bed's rows are the corners' (`contact::targets::foundation`), p* is
 /// linear along each side through them, and the bed's term follows the
 /// quadratic indentation across its roots (`foundation::terms`). The
-/// effectivity against the reference and against the extrapolated potential
-/// (with the springs' energy, at or above the error) are printed.
+/// effectivity against the extrapolated potential (with the springs'
+/// energy, at or above the error) measures 1.44 (1.66 against the reference
+/// alone); 1.8 keeps it with the extrapolation's margin (its ratio 5.64,
+/// where the clean rate of T6 is 16: the load's edge and the corners).
 #[test]
 fn the_bound_is_above_the_error_of_a_footing_lifting_off_a_bed_on_t6() {
     let r = solves(&footing(1.0, "t6"), 4);
     let b = theorem_holds(&r, 3, plane_strain(200.0, 0.25));
     let eff = extrapolated_effectivity(&r);
     println!("effectivity against the extrapolated J: {eff:.2}");
-    assert!(eff >= 1.0, "effectivity {eff}");
+    assert!((1.0..=1.8).contains(&eff), "effectivity {eff}");
     assert_eq!(b.correction, 0.0);
     assert!(b.contact > 0.0);
 }

@@ -36,9 +36,9 @@
 //! share alone. On quadratic triangles the rows are the corners' (dual
 //! mortar rows, `contact::targets::foundation`): p* is linear along each
 //! side through them while w is quadratic, so the term is not zero in full
-//! contact, and is integrated on the pieces between w's roots. A side that runs past an end of the bed gets p* = 0 (p* may
-//! be discontinuous between sides; a pressure beyond the bed is not
-//! admissible).
+//! contact, and is integrated on the pieces between w's roots. A side that
+//! runs past an end of the bed gets p* = 0 (p* may be discontinuous between
+//! sides; a pressure beyond the bed is not admissible).
 
 use std::collections::HashMap;
 
