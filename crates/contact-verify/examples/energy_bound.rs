@@ -82,6 +82,20 @@ fn main() {
         serde_json::from_str(include_str!("../../../proto/examples/signorini_hertz_cylinder_t6.json")).unwrap(),
         "t6",
     ));
+    // Rubber-like: T6 at ν ≥ 0.45 in plane strain is the P2–P0 element.
+    for (name, nu) in [("hertz_p2p0_49", 0.49), ("hertz_p2p0_499", 0.499)] {
+        let mut req: Value =
+            serde_json::from_str(include_str!("../../../proto/examples/signorini_hertz_cylinder_t6.json")).unwrap();
+        req["bodies"][0]["material"]["poisson_ratio"] = serde_json::json!(nu);
+        scenes.push((name, req, "t6"));
+    }
+    scenes.push((
+        "flat_punch_t6",
+        serde_json::from_str(include_str!("../../../proto/examples/indentation_flat_punch.json")).unwrap(),
+        "t6",
+    ));
+    scenes.push(("punch_moment_t6", effectivity_scene("punch_under_moment"), "t6"));
+    scenes.push(("winkler_footing_t6", effectivity_scene("winkler_footing"), "t6"));
     scenes.push(("clamped_t3", clamped_block("t3"), "t3"));
     scenes.push(("clamped_t6", clamped_block("t6"), "t6"));
     let scale: Vec<f64> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();
@@ -92,7 +106,12 @@ fn main() {
         if !only.is_empty() && !only.iter().any(|o| o == name) {
             continue;
         }
-        let base = if factor != 1.0 {
+        // A T3 request run in T6 is converted at the same node spacing.
+        let meshed_in = base["bodies"][0]["mesh"]
+            .as_object()
+            .and_then(|m| m.values().find_map(|g| g["element"].as_str()))
+            .unwrap_or("t3");
+        let base = if factor != 1.0 || meshed_in != element {
             contact_verify::effectivity::scaled(&base, factor, element)
         } else {
             base

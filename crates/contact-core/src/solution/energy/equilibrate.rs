@@ -65,6 +65,10 @@ pub struct Input<'a, const N: usize> {
     /// Boundary sides with data, by their corners (sorted). A boundary side
     /// absent here is free of traction.
     pub given: &'a HashMap<[usize; 2], Given>,
+    /// Some(λ) where the elements are P2–P0 (`quadratic`: the stress the
+    /// rows are made of is D ε − λ m (tr ε − θ̄), θ̄ the element's mean
+    /// dilatation); None for the full rule (always on linear triangles).
+    pub mean_dilatation: Option<f64>,
 }
 
 /// ∫ (σ* − σ(u_cmp)) : C⁻¹ (σ* − σ(u_cmp)) per element, and how far the
@@ -625,6 +629,7 @@ mod tests {
                 d,
                 body_force: [0.0, 0.0],
                 given: &given,
+                mean_dilatation: None,
             };
             let b = bound(&inp).expect("mesh");
             let energy: f64 = 0.5 * (s[0] * eps[0] + s[1] * eps[1] + s[2] * eps[2]);

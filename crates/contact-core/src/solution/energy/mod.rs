@@ -69,10 +69,16 @@
 //!
 //! On quadratic triangles (straight-sided, `quadratic`) p* is linear on
 //! each half of a side through its three nodal pressures (one q on a
-//! circle), its loads are the P2 functions' moments, and the admissibility
-//! is checked along the quadratic displacement.
+//! circle; on a side the obstacle faces in part, nonzero on a whole half it
+//! faces alone), its loads are the P2 functions' moments, and the
+//! admissibility is checked along the quadratic displacement. A punch
+//! scales the midside values with the corners' (`punch`); a bed's p* stays
+//! linear along the side through its corners' rows (`foundation`). On the
+//! P2–P0 element the rows are of the stress it integrates and the
+//! correction's norm is the true energy's (K holds the mean dilatation's
+//! alone, which is short of it).
 //!
-//! Length: about 880 lines, the bound's data from the scene (loads,
+//! Length: about 1,010 lines, the bound's data from the scene (loads,
 //! supports, the contact pressure on linear and quadratic sides, the
 //! admissibility correction, the contact term) in one pass over the same
 //! sides; the equilibration (linear and quadratic), the Airy stress, a
@@ -100,8 +106,9 @@ use faer::sparse::SparseColMat;
 use crate::contact::free_motions::Motion;
 use crate::contact::gap::closest;
 use crate::contact::rows::punch_coefficients;
-use crate::fem::assembly::{DofMap, FIXED};
+use crate::fem::assembly::{each_element, integration, DofMap, FIXED};
 use crate::fem::constitutive::Constitutive;
+use crate::fem::kernel::Integration;
 use crate::fem::loads::clip;
 use crate::linalg::sparse::sym_lower_matvec;
 use crate::linalg::Cholesky;
@@ -125,7 +132,8 @@ pub struct EnergyBound {
     /// 2 ∫ [½ k (w⁺)² + p*²/(2k) − p* w] dx (`foundation`).
     pub contact: f64,
     /// ‖u_eq − u_h‖_E: how far the answer moves when its nodal contact
-    /// forces become p*'s loads.
+    /// forces become p*'s loads (in the stiffness the answer was solved
+    /// with: on the P2–P0 element its discrete energy).
     pub shift: f64,
     /// The potential energy ½ a(u_h, u_h) − ℓ(u_h) plus the beds'
     /// ∫ ½ k (w⁺)² dx (the continuous springs' energy), the latter taken at
@@ -165,7 +173,7 @@ pub fn unsupported(scene: &Scene, model: &Model, factor: Option<&Cholesky>) -> O
     if scene.analysis == Analysis::Axisymmetric {
         return Some("the equilibrated stress is built for plane sections, not axisymmetry");
     }
-    if let Some(why) = quadratic::unsupported(scene, model) {
+    if let Some(why) = quadratic::unsupported(model) {
         return Some(why);
     }
     if scene.has_friction() {
@@ -391,12 +399,32 @@ pub fn bound(
                 }
                 continue;
             };
+            // A quadratic side on a straight piece that faces all of one of
+            // its halves (the obstacle ends on its midside node or past it:
+            // `facing_part` reads a flat punch's corner on the node END_SLACK
+            // of the piece past it, `contact::gap`): that half's end.
+            let facing_half = match (e.mid, form) {
+                (Some(_), Form::Straight) if span[0] == 0.0 && span[1] >= 0.5 => Some(0),
+                (Some(_), Form::Straight) if span[1] == 1.0 && span[0] <= 0.5 => Some(1),
+                _ => None,
+            };
             if span != [0.0, 1.0] {
                 // Past the obstacle's end the side is free (τ n = 0), and a
                 // p* linear along the side that vanishes there vanishes on
                 // all of it: the side's nodal forces go to u_eq's shift, and
-                // its admissibility is checked on the facing part alone.
+                // its admissibility is checked on the facing part alone. On a
+                // quadratic side p* is linear on each half: where the
+                // obstacle faces a whole half, p* vanishes on the other and
+                // at the middle, and falls linearly from the facing end's
+                // pressure on that half (a flat punch's corner on a midside
+                // node, where p* = 0 on the whole side read the T6 punch's
+                // effectivity 3.9, against 1.5 a level finer whose corner is
+                // on a corner node).
+                let kept = facing_half.map(|end| pressure[end]);
                 pressure = [0.0, 0.0];
+                if let (Some(end), Some(p)) = (facing_half, kept) {
+                    pressure[end] = p;
+                }
                 mid_pressure = mid_pressure.map(|_| 0.0);
             }
             // The traction at the ends follows the obstacle's own normal there
@@ -513,7 +541,11 @@ pub fn bound(
         .iter()
         .filter(|s| s.mid.is_none())
         .map(|s| (s.body, s.ends, [0, 1].map(|e| s.dir[e].map(|d| -s.pressure[e] * d))))
-        .chain(beds.iter().map(|s| (s.body, s.ends, s.traction())));
+        .chain(
+            beds.iter()
+                .filter(|s| s.mid.is_none())
+                .map(|s| (s.body, s.ends, s.traction())),
+        );
     for (body, ends, t) in linear {
         let mesh = &meshes[body];
         let (pa, pb) = (mesh.nodes[ends[0]], mesh.nodes[ends[1]]);
@@ -532,6 +564,20 @@ pub fn bound(
         for c in 0..2 {
             let f = quadratic::moments(l, t.map(|v| v[c]));
             for (n, fc) in s.nodes().zip(f) {
+                add(s.body, n, c, fc);
+            }
+        }
+    }
+    // A bed's quadratic side: p* linear along it, the P2 moments.
+    for s in &beds {
+        let Some(mid) = s.mid else { continue };
+        let mesh = &meshes[s.body];
+        let (pa, pb) = (mesh.nodes[s.ends[0]], mesh.nodes[s.ends[1]]);
+        let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+        let [ta, tb] = s.traction();
+        for c in 0..2 {
+            let f = quadratic::moments(l, [ta[c], 0.5 * (ta[c] + tb[c]), tb[c]]);
+            for (n, fc) in [s.ends[0], mid, s.ends[1]].into_iter().zip(f) {
                 add(s.body, n, c, fc);
             }
         }
@@ -716,6 +762,12 @@ pub fn bound(
     // then concave along the side, so at least its smaller end's), and what
     // the margin's change leaves is pushed again, in a few more rounds.
     let rounds = if sides.iter().any(|s| s.mid.is_some()) { 4 } else { 1 };
+    let reduced: Vec<bool> = scene
+        .bodies
+        .iter()
+        .zip(meshes)
+        .map(|(body, mesh)| integration(body, mesh.order, scene.analysis) == Integration::MeanDilatation)
+        .collect();
     let mut v = u_h.to_vec();
     let mut w = vec![0.0; dofs.n_free];
     let mut pushed = false;
@@ -780,6 +832,12 @@ pub fn bound(
     }
     let correction = if !pushed {
         0.0
+    } else if reduced.iter().any(|&r| r) {
+        // K of the P2–P0 element holds the mean dilatation's energy alone,
+        // λ |K| θ̄² ≤ λ ∫_K (tr ε)² (Jensen): wᵀ K w would be short of the
+        // true ‖w‖²_E the triangle inequality needs. The elements' full rule
+        // is the true energy.
+        full_energy(scene, meshes, &v, u_h).sqrt()
     } else {
         let kw = sym_lower_matvec(k, &w);
         w.iter().zip(&kw).map(|(a, b)| a * b).sum::<f64>().max(0.0).sqrt()
@@ -796,12 +854,7 @@ pub fn bound(
         let (pa, pb) = (mesh.nodes[s.ends[0]], mesh.nodes[s.ends[1]]);
         let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
         // A quadratic side's p* has a kink at its middle: each half alone.
-        let halves: &[(f64, f64)] = if s.mid.is_some() {
-            &[(0.0, 0.5), (0.5, 0.5)]
-        } else {
-            &[(0.0, 1.0)]
-        };
-        for &(start, len) in halves {
+        for &(start, len) in punch::halves(s) {
             for (t, wq) in punch::GAUSS4 {
                 let t = start + len * t;
                 let (x, vv) = along(s, &v[s.body], t);
@@ -843,6 +896,7 @@ pub fn bound(
                     d: dm,
                     body_force: body.body_force,
                     given: &given[b],
+                    mean_dilatation: None,
                 })
             }
             Order::T6 => {
@@ -857,6 +911,8 @@ pub fn bound(
                     d: dm,
                     body_force: body.body_force,
                     given: &given[b],
+                    mean_dilatation: (integration(body, mesh.order, scene.analysis) == Integration::MeanDilatation)
+                        .then(|| Constitutive::<3>::volumetric_lambda(&law)),
                 })
             }
         }
@@ -916,6 +972,32 @@ fn add_traction(given: &mut HashMap<[usize; 2], Given>, ends: [usize; 2], t: [[f
             }
         }
     }
+}
+
+/// Σ_b ‖v_b − u_b‖²_E in the true energy (every element's full rule, exact
+/// for the polynomial strains of straight-sided elements), over the
+/// elements v moved.
+fn full_energy(scene: &Scene, meshes: &[Mesh2d], v: &[Vec<[f64; 2]>], u: &[Vec<[f64; 2]>]) -> f64 {
+    let mut sum = 0.0;
+    for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
+        let w: Vec<[f64; 2]> = v[b]
+            .iter()
+            .zip(&u[b])
+            .map(|(a, c)| [a[0] - c[0], a[1] - c[1]])
+            .collect();
+        let moved = (0..mesh.n_elems()).filter(|&e| mesh.elem(e).iter().any(|&n| w[n] != [0.0, 0.0]));
+        let law = crate::fem::assembly::law(body, scene.analysis);
+        each_element(mesh, scene.analysis, &law, Integration::Full, moved, |conn, ke| {
+            let nd = 2 * conn.len();
+            let we = |a: usize| w[conn[a / 2]][a % 2];
+            for a in 0..nd {
+                for c in 0..nd {
+                    sum += we(a) * ke[a * nd + c] * we(c);
+                }
+            }
+        });
+    }
+    sum.max(0.0)
 }
 
 /// The body of global DOF `g` and the DOF's index within the body.

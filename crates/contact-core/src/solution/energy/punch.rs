@@ -52,34 +52,38 @@ pub(super) fn balance(
     // by basis j (j = n: unscaled).
     let mut a = [[0.0; 4]; 3];
     let mut scale = 0.0_f64;
-    for s in sides.iter().filter(|s| s.obstacle == o && s.pressure != [0.0, 0.0]) {
+    for s in sides.iter().filter(|s| s.obstacle == o && presses(s)) {
         let mesh = &meshes[s.body];
         let (pa, pb) = (mesh.nodes[s.ends[0]], mesh.nodes[s.ends[1]]);
         let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
-        for (t, w) in GAUSS4 {
-            let x = [(1.0 - t) * pa[0] + t * pb[0], (1.0 - t) * pa[1] + t * pb[1]];
-            let Some(c) = closest(&scene.obstacles[o].shape, x) else {
-                continue;
-            };
-            let co = punch_coefficients(c.point, pu.reference, [-c.normal[0], -c.normal[1]]);
-            let mid = 0.5 * (pa[0] + pb[0]);
-            for j in 0..=n {
-                let p = match s.form {
-                    // One q on an arc's side: scaled at its midpoint.
-                    Form::Arc { .. } | Form::Fan { .. } => {
-                        s.pressure_at(mesh, t) * if j < n { basis(mid, j) } else { 1.0 }
-                    }
-                    _ => {
-                        (1.0 - t) * s.pressure[0] * if j < n { basis(pa[0], j) } else { 1.0 }
-                            + t * s.pressure[1] * if j < n { basis(pb[0], j) } else { 1.0 }
-                    }
+        let mid = 0.5 * (pa[0] + pb[0]);
+        // A quadratic side's p* has a kink at its middle: each half alone
+        // (on a straight face the integrand is then a quadratic on each, and
+        // 4 points are exact).
+        for &(start, len) in halves(s) {
+            for (q, w) in GAUSS4 {
+                let t = start + len * q;
+                let x = [(1.0 - t) * pa[0] + t * pb[0], (1.0 - t) * pa[1] + t * pb[1]];
+                let Some(c) = closest(&scene.obstacles[o].shape, x) else {
+                    continue;
                 };
-                for (row, ck) in a.iter_mut().zip(co) {
-                    row[j] += w * l * p * ck;
+                let co = punch_coefficients(c.point, pu.reference, [-c.normal[0], -c.normal[1]]);
+                for j in 0..=n {
+                    let factor = |x: f64| if j < n { basis(x, j) } else { 1.0 };
+                    let p = match s.form {
+                        // One q on an arc's side: scaled at its midpoint.
+                        Form::Arc { .. } | Form::Fan { .. } => s.pressure_at(mesh, t) * factor(mid),
+                        _ => nodal(s, mesh, t, factor),
+                    };
+                    for (row, ck) in a.iter_mut().zip(co) {
+                        row[j] += w * len * l * p * ck;
+                    }
                 }
             }
         }
-        scale = scale.max(s.pressure[0].abs()).max(s.pressure[1].abs());
+        for p in s.pressure.iter().chain(s.mid.as_ref().map(|m| &m.pressure)) {
+            scale = scale.max(p.abs());
+        }
     }
     // A loaded component no pressure on these sides can push (a flat face's
     // horizontal) holds as it is; the others are solved for, with as many
@@ -109,20 +113,65 @@ pub(super) fn balance(
     for s in sides.iter_mut().filter(|s| s.obstacle == o) {
         let mesh = &meshes[s.body];
         let mid = 0.5 * (mesh.nodes[s.ends[0]][0] + mesh.nodes[s.ends[1]][0]);
-        for (end, &node) in s.ends.iter().enumerate() {
-            let x = match s.form {
-                Form::Arc { .. } | Form::Fan { .. } => mid,
-                _ => mesh.nodes[node][0],
+        let at = |node: usize| match s.form {
+            Form::Arc { .. } | Form::Fan { .. } => mid,
+            _ => mesh.nodes[node][0],
+        };
+        let nodes: Vec<(usize, usize)> = s
+            .ends
+            .iter()
+            .enumerate()
+            .map(|(end, &node)| (end, node))
+            .chain(s.mid.map(|m| (2, m.node)))
+            .collect();
+        for (slot, node) in nodes {
+            let f: f64 = (0..n).map(|j| coef[j] * basis(at(node), j)).sum();
+            let p = match (slot, s.mid.as_mut()) {
+                (2, Some(m)) => &mut m.pressure,
+                (end, _) => &mut s.pressure[end],
             };
-            let f: f64 = (0..n).map(|j| coef[j] * basis(x, j)).sum();
-            s.pressure[end] *= 1.0 + f;
-            if s.pressure[end] < -1e-12 * scale {
+            *p *= 1.0 + f;
+            if *p < -1e-12 * scale {
                 return Err("the contact pressure cannot balance a punch's loads with one sign");
             }
-            s.pressure[end] = s.pressure[end].max(0.0);
+            *p = p.max(0.0);
         }
     }
     Ok(())
+}
+
+/// Whether a side carries any p* (a quadratic side's midside value can
+/// press between two corners at 0).
+fn presses(s: &ContactSide) -> bool {
+    s.pressure != [0.0, 0.0] || s.mid.is_some_and(|m| m.pressure != 0.0)
+}
+
+/// The pieces of [0, 1] on which a side's p* is linear: the whole side, or
+/// a quadratic side's two halves (start, length).
+pub(super) fn halves(s: &ContactSide) -> &'static [(f64, f64)] {
+    if s.mid.is_some() {
+        &[(0.0, 0.5), (0.5, 0.5)]
+    } else {
+        &[(0.0, 1.0)]
+    }
+}
+
+/// p* at parameter t of a side whose nodal pressures are each scaled by
+/// `factor` of the node's x: linear between the ends, or on each half
+/// through the midside value.
+fn nodal(s: &ContactSide, mesh: &Mesh2d, t: f64, factor: impl Fn(f64) -> f64) -> f64 {
+    let p = |end: usize| s.pressure[end] * factor(mesh.nodes[s.ends[end]][0]);
+    match s.mid {
+        Some(m) => {
+            let pm = m.pressure * factor(mesh.nodes[m.node][0]);
+            if t <= 0.5 {
+                (1.0 - 2.0 * t) * p(0) + 2.0 * t * pm
+            } else {
+                (2.0 - 2.0 * t) * pm + (2.0 * t - 1.0) * p(1)
+            }
+        }
+        None => (1.0 - t) * p(0) + t * p(1),
+    }
 }
 
 /// The least-norm x of Σ_{j < n} rows[p][j] x_j = r[p] (n = rows.len()),
