@@ -226,8 +226,10 @@ pub(super) fn only_on_beds(scene: &Scene, body: usize) -> bool {
 
 /// The sides' terms along a displacement `v` (per body): the bound's
 /// 2 ∫ [½ k (w⁺)² + p*²/(2k) − p* w] dx and the bed's energy
-/// ∫ ½ k (w⁺)² dx, exactly (each is quadratic in t on either side of the
-/// root of w, and 4 Gauss points are exact there).
+/// ∫ ½ k (w⁺)² dx, exactly: the side is cut at the roots of w (one on a
+/// linear side, up to two on a quadratic one), where each integrand is a
+/// polynomial in t of degree at most 4, which 4 Gauss points integrate
+/// exactly.
 pub(super) fn terms(meshes: &[Mesh2d], sides: &[BedSide], v: &[Vec<[f64; 2]>]) -> (f64, f64) {
     let (mut bound, mut energy) = (0.0, 0.0);
     for s in sides {

@@ -555,31 +555,30 @@ pub fn bound(
             add(body, ends[1], c, l * (ta + 2.0 * tb) / 6.0);
         }
     }
-    // A quadratic side's consistent forces: the P2 functions' moments.
-    for s in sides.iter().filter(|s| s.mid.is_some()) {
-        let mesh = &meshes[s.body];
-        let (pa, pb) = (mesh.nodes[s.ends[0]], mesh.nodes[s.ends[1]]);
+    // A quadratic side's consistent forces, a contact side's or a bed's (p*
+    // linear along it): the P2 functions' moments.
+    let mut p2_loads = |body: usize, nodes: [usize; 3], t: [[f64; 2]; 3]| {
+        let (pa, pb) = (meshes[body].nodes[nodes[0]], meshes[body].nodes[nodes[2]]);
         let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
-        let t = s.traction();
         for c in 0..2 {
-            let f = quadratic::moments(l, t.map(|v| v[c]));
-            for (n, fc) in s.nodes().zip(f) {
-                add(s.body, n, c, fc);
+            for (n, fc) in nodes.into_iter().zip(quadratic::moments(l, t.map(|v| v[c]))) {
+                add(body, n, c, fc);
             }
         }
+    };
+    for s in &sides {
+        if let Some(m) = s.mid {
+            p2_loads(s.body, [s.ends[0], m.node, s.ends[1]], s.traction());
+        }
     }
-    // A bed's quadratic side: p* linear along it, the P2 moments.
     for s in &beds {
-        let Some(mid) = s.mid else { continue };
-        let mesh = &meshes[s.body];
-        let (pa, pb) = (mesh.nodes[s.ends[0]], mesh.nodes[s.ends[1]]);
-        let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
-        let [ta, tb] = s.traction();
-        for c in 0..2 {
-            let f = quadratic::moments(l, [ta[c], 0.5 * (ta[c] + tb[c]), tb[c]]);
-            for (n, fc) in [s.ends[0], mid, s.ends[1]].into_iter().zip(f) {
-                add(s.body, n, c, fc);
-            }
+        if let Some(mid) = s.mid {
+            let [ta, tb] = s.traction();
+            p2_loads(
+                s.body,
+                [s.ends[0], mid, s.ends[1]],
+                [ta, [0.5 * (ta[0] + tb[0]), 0.5 * (ta[1] + tb[1])], tb],
+            );
         }
     }
     for (cand, l) in model.cons.candidates.iter().zip(lambda) {
@@ -762,12 +761,11 @@ pub fn bound(
     // then concave along the side, so at least its smaller end's), and what
     // the margin's change leaves is pushed again, in a few more rounds.
     let rounds = if sides.iter().any(|s| s.mid.is_some()) { 4 } else { 1 };
-    let reduced: Vec<bool> = scene
+    let reduced = scene
         .bodies
         .iter()
         .zip(meshes)
-        .map(|(body, mesh)| integration(body, mesh.order, scene.analysis) == Integration::MeanDilatation)
-        .collect();
+        .any(|(body, mesh)| integration(body, mesh.order, scene.analysis) == Integration::MeanDilatation);
     let mut v = u_h.to_vec();
     let mut w = vec![0.0; dofs.n_free];
     let mut pushed = false;
@@ -832,7 +830,7 @@ pub fn bound(
     }
     let correction = if !pushed {
         0.0
-    } else if reduced.iter().any(|&r| r) {
+    } else if reduced {
         // K of the P2–P0 element holds the mean dilatation's energy alone,
         // λ |K| θ̄² ≤ λ ∫_K (tr ε)² (Jensen): wᵀ K w would be short of the
         // true ‖w‖²_E the triangle inequality needs. The elements' full rule

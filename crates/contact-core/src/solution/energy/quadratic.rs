@@ -194,6 +194,34 @@ fn element_stress(
     s
 }
 
+/// ∫_K σ_h : ε(φ_i) for the six P2 functions (corners, then midsides), σ_h
+/// the element's own stress (`element_stress`): linear on K, so the
+/// three-point rule at the side midpoints (weights |K|/3, exact for
+/// quadratics) integrates it exactly. These are K_e u_e, the element's part
+/// of the finite element equations.
+#[allow(clippy::too_many_arguments)]
+fn element_rows(
+    d: &[[f64; 3]; 3],
+    mean_dilatation: Option<f64>,
+    g: &[[f64; 2]; 3],
+    k: [usize; 3],
+    m: [usize; 3],
+    area: f64,
+    u: &[[f64; 2]],
+) -> [[f64; 2]; 6] {
+    let mut r6 = [[0.0; 2]; 6];
+    for l in MIDPOINT {
+        let s = element_stress(d, mean_dilatation, g, k, m, l, u);
+        for (n, gr) in p2_gradients(g, l).iter().enumerate() {
+            let t = traction(s, *gr);
+            for c in 0..2 {
+                r6[n][c] += area / 3.0 * t[c];
+            }
+        }
+    }
+    r6
+}
+
 /// Barycentric coordinates of corner i and of the side midpoints.
 const CORNER: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 const MIDPOINT: [[f64; 3]; 3] = [[0.5, 0.5, 0.0], [0.0, 0.5, 0.5], [0.5, 0.0, 0.5]];
@@ -231,16 +259,7 @@ pub fn bound(inp: &Input<6>) -> Option<Bound> {
             }
             weight[n] += area;
         }
-        let mut r6 = [[0.0; 2]; 6];
-        for l in MIDPOINT {
-            let s = at(l);
-            for (n, gr) in p2_gradients(&g, l).iter().enumerate() {
-                let t = traction(s, *gr);
-                for c in 0..2 {
-                    r6[n][c] += area / 3.0 * t[c];
-                }
-            }
-        }
+        let mut r6 = element_rows(d, inp.mean_dilatation, &g, k, m, area, inp.u_eq);
         // ∫_K φ_i: 0 at a corner, |K|/3 at a midside node.
         for row in r6.iter_mut().skip(3) {
             for c in 0..2 {
@@ -545,6 +564,49 @@ mod tests {
             for (name, (total, closure)) in [("uniform", uniform), ("solenoidal", solenoidal)] {
                 assert!(closure < 1e-10, "ν {nu} {name}: closure {closure}");
                 assert!(total < 1e-20, "ν {nu} {name}: {total:e} of ‖u‖²_E");
+            }
+        }
+    }
+
+    /// The rows are the element's equations: on one affine T6 with a
+    /// displacement whose dilatation varies within it (arbitrary nodal
+    /// values), ∫ σ_h : ε(φ_i) equals K_e u_e of the assembly's kernel, with
+    /// the full rule and as the P2–P0 element (ν 0.3 and 0.49), to the
+    /// round-off of entries of size |K_e| |u_e|.
+    #[test]
+    fn the_rows_are_the_kernels_element_equations() {
+        use crate::fem::constitutive::{LinearIsotropic, Section};
+        use crate::fem::kernel::{stiffness, Integration, Plane};
+        use crate::fem::reference::T6;
+        let corners = [[0.1, -0.2], [1.3, 0.1], [0.4, 0.9]];
+        let mid = |a: usize, b: usize| {
+            [
+                0.5 * (corners[a][0] + corners[b][0]),
+                0.5 * (corners[a][1] + corners[b][1]),
+            ]
+        };
+        let x = [corners[0], corners[1], corners[2], mid(0, 1), mid(1, 2), mid(2, 0)];
+        let u: Vec<[f64; 2]> = (0..6)
+            .map(|n| [0.3 * (n as f64).sin() - 0.1, 0.2 * (1.7 * n as f64).cos() + 0.05])
+            .collect();
+        for nu in [0.3, 0.49] {
+            let law = LinearIsotropic::new(2.0, nu, Section::PlaneStrain);
+            let (d, lambda) = plane_strain(nu);
+            for (how, md) in [(Integration::Full, None), (Integration::MeanDilatation, Some(lambda))] {
+                let mut ke = [0.0; 144];
+                stiffness::<T6, Plane, _, 2, 6, 3>(&x, &law, how, &mut ke);
+                let (k, m, g, area) = geometry(&x, [0, 1, 2, 3, 4, 5]);
+                assert_eq!((k, m), ([0, 1, 2], [3, 4, 5]), "counter-clockwise as given");
+                let rows = element_rows(&d, md, &g, k, m, area, &u);
+                let scale = ke.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+                for a in 0..12 {
+                    let ku: f64 = (0..12).map(|b| ke[a * 12 + b] * u[b / 2][b % 2]).sum();
+                    let got = rows[a / 2][a % 2];
+                    assert!(
+                        (got - ku).abs() < 1e-13 * scale,
+                        "ν {nu} {how:?}: row {a} {got} against K_e u_e {ku}"
+                    );
+                }
             }
         }
     }
