@@ -286,16 +286,18 @@ async fn by<T>(when: Instant, handle: tokio::task::JoinHandle<T>) -> Option<Resu
 /// The `timeout` of a solve that did not end by its deadline and the
 /// watchdog's grace: answered for it, from the runtime's threads.
 fn overran(id: &str, client_id: Option<Box<str>>, arrived: Instant, limit: Duration) -> (Body, String, bool) {
-    let mut err = ErrorReply::new(
-        ErrorCode::Timeout,
-        format!(
-            "the solve did not end within its time limit of {} s counted from its arrival ({:.3} s ago): the \
-                machine may be loaded; it is stopped at its next check. Retry later, or give a longer time_limit",
-            limit.as_secs_f64(),
-            arrived.elapsed().as_secs_f64()
-        ),
-        "",
+    let message = format!(
+        "the solve did not end within its time limit of {} s counted from its arrival ({:.3} s ago): the machine \
+            may be loaded; it is stopped at its next check. Retry later, or give a longer time_limit",
+        limit.as_secs_f64(),
+        arrived.elapsed().as_secs_f64()
     );
+    timeout_reply(id, client_id, message)
+}
+
+/// A `timeout` answered for a request, with its client's id.
+fn timeout_reply(id: &str, client_id: Option<Box<str>>, message: String) -> (Body, String, bool) {
+    let mut err = ErrorReply::new(ErrorCode::Timeout, message, "");
     err.client_id = client_id;
     let (body, outcome) = wire(id, Err(err));
     (body, outcome, false)
@@ -321,19 +323,13 @@ fn queued_past(
     limit: Duration,
 ) -> (Body, String, bool) {
     let running = state.in_flight.load(Ordering::SeqCst);
-    let mut err = ErrorReply::new(
-        ErrorCode::Timeout,
-        format!(
-            "the request waited {:.3} s for a worker ({running} solving), past its time limit of {} s counted from \
-                its arrival; it was not started: retry later, or give a longer time_limit",
-            arrived.elapsed().as_secs_f64(),
-            limit.as_secs_f64()
-        ),
-        "",
+    let message = format!(
+        "the request waited {:.3} s for a worker ({running} solving), past its time limit of {} s counted from its \
+            arrival; it was not started: retry later, or give a longer time_limit",
+        arrived.elapsed().as_secs_f64(),
+        limit.as_secs_f64()
     );
-    err.client_id = request.client_id().map(Into::into);
-    let (body, outcome) = wire(id, Err(err));
-    (body, outcome, false)
+    timeout_reply(id, request.client_id().map(Into::into), message)
 }
 
 /// Runs `solve` under a deadline of `limit` and `catch_unwind`; a panic becomes

@@ -574,15 +574,6 @@ mod tests {
         (nodes, elems)
     }
 
-    fn plane_strain(e: f64, nu: f64) -> [[f64; 3]; 3] {
-        let c = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
-        [
-            [c * (1.0 - nu), c * nu, 0.0],
-            [c * nu, c * (1.0 - nu), 0.0],
-            [0.0, 0.0, c * (1.0 - 2.0 * nu) / 2.0],
-        ]
-    }
-
     /// The patch test: a linear displacement is the exact answer under the
     /// uniform tractions it makes, so the admissible stress is its own and
     /// the bound vanishes (to round-off), whether a side's displacement is
@@ -590,7 +581,7 @@ mod tests {
     #[test]
     fn a_uniform_state_has_a_zero_bound() {
         let (nodes, elems) = square();
-        let d = plane_strain(2.0, 0.3);
+        let d = super::super::fixtures::plane_strain(0.3).0;
         let grad = [[1e-3, 4e-4], [-2e-4, -7e-4]];
         let u: Vec<[f64; 2]> = nodes
             .iter()

@@ -27,3 +27,14 @@ pub(super) fn compliance() -> [[f64; 3]; 3] {
         [0.0, 0.0, 2.0 * c],
     ]
 }
+
+/// Plane-strain D (E = 2, ν; engineering shear) and Lamé's λ, the law's
+/// own (`LinearIsotropic`).
+pub(super) fn plane_strain(nu: f64) -> ([[f64; 3]; 3], f64) {
+    use crate::fem::constitutive::{Constitutive, LinearIsotropic, Section};
+    let law = LinearIsotropic::new(2.0, nu, Section::PlaneStrain);
+    (
+        Constitutive::<3>::tangent(&law, &[0.0; 3]),
+        Constitutive::<3>::volumetric_lambda(&law),
+    )
+}

@@ -244,7 +244,10 @@ pub(super) fn terms(meshes: &[Mesh2d], sides: &[BedSide], v: &[Vec<[f64; 2]>]) -
         // footing's bound, 1.7e-8 of its norm, is that round-off).
         let wm = s.mid.map(w_of);
         let w_at = |t: f64| match wm {
-            Some(wm) => (1.0 - t) * (1.0 - 2.0 * t) * wa + 4.0 * t * (1.0 - t) * wm + t * (2.0 * t - 1.0) * wb,
+            Some(wm) => {
+                let f = super::quadratic::along_side(t);
+                f[0] * wa + f[1] * wm + f[2] * wb
+            }
             None => (1.0 - t) * wa + t * wb,
         };
         let dx = (pb[0] - pa[0]).abs();

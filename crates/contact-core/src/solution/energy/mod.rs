@@ -242,6 +242,16 @@ struct Mid {
     dir: [f64; 2],
 }
 
+/// At parameter t of a side, the value linear between its ends' `ends`,
+/// or on each half through the midside's `mid` (a quadratic side's p*).
+fn piecewise(ends: [f64; 2], mid: Option<f64>, t: f64) -> f64 {
+    match mid {
+        Some(m) if t <= 0.5 => (1.0 - 2.0 * t) * ends[0] + 2.0 * t * m,
+        Some(m) => (2.0 - 2.0 * t) * m + (2.0 * t - 1.0) * ends[1],
+        None => (1.0 - t) * ends[0] + t * ends[1],
+    }
+}
+
 impl ContactSide {
     /// p* at parameter t of the side.
     fn pressure_at(&self, mesh: &Mesh2d, t: f64) -> f64 {
@@ -253,9 +263,7 @@ impl ContactSide {
                 self.pressure[0] / ra * (x[0] - center[0]).hypot(x[1] - center[1])
             }
             (Form::Fan { .. }, _) => self.pressure[0] * self.form.scale(a, b, t).unwrap_or(1.0),
-            (_, Some(m)) if t <= 0.5 => (1.0 - 2.0 * t) * self.pressure[0] + 2.0 * t * m.pressure,
-            (_, Some(m)) => (2.0 - 2.0 * t) * m.pressure + (2.0 * t - 1.0) * self.pressure[1],
-            _ => (1.0 - t) * self.pressure[0] + t * self.pressure[1],
+            (_, mid) => piecewise(self.pressure, mid.map(|m| m.pressure), t),
         }
     }
 
@@ -420,11 +428,7 @@ pub fn bound(
                 // node, where p* = 0 on the whole side read the T6 punch's
                 // effectivity 3.9, against 1.5 a level finer whose corner is
                 // on a corner node).
-                let kept = facing_half.map(|end| pressure[end]);
-                pressure = [0.0, 0.0];
-                if let (Some(end), Some(p)) = (facing_half, kept) {
-                    pressure[end] = p;
-                }
+                pressure = [0, 1].map(|end| if facing_half == Some(end) { pressure[end] } else { 0.0 });
                 mid_pressure = mid_pressure.map(|_| 0.0);
             }
             // The traction at the ends follows the obstacle's own normal there
@@ -654,7 +658,7 @@ pub fn bound(
         let v = match s.mid {
             // The P2 functions along the side.
             Some(m) => {
-                let w = [(1.0 - t) * (1.0 - 2.0 * t), 4.0 * t * (1.0 - t), t * (2.0 * t - 1.0)];
+                let w = quadratic::along_side(t);
                 let vm = field[m.node];
                 std::array::from_fn(|c| w[0] * field[a][c] + w[1] * vm[c] + w[2] * field[b][c])
             }
@@ -761,11 +765,13 @@ pub fn bound(
     // then concave along the side, so at least its smaller end's), and what
     // the margin's change leaves is pushed again, in a few more rounds.
     let rounds = if sides.iter().any(|s| s.mid.is_some()) { 4 } else { 1 };
-    let reduced = scene
+    // The bodies that run the P2–P0 element.
+    let p2p0: Vec<bool> = scene
         .bodies
         .iter()
         .zip(meshes)
-        .any(|(body, mesh)| integration(body, mesh.order, scene.analysis) == Integration::MeanDilatation);
+        .map(|(body, mesh)| integration(body, mesh.order, scene.analysis) == Integration::MeanDilatation)
+        .collect();
     let mut v = u_h.to_vec();
     let mut w = vec![0.0; dofs.n_free];
     let mut pushed = false;
@@ -830,7 +836,7 @@ pub fn bound(
     }
     let correction = if !pushed {
         0.0
-    } else if reduced {
+    } else if p2p0.contains(&true) {
         // K of the P2–P0 element holds the mean dilatation's energy alone,
         // λ |K| θ̄² ≤ λ ∫_K (tr ε)² (Jensen): wᵀ K w would be short of the
         // true ‖w‖²_E the triangle inequality needs. The elements' full rule
@@ -909,8 +915,7 @@ pub fn bound(
                     d: dm,
                     body_force: body.body_force,
                     given: &given[b],
-                    mean_dilatation: (integration(body, mesh.order, scene.analysis) == Integration::MeanDilatation)
-                        .then(|| Constitutive::<3>::volumetric_lambda(&law)),
+                    mean_dilatation: p2p0[b].then(|| Constitutive::<3>::volumetric_lambda(&law)),
                 })
             }
         }

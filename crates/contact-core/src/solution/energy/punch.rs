@@ -113,28 +113,25 @@ pub(super) fn balance(
     for s in sides.iter_mut().filter(|s| s.obstacle == o) {
         let mesh = &meshes[s.body];
         let mid = 0.5 * (mesh.nodes[s.ends[0]][0] + mesh.nodes[s.ends[1]][0]);
-        let at = |node: usize| match s.form {
+        let form = s.form;
+        let at = |node: usize| match form {
             Form::Arc { .. } | Form::Fan { .. } => mid,
             _ => mesh.nodes[node][0],
         };
-        let nodes: Vec<(usize, usize)> = s
-            .ends
-            .iter()
-            .enumerate()
-            .map(|(end, &node)| (end, node))
-            .chain(s.mid.map(|m| (2, m.node)))
-            .collect();
-        for (slot, node) in nodes {
-            let f: f64 = (0..n).map(|j| coef[j] * basis(at(node), j)).sum();
-            let p = match (slot, s.mid.as_mut()) {
-                (2, Some(m)) => &mut m.pressure,
-                (end, _) => &mut s.pressure[end],
-            };
-            *p *= 1.0 + f;
+        let (xs, xm) = (s.ends.map(at), s.mid.map(|m| at(m.node)));
+        let scaled = |p: &mut f64, x: f64| {
+            *p *= 1.0 + (0..n).map(|j| coef[j] * basis(x, j)).sum::<f64>();
             if *p < -1e-12 * scale {
                 return Err("the contact pressure cannot balance a punch's loads with one sign");
             }
             *p = p.max(0.0);
+            Ok(())
+        };
+        for (p, x) in s.pressure.iter_mut().zip(xs) {
+            scaled(p, x)?;
+        }
+        if let (Some(m), Some(x)) = (s.mid.as_mut(), xm) {
+            scaled(&mut m.pressure, x)?;
         }
     }
     Ok(())
@@ -160,18 +157,9 @@ pub(super) fn halves(s: &ContactSide) -> &'static [(f64, f64)] {
 /// `factor` of the node's x: linear between the ends, or on each half
 /// through the midside value.
 fn nodal(s: &ContactSide, mesh: &Mesh2d, t: f64, factor: impl Fn(f64) -> f64) -> f64 {
-    let p = |end: usize| s.pressure[end] * factor(mesh.nodes[s.ends[end]][0]);
-    match s.mid {
-        Some(m) => {
-            let pm = m.pressure * factor(mesh.nodes[m.node][0]);
-            if t <= 0.5 {
-                (1.0 - 2.0 * t) * p(0) + 2.0 * t * pm
-            } else {
-                (2.0 - 2.0 * t) * pm + (2.0 * t - 1.0) * p(1)
-            }
-        }
-        None => (1.0 - t) * p(0) + t * p(1),
-    }
+    let at = |node: usize, p: f64| p * factor(mesh.nodes[node][0]);
+    let ends = [0, 1].map(|e| at(s.ends[e], s.pressure[e]));
+    super::piecewise(ends, s.mid.map(|m| at(m.node, m.pressure)), t)
 }
 
 /// The least-norm x of Σ_{j < n} rows[p][j] x_j = r[p] (n = rows.len()),

@@ -76,6 +76,12 @@ pub(super) fn unsupported(model: &Model) -> Option<&'static str> {
     None
 }
 
+/// The P2 functions of a side at parameter t (first end, middle, second
+/// end): the values along it of a quadratic side's nodal field.
+pub fn along_side(t: f64) -> [f64; 3] {
+    [(1.0 - t) * (1.0 - 2.0 * t), 4.0 * t * (1.0 - t), t * (2.0 * t - 1.0)]
+}
+
 /// ∫_Γ t φ_i ds for the P2 functions of a side (first end, middle,
 /// second end) against the traction linear on each half through the values
 /// at the same three points: [7 2 −1; 6 20 6; −1 2 7] / 48.
@@ -385,6 +391,7 @@ pub fn bound(inp: &Input<6>) -> Option<Bound> {
 #[cfg(test)]
 mod tests {
     use super::super::equilibrate::Given;
+    use super::super::fixtures::plane_strain;
     use super::*;
     use std::collections::HashMap;
 
@@ -423,18 +430,6 @@ mod tests {
             })
             .collect();
         (nodes, elems)
-    }
-
-    /// Plane-strain D of E = 2 and ν, and Lamé's λ.
-    fn plane_strain(nu: f64) -> ([[f64; 3]; 3], f64) {
-        let e = 2.0;
-        let k = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
-        let d = [
-            [k * (1.0 - nu), k * nu, 0.0],
-            [k * nu, k * (1.0 - nu), 0.0],
-            [0.0, 0.0, k * (1.0 - 2.0 * nu) / 2.0],
-        ];
-        (d, k * nu)
     }
 
     /// The bound of the quadratic displacement `u_at` (stress linear, its
