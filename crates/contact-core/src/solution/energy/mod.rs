@@ -238,16 +238,20 @@ struct ContactSide {
 #[derive(Debug, Clone, Copy)]
 struct Mid {
     node: usize,
-    pressure: f64,
+    /// p* at the middle as the first half reaches it and as the second
+    /// does: equal but where a punch's corner sits on the midside node, and
+    /// p* falls to 0 past it (`Given` carries the jump).
+    pressure: [f64; 2],
     dir: [f64; 2],
 }
 
 /// At parameter t of a side, the value linear between its ends' `ends`,
-/// or on each half through the midside's `mid` (a quadratic side's p*).
-fn piecewise(ends: [f64; 2], mid: Option<f64>, t: f64) -> f64 {
+/// or on each half through the midside's `mid` (a quadratic side's p*,
+/// each half its own value at the middle).
+fn piecewise(ends: [f64; 2], mid: Option<[f64; 2]>, t: f64) -> f64 {
     match mid {
-        Some(m) if t <= 0.5 => (1.0 - 2.0 * t) * ends[0] + 2.0 * t * m,
-        Some(m) => (2.0 - 2.0 * t) * m + (2.0 * t - 1.0) * ends[1],
+        Some(m) if t <= 0.5 => (1.0 - 2.0 * t) * ends[0] + 2.0 * t * m[0],
+        Some(m) => (2.0 - 2.0 * t) * m[1] + (2.0 * t - 1.0) * ends[1],
         None => (1.0 - t) * ends[0] + t * ends[1],
     }
 }
@@ -267,16 +271,17 @@ impl ContactSide {
         }
     }
 
-    /// The traction −p* ν on the body at the side's first end, middle and
-    /// second end (linear on each half; the middle value is the mean of the
-    /// ends' on a linear side).
-    fn traction(&self) -> [[f64; 2]; 3] {
+    /// The traction −p* ν on the body at the side's first end, its middle
+    /// from the first half and from the second, and its second end (`Given`'s
+    /// four values: linear on each half; the middle value is the mean of
+    /// the ends' on a linear side).
+    fn traction(&self) -> [[f64; 2]; 4] {
         let [a, b] = [0, 1].map(|e| self.dir[e].map(|d| -self.pressure[e] * d));
-        let m = match self.mid {
-            Some(m) => m.dir.map(|d| -m.pressure * d),
-            None => [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0],
+        let [m0, m1] = match self.mid {
+            Some(m) => m.pressure.map(|p| m.dir.map(|d| -p * d)),
+            None => [[(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0]; 2],
         };
-        [a, m, b]
+        [a, m0, m1, b]
     }
 
     /// The side's nodes in order along it (first end, midside, second end).
@@ -331,7 +336,7 @@ pub fn bound(
                 let tr = vector.unwrap_or([-pressure * n[0], -pressure * n[1]]);
                 let g = given[b].entry(key(e.a, e.b)).or_insert(Given {
                     ends: [e.a, e.b],
-                    traction: [Some([0.0; 3]); 2],
+                    traction: [Some([0.0; 4]); 2],
                 });
                 for (c, tc) in tr.iter().enumerate() {
                     if let Some(v) = g.traction[c].as_mut() {
@@ -384,7 +389,11 @@ pub fn bound(
             let mut pressure = [at(e.a).map_or(0.0, |x| x.0), at(e.b).map_or(0.0, |x| x.0)];
             // A quadratic side's midside p*: its own row's, or the ends'
             // mean where the multiplier lives on the corners alone.
-            let mut mid_pressure = e.mid.map(|m| at(m).map_or(0.5 * (pressure[0] + pressure[1]), |x| x.0));
+            // (Each half's value at the middle: equal but at a punch's corner
+            // on the midside node, below.)
+            let mut mid_pressure = e
+                .mid
+                .map(|m| [at(m).map_or(0.5 * (pressure[0] + pressure[1]), |x| x.0); 2]);
             let Some((form, turn)) = found.map(|(f, t)| match f {
                 // A punch's rigid motion b(y) enters g as b · ν, whose
                 // second derivative along a fan the margin below does not
@@ -394,7 +403,7 @@ pub fn bound(
             }) else {
                 // A quadratic side's midside row can press where its corners
                 // do not (their values alternate near a zone's end).
-                if pressure != [0.0, 0.0] || mid_pressure.is_some_and(|p| p != 0.0) {
+                if pressure != [0.0, 0.0] || mid_pressure.is_some_and(|p| p != [0.0, 0.0]) {
                     return Err("a side in contact runs past an open end of its obstacle");
                 }
                 // A part the obstacle faces whose form is unknown, or pieces
@@ -429,7 +438,7 @@ pub fn bound(
                 // effectivity 3.9, against 1.5 a level finer whose corner is
                 // on a corner node).
                 pressure = [0, 1].map(|end| if facing_half == Some(end) { pressure[end] } else { 0.0 });
-                mid_pressure = mid_pressure.map(|_| 0.0);
+                mid_pressure = mid_pressure.map(|m| [0, 1].map(|h| if facing_half == Some(h) { m[h] } else { 0.0 }));
             }
             // The traction at the ends follows the obstacle's own normal there
             // (a nodal row's direction is that normal at its node).
@@ -442,7 +451,9 @@ pub fn bound(
                 // (at a sharp corner the continuous model's normal is not even
                 // defined), and the admissibility between samples has no
                 // bound there: a side in contact there is out of reach.
-                Form::Kinked if pressure != [0.0, 0.0] || mid_pressure.is_some_and(|p| p != 0.0) => return Err(KINKED),
+                Form::Kinked if pressure != [0.0, 0.0] || mid_pressure.is_some_and(|p| p != [0.0, 0.0]) => {
+                    return Err(KINKED)
+                }
                 Form::Fan { .. } => {
                     // One q on the side, p* = q |m|, with the mean of the
                     // nodal pressures' integral as on an arc.
@@ -450,12 +461,12 @@ pub fn bound(
                     let r = |t: f64| form.scale(pa, pb, t).unwrap_or(1.0);
                     let q = match (e.mid, mid_pressure) {
                         (Some(_), Some(pm)) => {
-                            (pressure[0] + 4.0 * pm + pressure[1]) / (r(0.0) + 4.0 * r(0.5) + r(1.0))
+                            (pressure[0] + 2.0 * (pm[0] + pm[1]) + pressure[1]) / (r(0.0) + 4.0 * r(0.5) + r(1.0))
                         }
                         _ => (pressure[0] + pressure[1]) / (r(0.0) + r(1.0)),
                     };
                     pressure = [q * r(0.0), q * r(1.0)];
-                    mid_pressure = e.mid.map(|_| q * r(0.5));
+                    mid_pressure = e.mid.map(|_| [q * r(0.5); 2]);
                 }
                 Form::Arc { center } => {
                     // One q on the side, p* = q |x − c|, with the mean of the
@@ -463,11 +474,13 @@ pub fn bound(
                     let r = |n: usize| (mesh.nodes[n][0] - center[0]).hypot(mesh.nodes[n][1] - center[1]);
                     // On a quadratic side the mean by Simpson's weights.
                     let q = match (e.mid, mid_pressure) {
-                        (Some(m), Some(pm)) => (pressure[0] + 4.0 * pm + pressure[1]) / (r(e.a) + 4.0 * r(m) + r(e.b)),
+                        (Some(m), Some(pm)) => {
+                            (pressure[0] + 2.0 * (pm[0] + pm[1]) + pressure[1]) / (r(e.a) + 4.0 * r(m) + r(e.b))
+                        }
                         _ => (pressure[0] + pressure[1]) / (r(e.a) + r(e.b)),
                     };
                     pressure = [q * r(e.a), q * r(e.b)];
-                    mid_pressure = e.mid.map(|m| q * r(m));
+                    mid_pressure = e.mid.map(|m| [q * r(m); 2]);
                 }
                 _ => {}
             }
@@ -514,14 +527,14 @@ pub fn bound(
     for side in &beds {
         let [a, b] = side.traction();
         let m = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
-        add_traction(&mut given[side.body], side.ends, [a, m, b]);
+        add_traction(&mut given[side.body], side.ends, [a, m, m, b]);
     }
     for (b, (body, mesh)) in scene.bodies.iter().zip(meshes).enumerate() {
         for s in &body.supports {
             for e in mesh.edge_sets.get(&s.edges).map(|v| v.as_slice()).unwrap_or(&[]) {
                 let g = given[b].entry(key(e.a, e.b)).or_insert(Given {
                     ends: [e.a, e.b],
-                    traction: [Some([0.0; 3]); 2],
+                    traction: [Some([0.0; 4]); 2],
                 });
                 if s.ux.is_some() {
                     g.traction[0] = None;
@@ -559,13 +572,14 @@ pub fn bound(
             add(body, ends[1], c, l * (ta + 2.0 * tb) / 6.0);
         }
     }
-    // A quadratic side's consistent forces, a contact side's or a bed's (p*
-    // linear along it): the P2 functions' moments.
-    let mut p2_loads = |body: usize, nodes: [usize; 3], t: [[f64; 2]; 3]| {
+    // A quadratic side's consistent forces, a contact side's (p* linear on
+    // each half, free to jump at the middle) or a bed's (p* linear along
+    // it): the P2 functions' moments.
+    let mut p2_loads = |body: usize, nodes: [usize; 3], t: [[f64; 2]; 4]| {
         let (pa, pb) = (meshes[body].nodes[nodes[0]], meshes[body].nodes[nodes[2]]);
         let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
         for c in 0..2 {
-            for (n, fc) in nodes.into_iter().zip(quadratic::moments(l, t.map(|v| v[c]))) {
+            for (n, fc) in nodes.into_iter().zip(quadratic::half_moments(l, t.map(|v| v[c]))) {
                 add(body, n, c, fc);
             }
         }
@@ -578,11 +592,8 @@ pub fn bound(
     for s in &beds {
         if let Some(mid) = s.mid {
             let [ta, tb] = s.traction();
-            p2_loads(
-                s.body,
-                [s.ends[0], mid, s.ends[1]],
-                [ta, [0.5 * (ta[0] + tb[0]), 0.5 * (ta[1] + tb[1])], tb],
-            );
+            let tm = [0.5 * (ta[0] + tb[0]), 0.5 * (ta[1] + tb[1])];
+            p2_loads(s.body, [s.ends[0], mid, s.ends[1]], [ta, tm, tm, tb]);
         }
     }
     for (cand, l) in model.cons.candidates.iter().zip(lambda) {
@@ -851,7 +862,7 @@ pub fn bound(
     for s in &sides {
         // Not only the corners: a midside p* can press between two corners
         // at 0, and its term must then be counted.
-        if s.pressure == [0.0, 0.0] && s.mid.is_none_or(|m| m.pressure == 0.0) {
+        if s.pressure == [0.0, 0.0] && s.mid.is_none_or(|m| m.pressure == [0.0, 0.0]) {
             continue;
         }
         let mesh = &meshes[s.body];
@@ -958,20 +969,20 @@ pub fn bound(
     })
 }
 
-/// Adds a linear traction (its values at `ends`, in that order) to a side's
-/// given data.
-fn add_traction(given: &mut HashMap<[usize; 2], Given>, ends: [usize; 2], t: [[f64; 2]; 3]) {
+/// Adds a traction linear on each half (`Given`'s four values, from
+/// `ends[0]` to `ends[1]`) to a side's given data.
+fn add_traction(given: &mut HashMap<[usize; 2], Given>, ends: [usize; 2], t: [[f64; 2]; 4]) {
     let g = given
         .entry([ends[0].min(ends[1]), ends[0].max(ends[1])])
         .or_insert(Given {
             ends,
-            traction: [Some([0.0; 3]); 2],
+            traction: [Some([0.0; 4]); 2],
         });
     let flip = g.ends != ends;
     for (c, slot) in g.traction.iter_mut().enumerate() {
         if let Some(v) = slot.as_mut() {
             for (i, x) in v.iter_mut().enumerate() {
-                *x += t[if flip { 2 - i } else { i }][c];
+                *x += t[if flip { 3 - i } else { i }][c];
             }
         }
     }

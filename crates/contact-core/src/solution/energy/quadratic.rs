@@ -40,7 +40,7 @@
 //! element share its geometry and belong together.
 
 use super::equilibrate::{
-    given_moments, mean_over_areas, node_systems, particular_stress, Bound, Given3, Input, Numbering, NONE,
+    given_at, given_moments, mean_over_areas, node_systems, particular_stress, Bound, Given3, Input, Numbering, NONE,
 };
 use super::patch::{Patches, Residual, SHARE};
 use super::split;
@@ -86,10 +86,20 @@ pub fn along_side(t: f64) -> [f64; 3] {
 /// second end) against the traction linear on each half through the values
 /// at the same three points: [7 2 −1; 6 20 6; −1 2 7] / 48.
 pub fn moments(l: f64, t: [f64; 3]) -> [f64; 3] {
+    half_moments(l, [t[0], t[1], t[1], t[2]])
+}
+
+/// ∫_Γ t φ_i ds as `moments`, for a traction linear on each half with its
+/// own values at the middle (`t` = first end, middle from the first half,
+/// middle from the second half, second end; a jump where the two differ):
+/// [7 3 −1 −1; 6 10 10 6; −1 −1 3 7] / 48 (the middle column of `moments`
+/// split between the halves, each the exact integral of a quadratic times
+/// a linear function over its half).
+pub fn half_moments(l: f64, t: [f64; 4]) -> [f64; 3] {
     [
-        l * (7.0 * t[0] + 2.0 * t[1] - t[2]) / 48.0,
-        l * (6.0 * t[0] + 20.0 * t[1] + 6.0 * t[2]) / 48.0,
-        l * (-t[0] + 2.0 * t[1] + 7.0 * t[2]) / 48.0,
+        l * (7.0 * t[0] + 3.0 * t[1] - t[2] - t[3]) / 48.0,
+        l * (6.0 * t[0] + 10.0 * t[1] + 10.0 * t[2] + 6.0 * t[3]) / 48.0,
+        l * (-t[0] - t[1] + 3.0 * t[2] + 7.0 * t[3]) / 48.0,
     ]
 }
 
@@ -287,7 +297,7 @@ pub fn bound(inp: &Input<6>) -> Option<Bound> {
         mut proj,
         mut mid,
         sought,
-    } = given_moments(sides, inp.given, moments);
+    } = given_moments(sides, inp.given, half_moments);
     for (k, es) in elem_sides.iter().enumerate() {
         for (j, &id) in es.iter().enumerate() {
             let eta = num.sign(id, k);
@@ -343,25 +353,37 @@ pub fn bound(inp: &Input<6>) -> Option<Bound> {
             let (a, b) = (p[j], p[(j + 1) % 3]);
             let xm = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
             let n = [(b[1] - a[1]) / sd.len, -(b[0] - a[0]) / sd.len];
-            // The side's three values per component, in K's order.
-            let mut v = [[0.0; 2]; 3];
+            // The side's four values per component (`Given`'s: the middle
+            // once from each half), in K's order. A given component is its
+            // data as they are, which may jump at the middle (a punch's
+            // corner on the midside node): the four-split stress carries
+            // each half alone, and the data's moments are the ones the node
+            // systems balanced. A sought one is continuous there, fixed by
+            // its three moments.
+            let mut v = [[0.0; 2]; 4];
             for c in 0..2 {
-                let vals = from_moments(sd.len, [proj[id][0][c], mid[id][c], proj[id][1][c]]);
+                let vals = match (sought[id][c], given_at(inp.given, sd, c)) {
+                    (false, Some(data)) => data,
+                    _ => {
+                        let [x, y, z] = from_moments(sd.len, [proj[id][0][c], mid[id][c], proj[id][1][c]]);
+                        [x, y, y, z]
+                    }
+                };
                 let vals = if sd.ends[0] == k[j] {
                     vals
                 } else {
-                    [vals[2], vals[1], vals[0]]
+                    [vals[3], vals[2], vals[1], vals[0]]
                 };
-                for i in 0..3 {
+                for i in 0..4 {
                     v[i][c] = eta * vals[i];
                 }
             }
-            let pts = [a, xm, b];
-            let w: [[f64; 2]; 3] = std::array::from_fn(|i| {
+            let pts = [a, xm, xm, b];
+            let w: [[f64; 2]; 4] = std::array::from_fn(|i| {
                 let sp = traction(particular(pts[i]), n);
                 [v[i][0] - sp[0], v[i][1] - sp[1]]
             });
-            t[j] = [[w[0], w[1]], [w[1], w[2]]];
+            t[j] = [[w[0], w[1]], [w[2], w[3]]];
         }
         // The stress compared is the true C ε(v) whatever the element
         // integrates: the theorem bounds the error in the true energy.
@@ -471,7 +493,7 @@ mod tests {
                 let traction = if held && on_left {
                     [None, None]
                 } else {
-                    [0, 1].map(|c| Some(t.map(|v| v[c])))
+                    [0, 1].map(|c| Some([t[0][c], t[1][c], t[1][c], t[2][c]]))
                 };
                 given.insert([a.min(b), a.max(b)], Given { ends: [a, b], traction });
             }
