@@ -268,9 +268,10 @@ fn inner_node(node: usize, elems: &[u32], at: &Around, fan: &mut Vec<Step>, proj
 /// The admissible stress's distance to σ(u_cmp), element by element; None
 /// for a degenerate element.
 /// Each side's moments of its given traction against its nodes' functions
-/// (`moments(length, `Given`'s four values)`, in the side's own order): at both ends (`proj`) and, for quadratic sides, the
-/// middle (`mid`); `sought` where an interior side's or a held component's
-/// traction is left to the node systems.
+/// (`moments(length, Given's four values)`, in the side's own order): at
+/// both ends (`proj`) and, for quadratic sides, the middle (`mid`); `sought`
+/// where an interior side's or a held component's traction is left to the
+/// node systems.
 pub(super) struct Given3 {
     pub(super) proj: Vec<[[f64; 2]; 2]>,
     pub(super) mid: Vec<[f64; 2]>,
