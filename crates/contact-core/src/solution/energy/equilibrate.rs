@@ -35,14 +35,17 @@ use super::patch::{Patches, Residual, SHARE};
 use std::collections::{HashMap, HashSet};
 
 /// A boundary side's data, per component: the traction at its first end,
-/// its middle and its second end (in the order of `ends`; linear on each
-/// half, and on linear triangles linear along the side, the middle value
-/// unread), or None where that component's displacement is prescribed (the
-/// traction is then sought).
+/// at its middle as the first half reaches it, at its middle as the second
+/// half reaches it, and at its second end (in the order of `ends`; linear on
+/// each half, free to jump at the middle on quadratic triangles, whose
+/// four-split stress carries each half-side's traction alone; on linear
+/// triangles linear along the side, the middle values unread), or None
+/// where that component's displacement is prescribed (the traction is then
+/// sought).
 #[derive(Debug, Clone, Copy)]
 pub struct Given {
     pub ends: [usize; 2],
-    pub traction: [Option<[f64; 3]>; 2],
+    pub traction: [Option<[f64; 4]>; 2],
 }
 
 /// One body's triangles (N = 3 linear, `quadratic` for N = 6) and what is
@@ -264,13 +267,11 @@ fn inner_node(node: usize, elems: &[u32], at: &Around, fan: &mut Vec<Step>, proj
 
 /// The admissible stress's distance to σ(u_cmp), element by element; None
 /// for a degenerate element.
-/// The given traction of a side at its first end, middle and second end,
-/// in the side's own order (0 on a free side, None where sought).
 /// Each side's moments of its given traction against its nodes' functions
-/// (`moments(length, the traction at its start, middle and end)`, in the
-/// side's own order): at both ends (`proj`) and, for quadratic sides, the
-/// middle (`mid`); `sought` where an interior side's or a held component's
-/// traction is left to the node systems.
+/// (`moments(length, Given's four values)`, in the side's own order): at
+/// both ends (`proj`) and, for quadratic sides, the middle (`mid`); `sought`
+/// where an interior side's or a held component's traction is left to the
+/// node systems.
 pub(super) struct Given3 {
     pub(super) proj: Vec<[[f64; 2]; 2]>,
     pub(super) mid: Vec<[f64; 2]>,
@@ -280,7 +281,7 @@ pub(super) struct Given3 {
 pub(super) fn given_moments(
     sides: &[Side],
     given: &HashMap<[usize; 2], Given>,
-    moments: impl Fn(f64, [f64; 3]) -> [f64; 3],
+    moments: impl Fn(f64, [f64; 4]) -> [f64; 3],
 ) -> Given3 {
     let mut out = Given3 {
         proj: vec![[[0.0; 2]; 2]; sides.len()],
@@ -320,11 +321,13 @@ pub(super) fn held(sides: &[Side], sought: &[[bool; 2]]) -> HashSet<[usize; 2]> 
         .collect()
 }
 
-pub(super) fn given_at(given: &HashMap<[usize; 2], Given>, s: &Side, c: usize) -> Option<[f64; 3]> {
+/// Component c of a boundary side's data in the side's own orientation
+/// (`Given`'s four values), None where it is sought.
+pub(super) fn given_at(given: &HashMap<[usize; 2], Given>, s: &Side, c: usize) -> Option<[f64; 4]> {
     let key = [s.ends[0].min(s.ends[1]), s.ends[0].max(s.ends[1])];
     match given.get(&key) {
-        Some(g) => g.traction[c].map(|t| if g.ends == s.ends { t } else { [t[2], t[1], t[0]] }),
-        None => Some([0.0; 3]),
+        Some(g) => g.traction[c].map(|t| if g.ends == s.ends { t } else { [t[3], t[2], t[1], t[0]] }),
+        None => Some([0.0; 4]),
     }
 }
 
@@ -486,7 +489,7 @@ pub fn bound(inp: &Input<3>) -> Option<Bound> {
     let (sides, elem_sides) = (&num.sides, &num.elem_sides);
     // The given traction of a side at its ends, in the side's own order.
     // Projections b[side][end][component] = ∫ t̂ φ_end ds.
-    let Given3 { mut proj, sought, .. } = given_moments(sides, inp.given, |l, [ta, _, tb]| {
+    let Given3 { mut proj, sought, .. } = given_moments(sides, inp.given, |l, [ta, _, _, tb]| {
         [l * (2.0 * ta + tb) / 6.0, 0.0, l * (ta + 2.0 * tb) / 6.0]
     });
     // The hats' moments of the nodal stresses' linear traction.
@@ -607,7 +610,7 @@ mod tests {
                 let traction = if held && on_left {
                     [None, None]
                 } else {
-                    [Some([t[0]; 3]), Some([t[1]; 3])]
+                    [Some([t[0]; 4]), Some([t[1]; 4])]
                 };
                 given.insert([a.min(b), a.max(b)], Given { ends: [a, b], traction });
             }

@@ -81,7 +81,7 @@ pub(super) fn balance(
                 }
             }
         }
-        for p in s.pressure.iter().chain(s.mid.as_ref().map(|m| &m.pressure)) {
+        for p in s.pressure.iter().chain(s.mid.iter().flat_map(|m| &m.pressure)) {
             scale = scale.max(p.abs());
         }
     }
@@ -131,7 +131,9 @@ pub(super) fn balance(
             scaled(p, x)?;
         }
         if let (Some(m), Some(x)) = (s.mid.as_mut(), xm) {
-            scaled(&mut m.pressure, x)?;
+            for p in &mut m.pressure {
+                scaled(p, x)?;
+            }
         }
     }
     Ok(())
@@ -140,7 +142,7 @@ pub(super) fn balance(
 /// Whether a side carries any p* (a quadratic side's midside value can
 /// press between two corners at 0).
 fn presses(s: &ContactSide) -> bool {
-    s.pressure != [0.0, 0.0] || s.mid.is_some_and(|m| m.pressure != 0.0)
+    s.pressure != [0.0, 0.0] || s.mid.is_some_and(|m| m.pressure != [0.0, 0.0])
 }
 
 /// The pieces of [0, 1] on which a side's p* is linear: the whole side, or
@@ -159,7 +161,7 @@ pub(super) fn halves(s: &ContactSide) -> &'static [(f64, f64)] {
 fn nodal(s: &ContactSide, mesh: &Mesh2d, t: f64, factor: impl Fn(f64) -> f64) -> f64 {
     let at = |node: usize, p: f64| p * factor(mesh.nodes[node][0]);
     let ends = [0, 1].map(|e| at(s.ends[e], s.pressure[e]));
-    super::piecewise(ends, s.mid.map(|m| at(m.node, m.pressure)), t)
+    super::piecewise(ends, s.mid.map(|m| m.pressure.map(|p| at(m.node, p))), t)
 }
 
 /// The least-norm x of Σ_{j < n} rows[p][j] x_j = r[p] (n = rows.len()),

@@ -10,9 +10,15 @@
 //! the solver's residual, where the node is free: their mean is taken) or
 //! the data on a boundary side. A corner's function gives node systems of
 //! exactly the linear triangles' structure (the unknowns each side's moment
-//! against it), solved by `equilibrate::node_systems`. Each side's traction
-//! is then linear on each half, continuous at the midpoint: three values per
-//! component, fixed by its three moments (`from_moments`). The P2 functions
+//! against it), solved by `equilibrate::node_systems`. Each sought side's
+//! traction is then linear on each half, continuous at the midpoint: three
+//! values per component, fixed by its three moments (`from_moments`). A
+//! given side's is its data as they are, linear on each half with a jump at
+//! the midpoint allowed (a punch's corner on the midside node, where p*
+//! keeps the node's pressure on the half it faces and vanishes past it):
+//! the node systems balance its moments (`half_moments`), and `split`
+//! carries each half-side's traction alone, so τ n is the data exactly,
+//! jump included (no projection onto a continuous trace). The P2 functions
 //! sum to 1 and reproduce x, so each element is in equilibrium under its
 //! sides' tractions, and `split` carries them with an admissible stress.
 //!
@@ -35,12 +41,13 @@
 //! where √λ's is 3.18, effectivity 1.02–1.04 against the twice-refined
 //! answer's true error).
 //!
-//! Length: about 570 lines, 210 of them the patch tests (full rule and
-//! P2–P0); the rows, the sides' tractions and the four-split stress of an
-//! element share its geometry and belong together.
+//! Length: about 740 lines, 310 of them the patch tests (full rule,
+//! P2–P0, a jump at a midside node) and the half-sides' moments; the rows,
+//! the sides' tractions and the four-split stress of an element share its
+//! geometry and belong together.
 
 use super::equilibrate::{
-    given_moments, mean_over_areas, node_systems, particular_stress, Bound, Given3, Input, Numbering, NONE,
+    given_at, given_moments, mean_over_areas, node_systems, particular_stress, Bound, Given3, Input, Numbering, NONE,
 };
 use super::patch::{Patches, Residual, SHARE};
 use super::split;
@@ -86,10 +93,20 @@ pub fn along_side(t: f64) -> [f64; 3] {
 /// second end) against the traction linear on each half through the values
 /// at the same three points: [7 2 −1; 6 20 6; −1 2 7] / 48.
 pub fn moments(l: f64, t: [f64; 3]) -> [f64; 3] {
+    half_moments(l, [t[0], t[1], t[1], t[2]])
+}
+
+/// ∫_Γ t φ_i ds as `moments`, for a traction linear on each half with its
+/// own values at the middle (`t` = first end, middle from the first half,
+/// middle from the second half, second end; a jump where the two differ):
+/// [7 3 −1 −1; 6 10 10 6; −1 −1 3 7] / 48 (the middle column of `moments`
+/// split between the halves, each the exact integral of a quadratic times
+/// a linear function over its half).
+pub fn half_moments(l: f64, t: [f64; 4]) -> [f64; 3] {
     [
-        l * (7.0 * t[0] + 2.0 * t[1] - t[2]) / 48.0,
-        l * (6.0 * t[0] + 20.0 * t[1] + 6.0 * t[2]) / 48.0,
-        l * (-t[0] + 2.0 * t[1] + 7.0 * t[2]) / 48.0,
+        l * (7.0 * t[0] + 3.0 * t[1] - t[2] - t[3]) / 48.0,
+        l * (6.0 * t[0] + 10.0 * t[1] + 10.0 * t[2] + 6.0 * t[3]) / 48.0,
+        l * (-t[0] - t[1] + 3.0 * t[2] + 7.0 * t[3]) / 48.0,
     ]
 }
 
@@ -101,6 +118,23 @@ pub fn from_moments(l: f64, b: [f64; 3]) -> [f64; 3] {
         (-3.0 * b[0] + 3.0 * b[1] - 3.0 * b[2]) / l,
         (2.0 * b[0] - b[1] + 8.0 * b[2]) / l,
     ]
+}
+
+/// One component of a side's traction, `Given`'s four values in the side's
+/// own order: a given component's data as they are, which may jump at the
+/// middle (a punch's corner on the midside node, `energy::Mid`): the
+/// four-split stress carries each half alone (`split`), and the data's
+/// moments are the ones the node systems balanced (`half_moments`). A
+/// sought one (`data` None) is continuous there, fixed by its three
+/// moments `b`.
+fn side_values(data: Option<[f64; 4]>, l: f64, b: [f64; 3]) -> [f64; 4] {
+    match data {
+        Some(data) => data,
+        None => {
+            let [x, y, z] = from_moments(l, b);
+            [x, y, y, z]
+        }
+    }
 }
 
 /// Counter-clockwise corners, the midside nodes in the same order (mid j
@@ -287,7 +321,7 @@ pub fn bound(inp: &Input<6>) -> Option<Bound> {
         mut proj,
         mut mid,
         sought,
-    } = given_moments(sides, inp.given, moments);
+    } = given_moments(sides, inp.given, half_moments);
     for (k, es) in elem_sides.iter().enumerate() {
         for (j, &id) in es.iter().enumerate() {
             let eta = num.sign(id, k);
@@ -343,25 +377,31 @@ pub fn bound(inp: &Input<6>) -> Option<Bound> {
             let (a, b) = (p[j], p[(j + 1) % 3]);
             let xm = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
             let n = [(b[1] - a[1]) / sd.len, -(b[0] - a[0]) / sd.len];
-            // The side's three values per component, in K's order.
-            let mut v = [[0.0; 2]; 3];
+            // The side's four values per component (`Given`'s: the middle
+            // once from each half), in K's order.
+            let mut v = [[0.0; 2]; 4];
             for c in 0..2 {
-                let vals = from_moments(sd.len, [proj[id][0][c], mid[id][c], proj[id][1][c]]);
+                let data = if sought[id][c] {
+                    None
+                } else {
+                    given_at(inp.given, sd, c)
+                };
+                let vals = side_values(data, sd.len, [proj[id][0][c], mid[id][c], proj[id][1][c]]);
                 let vals = if sd.ends[0] == k[j] {
                     vals
                 } else {
-                    [vals[2], vals[1], vals[0]]
+                    [vals[3], vals[2], vals[1], vals[0]]
                 };
-                for i in 0..3 {
+                for i in 0..4 {
                     v[i][c] = eta * vals[i];
                 }
             }
-            let pts = [a, xm, b];
-            let w: [[f64; 2]; 3] = std::array::from_fn(|i| {
+            let pts = [a, xm, xm, b];
+            let w: [[f64; 2]; 4] = std::array::from_fn(|i| {
                 let sp = traction(particular(pts[i]), n);
                 [v[i][0] - sp[0], v[i][1] - sp[1]]
             });
-            t[j] = [[w[0], w[1]], [w[1], w[2]]];
+            t[j] = [[w[0], w[1]], [w[2], w[3]]];
         }
         // The stress compared is the true C ε(v) whatever the element
         // integrates: the theorem bounds the error in the true energy.
@@ -444,6 +484,18 @@ mod tests {
         u_at: impl Fn([f64; 2]) -> [f64; 2],
         strain: impl Fn([f64; 2]) -> [f64; 3],
     ) -> (f64, f64) {
+        bound_with_jump(d, mean_dilatation, u_at, strain, 0.0)
+    }
+
+    /// `bound_of_exact_state` with `jump` × `JUMP` added to the vertical
+    /// traction of the bottom's first side (from node 0 to node 1).
+    fn bound_with_jump(
+        d: [[f64; 3]; 3],
+        mean_dilatation: Option<f64>,
+        u_at: impl Fn([f64; 2]) -> [f64; 2],
+        strain: impl Fn([f64; 2]) -> [f64; 3],
+        jump: f64,
+    ) -> (f64, f64) {
         let (nodes, elems) = square_t6();
         let sigma = |x: [f64; 2]| -> [f64; 3] {
             let eps = strain(x);
@@ -471,7 +523,12 @@ mod tests {
                 let traction = if held && on_left {
                     [None, None]
                 } else {
-                    [0, 1].map(|c| Some(t.map(|v| v[c])))
+                    [0, 1].map(|c| {
+                        let extra = if [a, b] == [0, 1] && c == 1 { jump } else { 0.0 };
+                        Some(std::array::from_fn(|i| {
+                            [t[0], t[1], t[1], t[2]][i][c] + extra * JUMP[i]
+                        }))
+                    })
                 };
                 given.insert([a.min(b), a.max(b)], Given { ends: [a, b], traction });
             }
@@ -492,6 +549,70 @@ mod tests {
             closure = closure.max(b.closure);
         }
         (worst, closure)
+    }
+
+    /// A traction linear on each half with a jump at the middle whose
+    /// moments against the three P2 functions all vanish (the null vector
+    /// of `half_moments`' matrix): it carries no force and no moment, and
+    /// no continuous traction shares its moments but 0.
+    const JUMP: [f64; 4] = [1.0, -2.0, 2.0, -1.0];
+
+    /// `half_moments` are the P2 functions' integrals against a traction
+    /// linear on each half with a jump at the middle (Gauss–Legendre with
+    /// two points on each half: exact for the cubic integrand), to
+    /// round-off; `moments` is the continuous case, and `JUMP` has none.
+    #[test]
+    fn half_side_moments_are_the_p2_functions_integrals() {
+        let (l, t) = (1.7, [0.4, -1.3, 2.2, 0.9]);
+        let g = 0.5 / 3.0_f64.sqrt();
+        let mut want = [0.0; 3];
+        for (start, [ta, tb]) in [(0.0, [t[0], t[1]]), (0.5, [t[2], t[3]])] {
+            for q in [0.25 - g / 2.0, 0.25 + g / 2.0] {
+                let s = start + q;
+                let v = ta + (tb - ta) * (s - start) / 0.5;
+                for (w, phi) in want.iter_mut().zip(along_side(s)) {
+                    *w += l * 0.25 * v * phi;
+                }
+            }
+        }
+        let got = half_moments(l, t);
+        for i in 0..3 {
+            assert!((got[i] - want[i]).abs() < 1e-14, "{got:?} against {want:?}");
+        }
+        let c = moments(l, [0.4, -1.3, 0.9]);
+        let h = half_moments(l, [0.4, -1.3, -1.3, 0.9]);
+        assert!((0..3).all(|i| (c[i] - h[i]).abs() < 1e-15), "{c:?} against {h:?}");
+        assert!(half_moments(l, JUMP).iter().all(|m| m.abs() < 1e-15));
+    }
+
+    /// A given component's four values reach the four-split stress as they
+    /// are, jump included, and a sought one's three moments give the
+    /// continuous traction that has them (`from_moments` inverts `moments`).
+    #[test]
+    fn a_given_jump_is_kept_and_a_sought_traction_is_continuous() {
+        let (l, data) = (0.8, [0.3, 1.1, -0.2, 0.5]);
+        assert_eq!(side_values(Some(data), l, half_moments(l, data)), data);
+        let got = side_values(None, l, moments(l, [0.3, 1.1, 0.5]));
+        let want = [0.3, 1.1, 1.1, 0.5];
+        assert!((0..4).all(|i| (got[i] - want[i]).abs() < 1e-14), "{got:?}");
+    }
+
+    /// The patch test with a jump: `JUMP` added to one given side leaves
+    /// every moment, so the answer, the node systems and the elements'
+    /// balance as they are (closure at round-off), but the admissible
+    /// stress must carry it exactly: its distance to σ(u) is no longer 0
+    /// (measured 1.06e-2 of ‖u‖²_E for a jump of 1e-3, E = 2; a traction
+    /// made continuous through its moments would lose it and read 0 to
+    /// round-off, 1e-20 as in `a_linear_stress_has_a_zero_bound`).
+    #[test]
+    fn a_traction_jump_at_a_midside_node_is_carried() {
+        let u = |x: [f64; 2]| [1e-3 * x[0] * x[0] + 2e-4 * x[1], -3e-4 * x[1] * x[1] + 1e-4 * x[0]];
+        let e = |x: [f64; 2]| [2e-3 * x[0], -6e-4 * x[1], 3e-4];
+        let d = plane_strain(0.3).0;
+        let (total, closure) = bound_with_jump(d, None, u, e, 1e-3);
+        println!("jump: {total:e} of ‖u‖²_E, closure {closure:e}");
+        assert!(closure < 1e-10, "closure {closure}");
+        assert!(total > 1e-6, "{total:e} of ‖u‖²_E");
     }
 
     /// The patch test of quadratic triangles: a quadratic displacement has a
