@@ -216,8 +216,8 @@ fn the_bound_is_above_the_error_of_a_flat_punch() {
 /// nodes (by 5: h_min 0.1, nodes every 0.05), against its answer refined
 /// twice, as above: B_h ≥ ‖u_f − u_h‖_E − B_f with no tolerance but
 /// round-off (measured 0.104 ≥ 0.055 − 0.028 with the corners on midside
-/// nodes, centred; 0.064 ≥ 0.045 − 0.031 on corner nodes). p* is linear on each half of a side through its three
-/// nodal pressures and carries the punch's load exactly (`punch::balance`
+/// nodes, centred; 0.064 ≥ 0.045 − 0.031 on corner nodes). p* is linear
+/// on each half of a side through its three nodal pressures and carries the punch's load exactly (`punch::balance`
 /// integrates each half and scales the midside values too); on the side
 /// whose midside node is a corner it keeps that node's pressure on the half
 /// the punch faces and jumps to 0 past it (`quadratic`: the four-split

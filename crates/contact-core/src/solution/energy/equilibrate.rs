@@ -265,8 +265,6 @@ fn inner_node(node: usize, elems: &[u32], at: &Around, fan: &mut Vec<Step>, proj
     true
 }
 
-/// The admissible stress's distance to σ(u_cmp), element by element; None
-/// for a degenerate element.
 /// Each side's moments of its given traction against its nodes' functions
 /// (`moments(length, Given's four values)`, in the side's own order): at
 /// both ends (`proj`) and, for quadratic sides, the middle (`mid`); `sought`

@@ -57,7 +57,7 @@ pub(super) fn balance(
         let (pa, pb) = (mesh.nodes[s.ends[0]], mesh.nodes[s.ends[1]]);
         let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
         let mid = 0.5 * (pa[0] + pb[0]);
-        // A quadratic side's p* has a kink at its middle: each half alone
+        // A quadratic side's p* may kink or jump at its middle: each half alone
         // (on a straight face the integrand is then a quadratic on each, and
         // 4 points are exact).
         for &(start, len) in halves(s) {

@@ -484,7 +484,7 @@ mod tests {
         u_at: impl Fn([f64; 2]) -> [f64; 2],
         strain: impl Fn([f64; 2]) -> [f64; 3],
     ) -> (f64, f64) {
-        bound_with_jump(d, mean_dilatation, u_at, strain, 0.0)
+        bound_with_jump(d, mean_dilatation, u_at, strain, 0.0, false)
     }
 
     /// `bound_of_exact_state` with `jump` × `JUMP` added to the vertical
@@ -495,6 +495,7 @@ mod tests {
         u_at: impl Fn([f64; 2]) -> [f64; 2],
         strain: impl Fn([f64; 2]) -> [f64; 3],
         jump: f64,
+        flipped: bool,
     ) -> (f64, f64) {
         let (nodes, elems) = square_t6();
         let sigma = |x: [f64; 2]| -> [f64; 3] {
@@ -530,7 +531,14 @@ mod tests {
                         }))
                     })
                 };
-                given.insert([a.min(b), a.max(b)], Given { ends: [a, b], traction });
+                // The jumped side stored from its other end, its four values
+                // reversed: the same traction.
+                let (ends, traction) = if flipped && [a, b] == [0, 1] {
+                    ([b, a], traction.map(|v| v.map(|[w, x, y, z]| [z, y, x, w])))
+                } else {
+                    ([a, b], traction)
+                };
+                given.insert([a.min(b), a.max(b)], Given { ends, traction });
             }
             let inp = Input {
                 nodes: &nodes,
@@ -603,16 +611,31 @@ mod tests {
     /// stress must carry it exactly: its distance to σ(u) is no longer 0
     /// (measured 1.06e-2 of ‖u‖²_E for a jump of 1e-3, E = 2; a traction
     /// made continuous through its moments would lose it and read 0 to
-    /// round-off, 1e-20 as in `a_linear_stress_has_a_zero_bound`).
+    /// round-off, 1e-20 as in `a_linear_stress_has_a_zero_bound`, so the
+    /// floor 1e-6 tells the two apart by four orders). The same side given
+    /// from its other end, its values reversed, is the same traction: the
+    /// bound must not move (to round-off) and the balance must still close.
+    /// Reversing `JUMP` only flips its sign, which the squared bound cannot
+    /// see; but the side's own traction varies along it (σ is linear), so
+    /// a reversal that misplaced any of the four values would break the
+    /// moments the node systems balanced and read in `closure`.
     #[test]
     fn a_traction_jump_at_a_midside_node_is_carried() {
         let u = |x: [f64; 2]| [1e-3 * x[0] * x[0] + 2e-4 * x[1], -3e-4 * x[1] * x[1] + 1e-4 * x[0]];
         let e = |x: [f64; 2]| [2e-3 * x[0], -6e-4 * x[1], 3e-4];
         let d = plane_strain(0.3).0;
-        let (total, closure) = bound_with_jump(d, None, u, e, 1e-3);
-        println!("jump: {total:e} of ‖u‖²_E, closure {closure:e}");
-        assert!(closure < 1e-10, "closure {closure}");
+        let (total, closure) = bound_with_jump(d, None, u, e, 1e-3, false);
+        let (flipped, flipped_closure) = bound_with_jump(d, None, u, e, 1e-3, true);
+        println!("jump: {total:e} of ‖u‖²_E, closure {closure:e}; given from the other end {flipped:e}");
+        assert!(
+            closure < 1e-10 && flipped_closure < 1e-10,
+            "closure {closure}, {flipped_closure}"
+        );
         assert!(total > 1e-6, "{total:e} of ‖u‖²_E");
+        assert!(
+            (flipped - total).abs() <= 1e-12 * total,
+            "{flipped:e} against {total:e}"
+        );
     }
 
     /// The patch test of quadratic triangles: a quadratic displacement has a
