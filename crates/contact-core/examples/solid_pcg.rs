@@ -172,7 +172,10 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 fn main() {
     let sizes: Vec<usize> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();
     let sizes = if sizes.is_empty() { vec![11, 16, 22] } else { sizes };
-    println!("| cells | DOF | coarse DOF | setup [s] | iterations | PCG [s] | s per iteration | direct [s] | |u_pcg − u_direct| / |u| |");
+    println!(
+        "| cells | DOF | coarse DOF | setup [s] | iterations | PCG [s] | s per iteration | direct [s] | \
+         |u_pcg − u_direct| / |u| |"
+    );
     println!("|---|---|---|---|---|---|---|---|---|");
     for n in sizes {
         let l = lines(n);
