@@ -248,6 +248,13 @@ struct Mid {
     dir: [f64; 2],
 }
 
+/// Whether a side's nodal p* (its ends', and a quadratic side's midside
+/// values) is anywhere nonzero: a midside value can press between two
+/// corners at 0.
+fn carries(ends: [f64; 2], mid: Option<[f64; 2]>) -> bool {
+    ends != [0.0, 0.0] || mid.is_some_and(|m| m != [0.0, 0.0])
+}
+
 /// At parameter t of a side, the value linear between its ends' `ends`,
 /// or on each half through the midside's `mid` (a quadratic side's p*,
 /// each half its own value at the middle).
@@ -406,7 +413,7 @@ pub fn bound(
             }) else {
                 // A quadratic side's midside row can press where its corners
                 // do not (their values alternate near a zone's end).
-                if pressure != [0.0, 0.0] || mid_pressure.is_some_and(|p| p != [0.0, 0.0]) {
+                if carries(pressure, mid_pressure) {
                     return Err("a side in contact runs past an open end of its obstacle");
                 }
                 // A part the obstacle faces whose form is unknown, or pieces
@@ -438,12 +445,10 @@ pub fn bound(
                 // on that half runs from the facing end's pressure to the
                 // midside node's, jumping to 0 at the middle (`Mid`): a flat
                 // punch's corner on a midside node, where the answer's
-                // pressure peaks. p* = 0 on the whole side read the T6
-                // punch's effectivity 3.9 and p* falling to 0 at the middle
-                // 3.48; the jump reads 2.51, 1.99 with the nodal push below.
-                // Before that push, the midside value scaled by 0.75 or 1.25
-                // read 2.49 and 2.64: within 1 % of the node's own either
-                // way, which is kept rather than tuned to one scene.
+                // pressure peaks. p* = 0 there overstated the T6 punch's
+                // error by 3.5 or more; the node's own value, kept rather
+                // than tuned (scaled by 0.75 or 1.25 it read within 1 % or
+                // worse), brings it under 2 (docs/verification/accuracy.md).
                 pressure = [0, 1].map(|end| if facing_half == Some(end) { pressure[end] } else { 0.0 });
                 mid_pressure = mid_pressure.map(|m| [0, 1].map(|h| if facing_half == Some(h) { m[h] } else { 0.0 }));
             }
@@ -458,9 +463,7 @@ pub fn bound(
                 // (at a sharp corner the continuous model's normal is not even
                 // defined), and the admissibility between samples has no
                 // bound there: a side in contact there is out of reach.
-                Form::Kinked if pressure != [0.0, 0.0] || mid_pressure.is_some_and(|p| p != [0.0, 0.0]) => {
-                    return Err(KINKED)
-                }
+                Form::Kinked if carries(pressure, mid_pressure) => return Err(KINKED),
                 Form::Fan { .. } => {
                     // One q on the side, p* = q |m|, with the mean of the
                     // nodal pressures' integral as on an arc.
@@ -706,6 +709,15 @@ pub fn bound(
     // punch's fan or kink out of contact: in contact they are out of reach)
     // y moves along a facet at most at the side's speed (|y'| ≤ 1, y'' = 0)
     // or stays at a vertex, so 2|b'||ν'| ≤ 2|θ|κ joins 2|b|κ².
+    // At parameter t of a side: the point, the obstacle's direction there,
+    // v · ν − g and its rounding 8 ε (|v · ν| + |g|) (None where the
+    // obstacle does not face it).
+    let excess_at = |s: &ContactSide, field: &[[f64; 2]], t: f64| -> Option<([f64; 2], [f64; 2], f64, f64)> {
+        let (x, v) = along(s, field, t);
+        let (g, dir) = gap_at(s, x)?;
+        let vn = v[0] * dir[0] + v[1] * dir[1];
+        Some((x, dir, vn - g, 8.0 * f64::EPSILON * (vn.abs() + g.abs())))
+    };
     let worst_of = |s: &ContactSide, field: &[[f64; 2]]| -> (f64, f64, f64) {
         let mesh = &meshes[s.body];
         let (mut worst, mut cos, mut slack) = (f64::NEG_INFINITY, 1.0_f64, 0.0_f64);
@@ -713,8 +725,7 @@ pub fn bound(
         let part = s.span[1] - s.span[0];
         for q in 0..SAMPLES {
             let t = s.span[0] + part * q as f64 / (SAMPLES - 1) as f64;
-            let (x, v) = along(s, field, t);
-            let Some((g, dir)) = gap_at(s, x) else {
+            let Some((x, dir, excess, rounding)) = excess_at(s, field, t) else {
                 continue;
             };
             if s.curvature > 0.0 {
@@ -722,9 +733,8 @@ pub fn bound(
                 bmax = bmax.max(b);
                 turn_r = turn_r.max(tr);
             }
-            let vn = v[0] * dir[0] + v[1] * dir[1];
-            worst = worst.max(vn - g);
-            slack = slack.max(8.0 * f64::EPSILON * (vn.abs() + g.abs()));
+            worst = worst.max(excess);
+            slack = slack.max(rounding);
             for dn in &s.dir {
                 cos = cos.min(dn[0] * dir[0] + dn[1] * dir[1]);
             }
@@ -782,7 +792,8 @@ pub fn bound(
     // midside node takes the larger of its ends' pushes (the added push is
     // then concave along the side, so at least its smaller end's), and what
     // the margin's change leaves is pushed again, in a few more rounds.
-    let rounds = if sides.iter().any(|s| s.mid.is_some()) { 4 } else { 1 };
+    let quadratic_sides = sides.iter().any(|s| s.mid.is_some());
+    let rounds = if quadratic_sides { 4 } else { 1 };
     // The bodies that run the P2–P0 element.
     let p2p0: Vec<bool> = scene
         .bodies
@@ -792,43 +803,63 @@ pub fn bound(
         .collect();
     let mut v = u_h.to_vec();
     let mut w = vec![0.0; dofs.n_free];
-    let mut pushed = false;
-    // Where any side is quadratic, a first round pushes each node (of every
-    // side, linear ones included) that passes the obstacle itself by its own
-    // excess alone: the weak rows leave a punch's
-    // corner on a midside node 1.35e-5 inside the punch and its neighbour
-    // half that (the T6 flat punch scaled by 4, of a gap of 2e-2), and the
-    // side's worst given to all its nodes would lift the sides further in,
-    // where p* is large, as far. The rounds after it push each side by what
-    // it still lacks, as before.
-    let nodal = sides.iter().any(|s| s.mid.is_some());
-    for round in 0..rounds + usize::from(nodal) {
-        let mut push: HashMap<(usize, usize), f64> = HashMap::new();
-        let nodes_only = nodal && round == 0;
-        if nodes_only {
-            for s in &sides {
-                let params = std::iter::once(0.0)
-                    .chain(s.mid.map(|_| 0.5))
-                    .chain(std::iter::once(1.0));
-                for (n, t) in s.nodes().zip(params) {
-                    if t < s.span[0] || t > s.span[1] {
-                        continue;
+    // Moves each node of `push` by its push along its rows' direction, in v
+    // and in the correction w.
+    let apply = |push: &HashMap<(usize, usize), f64>, v: &mut Vec<Vec<[f64; 2]>>, w: &mut [f64]| {
+        for (&(b, n), &delta) in push {
+            let dn = dir_at[&(b, n)];
+            for c in 0..2 {
+                let step = -delta * dn[c];
+                match dofs.free[dofs.dof(b, n, c)] {
+                    FIXED if step.abs() > 1e-12 * delta.max(f64::MIN_POSITIVE) && dn[c].abs() > 1e-9 => {
+                        return Err("a node whose displacement is prescribed passes the obstacle between its rows")
                     }
-                    let (x, vv) = along(s, &v[s.body], t);
-                    let Some((g, dir)) = gap_at(s, x) else {
-                        continue;
-                    };
-                    let dn = dir_at[&(s.body, n)];
-                    let cos = dn[0] * dir[0] + dn[1] * dir[1];
-                    let vn = vv[0] * dir[0] + vv[1] * dir[1];
-                    if vn - g > 8.0 * f64::EPSILON * (vn.abs() + g.abs()) && cos >= 0.5 {
-                        let e = push.entry((s.body, n)).or_insert(0.0);
-                        *e = e.max(1.01 * (vn - g) / cos);
+                    FIXED => {}
+                    i => {
+                        w[i] += step;
+                        v[b][n][c] += step;
                     }
                 }
             }
         }
-        for s in sides.iter().filter(|_| !nodes_only) {
+        Ok(())
+    };
+    // Where any side is quadratic, each node (of every side, linear ones
+    // included) that passes the obstacle itself is first pushed by its own
+    // excess alone: the weak rows leave a punch's corner on a midside node
+    // inside the punch by a fraction of its neighbours' excess, and the
+    // side's worst given to all its nodes would lift the sides further in,
+    // where p* is large (docs/verification/accuracy.md: the T6 punch's
+    // effectivity with and without it). The rounds after it push each side
+    // by what it still lacks.
+    let mut pushed = false;
+    if quadratic_sides {
+        let mut push: HashMap<(usize, usize), f64> = HashMap::new();
+        for s in &sides {
+            let params = std::iter::once(0.0)
+                .chain(s.mid.map(|_| 0.5))
+                .chain(std::iter::once(1.0));
+            for (n, t) in s.nodes().zip(params) {
+                if t < s.span[0] || t > s.span[1] {
+                    continue;
+                }
+                let Some((_, dir, excess, rounding)) = excess_at(s, &v[s.body], t) else {
+                    continue;
+                };
+                let dn = dir_at[&(s.body, n)];
+                let cos = dn[0] * dir[0] + dn[1] * dir[1];
+                if excess > rounding && cos >= 0.5 {
+                    let e = push.entry((s.body, n)).or_insert(0.0);
+                    *e = e.max(1.01 * excess / cos);
+                }
+            }
+        }
+        pushed = !push.is_empty();
+        apply(&push, &mut v, &mut w)?;
+    }
+    for _ in 0..rounds {
+        let mut push: HashMap<(usize, usize), f64> = HashMap::new();
+        for s in &sides {
             let (worst, cos, slack) = worst_of(s, &v[s.body]);
             // A side through an obstacle's vertex has no finite margin.
             if worst.is_nan() || worst == f64::INFINITY {
@@ -847,10 +878,10 @@ pub fn bound(
                 }
             }
         }
-        if push.is_empty() && !nodes_only {
+        if push.is_empty() {
             break;
         }
-        for s in sides.iter().filter(|_| !nodes_only) {
+        for s in &sides {
             if let Some(m) = s.mid {
                 let ends = s.ends.map(|n| push.get(&(s.body, n)).copied().unwrap_or(0.0));
                 let most = ends[0].max(ends[1]);
@@ -860,23 +891,8 @@ pub fn bound(
                 }
             }
         }
-        pushed |= !push.is_empty();
-        for (&(b, n), &delta) in &push {
-            let dn = dir_at[&(b, n)];
-            for c in 0..2 {
-                let step = -delta * dn[c];
-                match dofs.free[dofs.dof(b, n, c)] {
-                    FIXED if step.abs() > 1e-12 * delta.max(f64::MIN_POSITIVE) && dn[c].abs() > 1e-9 => {
-                        return Err("a node whose displacement is prescribed passes the obstacle between its rows")
-                    }
-                    FIXED => {}
-                    i => {
-                        w[i] += step;
-                        v[b][n][c] += step;
-                    }
-                }
-            }
-        }
+        pushed = true;
+        apply(&push, &mut v, &mut w)?;
     }
     // v must be admissible everywhere: checked again, margin included.
     if sides.iter().any(|s| {
@@ -902,7 +918,7 @@ pub fn bound(
     for s in &sides {
         // Not only the corners: a midside p* can press between two corners
         // at 0, and its term must then be counted.
-        if s.pressure == [0.0, 0.0] && s.mid.is_none_or(|m| m.pressure == [0.0, 0.0]) {
+        if !carries(s.pressure, s.mid.map(|m| m.pressure)) {
             continue;
         }
         let mesh = &meshes[s.body];

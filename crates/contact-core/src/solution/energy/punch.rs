@@ -142,7 +142,7 @@ pub(super) fn balance(
 /// Whether a side carries any p* (a quadratic side's midside value can
 /// press between two corners at 0).
 fn presses(s: &ContactSide) -> bool {
-    s.pressure != [0.0, 0.0] || s.mid.is_some_and(|m| m.pressure != [0.0, 0.0])
+    super::carries(s.pressure, s.mid.map(|m| m.pressure))
 }
 
 /// The pieces of [0, 1] on which a side's p* is linear: the whole side, or
